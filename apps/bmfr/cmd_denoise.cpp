@@ -1,0 +1,265 @@
+#include "commands.h"
+#include "core/image.h"
+#include "io/exr.h"
+#include "io/png.h"
+#include "io/sequence.h"
+#include "metrics/basic_metrics.h"
+#include "progress.h"
+#include <algorithm>
+#include <bmfr/denoiser.h>
+#include <bmfr/error.h>
+#include <chrono>
+#include <filesystem>
+#include <fmt/core.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace bmfr::app {
+
+namespace fs = std::filesystem;
+
+void SettingsOptions::addTo(CLI::App& cmd) {
+    Settings& s = settings;
+    cmd.add_option("--block-size", s.blockSize, "regression block edge, pixels [8, 64]")
+        ->default_val(32);
+    cmd.add_option("--features", features,
+                   "feature list, e.g. 1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,p.y^2,p.z^2,extra0");
+    cmd.add_option("--noise", s.noiseAmplitude, "regularisation noise half-width [0, 1]")
+        ->default_val(0.01);
+    cmd.add_option("--alpha1", s.firstBlendAlpha, "phase I minimum new-frame weight (0, 1]")
+        ->default_val(0.2);
+    cmd.add_option("--alpha2", s.secondBlendAlpha, "phase III minimum new-frame weight (0, 1]")
+        ->default_val(0.1);
+    cmd.add_option("--taa-alpha", s.taaBlendAlpha, "TAA new-frame weight (0, 1]")->default_val(0.2);
+    cmd.add_option("--position-limit", positionLimitSquared,
+                   "discard when squared world distance >= this (scene units^2); default: the "
+                   "sequence's value, else 0.01");
+    cmd.add_option("--normal-limit", normalLimitSquared,
+                   "discard when squared normal distance >= this (0, 4]; default: the "
+                   "sequence's value, else 1.0");
+    cmd.add_option("--seed", s.seed, "regularisation noise seed")->default_val(0);
+    cmd.add_option("--threads", s.threads, "worker threads, 0 = all cores")->default_val(0);
+    cmd.add_option("--disable", disabled,
+                   "stages to switch off: demodulate, accumulation, fitting, "
+                   "second-accumulation, taa")
+        ->delimiter(',');
+}
+
+Settings SettingsOptions::resolve(std::optional<float> seqPos, std::optional<float> seqNormal,
+                                  bool colorIsDemodulated) const {
+    Settings s = settings;
+    if (!features.empty()) s.features = parseFeatures(features);
+    s.positionLimitSquared = positionLimitSquared.value_or(seqPos.value_or(0.01f));
+    s.normalLimitSquared = normalLimitSquared.value_or(seqNormal.value_or(1.0f));
+    s.colorIsDemodulated = colorIsDemodulated;
+    for (const std::string& d : disabled) {
+        if (d == "demodulate") s.stages.demodulate = false;
+        else if (d == "accumulation") s.stages.firstAccumulation = false;
+        else if (d == "fitting") s.stages.fitting = false;
+        else if (d == "second-accumulation") s.stages.secondAccumulation = false;
+        else if (d == "taa") s.stages.taa = false;
+        else throw Error("--disable: unknown stage '" + d + "'");
+    }
+    validate(s);
+    return s;
+}
+
+namespace {
+
+std::pair<int, int> frameRange(const std::string& spec, int count) {
+    if (spec.empty()) return {0, count};
+    size_t colon = spec.find(':');
+    if (colon == std::string::npos) throw Error("--frames expects A:B, A: or :B, got '" + spec + "'");
+    auto num = [&](const std::string& s, int dflt) {
+        if (s.empty()) return dflt;
+        if (s.find_first_not_of("0123456789") != std::string::npos)
+            throw Error("--frames: '" + s + "' is not a frame number");
+        return std::stoi(s);
+    };
+    int a = num(spec.substr(0, colon), 0), b = num(spec.substr(colon + 1), count);
+    if (a >= b || b > count)
+        throw Error(fmt::format("--frames {}: the sequence has frames 0:{}", spec, count));
+    return {a, b};
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+ImageF copyOf(const ImageView& v) {
+    ImageF img(v.width, v.height, v.channels);
+    std::copy(v.data, v.data + img.pixels.size(), img.data());
+    return img;
+}
+
+struct Scores {
+    std::vector<double> rmse, psnr, relmse, temporal, noisyRmse, noisyTemporal, refTemporal;
+};
+
+double mean(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0 : s / double(v.size());
+}
+
+} // namespace
+
+int runDenoise(const DenoiseJob& job) {
+    auto reader = SequenceReader::open(job.input);
+    const SequenceInfo& info = reader->info();
+    Settings settings = job.options.resolve(info.positionLimitSquared, info.normalLimitSquared,
+                                            info.colorIsDemodulated);
+    for (const Feature& f : settings.features)
+        if (f.source == FeatureSource::Extra && f.extraIndex >= int(info.extraNames.size()))
+            throw Error(fmt::format("feature extra{} requested, {} has {} extra buffers",
+                                    f.extraIndex, job.input, info.extraNames.size()));
+    auto [first, last] = frameRange(job.frames, info.frameCount);
+    fs::create_directories(job.output);
+    if (job.debug) fs::create_directories(fs::path(job.output) / "debug");
+
+    Denoiser denoiser(settings);
+    denoiser.setDebugOutputs(job.debug);
+    if (!job.quiet)
+        fmt::print("bmfr denoise: {} ({} layout, {}x{}, frames {}:{}), features {}\n", job.input,
+                   info.layout, info.width, info.height, first, last,
+                   formatFeatures(settings.features));
+
+    Progress progress("denoise", last - first, job.quiet);
+    std::vector<double> tAcc, tFit, tAcc2, tTaa, tTotal, tRead, tWrite;
+    int64_t nonFinite = 0;
+    std::vector<int> badFrames;
+    Scores scores;
+    FrameData frame;
+    ImageF previousOut, previousRef, previousNoisy;
+    using Clock = std::chrono::steady_clock;
+    auto since = [](Clock::time_point t) {
+        return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+    };
+
+    for (int i = first; i < last; ++i) {
+        auto t0 = Clock::now();
+        reader->load(i, frame);
+        tRead.push_back(since(t0));
+        FrameInput in = frame.input();
+        ImageF out = copyOf(denoiser.denoise(in));
+        const FrameStats& st = denoiser.lastStats();
+        tAcc.push_back(st.times.accumulate);
+        tFit.push_back(st.times.fit);
+        tAcc2.push_back(st.times.accumulateFitted);
+        tTaa.push_back(st.times.taa);
+        tTotal.push_back(st.times.total);
+        if (st.nonFiniteInputs) nonFinite += st.nonFiniteInputs, badFrames.push_back(i);
+
+        auto t1 = Clock::now();
+        const std::string stem = fmt::format("{:04d}", i);
+        writeExr((fs::path(job.output) / ("denoised_" + stem + ".exr")).string(), out);
+        if (job.png) writePngToneMapped((fs::path(job.output) / ("denoised_" + stem + ".png")).string(), out);
+        if (job.debug) {
+            DebugBuffers d = denoiser.debug();
+            const fs::path dd = fs::path(job.output) / "debug";
+            writeExr((dd / ("accumulated_" + stem + ".exr")).string(), copyOf(d.accumulatedNoisy));
+            writeExr((dd / ("fitted_" + stem + ".exr")).string(), copyOf(d.fitted));
+            writeExr((dd / ("history_length_" + stem + ".exr")).string(), copyOf(d.historyLength));
+            writeExr((dd / ("discard_mask_" + stem + ".exr")).string(), copyOf(d.discardMask));
+            writePngToneMapped((dd / ("history_length_" + stem + ".png")).string(),
+                               copyOf(d.historyLength), 1.0f / 16.0f);
+            writePngToneMapped((dd / ("discard_mask_" + stem + ".png")).string(),
+                               copyOf(d.discardMask), 1.0f / 15.0f);
+        }
+        tWrite.push_back(since(t1));
+
+        if (info.hasReference) {
+            ImageF noisy = frame.color;
+            if (info.colorIsDemodulated)
+                for (size_t k = 0; k < noisy.pixels.size(); ++k) noisy.pixels[k] *= frame.albedo.pixels[k];
+            scores.rmse.push_back(rmseToneMapped(out, frame.reference));
+            scores.psnr.push_back(psnrToneMapped(out, frame.reference));
+            scores.relmse.push_back(relMseLinear(out, frame.reference));
+            scores.noisyRmse.push_back(rmseToneMapped(noisy, frame.reference));
+            if (i > first) {
+                scores.temporal.push_back(temporalError(out, previousOut));
+                scores.refTemporal.push_back(temporalError(frame.reference, previousRef));
+                scores.noisyTemporal.push_back(temporalError(noisy, previousNoisy));
+            }
+            previousRef = frame.reference;
+            previousNoisy = std::move(noisy);
+        }
+        previousOut = std::move(out);
+        progress.step(i - first + 1);
+    }
+    progress.finish();
+
+    if (nonFinite)
+        fmt::print(stderr, "bmfr: warning: replaced {} NaN/Inf input values with 0 in {} frame(s) "
+                           "(first: frame {})\n", nonFinite, badFrames.size(), badFrames.front());
+
+    nlohmann::json report;
+    report["input"] = job.input;
+    report["frames"] = last - first;
+    report["resolution"] = {info.width, info.height};
+    report["features"] = formatFeatures(settings.features);
+    report["median_ms"] = {{"accumulate", median(tAcc)}, {"fit", median(tFit)},
+                           {"accumulate_fitted", median(tAcc2)}, {"taa", median(tTaa)},
+                           {"total", median(tTotal)}};
+    if (info.hasReference) {
+        std::ofstream csv(fs::path(job.output) / "scores.csv");
+        csv << "frame,rmse,psnr_db,relmse,temporal_error,noisy_rmse,reference_temporal_error\n";
+        for (size_t k = 0; k < scores.rmse.size(); ++k)
+            csv << fmt::format("{},{:.6f},{:.4f},{:.6f},{},{:.6f},{}\n", first + int(k),
+                               scores.rmse[k], scores.psnr[k], scores.relmse[k],
+                               k ? fmt::format("{:.6f}", scores.temporal[k - 1]) : "",
+                               scores.noisyRmse[k],
+                               k ? fmt::format("{:.6f}", scores.refTemporal[k - 1]) : "");
+        report["scores"] = {{"rmse", mean(scores.rmse)},
+                            {"psnr_db", mean(scores.psnr)},
+                            {"relmse", mean(scores.relmse)},
+                            {"temporal_error", mean(scores.temporal)},
+                            {"noisy_rmse", mean(scores.noisyRmse)},
+                            {"noisy_temporal_error", mean(scores.noisyTemporal)},
+                            {"reference_temporal_error", mean(scores.refTemporal)},
+                            {"color_space", "tone-mapped: clamp(x^(1/2.2), 0, 1); relmse linear"}};
+    }
+    std::ofstream(fs::path(job.output) / "report.json") << report.dump(2) << "\n";
+
+    if (!job.quiet) {
+        fmt::print("\n{} frames, {}x{}, {} threads. Median ms per frame:\n", last - first,
+                   info.width, info.height, settings.threads ? settings.threads : -1);
+        fmt::print("  accumulate {:7.2f} | fit {:7.2f} | accumulate fitted {:7.2f} | taa {:7.2f} | "
+                   "total {:7.2f}   (read {:.1f}, write {:.1f})\n",
+                   median(tAcc), median(tFit), median(tAcc2), median(tTaa), median(tTotal),
+                   median(tRead), median(tWrite));
+        if (info.hasReference) {
+            fmt::print("\nScores vs reference (mean over frames; tone-mapped x^(1/2.2)):\n");
+            fmt::print("  {:<10} {:>9} {:>9} {:>10} {:>15}\n", "", "RMSE", "PSNR dB", "relMSE",
+                       "temporal err");
+            fmt::print("  {:<10} {:>9.4f} {:>9} {:>10} {:>15.4f}\n", "noisy", mean(scores.noisyRmse),
+                       "", "", mean(scores.noisyTemporal));
+            fmt::print("  {:<10} {:>9.4f} {:>9.2f} {:>10.4f} {:>15.4f}\n", "bmfr", mean(scores.rmse),
+                       mean(scores.psnr), mean(scores.relmse), mean(scores.temporal));
+            fmt::print("  {:<10} {:>9} {:>9} {:>10} {:>15.4f}\n", "reference", "", "", "",
+                       mean(scores.refTemporal));
+        }
+        fmt::print("\nwrote {}/denoised_NNNN.exr{}, report.json{}\n", job.output,
+                   job.png ? " and .png" : "", info.hasReference ? ", scores.csv" : "");
+    }
+    return 0;
+}
+
+void addDenoiseCommand(CLI::App& app, int& exitCode) {
+    auto job = std::make_shared<DenoiseJob>();
+    CLI::App* cmd = app.add_subcommand("denoise", "denoise a sequence (original BMFR dataset "
+                                                  "layout or bmfr's sequence.json layout)");
+    cmd->add_option("input", job->input, "input directory")->required();
+    cmd->add_option("-o,--output", job->output, "output directory")->required();
+    cmd->add_option("--frames", job->frames, "frame range A:B (A..B-1), A: or :B");
+    cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
+    cmd->add_flag("--debug", job->debug,
+                  "also write accumulated colour, fitted frame, history length, discard mask");
+    cmd->add_flag("!--no-png", job->png, "skip the tone-mapped PNGs");
+    job->options.addTo(*cmd);
+    cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });
+}
+
+} // namespace bmfr::app

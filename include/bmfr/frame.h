@@ -1,0 +1,51 @@
+// What the denoiser takes per frame and what it gives back.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace bmfr {
+
+/// Read-only view of an interleaved float image: width x height x channels, rows top to bottom.
+struct ImageView {
+    const float* data = nullptr;
+    int width = 0;
+    int height = 0;
+    int channels = 3;
+};
+
+/// A 4x4 matrix, row-major, acting on column vectors: clip = m * [x y z 1]^T.
+/// NDC x grows to the right and NDC y grows downwards (row index), both in [-1, 1].
+struct Mat4 {
+    float m[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
+};
+
+/// One frame of input. All images share one size; colour is linear RGB radiance.
+struct FrameInput {
+    ImageView color;    ///< noisy 1-spp colour, 3 channels (demodulated if Settings says so)
+    ImageView albedo;   ///< first-hit albedo, 3 channels, [0, 1]
+    ImageView normal;   ///< first-hit shading normal, world space, unit length, 3 channels
+    ImageView position; ///< first-hit world position, scene units, 3 channels
+    std::vector<ImageView> extras; ///< optional 1-channel feature buffers (Feature::Extra)
+    Mat4 viewProjection;           ///< this frame's world-to-clip matrix
+    /// Sub-pixel offset of this frame's primary rays from the pixel centre, pixels, [-0.5, 0.5].
+    float jitter[2] = {0.0f, 0.0f};
+    bool reset = false; ///< camera cut: drop all history before this frame
+};
+
+/// Per-stage wall time of the last frame, milliseconds.
+struct StageTimes {
+    double accumulate = 0; ///< phase I: demodulation, reprojection, first accumulation
+    double fit = 0;        ///< phase II: block gather, scaling, QR, back substitution, weighted sum
+    double accumulateFitted = 0; ///< phase III: second accumulation and re-modulation
+    double taa = 0;        ///< phase III: TAA
+    double total = 0;
+};
+
+/// Facts about the last frame.
+struct FrameStats {
+    StageTimes times;
+    int64_t nonFiniteInputs = 0; ///< NaN/Inf input values replaced by 0 (or by the fallback)
+    int64_t discardedPixels = 0; ///< pixels whose whole history was rejected (frame > 0)
+};
+
+} // namespace bmfr

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs the Debian packages bmfr needs to build and test. Skips apt when all are present.
+set -euo pipefail
+pkgs=(cmake g++ make pkg-config libopenexr-dev libimath-dev libtbb-dev libeigen3-dev libcli11-dev
+      nlohmann-json3-dev libfmt-dev libstb-dev libgtest-dev libbenchmark-dev)
+missing=()
+for p in "${pkgs[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "installing: ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

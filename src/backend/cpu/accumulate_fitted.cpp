@@ -1,0 +1,40 @@
+#include "backend/cpu/bmfr_passes.h"
+#include "backend/cpu/sanitize.h"
+#include "core/reprojection.h"
+#include "filters/bmfr/temporal_blend.h"
+
+namespace bmfr::cpu {
+
+void accumulateFitted(const BmfrPassContext& ctx) {
+    const Settings& s = ctx.settings;
+    BmfrState& st = ctx.state;
+    const int w = st.width, cur = st.cur, prev = 1 - st.cur;
+    const bool accumulate = st.hasHistory && s.stages.secondAccumulation;
+    const bool remodulate = s.stages.demodulate || s.colorIsDemodulated;
+    const float* albedo = ctx.frame.albedo.data;
+
+    ctx.pool.parallelFor(st.height, 4, [&](long y0, long y1) {
+        for (long i = y0 * w; i < y1 * w; ++i) {
+            Vec3 c = load3(st.fitted.data(), i);
+            const uint8_t accept = st.acceptMask.data()[i];
+            if (accumulate && accept) {
+                // Reuses phase I's reprojection and discard decisions (no second test).
+                Vec2 pp{st.previousPixel.data()[2 * i], st.previousPixel.data()[2 * i + 1]};
+                const float* hist = st.accumulatedFitted[prev].data();
+                Vec3 old{};
+                float total = gatherAccepted(bilinearFootprint(pp), accept, w,
+                                             [&](long j, float wt) { old += wt * load3(hist, j); });
+                if (total > 0.0f) {
+                    float blend = secondBlendWeight(st.historyLength[cur].data()[i],
+                                                    s.secondBlendAlpha);
+                    c = lerp(old / total, c, blend);
+                }
+            }
+            store3(st.accumulatedFitted[cur].data(), i, c);
+            if (remodulate) c = c * guardAlbedo(load3(albedo, i), s.albedoEpsilon);
+            store3(st.remodulated.data(), i, c);
+        }
+    });
+}
+
+} // namespace bmfr::cpu

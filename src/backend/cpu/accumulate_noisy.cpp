@@ -1,0 +1,73 @@
+#include "backend/cpu/bmfr_passes.h"
+#include "backend/cpu/sanitize.h"
+#include "core/reprojection.h"
+#include "filters/bmfr/temporal_blend.h"
+#include <atomic>
+
+namespace bmfr::cpu {
+
+InputCounters accumulateNoisy(const BmfrPassContext& ctx) {
+    const Settings& s = ctx.settings;
+    const FrameInput& in = ctx.frame;
+    BmfrState& st = ctx.state;
+    const int w = st.width, h = st.height, cur = st.cur, prev = 1 - st.cur;
+    const bool history = st.hasHistory;
+    const bool demodulate = s.stages.demodulate && !s.colorIsDemodulated;
+    const DiscardLimits limits{s.positionLimitSquared, s.normalLimitSquared};
+    std::atomic<int64_t> nonFinite{0}, discarded{0};
+
+    ctx.pool.parallelFor(h, 4, [&](long y0, long y1) {
+        int64_t bad = 0, lost = 0;
+        for (long y = y0; y < y1; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const long i = y * w + x;
+                Vec3 n = finiteOrZero(load3(in.normal.data, i), bad);
+                Vec3 p = finiteOrZero(load3(in.position.data, i), bad);
+                Vec3 c = finiteOrZero(load3(in.color.data, i), bad);
+                Vec3 a = finiteOrZero(load3(in.albedo.data, i), bad);
+                for (const ImageView& e : in.extras)
+                    if (!std::isfinite(e.data[i])) ++bad;
+                store3(st.normal[cur].data(), i, n);
+                store3(st.position[cur].data(), i, p);
+                if (demodulate) {
+                    Vec3 g = guardAlbedo(a, s.albedoEpsilon);
+                    c = {c.x / g.x, c.y / g.y, c.z / g.z};
+                }
+
+                Vec2 pp{-1e6f, -1e6f}; // out of every image: TAA and phase III skip it
+                uint8_t accept = 0;
+                float samples = 0.0f, blend = 1.0f;
+                Vec3 old{};
+                if (history && projectToPixel(st.previousViewProjection, p, st.previousJitter,
+                                              w, h, pp)) {
+                    BilinearFootprint fp = bilinearFootprint(pp);
+                    accept = acceptTaps(fp, p, n, st.position[prev].data(),
+                                        st.normal[prev].data(), w, h, limits);
+                    const float* prevColor = st.accumulatedNoisy[prev].data();
+                    const uint8_t* prevLength = st.historyLength[prev].data();
+                    float total = gatherAccepted(fp, accept, w, [&](long j, float wt) {
+                        old += wt * load3(prevColor, j);
+                        samples += wt * float(prevLength[j]);
+                    });
+                    if (total > 0.0f) {
+                        old = old / total;
+                        samples /= total;
+                        blend = firstBlendWeight(samples, s.firstBlendAlpha);
+                    }
+                }
+                if (history && accept == 0) ++lost;
+                st.historyLength[cur].data()[i] = blend < 1.0f ? nextHistoryLength(samples) : 1;
+                if (s.stages.firstAccumulation && blend < 1.0f) c = lerp(old, c, blend);
+                store3(st.accumulatedNoisy[cur].data(), i, c);
+                st.previousPixel.data()[2 * i] = pp.x;
+                st.previousPixel.data()[2 * i + 1] = pp.y;
+                st.acceptMask.data()[i] = accept;
+            }
+        }
+        nonFinite += bad;
+        discarded += lost;
+    });
+    return {nonFinite.load(), discarded.load()};
+}
+
+} // namespace bmfr::cpu

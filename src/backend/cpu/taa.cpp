@@ -1,0 +1,61 @@
+#include "backend/cpu/bmfr_passes.h"
+#include "core/color.h"
+#include "core/reprojection.h"
+#include <cstring>
+
+namespace bmfr::cpu {
+
+void temporalAntiAliasing(const BmfrPassContext& ctx) {
+    BmfrState& st = ctx.state;
+    const int w = st.width, h = st.height;
+    const float* current = st.remodulated.data();
+    float* out = st.output[st.cur].data();
+    if (!ctx.settings.stages.taa || !st.hasHistory) {
+        std::memcpy(out, current, st.remodulated.pixels.size() * sizeof(float));
+        return;
+    }
+    const float* hist = st.output[1 - st.cur].data();
+    const float alpha = ctx.settings.taaBlendAlpha;
+
+    ctx.pool.parallelFor(h, 4, [&](long y0, long y1) {
+        for (long y = y0; y < y1; ++y) {
+            for (int x = 0; x < w; ++x) {
+                const long i = y * w + x;
+                const Vec3 c = load3(current, i);
+                Vec2 pp{st.previousPixel.data()[2 * i], st.previousPixel.data()[2 * i + 1]};
+                BilinearFootprint fp = bilinearFootprint(pp);
+                if (fp.x0 < -1 || fp.y0 < -1 || fp.x0 >= w || fp.y0 >= h) {
+                    store3(out, i, c);
+                    continue;
+                }
+                // Clamp box: mean of the 3x3 box and the 5-tap cross bounds, in YCoCg.
+                const float inf = INFINITY;
+                Vec3 boxLo{inf, inf, inf}, boxHi{-inf, -inf, -inf}, crossLo = boxLo, crossHi = boxHi;
+                for (int dy = -1; dy <= 1; ++dy) {
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int sx = x + dx, sy = int(y) + dy;
+                        if (sx < 0 || sy < 0 || sx >= w || sy >= h) continue;
+                        Vec3 v = rgbToYCoCg(load3(current, long(sy) * w + sx));
+                        boxLo = vmin(boxLo, v), boxHi = vmax(boxHi, v);
+                        if (dx == 0 || dy == 0) crossLo = vmin(crossLo, v), crossHi = vmax(crossHi, v);
+                    }
+                }
+                // Bilinear history, renormalised at the image border.
+                Vec3 old{};
+                float total = 0.0f;
+                for (int t = 0; t < 4; ++t) {
+                    const int tx = tapX(fp, t), ty = tapY(fp, t);
+                    if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
+                    old += fp.weight[t] * load3(hist, long(ty) * w + tx);
+                    total += fp.weight[t];
+                }
+                if (total > 0.0f) old = old / total;
+                Vec3 lo = 0.5f * (boxLo + crossLo), hi = 0.5f * (boxHi + crossHi);
+                Vec3 clamped = yCoCgToRgb(clamp(rgbToYCoCg(old), lo, hi));
+                store3(out, i, lerp(clamped, c, alpha));
+            }
+        }
+    });
+}
+
+} // namespace bmfr::cpu

@@ -1,0 +1,36 @@
+// Owning interleaved float/byte images; allocated once, reused every frame.
+#pragma once
+#include <bmfr/frame.h>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace bmfr {
+
+template <typename T> struct Image {
+    int width = 0, height = 0, channels = 0;
+    std::vector<T> pixels;
+
+    Image() = default;
+    Image(int w, int h, int c) { resize(w, h, c); }
+    void resize(int w, int h, int c) {
+        width = w, height = h, channels = c;
+        pixels.assign(size_t(w) * size_t(h) * size_t(c), T{});
+    }
+    long pixelCount() const { return long(width) * height; }
+    T* data() { return pixels.data(); }
+    const T* data() const { return pixels.data(); }
+    T& at(int x, int y, int c = 0) { return pixels[(size_t(y) * width + x) * channels + c]; }
+    const T& at(int x, int y, int c = 0) const {
+        return pixels[(size_t(y) * width + x) * channels + c];
+    }
+};
+
+using ImageF = Image<float>;
+using ImageU8 = Image<uint8_t>;
+
+inline ImageView view(const ImageF& img) {
+    return ImageView{img.data(), img.width, img.height, img.channels};
+}
+
+} // namespace bmfr

@@ -1,0 +1,35 @@
+// 4x4 matrix helpers on bmfr::Mat4 (row-major, column vectors).
+#pragma once
+#include "core/vec.h"
+#include <bmfr/frame.h>
+
+namespace bmfr {
+
+struct Vec4 {
+    float x = 0, y = 0, z = 0, w = 0;
+};
+
+/// m * [p, 1]
+BMFR_HD Vec4 transformPoint(const Mat4& m, Vec3 p) {
+    Vec4 r;
+    r.x = m.m[0][0] * p.x + m.m[0][1] * p.y + m.m[0][2] * p.z + m.m[0][3];
+    r.y = m.m[1][0] * p.x + m.m[1][1] * p.y + m.m[1][2] * p.z + m.m[1][3];
+    r.z = m.m[2][0] * p.x + m.m[2][1] * p.y + m.m[2][2] * p.z + m.m[2][3];
+    r.w = m.m[3][0] * p.x + m.m[3][1] * p.y + m.m[3][2] * p.z + m.m[3][3];
+    return r;
+}
+
+Mat4 multiply(const Mat4& a, const Mat4& b);
+Mat4 transpose(const Mat4& a);
+/// Inverse in double precision; returns false when the matrix is singular or not finite.
+bool invert(const Mat4& a, Mat4& out);
+/// True when every entry is finite and the matrix is invertible (a usable camera).
+bool isUsableCameraMatrix(const Mat4& a);
+
+/// Right-handed look-at view matrix (camera looks down -z).
+Mat4 lookAt(Vec3 eye, Vec3 target, Vec3 up);
+/// Perspective projection to the library's NDC convention (x right, y down, z in [-1, 1]).
+/// fovY in radians, aspect = width / height.
+Mat4 perspectiveYDown(float fovY, float aspect, float zNear, float zFar);
+
+} // namespace bmfr

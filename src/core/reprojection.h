@@ -1,0 +1,82 @@
+// Reprojection of a surface point into the previous frame and the per-tap discard test.
+// Shared by every temporal filter (BMFR phases I and III, TAA, SVGF): one implementation.
+#pragma once
+#include "core/mat4.h"
+#include <cstdint>
+
+namespace bmfr {
+
+/// Continuous pixel coordinate of world point p in a frame with view-projection `vp` and
+/// primary-ray offset `jitter`: integer values are that frame's sample positions (pixel
+/// centres). Returns false when p is behind the camera or the result is not finite.
+BMFR_HD bool projectToPixel(const Mat4& vp, Vec3 p, const float jitter[2], int width, int height,
+                            Vec2& pixel) {
+    Vec4 c = transformPoint(vp, p);
+    if (!(c.w > 0.0f)) return false;
+    pixel.x = (c.x / c.w * 0.5f + 0.5f) * float(width) - 0.5f - jitter[0];
+    pixel.y = (c.y / c.w * 0.5f + 0.5f) * float(height) - 0.5f - jitter[1];
+    return std::isfinite(pixel.x) && std::isfinite(pixel.y) && std::fabs(pixel.x) < 1e8f &&
+           std::fabs(pixel.y) < 1e8f;
+}
+
+/// The 2x2 bilinear footprint of a continuous pixel coordinate: taps (0,0), (1,0), (0,1),
+/// (1,1) from (x0, y0), in that order (bit i of an accept mask is tap i).
+struct BilinearFootprint {
+    int x0 = 0, y0 = 0;
+    float weight[4] = {0, 0, 0, 0};
+};
+
+BMFR_HD BilinearFootprint bilinearFootprint(Vec2 pixel) {
+    BilinearFootprint f;
+    float fx = std::floor(pixel.x), fy = std::floor(pixel.y);
+    f.x0 = int(fx), f.y0 = int(fy);
+    float ax = pixel.x - fx, ay = pixel.y - fy;
+    f.weight[0] = (1 - ax) * (1 - ay);
+    f.weight[1] = ax * (1 - ay);
+    f.weight[2] = (1 - ax) * ay;
+    f.weight[3] = ax * ay;
+    return f;
+}
+
+BMFR_HD int tapX(const BilinearFootprint& f, int tap) { return f.x0 + (tap & 1); }
+BMFR_HD int tapY(const BilinearFootprint& f, int tap) { return f.y0 + (tap >> 1); }
+
+/// Thresholds of the history discard test.
+struct DiscardLimits {
+    float positionSquared = 0.01f; ///< scene units squared
+    float normalSquared = 1.0f;    ///< squared distance of unit normals
+};
+
+/// Tests each tap of the previous frame against the current surface (p, n): inside the image,
+/// squared position distance and squared normal distance below the limits. Returns the mask.
+BMFR_HD uint8_t acceptTaps(const BilinearFootprint& f, Vec3 p, Vec3 n, const float* prevPositions,
+                           const float* prevNormals, int width, int height,
+                           const DiscardLimits& limits) {
+    uint8_t accept = 0;
+    for (int t = 0; t < 4; ++t) {
+        int x = tapX(f, t), y = tapY(f, t);
+        if (x < 0 || y < 0 || x >= width || y >= height) continue;
+        long i = long(y) * width + x;
+        Vec3 dp = load3(prevPositions, i) - p;
+        if (!(dot(dp, dp) < limits.positionSquared)) continue;
+        Vec3 dn = load3(prevNormals, i) - n;
+        if (!(dot(dn, dn) < limits.normalSquared)) continue;
+        accept |= uint8_t(1u << t);
+    }
+    return accept;
+}
+
+/// Bilinear weight of each accepted tap passed to fetch(pixelIndex, weight); returns the sum of
+/// accepted weights, by which the caller normalises (so discarded taps do not darken).
+template <typename Fetch>
+BMFR_HD float gatherAccepted(const BilinearFootprint& f, uint8_t accept, int width, Fetch&& fetch) {
+    float total = 0.0f;
+    for (int t = 0; t < 4; ++t) {
+        if (!(accept & (1u << t))) continue;
+        fetch(long(tapY(f, t)) * width + tapX(f, t), f.weight[t]);
+        total += f.weight[t];
+    }
+    return total;
+}
+
+} // namespace bmfr

@@ -1,0 +1,48 @@
+// The displaced grid of regression blocks: which image pixels form block (bx, by) this frame.
+#pragma once
+#include "core/host_device.h"
+#include <bmfr/settings.h>
+
+namespace bmfr {
+
+/// Reflects an index into [0, n) with edge duplication (3 2 1 0 | 0 1 2 3 | 3 2 1 0), for any
+/// distance outside (images smaller than a block included).
+BMFR_HD int mirrorIndex(int i, int n) {
+    int period = 2 * n;
+    int m = i % period;
+    if (m < 0) m += period;
+    return m < n ? m : period - 1 - m;
+}
+
+/// Block grid of one frame. Block (bx, by) covers image pixels
+/// [bx*B - B/2 + ox, +B) x [by*B - B/2 + oy, +B); pixels outside the image are mirrored in.
+/// Every image pixel is "owned" (inside, unmirrored) by exactly one block.
+struct BlockGrid {
+    int blockSize = 32;
+    int offsetX = 0, offsetY = 0;
+    int blocksX = 0, blocksY = 0;
+    int width = 0, height = 0;
+
+    BMFR_HD int originX(int bx) const { return bx * blockSize - blockSize / 2 + offsetX; }
+    BMFR_HD int originY(int by) const { return by * blockSize - blockSize / 2 + offsetY; }
+    BMFR_HD int ownerX(int x) const { return (x + blockSize / 2 - offsetX) / blockSize; }
+    BMFR_HD int ownerY(int y) const { return (y + blockSize / 2 - offsetY) / blockSize; }
+    BMFR_HD int blockCount() const { return blocksX * blocksY; }
+};
+
+/// Grid for frame `frameIndex` (offset = kBlockOffsets[frameIndex % 16], scaled to the block
+/// size when it is not 32 so the displacement stays within half a block).
+inline BlockGrid makeBlockGrid(int width, int height, int blockSize, long frameIndex) {
+    BlockGrid g;
+    g.blockSize = blockSize;
+    g.width = width, g.height = height;
+    const int* o = kBlockOffsets[frameIndex % 16];
+    g.offsetX = o[0] * blockSize / 32;
+    g.offsetY = o[1] * blockSize / 32;
+    // ceil(size / B) + 1 blocks cover [0, size) for every offset in [-B/2, B/2).
+    g.blocksX = (width + blockSize - 1) / blockSize + 1;
+    g.blocksY = (height + blockSize - 1) / blockSize + 1;
+    return g;
+}
+
+} // namespace bmfr

@@ -1,0 +1,244 @@
+// The original BMFR dataset layout (Koskela et al. 2019 supplementary data).
+#include "core/mat4.h"
+#include "io/exr.h"
+#include "io/sequence.h"
+#include <bmfr/error.h>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace bmfr {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string stripComments(const std::string& s) {
+    std::string out;
+    for (size_t i = 0; i < s.size(); ++i) {
+        if (s.compare(i, 2, "//") == 0) {
+            while (i < s.size() && s[i] != '\n') ++i;
+            out += '\n';
+        } else if (s.compare(i, 2, "/*") == 0) {
+            size_t e = s.find("*/", i + 2);
+            i = e == std::string::npos ? s.size() : e + 1;
+            out += ' ';
+        } else {
+            out += s[i];
+        }
+    }
+    return out;
+}
+
+bool isIdentChar(char c) { return std::isalnum((unsigned char)c) || c == '_'; }
+
+/// Position just after the identifier `name` as a whole word, or npos.
+size_t findIdentifier(const std::string& s, const std::string& name) {
+    size_t pos = 0;
+    while ((pos = s.find(name, pos)) != std::string::npos) {
+        bool before = pos == 0 || !isIdentChar(s[pos - 1]);
+        bool after = pos + name.size() >= s.size() || !isIdentChar(s[pos + name.size()]);
+        if (before && after) return pos + name.size();
+        pos += name.size();
+    }
+    return std::string::npos;
+}
+
+/// Numbers inside the brace initializer starting after the '=' that follows `from`.
+std::vector<float> initializerNumbers(const std::string& s, size_t from, const std::string& what,
+                                      const std::string& source) {
+    size_t eq = s.find('=', from);
+    if (eq == std::string::npos) throw Error(source + ": '" + what + "' has no initializer");
+    size_t open = s.find_first_not_of(" \t\r\n", eq + 1);
+    std::vector<float> out;
+    if (open == std::string::npos || s[open] != '{') {
+        // Scalar: one number before ';'.
+        size_t end = s.find(';', eq);
+        std::string body = s.substr(eq + 1, end == std::string::npos ? std::string::npos : end - eq - 1);
+        char* e = nullptr;
+        float v = std::strtof(body.c_str(), &e);
+        if (e == body.c_str()) throw Error(source + ": '" + what + "' is not a number");
+        out.push_back(v);
+        return out;
+    }
+    int depth = 0;
+    size_t i = open;
+    for (; i < s.size(); ++i) {
+        char c = s[i];
+        if (c == '{') ++depth;
+        else if (c == '}') {
+            if (--depth == 0) break;
+        } else if (std::isdigit((unsigned char)c) || c == '-' || c == '+' || c == '.') {
+            char* e = nullptr;
+            float v = std::strtof(s.c_str() + i, &e);
+            if (e == s.c_str() + i) throw Error(source + ": bad number in '" + what + "'");
+            out.push_back(v);
+            i = size_t(e - s.c_str());
+            if (i < s.size() && (s[i] == 'f' || s[i] == 'F')) ++i;
+            --i;
+        } else if (!std::isspace((unsigned char)c) && c != ',') {
+            throw Error(source + ": unexpected '" + std::string(1, c) + "' in '" + what + "'");
+        }
+    }
+    if (depth != 0) throw Error(source + ": unterminated initializer of '" + what + "'");
+    return out;
+}
+
+/// Declared array extents after the name, e.g. [60][4][4] -> {60, 4, 4}.
+std::vector<long> extents(const std::string& s, size_t after) {
+    std::vector<long> dims;
+    size_t i = after;
+    while (true) {
+        i = s.find_first_not_of(" \t", i);
+        if (i == std::string::npos || s[i] != '[') break;
+        size_t close = s.find(']', i);
+        dims.push_back(std::atol(s.substr(i + 1, close - i - 1).c_str()));
+        i = close + 1;
+    }
+    return dims;
+}
+
+class BmfrLayoutReader : public SequenceReader {
+  public:
+    explicit BmfrLayoutReader(const std::string& dir) {
+        info_.layout = "bmfr";
+        info_.directory = dir;
+        info_.colorIsDemodulated = true;
+        const fs::path camPath = fs::path(dir) / "camera_matrices.h";
+        if (!fs::exists(camPath)) throw Error("missing file: " + camPath.string());
+        std::ifstream in(camPath);
+        std::stringstream text;
+        text << in.rdbuf();
+        camera_ = parseBmfrCameraFile(text.str(), camPath.string());
+        info_.positionLimitSquared = camera_.positionLimitSquared;
+        info_.normalLimitSquared = camera_.normalLimitSquared;
+        int n = 0;
+        while (fs::exists(path("color", n))) ++n;
+        if (n == 0) throw Error(dir + ": no color0.exr");
+        if (size_t(n) > camera_.matrices.size())
+            throw Error(camPath.string() + ": " + std::to_string(camera_.matrices.size()) +
+                        " camera matrices for " + std::to_string(n) + " frames");
+        info_.frameCount = n;
+        info_.hasReference = fs::exists(path("reference", 0));
+        ImageF first = readExr(path("color", 0), 3);
+        info_.width = first.width;
+        info_.height = first.height;
+    }
+
+    void load(int index, FrameData& f) const override {
+        if (index < 0 || index >= info_.frameCount)
+            throw Error(info_.directory + ": frame " + std::to_string(index) + " out of range");
+        f.color = readExr(path("color", index), 3);
+        f.albedo = readExr(path("albedo", index), 3);
+        f.normal = readExr(path("shading_normal", index), 3);
+        f.position = readExr(path("world_position", index), 3);
+        f.extras.clear();
+        f.reference = info_.hasReference ? readExr(path("reference", index), 3) : ImageF();
+        // Row vectors (clip = p * M) -> our column-vector convention.
+        f.viewProjection = transpose(camera_.matrices[index]);
+        if (!isUsableCameraMatrix(f.viewProjection))
+            throw Error(info_.directory + "/camera_matrices.h: matrix of frame " +
+                        std::to_string(index) + " is not finite or not invertible");
+        // The authors' code reprojects into frame i-1 with pixel_offsets[i] mapped to
+        // (x, 1 - y); we subtract the previous frame's jitter, so frame i carries offset i+1.
+        const size_t k = std::min(size_t(index + 1), camera_.pixelOffsets.size() - 1);
+        f.jitter[0] = camera_.pixelOffsets.empty() ? 0.0f : camera_.pixelOffsets[k][0] - 0.5f;
+        f.jitter[1] = camera_.pixelOffsets.empty() ? 0.0f : 0.5f - camera_.pixelOffsets[k][1];
+        checkFrame(index, f);
+    }
+
+  private:
+    BmfrCameraFile camera_;
+    std::string path(const char* stem, int n) const {
+        return (fs::path(info_.directory) / (std::string(stem) + std::to_string(n) + ".exr")).string();
+    }
+};
+
+} // namespace
+
+BmfrCameraFile parseBmfrCameraFile(const std::string& raw, const std::string& source) {
+    const std::string s = stripComments(raw);
+    BmfrCameraFile out;
+    size_t at = findIdentifier(s, "camera_matrices");
+    if (at == std::string::npos) throw Error(source + ": no camera_matrices array");
+    std::vector<long> dims = extents(s, at);
+    std::vector<float> m = initializerNumbers(s, at, "camera_matrices", source);
+    if (m.empty() || m.size() % 16 != 0)
+        throw Error(source + ": camera_matrices has " + std::to_string(m.size()) +
+                    " numbers, not a multiple of 16");
+    if (!dims.empty() && dims[0] > 0 && size_t(dims[0]) * 16 != m.size())
+        throw Error(source + ": camera_matrices is declared [" + std::to_string(dims[0]) +
+                    "][4][4] but holds " + std::to_string(m.size() / 16) + " matrices");
+    for (size_t k = 0; k < m.size() / 16; ++k) {
+        Mat4 mat;
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) mat.m[r][c] = m[k * 16 + r * 4 + c];
+        out.matrices.push_back(mat);
+    }
+    size_t po = findIdentifier(s, "pixel_offsets");
+    if (po != std::string::npos) {
+        std::vector<float> o = initializerNumbers(s, po, "pixel_offsets", source);
+        if (o.size() % 2 != 0) throw Error(source + ": pixel_offsets has an odd count");
+        for (size_t k = 0; k < o.size() / 2; ++k) out.pixelOffsets.push_back({o[2 * k], o[2 * k + 1]});
+    }
+    for (const char* name : {"position_limit_squared", "normal_limit_squared"}) {
+        size_t p = findIdentifier(s, name);
+        if (p == std::string::npos) continue;
+        std::vector<float> v = initializerNumbers(s, p, name, source);
+        if (v.size() != 1 || !(v[0] > 0)) throw Error(source + ": bad " + name);
+        (std::string(name) == "position_limit_squared" ? out.positionLimitSquared
+                                                       : out.normalLimitSquared) = v[0];
+    }
+    return out;
+}
+
+std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory) {
+    return std::make_unique<BmfrLayoutReader>(directory);
+}
+
+void writeBmfrLayout(const std::string& directory, const std::vector<FrameData>& frames,
+                     float positionLimitSquared, float normalLimitSquared) {
+    fs::create_directories(directory);
+    auto p = [&](const char* stem, size_t n) {
+        return (fs::path(directory) / (std::string(stem) + std::to_string(n) + ".exr")).string();
+    };
+    std::ostringstream h;
+    h.precision(9);
+    h << "// Written by bmfr in the original BMFR dataset layout.\n";
+    h << "const float position_limit_squared = " << positionLimitSquared << "f;\n";
+    h << "const float normal_limit_squared = " << normalLimitSquared << "f;\n";
+    h << "const float camera_matrices[" << frames.size() << "][4][4] = {\n";
+    for (const FrameData& f : frames) {
+        Mat4 rowVec = transpose(f.viewProjection);
+        h << "  {";
+        for (int r = 0; r < 4; ++r) {
+            h << "{";
+            for (int c = 0; c < 4; ++c) h << rowVec.m[r][c] << (c < 3 ? "f, " : "f");
+            h << (r < 3 ? "}, " : "}");
+        }
+        h << "},\n";
+    }
+    h << "};\nconst float pixel_offsets[" << frames.size() << "][2] = {\n";
+    // Inverse of the reader's mapping: frame i's offset entry is frame i-1's jitter.
+    for (size_t i = 0; i < frames.size(); ++i) {
+        const FrameData& src = frames[i == 0 ? 0 : i - 1];
+        h << "  {" << src.jitter[0] + 0.5f << "f, " << 0.5f - src.jitter[1] << "f},\n";
+    }
+    h << "};\n";
+    for (size_t i = 0; i < frames.size(); ++i) {
+        const FrameData& f = frames[i];
+        ImageF demod = f.color;
+        for (long k = 0; k < demod.pixelCount() * 3; ++k)
+            demod.data()[k] /= std::max(f.albedo.data()[k], 0.001f);
+        writeExr(p("color", i), demod);
+        writeExr(p("albedo", i), f.albedo);
+        writeExr(p("shading_normal", i), f.normal);
+        writeExr(p("world_position", i), f.position);
+        if (f.reference.width) writeExr(p("reference", i), f.reference);
+    }
+    std::ofstream(fs::path(directory) / "camera_matrices.h") << h.str();
+}
+
+} // namespace bmfr

@@ -1,0 +1,87 @@
+#include "io/exr.h"
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <bmfr/error.h>
+#include <filesystem>
+#include <vector>
+
+namespace bmfr {
+
+ImageF readExr(const std::string& path, int channels) {
+    if (!std::filesystem::exists(path)) throw Error("missing file: " + path);
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const long w = long(dw.max.x) - dw.min.x + 1, h = long(dw.max.y) - dw.min.y + 1;
+        if (w <= 0 || h <= 0) throw Error(path + ": zero-size image");
+        if (w > 65536 || h > 65536) throw Error(path + ": image too large");
+        std::vector<std::string> names;
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+            names.emplace_back(it.name());
+        auto has = [&](const char* n) {
+            for (auto& s : names)
+                if (s == n) return true;
+            return false;
+        };
+        std::vector<std::string> pick;
+        if (channels == 3 && has("R") && has("G") && has("B")) pick = {"R", "G", "B"};
+        else if (channels == 1 && has("Y")) pick = {"Y"};
+        else if (channels == 1 && has("R")) pick = {"R"};
+        else if (names.size() == 1) pick.assign(size_t(channels), names[0]);
+        else {
+            std::string list;
+            for (auto& s : names) list += (list.empty() ? "" : ",") + s;
+            throw Error(path + ": has channels [" + list + "], expected " +
+                        (channels == 3 ? "R,G,B" : "Y or a single channel"));
+        }
+        ImageF img(int(w), int(h), channels);
+        Imf::FrameBuffer fb;
+        const size_t xs = sizeof(float) * channels, ys = xs * size_t(w);
+        char* base = reinterpret_cast<char*>(img.data()) - dw.min.x * long(xs) - dw.min.y * long(ys);
+        // The same source channel may feed several slots: read the first, copy afterwards.
+        fb.insert(pick[0], Imf::Slice(Imf::FLOAT, base, xs, ys));
+        for (int c = 1; c < channels; ++c)
+            if (pick[c] != pick[0])
+                fb.insert(pick[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        for (int c = 1; c < channels; ++c)
+            if (pick[c] == pick[0])
+                for (long i = 0; i < w * h; ++i) img.data()[i * channels + c] = img.data()[i * channels];
+        return img;
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error("unreadable EXR " + path + ": " + e.what());
+    }
+}
+
+void writeExr(const std::string& path, const ImageF& image) {
+    if (image.width <= 0 || image.height <= 0) throw Error("refusing to write empty image " + path);
+    static const char* kNames[3][3] = {{"Y"}, {"R", "G"}, {"R", "G", "B"}};
+    const int ch = image.channels;
+    if (ch < 1 || ch > 3) throw Error("cannot write a " + std::to_string(ch) + "-channel EXR");
+    const std::string tmp = path + ".part";
+    try {
+        Imf::Header header(image.width, image.height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        for (int c = 0; c < ch; ++c) header.channels().insert(kNames[ch - 1][c], Imf::Channel(Imf::FLOAT));
+        Imf::OutputFile file(tmp.c_str(), header);
+        Imf::FrameBuffer fb;
+        const size_t xs = sizeof(float) * ch, ys = xs * size_t(image.width);
+        char* base = const_cast<char*>(reinterpret_cast<const char*>(image.data()));
+        for (int c = 0; c < ch; ++c)
+            fb.insert(kNames[ch - 1][c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+        file.setFrameBuffer(fb);
+        file.writePixels(image.height);
+    } catch (const std::exception& e) {
+        std::filesystem::remove(tmp);
+        throw Error("cannot write EXR " + path + ": " + e.what());
+    }
+    std::filesystem::rename(tmp, path);
+}
+
+} // namespace bmfr

@@ -1,0 +1,150 @@
+// This project's sequence layout: sequence.json naming per-frame EXR files.
+#include "core/mat4.h"
+#include "io/exr.h"
+#include "io/sequence.h"
+#include <bmfr/error.h>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace bmfr {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+class ManifestReader : public SequenceReader {
+  public:
+    explicit ManifestReader(const std::string& dir) {
+        info_.layout = "manifest";
+        info_.directory = dir;
+        const fs::path mp = fs::path(dir) / "sequence.json";
+        std::ifstream in(mp);
+        try {
+            manifest_ = json::parse(in);
+            if (manifest_.value("format", "") != "bmfr-sequence")
+                throw Error(mp.string() + ": \"format\" is not \"bmfr-sequence\"");
+            info_.width = manifest_.at("width").get<int>();
+            info_.height = manifest_.at("height").get<int>();
+            if (info_.width <= 0 || info_.height <= 0)
+                throw Error(mp.string() + ": zero-size frames (" + std::to_string(info_.width) +
+                            "x" + std::to_string(info_.height) + ")");
+            info_.colorIsDemodulated = manifest_.value("color_is_demodulated", false);
+            if (manifest_.contains("position_limit_squared"))
+                info_.positionLimitSquared = manifest_["position_limit_squared"].get<float>();
+            if (manifest_.contains("normal_limit_squared"))
+                info_.normalLimitSquared = manifest_["normal_limit_squared"].get<float>();
+            if (manifest_.contains("extras"))
+                info_.extraNames = manifest_["extras"].get<std::vector<std::string>>();
+            info_.frameCount = int(manifest_.at("frames").size());
+            if (info_.frameCount == 0) throw Error(mp.string() + ": no frames");
+            info_.hasReference = manifest_["frames"][0].contains("reference");
+        } catch (const json::exception& e) {
+            throw Error(mp.string() + ": " + e.what());
+        }
+    }
+
+    void load(int index, FrameData& f) const override {
+        const std::string where = info_.directory + "/sequence.json frame " + std::to_string(index);
+        if (index < 0 || index >= info_.frameCount) throw Error(where + ": out of range");
+        try {
+            const json& j = manifest_["frames"][size_t(index)];
+            auto file = [&](const char* key) {
+                return (fs::path(info_.directory) / j.at(key).get<std::string>()).string();
+            };
+            f.color = readExr(file("color"), 3);
+            f.albedo = readExr(file("albedo"), 3);
+            f.normal = readExr(file("normal"), 3);
+            f.position = readExr(file("position"), 3);
+            f.extras.clear();
+            if (j.contains("extras")) {
+                for (const auto& e : j["extras"])
+                    f.extras.push_back(readExr((fs::path(info_.directory) / e.get<std::string>()).string(), 1));
+                if (f.extras.size() != info_.extraNames.size())
+                    throw Error(where + ": " + std::to_string(f.extras.size()) +
+                                " extra buffers, the sequence names " +
+                                std::to_string(info_.extraNames.size()));
+            }
+            f.reference = info_.hasReference ? readExr(file("reference"), 3) : ImageF();
+            const json& m = j.at("view_projection");
+            if (m.size() != 4) throw Error(where + ": view_projection must be 4 rows of 4");
+            for (int r = 0; r < 4; ++r) {
+                if (m[r].size() != 4) throw Error(where + ": view_projection must be 4 rows of 4");
+                for (int c = 0; c < 4; ++c) f.viewProjection.m[r][c] = m[r][c].get<float>();
+            }
+            if (!isUsableCameraMatrix(f.viewProjection))
+                throw Error(where + ": view_projection is not finite or not invertible");
+            f.jitter[0] = f.jitter[1] = 0.0f;
+            if (j.contains("jitter")) {
+                f.jitter[0] = j["jitter"].at(0).get<float>();
+                f.jitter[1] = j["jitter"].at(1).get<float>();
+            }
+        } catch (const json::exception& e) {
+            throw Error(where + ": " + e.what());
+        }
+        checkFrame(index, f);
+    }
+
+  private:
+    json manifest_;
+};
+
+} // namespace
+
+std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory) {
+    return std::make_unique<ManifestReader>(directory);
+}
+
+ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo& info)
+    : dir_(directory), info_(info) {
+    fs::create_directories(directory);
+}
+
+void ManifestWriter::addFrame(int index, const FrameData& f) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "%04d", index);
+    auto put = [&](const char* name, const ImageF& img) {
+        std::string file = std::string(name) + "_" + stem + ".exr";
+        writeExr((fs::path(dir_) / file).string(), img);
+        return file;
+    };
+    json j;
+    j["color"] = put("color", f.color);
+    j["albedo"] = put("albedo", f.albedo);
+    j["normal"] = put("normal", f.normal);
+    j["position"] = put("position", f.position);
+    if (f.reference.width) j["reference"] = put("reference", f.reference);
+    if (!f.extras.empty()) {
+        j["extras"] = json::array();
+        for (size_t e = 0; e < f.extras.size(); ++e)
+            j["extras"].push_back(put(info_.extraNames.at(e).c_str(), f.extras[e]));
+    }
+    json m = json::array();
+    for (int r = 0; r < 4; ++r)
+        m.push_back({f.viewProjection.m[r][0], f.viewProjection.m[r][1], f.viewProjection.m[r][2],
+                     f.viewProjection.m[r][3]});
+    j["view_projection"] = m;
+    j["jitter"] = {f.jitter[0], f.jitter[1]};
+    if (size_t(index) >= frameJson_.size()) frameJson_.resize(size_t(index) + 1);
+    frameJson_[size_t(index)] = j.dump();
+
+    json doc;
+    doc["format"] = "bmfr-sequence";
+    doc["version"] = 1;
+    doc["width"] = info_.width;
+    doc["height"] = info_.height;
+    doc["color_is_demodulated"] = info_.colorIsDemodulated;
+    if (info_.positionLimitSquared) doc["position_limit_squared"] = *info_.positionLimitSquared;
+    if (info_.normalLimitSquared) doc["normal_limit_squared"] = *info_.normalLimitSquared;
+    doc["extras"] = info_.extraNames;
+    doc["frames"] = json::array();
+    for (const std::string& s : frameJson_)
+        if (!s.empty()) doc["frames"].push_back(json::parse(s));
+    const fs::path path = fs::path(dir_) / "sequence.json";
+    { std::ofstream(path.string() + ".part") << doc.dump(1) << "\n"; }
+    fs::rename(path.string() + ".part", path);
+}
+
+} // namespace bmfr

@@ -1,0 +1,48 @@
+#include "io/sequence.h"
+#include <bmfr/error.h>
+#include <filesystem>
+
+namespace bmfr {
+
+namespace fs = std::filesystem;
+
+FrameInput FrameData::input() const {
+    FrameInput in;
+    in.color = view(color);
+    in.albedo = view(albedo);
+    in.normal = view(normal);
+    in.position = view(position);
+    for (const ImageF& e : extras) in.extras.push_back(view(e));
+    in.viewProjection = viewProjection;
+    in.jitter[0] = jitter[0];
+    in.jitter[1] = jitter[1];
+    return in;
+}
+
+void SequenceReader::checkFrame(int index, const FrameData& f) const {
+    auto check = [&](const ImageF& img, const char* name) {
+        if (img.width != info_.width || img.height != info_.height)
+            throw Error(info_.directory + ": frame " + std::to_string(index) + " " + name +
+                        " is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                        ", the sequence is " + std::to_string(info_.width) + "x" +
+                        std::to_string(info_.height));
+    };
+    check(f.color, "color");
+    check(f.albedo, "albedo");
+    check(f.normal, "normal");
+    check(f.position, "position");
+    for (const ImageF& e : f.extras) check(e, "extra");
+    if (f.reference.width) check(f.reference, "reference");
+}
+
+std::unique_ptr<SequenceReader> SequenceReader::open(const std::string& directory) {
+    if (!fs::is_directory(directory)) throw Error("input directory not found: " + directory);
+    if (fs::exists(fs::path(directory) / "sequence.json")) return openManifestLayout(directory);
+    if (fs::exists(fs::path(directory) / "camera_matrices.h") ||
+        fs::exists(fs::path(directory) / "color0.exr"))
+        return openBmfrLayout(directory);
+    throw Error(directory + ": neither sequence.json (bmfr layout) nor camera_matrices.h / "
+                            "color0.exr (original BMFR dataset layout) found");
+}
+
+} // namespace bmfr

@@ -1,0 +1,83 @@
+// Frame sequences on disk: auto-detected layout, frame loading, and writers for both layouts.
+#pragma once
+#include "core/image.h"
+#include <bmfr/frame.h>
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bmfr {
+
+/// One frame's buffers, owned.
+struct FrameData {
+    ImageF color, albedo, normal, position;
+    std::vector<ImageF> extras;     ///< 1-channel extra features, in SequenceInfo::extraNames order
+    ImageF reference;               ///< empty (0x0) when the sequence has none
+    Mat4 viewProjection;
+    float jitter[2] = {0, 0};
+
+    /// A view for Denoiser::denoise (valid while this object lives).
+    FrameInput input() const;
+};
+
+struct SequenceInfo {
+    std::string layout;    ///< "bmfr" (original dataset) or "manifest" (this project's)
+    std::string directory;
+    int frameCount = 0;
+    int width = 0, height = 0;
+    bool colorIsDemodulated = false;
+    bool hasReference = false;
+    std::optional<float> positionLimitSquared, normalLimitSquared;
+    std::vector<std::string> extraNames;
+};
+
+/// Reads frames of a sequence; every frame is checked against the first one's size.
+class SequenceReader {
+  public:
+    virtual ~SequenceReader() = default;
+    const SequenceInfo& info() const { return info_; }
+    /// Loads frame `index` (0-based). Throws bmfr::Error naming file and frame.
+    virtual void load(int index, FrameData& out) const = 0;
+
+    /// Detects the layout of `directory` (sequence.json, or camera_matrices.h + color0.exr).
+    static std::unique_ptr<SequenceReader> open(const std::string& directory);
+
+  protected:
+    SequenceInfo info_;
+    void checkFrame(int index, const FrameData& f) const;
+};
+
+std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory);
+std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory);
+
+/// Writes this project's layout: EXRs per frame plus sequence.json (rewritten per frame, so a
+/// stopped writer leaves a readable prefix).
+class ManifestWriter {
+  public:
+    ManifestWriter(const std::string& directory, const SequenceInfo& info);
+    void addFrame(int index, const FrameData& frame);
+
+  private:
+    std::string dir_;
+    SequenceInfo info_;
+    std::vector<std::string> frameJson_;
+};
+
+/// Writes the original BMFR dataset layout (colour demodulated by albedo, as that dataset is):
+/// color{N}.exr, albedo{N}.exr, shading_normal{N}.exr, world_position{N}.exr,
+/// reference{N}.exr and camera_matrices.h.
+void writeBmfrLayout(const std::string& directory, const std::vector<FrameData>& frames,
+                     float positionLimitSquared, float normalLimitSquared);
+
+/// Parsed content of an original-dataset camera_matrices.h.
+struct BmfrCameraFile {
+    std::vector<Mat4> matrices; ///< as written: row vectors, clip = [x y z 1] * M
+    std::vector<std::array<float, 2>> pixelOffsets;
+    std::optional<float> positionLimitSquared, normalLimitSquared;
+};
+/// Parses (never compiles) camera_matrices.h text. Throws bmfr::Error naming `source`.
+BmfrCameraFile parseBmfrCameraFile(const std::string& text, const std::string& source);
+
+} // namespace bmfr

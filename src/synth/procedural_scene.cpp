@@ -1,0 +1,187 @@
+#include "synth/procedural_scene.h"
+#include "core/hash.h"
+#include "core/mat4.h"
+#include <bmfr/error.h>
+#include <cmath>
+#include <tbb/parallel_for.h>
+
+namespace bmfr {
+
+namespace {
+
+struct Hit {
+    float t = INFINITY;
+    Vec3 n;
+    int material = 0;
+};
+
+constexpr float kRoom = 5.0f, kCeiling = 4.0f;
+const Vec3 kSphereCentre{1.2f, 1.0f, -0.2f};
+constexpr float kSphereRadius = 1.0f;
+const Vec3 kBoxLo{-2.2f, 0.0f, -1.8f}, kBoxHi{-0.8f, 1.6f, -0.4f};
+const Vec3 kLights[2] = {{0.3f, 3.6f, 1.5f}, {-3.5f, 2.2f, 3.5f}};
+const Vec3 kLightPower[2] = {{9.0f, 8.5f, 8.0f}, {2.0f, 2.4f, 3.0f}};
+
+void hitSphere(Vec3 o, Vec3 d, Hit& h) {
+    Vec3 oc = o - kSphereCentre;
+    float b = dot(oc, d), c = dot(oc, oc) - kSphereRadius * kSphereRadius;
+    float disc = b * b - c;
+    if (disc < 0) return;
+    float t = -b - std::sqrt(disc);
+    if (t > 1e-4f && t < h.t) h = {t, normalize(o + t * d - kSphereCentre), 7};
+}
+
+void hitBox(Vec3 o, Vec3 d, Hit& h) {
+    float t0 = 1e-4f, t1 = h.t;
+    int axis = -1;
+    float sign = 0;
+    for (int a = 0; a < 3; ++a) {
+        float inv = 1.0f / d[a];
+        float ta = (kBoxLo[a] - o[a]) * inv, tb = (kBoxHi[a] - o[a]) * inv;
+        float s = -1;
+        if (ta > tb) std::swap(ta, tb), s = 1;
+        if (ta > t0) t0 = ta, axis = a, sign = s;
+        t1 = std::fmin(t1, tb);
+        if (t0 > t1) return;
+    }
+    if (axis < 0) return;
+    Vec3 n{};
+    (axis == 0 ? n.x : axis == 1 ? n.y : n.z) = sign;
+    h = {t0, n, 8};
+}
+
+void hitRoom(Vec3 o, Vec3 d, Hit& h) {
+    // Interior of the box [-R, R] x [0, C] x [-R, R]; normals face inwards.
+    struct Plane { int axis; float at; float normal; int material; };
+    const Plane planes[6] = {{1, 0, 1, 1},       {1, kCeiling, -1, 2}, {0, -kRoom, 1, 3},
+                             {0, kRoom, -1, 4},  {2, -kRoom, 1, 5},    {2, kRoom, -1, 6}};
+    for (const Plane& p : planes) {
+        float t = (p.at - o[p.axis]) / d[p.axis];
+        if (t > 1e-4f && t < h.t) {
+            Vec3 n{};
+            (p.axis == 0 ? n.x : p.axis == 1 ? n.y : n.z) = p.normal;
+            h = {t, n, p.material};
+        }
+    }
+}
+
+Hit trace(Vec3 o, Vec3 d) {
+    Hit h;
+    hitRoom(o, d, h);
+    hitSphere(o, d, h);
+    hitBox(o, d, h);
+    return h;
+}
+
+bool occluded(Vec3 p, Vec3 light) {
+    Vec3 d = light - p;
+    float dist = length(d);
+    d = d / dist;
+    Hit h;
+    h.t = dist;
+    hitSphere(p, d, h);
+    hitBox(p, d, h);
+    return h.t < dist;
+}
+
+Vec3 albedoOf(int material, Vec3 p) {
+    switch (material) {
+    case 1: { // floor: 1 m checker
+        int c = (int(std::floor(p.x)) + int(std::floor(p.z))) & 1;
+        return c ? Vec3{0.75f, 0.72f, 0.65f} : Vec3{0.25f, 0.22f, 0.2f};
+    }
+    case 3: return {0.7f, 0.15f, 0.12f};
+    case 4: return {0.15f, 0.6f, 0.2f};
+    case 7: return {0.9f, 0.9f, 0.9f};
+    case 8: return {0.45f, 0.5f, 0.85f};
+    default: return {0.7f, 0.7f, 0.7f};
+    }
+}
+
+/// Demodulated outgoing radiance: direct light from both lights plus a smooth ambient term.
+Vec3 irradiance(Vec3 p, Vec3 n) {
+    Vec3 e = (0.04f + 0.03f * n.y) * Vec3{1, 1, 1};
+    for (int k = 0; k < 2; ++k) {
+        Vec3 l = kLights[k] - p;
+        float d2 = dot(l, l);
+        float cosine = dot(n, l) / std::sqrt(d2);
+        if (cosine <= 0 || occluded(p + 1e-3f * n, kLights[k])) continue;
+        e += (cosine / d2) * kLightPower[k];
+    }
+    return e;
+}
+
+float halton(int i, int base) {
+    float f = 1, r = 0;
+    for (; i > 0; i /= base) f /= float(base), r += f * float(i % base);
+    return r;
+}
+
+} // namespace
+
+ProceduralScene::ProceduralScene(const ProceduralSceneOptions& o) : opt_(o) {
+    if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
+        throw Error("procedural scene: size " + std::to_string(o.width) + "x" +
+                    std::to_string(o.height) + " outside [1, 16384]");
+    if (o.frames < 1) throw Error("procedural scene: needs at least one frame");
+}
+
+SequenceInfo ProceduralScene::info() const {
+    SequenceInfo s;
+    s.layout = "manifest";
+    s.frameCount = opt_.frames;
+    s.width = opt_.width;
+    s.height = opt_.height;
+    s.hasReference = true;
+    s.positionLimitSquared = 0.01f;
+    s.normalLimitSquared = 1.0f;
+    s.extraNames = {"material_id"};
+    return s;
+}
+
+void ProceduralScene::render(int index, FrameData& f) const {
+    const int w = opt_.width, h = opt_.height;
+    const float t = float(index) * opt_.cameraSpeed;
+    const Vec3 eye{-2.6f + 0.09f * t, 1.9f - 0.01f * t, 4.3f - 0.03f * t};
+    const Vec3 target{0.0f + 0.03f * t, 0.9f, -0.5f};
+    const Mat4 vp = multiply(perspectiveYDown(1.05f, float(w) / float(h), 0.05f, 50.0f),
+                             lookAt(eye, target, {0, 1, 0}));
+    Mat4 inv;
+    invert(vp, inv);
+    f.viewProjection = vp;
+    f.jitter[0] = opt_.jitter ? halton(index + 1, 2) - 0.5f : 0.0f;
+    f.jitter[1] = opt_.jitter ? halton(index + 1, 3) - 0.5f : 0.0f;
+    for (ImageF* img : {&f.color, &f.albedo, &f.normal, &f.position, &f.reference})
+        img->resize(w, h, 3);
+    f.extras.assign(1, ImageF(w, h, 1));
+
+    tbb::parallel_for(0, h, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            const float sx = (float(x) + 0.5f + f.jitter[0]) / float(w) * 2.0f - 1.0f;
+            const float sy = (float(y) + 0.5f + f.jitter[1]) / float(h) * 2.0f - 1.0f;
+            Vec4 a = transformPoint(inv, {sx, sy, -1.0f}), b = transformPoint(inv, {sx, sy, 1.0f});
+            Vec3 pa{a.x / a.w, a.y / a.w, a.z / a.w}, pb{b.x / b.w, b.y / b.w, b.z / b.w};
+            Vec3 d = normalize(pb - pa);
+            Hit hit = trace(eye, d);
+            Vec3 p = eye + hit.t * d;
+            Vec3 alb = albedoOf(hit.material, p);
+            Vec3 truth = alb * irradiance(p, hit.n);
+            const long i = long(y) * w + x;
+            // Unit-mean exponential noise shared by the channels, with a little chroma noise.
+            uint32_t key = hashKeys(opt_.seed, uint32_t(index), uint32_t(i));
+            float u = unitFloat(key);
+            float common = -std::log(1.0f - u);
+            Vec3 chroma{0.75f + 0.5f * unitFloat(wangHash(key + 1)),
+                        0.75f + 0.5f * unitFloat(wangHash(key + 2)),
+                        0.75f + 0.5f * unitFloat(wangHash(key + 3))};
+            store3(f.color.data(), i, common * (truth * chroma));
+            store3(f.reference.data(), i, truth);
+            store3(f.albedo.data(), i, alb);
+            store3(f.normal.data(), i, hit.n);
+            store3(f.position.data(), i, p);
+            f.extras[0].data()[i] = float(hit.material);
+        }
+    });
+}
+
+} // namespace bmfr
