@@ -1,1 +1,57 @@
+// Temporal weights on a static sequence: exact cumulative average first, then EMA.
+#include "test_scenes.h"
+#include <bmfr/denoiser.h>
+#include <cmath>
 #include <gtest/gtest.h>
+
+namespace bmfr {
+namespace {
+
+TEST(Accumulation, CumulativeAverageThenExponentialInBothPhases) {
+    const int w = 40, h = 36;
+    const Mat4 cam = test::cameraAt({0, 1, 3}, w, h);
+    Settings s;
+    s.stages.taa = false;
+    s.threads = 2;
+    Denoiser d(s);
+    d.setDebugOutputs(true);
+    double first = 0, second = 0; // expected phase I and phase III accumulations
+    for (int k = 0; k < 14; ++k) {
+        const double value = 1.0 + 0.37 * k + 0.2 * (k % 3); // a different colour each frame
+        FrameData f = test::planeFrame(cam, w, h, {float(value), float(value), float(value)},
+                                       [](int, int) { return -4.0f; });
+        ImageView out = d.denoise(f.input());
+        DebugBuffers dbg = d.debug();
+        // Phase I: weight max(1/(n+1), 0.2) with n = k previous samples.
+        first = k == 0 ? value : first + std::max(1.0 / (k + 1), 0.2) * (value - first);
+        // Phase III: weight max(1/n, 0.1) with n = k + 1 (the history length after phase I).
+        second = k == 0 ? first : second + std::max(1.0 / (k + 1), 0.1) * (first - second);
+        for (int i = 0; i < w * h; i += 37) {
+            ASSERT_NEAR(dbg.accumulatedNoisy.data[3 * i], first, 1e-5 * first) << "frame " << k;
+            ASSERT_EQ(dbg.historyLength.data[i], float(std::min(k + 1, 255)));
+            // A constant block is fitted exactly by the constant feature.
+            ASSERT_NEAR(dbg.fitted.data[3 * i + 1], first, 1e-4 * first) << "frame " << k;
+            ASSERT_NEAR(out.data[3 * i + 2], second, 1e-4 * second) << "frame " << k;
+        }
+    }
+}
+
+TEST(Accumulation, ResetRestartsFromTheCurrentFrame) {
+    const int w = 32, h = 32;
+    const Mat4 cam = test::cameraAt({0, 0, 0}, w, h);
+    Denoiser d;
+    d.setDebugOutputs(true);
+    FrameData a = test::planeFrame(cam, w, h, {1, 1, 1}, [](int, int) { return -3.0f; });
+    FrameData b = test::planeFrame(cam, w, h, {5, 5, 5}, [](int, int) { return -3.0f; });
+    d.denoise(a.input());
+    d.denoise(a.input());
+    FrameInput in = b.input();
+    in.reset = true;
+    ImageView out = d.denoise(in);
+    EXPECT_NEAR(d.debug().accumulatedNoisy.data[100], 5.0f, 1e-6);
+    EXPECT_EQ(d.debug().historyLength.data[100], 1.0f);
+    EXPECT_NEAR(out.data[100], 5.0f, 1e-4);
+}
+
+} // namespace
+} // namespace bmfr
