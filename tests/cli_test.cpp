@@ -1,1 +1,114 @@
+// The bmfr command line: a full run writes what it promises; bad input exits non-zero with a
+// message naming the problem.
+#include "io/exr.h"
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int code;
+    std::string output;
+};
+
+Result run(const std::string& args) {
+    std::string cmd = std::string(BMFR_CLI_PATH) + " " + args + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    std::string out;
+    std::array<char, 512> buf;
+    while (fgets(buf.data(), int(buf.size()), p)) out += buf.data();
+    int status = pclose(p);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+fs::path scratch(const std::string& name) {
+    fs::path p = fs::temp_directory_path() / ("bmfr_cli_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    return p;
+}
+
+TEST(Cli, SynthThenDenoiseWritesImagesDebugBuffersAndScores) {
+    fs::path in = scratch("in"), out = scratch("out");
+    ASSERT_EQ(run("synth " + in.string() + " --width 64 --height 48 --frames 4 -q").code, 0);
+    Result r = run("denoise " + in.string() + " -o " + out.string() + " --debug --frames 1:4");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("Scores vs reference"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("fit"), std::string::npos);
+    for (const char* f : {"denoised_0001.exr", "denoised_0003.png", "scores.csv", "report.json",
+                          "debug/accumulated_0002.exr", "debug/fitted_0002.exr",
+                          "debug/history_length_0002.exr", "debug/discard_mask_0002.png"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+    EXPECT_FALSE(fs::exists(out / "denoised_0000.exr")); // outside --frames
+    // --quiet prints nothing on success.
+    Result q = run("denoise " + in.string() + " -o " + out.string() + " -q --no-png");
+    EXPECT_EQ(q.code, 0);
+    EXPECT_EQ(q.output, "");
+    fs::remove_all(in);
+    fs::remove_all(out);
+}
+
+TEST(Cli, OriginalLayoutIsDetected) {
+    fs::path in = scratch("orig"), out = scratch("orig_out");
+    ASSERT_EQ(run("synth " + in.string() + " --width 40 --height 30 --frames 3 --layout bmfr -q").code, 0);
+    Result r = run("denoise " + in.string() + " -o " + out.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("bmfr layout"), std::string::npos) << r.output;
+    fs::remove_all(in);
+    fs::remove_all(out);
+}
+
+TEST(Cli, BadInputExitsNonZeroWithAReason) {
+    Result missing = run("denoise /nonexistent/seq -o /tmp/x");
+    EXPECT_EQ(missing.code, 1);
+    EXPECT_NE(missing.output.find("input directory not found: /nonexistent/seq"), std::string::npos)
+        << missing.output;
+
+    fs::path in = scratch("bad"), out = scratch("bad_out");
+    ASSERT_EQ(run("synth " + in.string() + " --width 32 --height 32 --frames 2 -q").code, 0);
+    std::ofstream(in / "normal_0001.exr") << "garbage";
+    Result broken = run("denoise " + in.string() + " -o " + out.string() + " -q");
+    EXPECT_EQ(broken.code, 1);
+    EXPECT_NE(broken.output.find("normal_0001.exr"), std::string::npos) << broken.output;
+
+    Result range = run("denoise " + in.string() + " -o " + out.string() + " --frames 5:9");
+    EXPECT_EQ(range.code, 1);
+    EXPECT_NE(range.output.find("frames 0:2"), std::string::npos) << range.output;
+
+    Result feature = run("denoise " + in.string() + " -o " + out.string() + " --features 1,x");
+    EXPECT_EQ(feature.code, 1);
+    EXPECT_NE(feature.output.find("unknown feature 'x'"), std::string::npos) << feature.output;
+    fs::remove_all(in);
+    fs::remove_all(out);
+}
+
+TEST(Cli, NanInputsGiveOneWarningLine) {
+    fs::path in = scratch("nan"), out = scratch("nan_out");
+    ASSERT_EQ(run("synth " + in.string() + " --width 32 --height 32 --frames 3 -q").code, 0);
+    for (int frame : {1, 2}) {
+        const std::string file = (in / ("color_000" + std::to_string(frame) + ".exr")).string();
+        bmfr::ImageF color = bmfr::readExr(file, 3);
+        color.at(5, 6, 0) = NAN;
+        color.at(7, 8, 2) = INFINITY;
+        bmfr::writeExr(file, color);
+    }
+    Result r = run("denoise " + in.string() + " -o " + out.string() + " --no-png");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string warning = "replaced 4 NaN/Inf input values with 0 in 2 frame(s) (first: frame 1)";
+    size_t at = r.output.find(warning);
+    EXPECT_NE(at, std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("NaN/Inf", at + warning.size()), std::string::npos); // one line
+    bmfr::ImageF result = bmfr::readExr((out / "denoised_0002.exr").string(), 3);
+    for (float v : result.pixels) ASSERT_TRUE(std::isfinite(v));
+    fs::remove_all(in);
+    fs::remove_all(out);
+}
+
+} // namespace
