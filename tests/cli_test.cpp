@@ -30,7 +30,8 @@ Result run(const std::string& args) {
 }
 
 fs::path scratch(const std::string& name) {
-    fs::path p = fs::temp_directory_path() / ("bmfr_cli_" + name + "_" + std::to_string(::getpid()));
+    fs::path p =
+        fs::temp_directory_path() / ("bmfr_cli_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(p);
     return p;
 }
@@ -57,7 +58,9 @@ TEST(Cli, SynthThenDenoiseWritesImagesDebugBuffersAndScores) {
 
 TEST(Cli, OriginalLayoutIsDetected) {
     fs::path in = scratch("orig"), out = scratch("orig_out");
-    ASSERT_EQ(run("synth " + in.string() + " --width 40 --height 30 --frames 3 --layout bmfr -q").code, 0);
+    ASSERT_EQ(
+        run("synth " + in.string() + " --width 40 --height 30 --frames 3 --layout bmfr -q").code,
+        0);
     Result r = run("denoise " + in.string() + " -o " + out.string());
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("bmfr layout"), std::string::npos) << r.output;
@@ -101,7 +104,8 @@ TEST(Cli, NanInputsGiveOneWarningLine) {
     }
     Result r = run("denoise " + in.string() + " -o " + out.string() + " --no-png");
     ASSERT_EQ(r.code, 0) << r.output;
-    const std::string warning = "replaced 4 NaN/Inf input values with 0 in 2 frame(s) (first: frame 1)";
+    const std::string warning =
+        "replaced 4 NaN/Inf input values with 0 in 2 frame(s) (first: frame 1)";
     size_t at = r.output.find(warning);
     EXPECT_NE(at, std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("NaN/Inf", at + warning.size()), std::string::npos); // one line

@@ -89,7 +89,7 @@ TEST(EndToEnd, SameInputSameBitsForAnyThreadCount) {
     one.threads = 1;
     two.threads = 2;
     SequenceRun a = denoiseSequence(one, 5, 100, 70), b = denoiseSequence(two, 5, 100, 70),
-        c = denoiseSequence(two, 5, 100, 70);
+                c = denoiseSequence(two, 5, 100, 70);
     for (size_t i = 0; i < a.outputs.size(); ++i) {
         EXPECT_EQ(a.outputs[i].pixels, b.outputs[i].pixels) << "frame " << i;
         EXPECT_EQ(b.outputs[i].pixels, c.outputs[i].pixels) << "frame " << i;

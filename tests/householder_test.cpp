@@ -11,7 +11,9 @@ namespace {
 
 constexpr int W = 1024;
 
-float uniform(uint32_t a, uint32_t b, uint32_t c) { return unitFloat(hashKeys(a, b, c)); }
+float uniform(uint32_t a, uint32_t b, uint32_t c) {
+    return unitFloat(hashKeys(a, b, c));
+}
 
 /// Column-major block: M feature columns then 3 colour columns.
 struct Block {

@@ -16,7 +16,8 @@ TEST(Reprojection, KnownCameraMotionMapsToExpectedPreviousPixel) {
     Mat4 vp;
     vp.m[0][0] = float(f / aspect), vp.m[0][3] = float(-f / aspect * ex);
     vp.m[1][1] = float(-f), vp.m[1][3] = float(f * ey);
-    vp.m[2][2] = float((far + n) / (n - far)), vp.m[2][3] = float(-(far + n) / (n - far) * ez + 2 * far * n / (n - far));
+    vp.m[2][2] = float((far + n) / (n - far)),
+    vp.m[2][3] = float(-(far + n) / (n - far) * ez + 2 * far * n / (n - far));
     vp.m[3][2] = -1.0f, vp.m[3][3] = float(ez);
     vp.m[3][0] = vp.m[3][1] = 0;
     const float jitter[2] = {0.25f, -0.125f};
@@ -72,9 +73,8 @@ TEST(Reprojection, DisoccludedPixelsAreRejectedByTheDenoiser) {
     const Mat4 cam = test::cameraAt({0, 0, 0}, w, h);
     FrameData background = test::planeFrame(cam, w, h, {1, 1, 1}, [](int, int) { return -10.0f; });
     // Next frame: an object at z = -5 now covers the left half.
-    FrameData occluder = test::planeFrame(cam, w, h, {1, 1, 1}, [&](int x, int) {
-        return x < w / 2 ? -5.0f : -10.0f;
-    });
+    FrameData occluder = test::planeFrame(cam, w, h, {1, 1, 1},
+                                          [&](int x, int) { return x < w / 2 ? -5.0f : -10.0f; });
     Settings s;
     s.threads = 2;
     s.positionLimitSquared = 1.0f; // neighbouring pixels lie 0.6 units apart at depth 10

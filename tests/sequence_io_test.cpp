@@ -14,7 +14,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-    fs::path p = fs::temp_directory_path() / ("bmfr_test_" + name + "_" + std::to_string(::getpid()));
+    fs::path p =
+        fs::temp_directory_path() / ("bmfr_test_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
@@ -32,8 +33,10 @@ fs::path writeOriginalLayout() {
     for (int n = 0; n < 2; ++n) {
         writeExr((d / ("color" + std::to_string(n) + ".exr")).string(), filled(5, 3, 1.0f + n));
         writeExr((d / ("albedo" + std::to_string(n) + ".exr")).string(), filled(5, 3, 0.5f));
-        writeExr((d / ("shading_normal" + std::to_string(n) + ".exr")).string(), filled(5, 3, 0.1f));
-        writeExr((d / ("world_position" + std::to_string(n) + ".exr")).string(), filled(5, 3, 7.0f));
+        writeExr((d / ("shading_normal" + std::to_string(n) + ".exr")).string(),
+                 filled(5, 3, 0.1f));
+        writeExr((d / ("world_position" + std::to_string(n) + ".exr")).string(),
+                 filled(5, 3, 7.0f));
         writeExr((d / ("reference" + std::to_string(n) + ".exr")).string(), filled(5, 3, 2.0f));
     }
     std::ofstream(d / "camera_matrices.h") << R"(// camera data

@@ -44,16 +44,21 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h) {
     }
     return {{"total_ms", median(total)},
             {"stages",
-             {{"accumulate", median(acc)}, {"fit", median(fit)},
-              {"accumulate_fitted", median(acc2)}, {"taa", median(taa)}}}};
+             {{"accumulate", median(acc)},
+              {"fit", median(fit)},
+              {"accumulate_fitted", median(acc2)},
+              {"taa", median(taa)}}}};
 }
 
 } // namespace
 
 void addBenchCommand(CLI::App& app, int& exitCode) {
     auto job = std::make_shared<BenchJob>();
-    CLI::App* cmd = app.add_subcommand("bench", "median ms per frame and per stage on synthetic input");
-    cmd->add_option("--sizes", job->sizes, "resolutions WxH")->delimiter(',')->default_str("1280x720");
+    CLI::App* cmd =
+        app.add_subcommand("bench", "median ms per frame and per stage on synthetic input");
+    cmd->add_option("--sizes", job->sizes, "resolutions WxH")
+        ->delimiter(',')
+        ->default_str("1280x720");
     cmd->add_option("--warmup", job->warmup, "untimed frames first")->default_val(5);
     cmd->add_option("--frames", job->frames, "timed frames")->default_val(30);
     cmd->add_option("--threads", job->threads, "worker threads, 0 = all cores")->default_val(0);
@@ -71,7 +76,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
             if (!job->json)
                 fmt::print("{:>10}: total {:8.2f} ms | accumulate {:7.2f} | fit {:7.2f} | "
                            "accumulate fitted {:7.2f} | taa {:7.2f}   (median of {} frames)\n",
-                           size, r["total_ms"].get<double>(), r["stages"]["accumulate"].get<double>(),
+                           size, r["total_ms"].get<double>(),
+                           r["stages"]["accumulate"].get<double>(),
                            r["stages"]["fit"].get<double>(),
                            r["stages"]["accumulate_fitted"].get<double>(),
                            r["stages"]["taa"].get<double>(), job->frames);

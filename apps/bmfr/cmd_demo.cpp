@@ -39,8 +39,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
         dj.quiet = job->quiet;
         dj.debug = true;
         exitCode = runDenoise(dj);
-        if (!job->quiet)
-            fmt::print("input (noisy colour, features, truth): {}\n", input);
+        if (!job->quiet) fmt::print("input (noisy colour, features, truth): {}\n", input);
     });
 }
 

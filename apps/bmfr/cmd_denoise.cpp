@@ -53,12 +53,18 @@ Settings SettingsOptions::resolve(std::optional<float> seqPos, std::optional<flo
     s.normalLimitSquared = normalLimitSquared.value_or(seqNormal.value_or(1.0f));
     s.colorIsDemodulated = colorIsDemodulated;
     for (const std::string& d : disabled) {
-        if (d == "demodulate") s.stages.demodulate = false;
-        else if (d == "accumulation") s.stages.firstAccumulation = false;
-        else if (d == "fitting") s.stages.fitting = false;
-        else if (d == "second-accumulation") s.stages.secondAccumulation = false;
-        else if (d == "taa") s.stages.taa = false;
-        else throw Error("--disable: unknown stage '" + d + "'");
+        if (d == "demodulate")
+            s.stages.demodulate = false;
+        else if (d == "accumulation")
+            s.stages.firstAccumulation = false;
+        else if (d == "fitting")
+            s.stages.fitting = false;
+        else if (d == "second-accumulation")
+            s.stages.secondAccumulation = false;
+        else if (d == "taa")
+            s.stages.taa = false;
+        else
+            throw Error("--disable: unknown stage '" + d + "'");
     }
     validate(s);
     return s;
@@ -69,7 +75,8 @@ namespace {
 std::pair<int, int> frameRange(const std::string& spec, int count) {
     if (spec.empty()) return {0, count};
     size_t colon = spec.find(':');
-    if (colon == std::string::npos) throw Error("--frames expects A:B, A: or :B, got '" + spec + "'");
+    if (colon == std::string::npos)
+        throw Error("--frames expects A:B, A: or :B, got '" + spec + "'");
     auto num = [&](const std::string& s, int dflt) {
         if (s.empty()) return dflt;
         if (s.find_first_not_of("0123456789") != std::string::npos)
@@ -155,7 +162,9 @@ int runDenoise(const DenoiseJob& job) {
         auto t1 = Clock::now();
         const std::string stem = fmt::format("{:04d}", i);
         writeExr((fs::path(job.output) / ("denoised_" + stem + ".exr")).string(), out);
-        if (job.png) writePngToneMapped((fs::path(job.output) / ("denoised_" + stem + ".png")).string(), out);
+        if (job.png)
+            writePngToneMapped((fs::path(job.output) / ("denoised_" + stem + ".png")).string(),
+                               out);
         if (job.debug) {
             DebugBuffers d = denoiser.debug();
             const fs::path dd = fs::path(job.output) / "debug";
@@ -173,7 +182,8 @@ int runDenoise(const DenoiseJob& job) {
         if (info.hasReference) {
             ImageF noisy = frame.color;
             if (info.colorIsDemodulated)
-                for (size_t k = 0; k < noisy.pixels.size(); ++k) noisy.pixels[k] *= frame.albedo.pixels[k];
+                for (size_t k = 0; k < noisy.pixels.size(); ++k)
+                    noisy.pixels[k] *= frame.albedo.pixels[k];
             scores.rmse.push_back(rmseToneMapped(out, frame.reference));
             scores.psnr.push_back(psnrToneMapped(out, frame.reference));
             scores.relmse.push_back(relMseLinear(out, frame.reference));
@@ -192,16 +202,20 @@ int runDenoise(const DenoiseJob& job) {
     progress.finish();
 
     if (nonFinite)
-        fmt::print(stderr, "bmfr: warning: replaced {} NaN/Inf input values with 0 in {} frame(s) "
-                           "(first: frame {})\n", nonFinite, badFrames.size(), badFrames.front());
+        fmt::print(stderr,
+                   "bmfr: warning: replaced {} NaN/Inf input values with 0 in {} frame(s) "
+                   "(first: frame {})\n",
+                   nonFinite, badFrames.size(), badFrames.front());
 
     nlohmann::json report;
     report["input"] = job.input;
     report["frames"] = last - first;
     report["resolution"] = {info.width, info.height};
     report["features"] = formatFeatures(settings.features);
-    report["median_ms"] = {{"accumulate", median(tAcc)}, {"fit", median(tFit)},
-                           {"accumulate_fitted", median(tAcc2)}, {"taa", median(tTaa)},
+    report["median_ms"] = {{"accumulate", median(tAcc)},
+                           {"fit", median(tFit)},
+                           {"accumulate_fitted", median(tAcc2)},
+                           {"taa", median(tTaa)},
                            {"total", median(tTotal)}};
     if (info.hasReference) {
         std::ofstream csv(fs::path(job.output) / "scores.csv");
@@ -234,10 +248,11 @@ int runDenoise(const DenoiseJob& job) {
             fmt::print("\nScores vs reference (mean over frames; tone-mapped x^(1/2.2)):\n");
             fmt::print("  {:<10} {:>9} {:>9} {:>10} {:>15}\n", "", "RMSE", "PSNR dB", "relMSE",
                        "temporal err");
-            fmt::print("  {:<10} {:>9.4f} {:>9} {:>10} {:>15.4f}\n", "noisy", mean(scores.noisyRmse),
-                       "", "", mean(scores.noisyTemporal));
-            fmt::print("  {:<10} {:>9.4f} {:>9.2f} {:>10.4f} {:>15.4f}\n", "bmfr", mean(scores.rmse),
-                       mean(scores.psnr), mean(scores.relmse), mean(scores.temporal));
+            fmt::print("  {:<10} {:>9.4f} {:>9} {:>10} {:>15.4f}\n", "noisy",
+                       mean(scores.noisyRmse), "", "", mean(scores.noisyTemporal));
+            fmt::print("  {:<10} {:>9.4f} {:>9.2f} {:>10.4f} {:>15.4f}\n", "bmfr",
+                       mean(scores.rmse), mean(scores.psnr), mean(scores.relmse),
+                       mean(scores.temporal));
             fmt::print("  {:<10} {:>9} {:>9} {:>10} {:>15.4f}\n", "reference", "", "", "",
                        mean(scores.refTemporal));
         }

@@ -20,7 +20,8 @@ void writeProcedural(const SynthJob& job) {
     Progress progress("synth", job.scene.frames, job.quiet);
     if (job.layout == "bmfr") {
         std::vector<FrameData> frames(size_t(job.scene.frames));
-        for (int i = 0; i < job.scene.frames; ++i) scene.render(i, frames[size_t(i)]), progress.step(i + 1);
+        for (int i = 0; i < job.scene.frames; ++i)
+            scene.render(i, frames[size_t(i)]), progress.step(i + 1);
         writeBmfrLayout(job.output, frames, 0.01f, 1.0f);
     } else if (job.layout == "manifest") {
         ManifestWriter writer(job.output, scene.info());
@@ -50,7 +51,8 @@ void addSynthCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--height", job->scene.height, "pixels")->default_val(360);
     cmd->add_option("--frames", job->scene.frames, "frame count")->default_val(30);
     cmd->add_option("--seed", job->scene.seed, "noise seed")->default_val(1);
-    cmd->add_option("--camera-speed", job->scene.cameraSpeed, "0 = static camera")->default_val(1.0);
+    cmd->add_option("--camera-speed", job->scene.cameraSpeed, "0 = static camera")
+        ->default_val(1.0);
     cmd->add_option("--layout", job->layout, "manifest (sequence.json) or bmfr (original dataset)")
         ->default_val("manifest");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");

@@ -21,7 +21,7 @@ struct SettingsOptions {
 
 struct DenoiseJob {
     std::string input, output;
-    std::string frames;     ///< "A:B" (A..B-1), "A:" or ":B"; empty = all
+    std::string frames; ///< "A:B" (A..B-1), "A:" or ":B"; empty = all
     bool quiet = false, debug = false, png = true;
     SettingsOptions options;
 };

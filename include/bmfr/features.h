@@ -7,14 +7,14 @@ namespace bmfr {
 
 /// Where a feature column takes its values from.
 enum class FeatureSource {
-    One,       ///< the constant buffer 1 (must come first; never scaled or noised)
-    NormalX,   ///< shading normal, world space, unit length
+    One,     ///< the constant buffer 1 (must come first; never scaled or noised)
+    NormalX, ///< shading normal, world space, unit length
     NormalY,
     NormalZ,
     PositionX, ///< world-space position of the first hit, scene units
     PositionY,
     PositionZ,
-    Extra,     ///< FrameInput::extras[extraIndex] (e.g. material id, roughness)
+    Extra, ///< FrameInput::extras[extraIndex] (e.g. material id, roughness)
 };
 
 /// One column of T: source^exponent, optionally min/max-scaled per block.

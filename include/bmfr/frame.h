@@ -37,7 +37,7 @@ struct StageTimes {
     double accumulate = 0; ///< phase I: demodulation, reprojection, first accumulation
     double fit = 0;        ///< phase II: block gather, scaling, QR, back substitution, weighted sum
     double accumulateFitted = 0; ///< phase III: second accumulation and re-modulation
-    double taa = 0;        ///< phase III: TAA
+    double taa = 0;              ///< phase III: TAA
     double total = 0;
 };
 

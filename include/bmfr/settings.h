@@ -8,11 +8,11 @@ namespace bmfr {
 
 /// Stage switches, for ablations. A disabled stage passes its input through unchanged.
 struct StageSwitches {
-    bool demodulate = true;          ///< divide colour by albedo before filtering, re-multiply after
-    bool firstAccumulation = true;   ///< phase I: temporal accumulation of the noisy colour
-    bool fitting = true;             ///< phase II: blockwise feature regression
-    bool secondAccumulation = true;  ///< phase III: temporal accumulation of the fitted colour
-    bool taa = true;                 ///< phase III: temporal anti-aliasing
+    bool demodulate = true;         ///< divide colour by albedo before filtering, re-multiply after
+    bool firstAccumulation = true;  ///< phase I: temporal accumulation of the noisy colour
+    bool fitting = true;            ///< phase II: blockwise feature regression
+    bool secondAccumulation = true; ///< phase III: temporal accumulation of the fitted colour
+    bool taa = true;                ///< phase III: temporal anti-aliasing
 };
 
 /// BMFR settings. Defaults are the paper's (Koskela et al. 2019) and the authors' code.
@@ -54,7 +54,7 @@ void validate(const Settings& settings);
 
 /// The authors' 16 block-grid offsets in pixels, used in order, one per frame.
 inline constexpr int kBlockOffsets[16][2] = {
-    {-14, -14}, {4, -6},  {-8, 14}, {8, 0},   {-10, -8}, {2, 12}, {12, -12}, {-10, 0},
-    {12, 14},   {-8, -16}, {6, 6},  {-2, -2}, {6, -14},  {-16, 12}, {14, -4}, {-6, 4}};
+    {-14, -14}, {4, -6},   {-8, 14}, {8, 0},   {-10, -8}, {2, 12},   {12, -12}, {-10, 0},
+    {12, 14},   {-8, -16}, {6, 6},   {-2, -2}, {6, -14},  {-16, 12}, {14, -4},  {-6, 4}};
 
 } // namespace bmfr

@@ -5,7 +5,9 @@
 namespace bmfr {
 
 /// Rec. 709 relative luminance of linear RGB.
-BMFR_HD float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+BMFR_HD float luminance(Vec3 c) {
+    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
 
 /// Unnormalised YCoCg as in the authors' TAA; inverse below.
 BMFR_HD Vec3 rgbToYCoCg(Vec3 c) {

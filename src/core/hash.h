@@ -21,6 +21,8 @@ BMFR_HD uint32_t hashKeys(uint32_t a, uint32_t b, uint32_t c = 0, uint32_t d = 0
 }
 
 /// Uniform float in [0, 1) from 24 bits of a hash.
-BMFR_HD float unitFloat(uint32_t h) { return float(h >> 8) * (1.0f / 16777216.0f); }
+BMFR_HD float unitFloat(uint32_t h) {
+    return float(h >> 8) * (1.0f / 16777216.0f);
+}
 
 } // namespace bmfr

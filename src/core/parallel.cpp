@@ -14,12 +14,15 @@ struct ThreadPool::Impl {
 ThreadPool::ThreadPool(int threads) : impl_(std::make_unique<Impl>(threads)) {}
 ThreadPool::~ThreadPool() = default;
 
-int ThreadPool::currentThreadIndex() { return tbb::this_task_arena::current_thread_index(); }
+int ThreadPool::currentThreadIndex() {
+    return tbb::this_task_arena::current_thread_index();
+}
 
-int ThreadPool::threadCount() const { return impl_->arena.max_concurrency(); }
+int ThreadPool::threadCount() const {
+    return impl_->arena.max_concurrency();
+}
 
-void ThreadPool::parallelFor(long count, long grain,
-                             const std::function<void(long, long)>& body) {
+void ThreadPool::parallelFor(long count, long grain, const std::function<void(long, long)>& body) {
     if (count <= 0) return;
     impl_->arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<long>(0, count, grain > 0 ? grain : 1),

@@ -38,8 +38,12 @@ BMFR_HD BilinearFootprint bilinearFootprint(Vec2 pixel) {
     return f;
 }
 
-BMFR_HD int tapX(const BilinearFootprint& f, int tap) { return f.x0 + (tap & 1); }
-BMFR_HD int tapY(const BilinearFootprint& f, int tap) { return f.y0 + (tap >> 1); }
+BMFR_HD int tapX(const BilinearFootprint& f, int tap) {
+    return f.x0 + (tap & 1);
+}
+BMFR_HD int tapY(const BilinearFootprint& f, int tap) {
+    return f.y0 + (tap >> 1);
+}
 
 /// Thresholds of the history discard test.
 struct DiscardLimits {

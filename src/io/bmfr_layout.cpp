@@ -32,7 +32,9 @@ std::string stripComments(const std::string& s) {
     return out;
 }
 
-bool isIdentChar(char c) { return std::isalnum((unsigned char)c) || c == '_'; }
+bool isIdentChar(char c) {
+    return std::isalnum((unsigned char)c) || c == '_';
+}
 
 /// Position just after the identifier `name` as a whole word, or npos.
 size_t findIdentifier(const std::string& s, const std::string& name) {
@@ -56,7 +58,8 @@ std::vector<float> initializerNumbers(const std::string& s, size_t from, const s
     if (open == std::string::npos || s[open] != '{') {
         // Scalar: one number before ';'.
         size_t end = s.find(';', eq);
-        std::string body = s.substr(eq + 1, end == std::string::npos ? std::string::npos : end - eq - 1);
+        std::string body =
+            s.substr(eq + 1, end == std::string::npos ? std::string::npos : end - eq - 1);
         char* e = nullptr;
         float v = std::strtof(body.c_str(), &e);
         if (e == body.c_str()) throw Error(source + ": '" + what + "' is not a number");
@@ -67,7 +70,8 @@ std::vector<float> initializerNumbers(const std::string& s, size_t from, const s
     size_t i = open;
     for (; i < s.size(); ++i) {
         char c = s[i];
-        if (c == '{') ++depth;
+        if (c == '{')
+            ++depth;
         else if (c == '}') {
             if (--depth == 0) break;
         } else if (std::isdigit((unsigned char)c) || c == '-' || c == '+' || c == '.') {
@@ -152,7 +156,8 @@ class BmfrLayoutReader : public SequenceReader {
   private:
     BmfrCameraFile camera_;
     std::string path(const char* stem, int n) const {
-        return (fs::path(info_.directory) / (std::string(stem) + std::to_string(n) + ".exr")).string();
+        return (fs::path(info_.directory) / (std::string(stem) + std::to_string(n) + ".exr"))
+            .string();
     }
 };
 
@@ -181,7 +186,8 @@ BmfrCameraFile parseBmfrCameraFile(const std::string& raw, const std::string& so
     if (po != std::string::npos) {
         std::vector<float> o = initializerNumbers(s, po, "pixel_offsets", source);
         if (o.size() % 2 != 0) throw Error(source + ": pixel_offsets has an odd count");
-        for (size_t k = 0; k < o.size() / 2; ++k) out.pixelOffsets.push_back({o[2 * k], o[2 * k + 1]});
+        for (size_t k = 0; k < o.size() / 2; ++k)
+            out.pixelOffsets.push_back({o[2 * k], o[2 * k + 1]});
     }
     for (const char* name : {"position_limit_squared", "normal_limit_squared"}) {
         size_t p = findIdentifier(s, name);

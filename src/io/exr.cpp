@@ -27,10 +27,14 @@ ImageF readExr(const std::string& path, int channels) {
             return false;
         };
         std::vector<std::string> pick;
-        if (channels == 3 && has("R") && has("G") && has("B")) pick = {"R", "G", "B"};
-        else if (channels == 1 && has("Y")) pick = {"Y"};
-        else if (channels == 1 && has("R")) pick = {"R"};
-        else if (names.size() == 1) pick.assign(size_t(channels), names[0]);
+        if (channels == 3 && has("R") && has("G") && has("B"))
+            pick = {"R", "G", "B"};
+        else if (channels == 1 && has("Y"))
+            pick = {"Y"};
+        else if (channels == 1 && has("R"))
+            pick = {"R"};
+        else if (names.size() == 1)
+            pick.assign(size_t(channels), names[0]);
         else {
             std::string list;
             for (auto& s : names) list += (list.empty() ? "" : ",") + s;
@@ -40,7 +44,8 @@ ImageF readExr(const std::string& path, int channels) {
         ImageF img(int(w), int(h), channels);
         Imf::FrameBuffer fb;
         const size_t xs = sizeof(float) * channels, ys = xs * size_t(w);
-        char* base = reinterpret_cast<char*>(img.data()) - dw.min.x * long(xs) - dw.min.y * long(ys);
+        char* base =
+            reinterpret_cast<char*>(img.data()) - dw.min.x * long(xs) - dw.min.y * long(ys);
         // The same source channel may feed several slots: read the first, copy afterwards.
         fb.insert(pick[0], Imf::Slice(Imf::FLOAT, base, xs, ys));
         for (int c = 1; c < channels; ++c)
@@ -50,7 +55,8 @@ ImageF readExr(const std::string& path, int channels) {
         file.readPixels(dw.min.y, dw.max.y);
         for (int c = 1; c < channels; ++c)
             if (pick[c] == pick[0])
-                for (long i = 0; i < w * h; ++i) img.data()[i * channels + c] = img.data()[i * channels];
+                for (long i = 0; i < w * h; ++i)
+                    img.data()[i * channels + c] = img.data()[i * channels];
         return img;
     } catch (const Error&) {
         throw;
@@ -68,7 +74,8 @@ void writeExr(const std::string& path, const ImageF& image) {
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
-        for (int c = 0; c < ch; ++c) header.channels().insert(kNames[ch - 1][c], Imf::Channel(Imf::FLOAT));
+        for (int c = 0; c < ch; ++c)
+            header.channels().insert(kNames[ch - 1][c], Imf::Channel(Imf::FLOAT));
         Imf::OutputFile file(tmp.c_str(), header);
         Imf::FrameBuffer fb;
         const size_t xs = sizeof(float) * ch, ys = xs * size_t(image.width);

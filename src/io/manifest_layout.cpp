@@ -61,7 +61,8 @@ class ManifestReader : public SequenceReader {
             f.extras.clear();
             if (j.contains("extras")) {
                 for (const auto& e : j["extras"])
-                    f.extras.push_back(readExr((fs::path(info_.directory) / e.get<std::string>()).string(), 1));
+                    f.extras.push_back(
+                        readExr((fs::path(info_.directory) / e.get<std::string>()).string(), 1));
                 if (f.extras.size() != info_.extraNames.size())
                     throw Error(where + ": " + std::to_string(f.extras.size()) +
                                 " extra buffers, the sequence names " +

@@ -22,8 +22,8 @@ FrameInput FrameData::input() const {
 void SequenceReader::checkFrame(int index, const FrameData& f) const {
     auto check = [&](const ImageF& img, const char* name) {
         if (img.width != info_.width || img.height != info_.height)
-            throw Error(info_.directory + ": frame " + std::to_string(index) + " " + name +
-                        " is " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+            throw Error(info_.directory + ": frame " + std::to_string(index) + " " + name + " is " +
+                        std::to_string(img.width) + "x" + std::to_string(img.height) +
                         ", the sequence is " + std::to_string(info_.width) + "x" +
                         std::to_string(info_.height));
     };

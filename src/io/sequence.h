@@ -1,8 +1,8 @@
 // Frame sequences on disk: auto-detected layout, frame loading, and writers for both layouts.
 #pragma once
 #include "core/image.h"
-#include <bmfr/frame.h>
 #include <array>
+#include <bmfr/frame.h>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,8 +13,8 @@ namespace bmfr {
 /// One frame's buffers, owned.
 struct FrameData {
     ImageF color, albedo, normal, position;
-    std::vector<ImageF> extras;     ///< 1-channel extra features, in SequenceInfo::extraNames order
-    ImageF reference;               ///< empty (0x0) when the sequence has none
+    std::vector<ImageF> extras; ///< 1-channel extra features, in SequenceInfo::extraNames order
+    ImageF reference;           ///< empty (0x0) when the sequence has none
     Mat4 viewProjection;
     float jitter[2] = {0, 0};
 
@@ -23,7 +23,7 @@ struct FrameData {
 };
 
 struct SequenceInfo {
-    std::string layout;    ///< "bmfr" (original dataset) or "manifest" (this project's)
+    std::string layout; ///< "bmfr" (original dataset) or "manifest" (this project's)
     std::string directory;
     int frameCount = 0;
     int width = 0, height = 0;

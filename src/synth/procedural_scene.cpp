@@ -52,9 +52,14 @@ void hitBox(Vec3 o, Vec3 d, Hit& h) {
 
 void hitRoom(Vec3 o, Vec3 d, Hit& h) {
     // Interior of the box [-R, R] x [0, C] x [-R, R]; normals face inwards.
-    struct Plane { int axis; float at; float normal; int material; };
-    const Plane planes[6] = {{1, 0, 1, 1},       {1, kCeiling, -1, 2}, {0, -kRoom, 1, 3},
-                             {0, kRoom, -1, 4},  {2, -kRoom, 1, 5},    {2, kRoom, -1, 6}};
+    struct Plane {
+        int axis;
+        float at;
+        float normal;
+        int material;
+    };
+    const Plane planes[6] = {{1, 0, 1, 1},      {1, kCeiling, -1, 2}, {0, -kRoom, 1, 3},
+                             {0, kRoom, -1, 4}, {2, -kRoom, 1, 5},    {2, kRoom, -1, 6}};
     for (const Plane& p : planes) {
         float t = (p.at - o[p.axis]) / d[p.axis];
         if (t > 1e-4f && t < h.t) {
@@ -90,11 +95,16 @@ Vec3 albedoOf(int material, Vec3 p) {
         int c = (int(std::floor(p.x)) + int(std::floor(p.z))) & 1;
         return c ? Vec3{0.75f, 0.72f, 0.65f} : Vec3{0.25f, 0.22f, 0.2f};
     }
-    case 3: return {0.7f, 0.15f, 0.12f};
-    case 4: return {0.15f, 0.6f, 0.2f};
-    case 7: return {0.9f, 0.9f, 0.9f};
-    case 8: return {0.45f, 0.5f, 0.85f};
-    default: return {0.7f, 0.7f, 0.7f};
+    case 3:
+        return {0.7f, 0.15f, 0.12f};
+    case 4:
+        return {0.15f, 0.6f, 0.2f};
+    case 7:
+        return {0.9f, 0.9f, 0.9f};
+    case 8:
+        return {0.45f, 0.5f, 0.85f};
+    default:
+        return {0.7f, 0.7f, 0.7f};
     }
 }
 

@@ -9,11 +9,11 @@
 namespace bmfr {
 
 struct ProceduralSceneOptions {
-    int width = 640;        ///< pixels, [1, 16384]
-    int height = 360;       ///< pixels, [1, 16384]
-    int frames = 30;        ///< sequence length; [1, 100000]
-    uint32_t seed = 1;      ///< noise seed
-    bool jitter = true;     ///< per-frame sub-pixel offsets (Halton 2,3), else pixel centres
+    int width = 640;          ///< pixels, [1, 16384]
+    int height = 360;         ///< pixels, [1, 16384]
+    int frames = 30;          ///< sequence length; [1, 100000]
+    uint32_t seed = 1;        ///< noise seed
+    bool jitter = true;       ///< per-frame sub-pixel offsets (Halton 2,3), else pixel centres
     float cameraSpeed = 1.0f; ///< scales the camera path per frame; 0 = static camera
 };
 

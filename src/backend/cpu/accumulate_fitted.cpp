@@ -25,8 +25,8 @@ void accumulateFitted(const BmfrPassContext& ctx) {
                 float total = gatherAccepted(bilinearFootprint(pp), accept, w,
                                              [&](long j, float wt) { old += wt * load3(hist, j); });
                 if (total > 0.0f) {
-                    float blend = secondBlendWeight(st.historyLength[cur].data()[i],
-                                                    s.secondBlendAlpha);
+                    float blend =
+                        secondBlendWeight(st.historyLength[cur].data()[i], s.secondBlendAlpha);
                     c = lerp(old / total, c, blend);
                 }
             }

@@ -38,11 +38,11 @@ InputCounters accumulateNoisy(const BmfrPassContext& ctx) {
                 uint8_t accept = 0;
                 float samples = 0.0f, blend = 1.0f;
                 Vec3 old{};
-                if (history && projectToPixel(st.previousViewProjection, p, st.previousJitter,
-                                              w, h, pp)) {
+                if (history &&
+                    projectToPixel(st.previousViewProjection, p, st.previousJitter, w, h, pp)) {
                     BilinearFootprint fp = bilinearFootprint(pp);
-                    accept = acceptTaps(fp, p, n, st.position[prev].data(),
-                                        st.normal[prev].data(), w, h, limits);
+                    accept = acceptTaps(fp, p, n, st.position[prev].data(), st.normal[prev].data(),
+                                        w, h, limits);
                     const float* prevColor = st.accumulatedNoisy[prev].data();
                     const uint8_t* prevLength = st.historyLength[prev].data();
                     float total = gatherAccepted(fp, accept, w, [&](long j, float wt) {

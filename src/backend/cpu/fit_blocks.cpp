@@ -32,7 +32,8 @@ void gatherBlock(const BmfrPassContext& ctx, const BlockGrid& g, int bx, int by,
                 float v = extras[e].data[idx];
                 extra[e] = std::isfinite(v) ? v : 0.0f;
             }
-            for (int f = 0; f < M; ++f) sc.clean[long(f) * W + k] = featureValue(s.features[f], n, p, extra);
+            for (int f = 0; f < M; ++f)
+                sc.clean[long(f) * W + k] = featureValue(s.features[f], n, p, extra);
             Vec3 c = load3(color, idx);
             sc.work[long(M) * W + k] = c.x;
             sc.work[long(M + 1) * W + k] = c.y;

@@ -30,14 +30,16 @@ void temporalAntiAliasing(const BmfrPassContext& ctx) {
                 }
                 // Clamp box: mean of the 3x3 box and the 5-tap cross bounds, in YCoCg.
                 const float inf = INFINITY;
-                Vec3 boxLo{inf, inf, inf}, boxHi{-inf, -inf, -inf}, crossLo = boxLo, crossHi = boxHi;
+                Vec3 boxLo{inf, inf, inf}, boxHi{-inf, -inf, -inf}, crossLo = boxLo,
+                                                                    crossHi = boxHi;
                 for (int dy = -1; dy <= 1; ++dy) {
                     for (int dx = -1; dx <= 1; ++dx) {
                         const int sx = x + dx, sy = int(y) + dy;
                         if (sx < 0 || sy < 0 || sx >= w || sy >= h) continue;
                         Vec3 v = rgbToYCoCg(load3(current, long(sy) * w + sx));
                         boxLo = vmin(boxLo, v), boxHi = vmax(boxHi, v);
-                        if (dx == 0 || dy == 0) crossLo = vmin(crossLo, v), crossHi = vmax(crossHi, v);
+                        if (dx == 0 || dy == 0)
+                            crossLo = vmin(crossLo, v), crossHi = vmax(crossHi, v);
                     }
                 }
                 // Bilinear history, renormalised at the image border.

@@ -111,10 +111,18 @@ Denoiser::~Denoiser() = default;
 Denoiser::Denoiser(Denoiser&&) noexcept = default;
 Denoiser& Denoiser::operator=(Denoiser&&) noexcept = default;
 
-void Denoiser::reset() { impl_->state.hasHistory = false; }
-void Denoiser::setDebugOutputs(bool enabled) { impl_->debug = enabled; }
-const FrameStats& Denoiser::lastStats() const { return impl_->stats; }
-const Settings& Denoiser::settings() const { return impl_->settings; }
+void Denoiser::reset() {
+    impl_->state.hasHistory = false;
+}
+void Denoiser::setDebugOutputs(bool enabled) {
+    impl_->debug = enabled;
+}
+const FrameStats& Denoiser::lastStats() const {
+    return impl_->stats;
+}
+const Settings& Denoiser::settings() const {
+    return impl_->settings;
+}
 
 ImageView Denoiser::denoise(const FrameInput& frame) {
     using Clock = std::chrono::steady_clock;

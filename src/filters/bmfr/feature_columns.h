@@ -10,14 +10,29 @@ namespace bmfr {
 inline float featureValue(const Feature& f, Vec3 n, Vec3 p, const float* extras) {
     float v;
     switch (f.source) {
-    case FeatureSource::One: return 1.0f;
-    case FeatureSource::NormalX: v = n.x; break;
-    case FeatureSource::NormalY: v = n.y; break;
-    case FeatureSource::NormalZ: v = n.z; break;
-    case FeatureSource::PositionX: v = p.x; break;
-    case FeatureSource::PositionY: v = p.y; break;
-    case FeatureSource::PositionZ: v = p.z; break;
-    default: v = extras[f.extraIndex]; break;
+    case FeatureSource::One:
+        return 1.0f;
+    case FeatureSource::NormalX:
+        v = n.x;
+        break;
+    case FeatureSource::NormalY:
+        v = n.y;
+        break;
+    case FeatureSource::NormalZ:
+        v = n.z;
+        break;
+    case FeatureSource::PositionX:
+        v = p.x;
+        break;
+    case FeatureSource::PositionY:
+        v = p.y;
+        break;
+    case FeatureSource::PositionZ:
+        v = p.z;
+        break;
+    default:
+        v = extras[f.extraIndex];
+        break;
     }
     if (f.exponent == 1.0f) return v;
     if (f.exponent == 2.0f) return v * v;

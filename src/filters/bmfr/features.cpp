@@ -6,7 +6,9 @@
 
 namespace bmfr {
 
-std::vector<Feature> defaultFeatures() { return parseFeatures("1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,p.y^2,p.z^2"); }
+std::vector<Feature> defaultFeatures() {
+    return parseFeatures("1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,p.y^2,p.z^2");
+}
 
 namespace {
 
@@ -34,13 +36,20 @@ std::vector<Feature> parseFeatures(const std::string& list) {
             if (e.empty() || *end != '\0' || !(f.exponent > 0.0f && f.exponent <= 8.0f))
                 throw Error("feature '" + token + "': exponent must be a number in (0, 8]");
         }
-        if (name == "1") f.source = FeatureSource::One, f.scaled = false;
-        else if (name == "n.x") f.source = FeatureSource::NormalX, f.scaled = false;
-        else if (name == "n.y") f.source = FeatureSource::NormalY, f.scaled = false;
-        else if (name == "n.z") f.source = FeatureSource::NormalZ, f.scaled = false;
-        else if (name == "p.x") f.source = FeatureSource::PositionX;
-        else if (name == "p.y") f.source = FeatureSource::PositionY;
-        else if (name == "p.z") f.source = FeatureSource::PositionZ;
+        if (name == "1")
+            f.source = FeatureSource::One, f.scaled = false;
+        else if (name == "n.x")
+            f.source = FeatureSource::NormalX, f.scaled = false;
+        else if (name == "n.y")
+            f.source = FeatureSource::NormalY, f.scaled = false;
+        else if (name == "n.z")
+            f.source = FeatureSource::NormalZ, f.scaled = false;
+        else if (name == "p.x")
+            f.source = FeatureSource::PositionX;
+        else if (name == "p.y")
+            f.source = FeatureSource::PositionY;
+        else if (name == "p.z")
+            f.source = FeatureSource::PositionZ;
         else if (name.rfind("extra", 0) == 0 && name.size() > 5 &&
                  name.find_first_not_of("0123456789", 5) == std::string::npos) {
             f.source = FeatureSource::Extra;
@@ -63,14 +72,30 @@ std::string formatFeatures(const std::vector<Feature>& features) {
     for (const Feature& f : features) {
         if (!s.empty()) s += ",";
         switch (f.source) {
-        case FeatureSource::One: s += "1"; break;
-        case FeatureSource::NormalX: s += "n.x"; break;
-        case FeatureSource::NormalY: s += "n.y"; break;
-        case FeatureSource::NormalZ: s += "n.z"; break;
-        case FeatureSource::PositionX: s += "p.x"; break;
-        case FeatureSource::PositionY: s += "p.y"; break;
-        case FeatureSource::PositionZ: s += "p.z"; break;
-        case FeatureSource::Extra: s += "extra" + std::to_string(f.extraIndex); break;
+        case FeatureSource::One:
+            s += "1";
+            break;
+        case FeatureSource::NormalX:
+            s += "n.x";
+            break;
+        case FeatureSource::NormalY:
+            s += "n.y";
+            break;
+        case FeatureSource::NormalZ:
+            s += "n.z";
+            break;
+        case FeatureSource::PositionX:
+            s += "p.x";
+            break;
+        case FeatureSource::PositionY:
+            s += "p.y";
+            break;
+        case FeatureSource::PositionZ:
+            s += "p.z";
+            break;
+        case FeatureSource::Extra:
+            s += "extra" + std::to_string(f.extraIndex);
+            break;
         }
         if (f.exponent != 1.0f) {
             std::ostringstream e;

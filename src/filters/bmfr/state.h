@@ -11,9 +11,9 @@ namespace bmfr {
 
 /// Per-thread scratch of the block fitter: one block's columns, contiguous.
 struct FitScratch {
-    std::vector<float> clean;  ///< M scaled feature columns, noise-free (used for the sum)
-    std::vector<float> work;   ///< M noised columns + 3 colour columns, overwritten by QR
-    std::vector<float> sum;    ///< 3 x W weighted-sum accumulators
+    std::vector<float> clean;    ///< M scaled feature columns, noise-free (used for the sum)
+    std::vector<float> work;     ///< M noised columns + 3 colour columns, overwritten by QR
+    std::vector<float> sum;      ///< 3 x W weighted-sum accumulators
     std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
 };
 
@@ -36,7 +36,7 @@ struct BmfrState {
     ImageF historyLengthF; ///< debug copy of the history length as float
     ImageF acceptMaskF;    ///< debug copy of the accept mask as float
 
-    std::vector<float> noise; ///< M x blockPixels regularisation noise of this frame
+    std::vector<float> noise;        ///< M x blockPixels regularisation noise of this frame
     std::vector<FitScratch> scratch; ///< one per worker thread
 
     bool hasHistory = false;
