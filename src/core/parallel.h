@@ -1,24 +1,35 @@
 // Parallel loops over rows or blocks (oneTBB), with a thread-count limit per denoiser.
 #pragma once
-#include <functional>
 #include <memory>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace bmfr {
 
-/// Runs body(begin, end) over [0, count) split into chunks of at least `grain` items.
-/// Each item must be independent: results are the same for any thread count.
+/// A fixed set of worker threads. parallelFor runs body(begin, end) over [0, count) in chunks
+/// of at least `grain` items; items must be independent, so results do not depend on the
+/// thread count. A template, not std::function, so a frame's loops allocate nothing.
 class ThreadPool {
   public:
     explicit ThreadPool(int threads); ///< 0 = all cores
     ~ThreadPool();
-    void parallelFor(long count, long grain, const std::function<void(long, long)>& body);
+
+    template <typename Body> void parallelFor(long count, long grain, const Body& body) {
+        if (count <= 0) return;
+        arena().execute([&] {
+            tbb::parallel_for(tbb::blocked_range<long>(0, count, grain > 0 ? grain : 1),
+                              [&](const tbb::blocked_range<long>& r) { body(r.begin(), r.end()); });
+        });
+    }
+
     int threadCount() const;
     /// Index of the calling worker inside parallelFor, in [0, threadCount()).
     static int currentThreadIndex();
 
   private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
+    tbb::task_arena& arena();
+    std::unique_ptr<tbb::task_arena> arena_;
 };
 
 } // namespace bmfr

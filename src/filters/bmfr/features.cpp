@@ -94,13 +94,15 @@ std::string formatFeatures(const std::vector<Feature>& features) {
             s += "p.z";
             break;
         case FeatureSource::Extra:
-            s += "extra" + std::to_string(f.extraIndex);
+            s += "extra";
+            s += std::to_string(f.extraIndex);
             break;
         }
         if (f.exponent != 1.0f) {
             std::ostringstream e;
             e << f.exponent;
-            s += "^" + e.str();
+            s += '^';
+            s += e.str();
         }
     }
     return s;
