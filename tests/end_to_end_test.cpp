@@ -103,12 +103,16 @@ TEST(EndToEnd, OddSizesWork) {
     }
 }
 
-TEST(EndToEnd, NonFiniteInputsAreReplacedAndCounted) {
+FrameData renderFrame(int w, int h) {
     ProceduralSceneOptions o;
-    o.width = 64, o.height = 48, o.frames = 2;
-    ProceduralScene scene(o);
+    o.width = w, o.height = h, o.frames = 1;
     FrameData f;
-    scene.render(0, f);
+    ProceduralScene(o).render(0, f);
+    return f;
+}
+
+TEST(EndToEnd, NonFiniteInputsAreReplacedAndCounted) {
+    FrameData f = renderFrame(64, 48);
     f.color.at(3, 4, 0) = NAN;
     f.position.at(10, 10, 2) = INFINITY;
     f.normal.at(20, 5, 1) = -INFINITY;
@@ -120,11 +124,7 @@ TEST(EndToEnd, NonFiniteInputsAreReplacedAndCounted) {
 }
 
 TEST(EndToEnd, BadInputIsRejectedWithAReason) {
-    ProceduralSceneOptions o;
-    o.width = 32, o.height = 32, o.frames = 1;
-    ProceduralScene scene(o);
-    FrameData f;
-    scene.render(0, f);
+    FrameData f = renderFrame(32, 32);
     Denoiser d;
     auto expectError = [&](FrameInput in, const char* needle) {
         try {

@@ -19,6 +19,23 @@ std::string trim(const std::string& s) {
 
 } // namespace
 
+namespace {
+
+/// Token names of the built-in sources, shared by parsing and formatting.
+struct NamedSource {
+    const char* name;
+    FeatureSource source;
+    bool scaled;
+};
+constexpr NamedSource kNamedSources[] = {
+    {"1", FeatureSource::One, false},        {"n.x", FeatureSource::NormalX, false},
+    {"n.y", FeatureSource::NormalY, false},  {"n.z", FeatureSource::NormalZ, false},
+    {"p.x", FeatureSource::PositionX, true}, {"p.y", FeatureSource::PositionY, true},
+    {"p.z", FeatureSource::PositionZ, true},
+};
+
+} // namespace
+
 std::vector<Feature> parseFeatures(const std::string& list) {
     std::vector<Feature> out;
     std::stringstream ss(list);
@@ -36,29 +53,19 @@ std::vector<Feature> parseFeatures(const std::string& list) {
             if (e.empty() || *end != '\0' || !(f.exponent > 0.0f && f.exponent <= 8.0f))
                 throw Error("feature '" + token + "': exponent must be a number in (0, 8]");
         }
-        if (name == "1")
-            f.source = FeatureSource::One, f.scaled = false;
-        else if (name == "n.x")
-            f.source = FeatureSource::NormalX, f.scaled = false;
-        else if (name == "n.y")
-            f.source = FeatureSource::NormalY, f.scaled = false;
-        else if (name == "n.z")
-            f.source = FeatureSource::NormalZ, f.scaled = false;
-        else if (name == "p.x")
-            f.source = FeatureSource::PositionX;
-        else if (name == "p.y")
-            f.source = FeatureSource::PositionY;
-        else if (name == "p.z")
-            f.source = FeatureSource::PositionZ;
-        else if (name.rfind("extra", 0) == 0 && name.size() > 5 &&
-                 name.find_first_not_of("0123456789", 5) == std::string::npos) {
+        bool known = false;
+        for (const NamedSource& n : kNamedSources)
+            if (name == n.name) f.source = n.source, f.scaled = n.scaled, known = true;
+        if (!known && name.rfind("extra", 0) == 0 && name.size() > 5 &&
+            name.find_first_not_of("0123456789", 5) == std::string::npos) {
             f.source = FeatureSource::Extra;
             f.extraIndex = std::atoi(name.c_str() + 5);
             if (f.extraIndex > 15) throw Error("feature '" + token + "': extra index above 15");
-        } else {
+            known = true;
+        }
+        if (!known)
             throw Error("unknown feature '" + token +
                         "' (expected 1, n.x, n.y, n.z, p.x, p.y, p.z or extraK, optionally ^E)");
-        }
         if (f.source == FeatureSource::One && f.exponent != 1.0f)
             throw Error("feature '" + token + "': the constant takes no exponent");
         out.push_back(f);
@@ -70,34 +77,13 @@ std::vector<Feature> parseFeatures(const std::string& list) {
 std::string formatFeatures(const std::vector<Feature>& features) {
     std::string s;
     for (const Feature& f : features) {
-        if (!s.empty()) s += ",";
-        switch (f.source) {
-        case FeatureSource::One:
-            s += "1";
-            break;
-        case FeatureSource::NormalX:
-            s += "n.x";
-            break;
-        case FeatureSource::NormalY:
-            s += "n.y";
-            break;
-        case FeatureSource::NormalZ:
-            s += "n.z";
-            break;
-        case FeatureSource::PositionX:
-            s += "p.x";
-            break;
-        case FeatureSource::PositionY:
-            s += "p.y";
-            break;
-        case FeatureSource::PositionZ:
-            s += "p.z";
-            break;
-        case FeatureSource::Extra:
+        if (!s.empty()) s += ',';
+        if (f.source == FeatureSource::Extra) {
             s += "extra";
             s += std::to_string(f.extraIndex);
-            break;
         }
+        for (const NamedSource& n : kNamedSources)
+            if (n.source == f.source) s += n.name;
         if (f.exponent != 1.0f) {
             std::ostringstream e;
             e << f.exponent;
