@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fmt/core.h>
 #include <fstream>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 namespace bmfr::app {
@@ -239,7 +240,8 @@ int runDenoise(const DenoiseJob& job) {
 
     if (!job.quiet) {
         fmt::print("\n{} frames, {}x{}, {} threads. Median ms per frame:\n", last - first,
-                   info.width, info.height, settings.threads ? settings.threads : -1);
+                   info.width, info.height,
+                   settings.threads ? settings.threads : int(std::thread::hardware_concurrency()));
         fmt::print("  accumulate {:7.2f} | fit {:7.2f} | accumulate fitted {:7.2f} | taa {:7.2f} | "
                    "total {:7.2f}   (read {:.1f}, write {:.1f})\n",
                    median(tAcc), median(tFit), median(tAcc2), median(tTaa), median(tTotal),
