@@ -2,7 +2,8 @@
 # Installs the Debian packages bmfr needs to build and test. Skips apt when all are present.
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libopenexr-dev libimath-dev libtbb-dev libeigen3-dev libcli11-dev
-      nlohmann-json3-dev libfmt-dev libstb-dev libgtest-dev libbenchmark-dev)
+      nlohmann-json3-dev libfmt-dev libstb-dev libgtest-dev libbenchmark-dev libembree-dev
+      libtinygltf-dev libtinyobjloader-dev)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

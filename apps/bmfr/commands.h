@@ -34,5 +34,7 @@ void addDenoiseCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);
 void addDemoCommand(CLI::App& app, int& exitCode);
 void addSynthCommand(CLI::App& app, int& exitCode);
+void addRenderCommand(CLI::App& app, int& exitCode);
+void addTonemapCommand(CLI::App& app, int& exitCode);
 
 } // namespace bmfr::app

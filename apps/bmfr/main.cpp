@@ -9,9 +9,11 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     int exitCode = 0;
     bmfr::app::addDemoCommand(app, exitCode);
+    bmfr::app::addRenderCommand(app, exitCode);
     bmfr::app::addDenoiseCommand(app, exitCode);
     bmfr::app::addBenchCommand(app, exitCode);
     bmfr::app::addSynthCommand(app, exitCode);
+    bmfr::app::addTonemapCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

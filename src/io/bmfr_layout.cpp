@@ -204,20 +204,19 @@ std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory) {
     return std::make_unique<BmfrLayoutReader>(directory);
 }
 
-void writeBmfrLayout(const std::string& directory, const std::vector<FrameData>& frames,
-                     float positionLimitSquared, float normalLimitSquared) {
+BmfrLayoutWriter::BmfrLayoutWriter(const std::string& directory, const std::vector<Mat4>& matrices,
+                                   const std::vector<std::array<float, 2>>& jitters, float positionLimitSquared,
+                                   float normalLimitSquared)
+    : dir_(directory) {
     fs::create_directories(directory);
-    auto p = [&](const char* stem, size_t n) {
-        return (fs::path(directory) / (std::string(stem) + std::to_string(n) + ".exr")).string();
-    };
     std::ostringstream h;
     h.precision(9);
     h << "// Written by bmfr in the original BMFR dataset layout.\n";
     h << "const float position_limit_squared = " << positionLimitSquared << "f;\n";
     h << "const float normal_limit_squared = " << normalLimitSquared << "f;\n";
-    h << "const float camera_matrices[" << frames.size() << "][4][4] = {\n";
-    for (const FrameData& f : frames) {
-        Mat4 rowVec = transpose(f.viewProjection);
+    h << "const float camera_matrices[" << matrices.size() << "][4][4] = {\n";
+    for (const Mat4& m : matrices) {
+        Mat4 rowVec = transpose(m);
         h << "  {";
         for (int r = 0; r < 4; ++r) {
             h << "{";
@@ -226,25 +225,43 @@ void writeBmfrLayout(const std::string& directory, const std::vector<FrameData>&
         }
         h << "},\n";
     }
-    h << "};\nconst float pixel_offsets[" << frames.size() << "][2] = {\n";
-    // Inverse of the reader's mapping: frame i's offset entry is frame i-1's jitter.
-    for (size_t i = 0; i < frames.size(); ++i) {
-        const FrameData& src = frames[i == 0 ? 0 : i - 1];
-        h << "  {" << src.jitter[0] + 0.5f << "f, " << 0.5f - src.jitter[1] << "f},\n";
+    h << "};\nconst float pixel_offsets[" << jitters.size() << "][2] = {\n";
+    // Inverse of the reader's mapping: entry i holds frame i-1's jitter.
+    for (size_t i = 0; i < jitters.size(); ++i) {
+        const auto& j = jitters[i == 0 ? 0 : i - 1];
+        h << "  {" << j[0] + 0.5f << "f, " << 0.5f - j[1] << "f},\n";
     }
     h << "};\n";
-    for (size_t i = 0; i < frames.size(); ++i) {
-        const FrameData& f = frames[i];
-        ImageF demod = f.color;
-        for (long k = 0; k < demod.pixelCount() * 3; ++k)
-            demod.data()[k] /= std::max(f.albedo.data()[k], 0.001f);
-        writeExr(p("color", i), demod);
-        writeExr(p("albedo", i), f.albedo);
-        writeExr(p("shading_normal", i), f.normal);
-        writeExr(p("world_position", i), f.position);
-        if (f.reference.width) writeExr(p("reference", i), f.reference);
-    }
-    std::ofstream(fs::path(directory) / "camera_matrices.h") << h.str();
+    const fs::path header = fs::path(directory) / "camera_matrices.h";
+    { std::ofstream(header.string() + ".part") << h.str(); }
+    fs::rename(header.string() + ".part", header);
+}
+
+namespace {
+std::string layoutPath(const std::string& dir, const char* stem, int n) {
+    return (fs::path(dir) / (std::string(stem) + std::to_string(n) + ".exr")).string();
+}
+} // namespace
+
+void BmfrLayoutWriter::addFrame(int i, const FrameData& f) {
+    ImageF demod = f.color;
+    for (long k = 0; k < demod.pixelCount() * 3; ++k) demod.data()[k] /= std::max(f.albedo.data()[k], 0.001f);
+    writeExr(layoutPath(dir_, "albedo", i), f.albedo);
+    writeExr(layoutPath(dir_, "shading_normal", i), f.normal);
+    writeExr(layoutPath(dir_, "world_position", i), f.position);
+    if (f.reference.width) writeExr(layoutPath(dir_, "reference", i), f.reference);
+    writeExr(layoutPath(dir_, "color", i), demod); // last: its presence marks a complete frame
+}
+
+bool BmfrLayoutWriter::hasFrame(int index) const { return fs::exists(layoutPath(dir_, "color", index)); }
+
+void writeBmfrLayout(const std::string& directory, const std::vector<FrameData>& frames,
+                     float positionLimitSquared, float normalLimitSquared) {
+    std::vector<Mat4> matrices;
+    std::vector<std::array<float, 2>> jitters;
+    for (const FrameData& f : frames) matrices.push_back(f.viewProjection), jitters.push_back({f.jitter[0], f.jitter[1]});
+    BmfrLayoutWriter w(directory, matrices, jitters, positionLimitSquared, normalLimitSquared);
+    for (size_t i = 0; i < frames.size(); ++i) w.addFrame(int(i), frames[i]);
 }
 
 } // namespace bmfr

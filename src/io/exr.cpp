@@ -39,7 +39,7 @@ ImageF readExr(const std::string& path, int channels) {
             std::string list;
             for (auto& s : names) list += (list.empty() ? "" : ",") + s;
             throw Error(path + ": has channels [" + list + "], expected " +
-                        (channels == 3 ? "R,G,B" : "Y or a single channel"));
+                        (channels == 3 ? "R,G,B" : channels == 2 ? "R,G" : "Y or a single channel"));
         }
         ImageF img(int(w), int(h), channels);
         Imf::FrameBuffer fb;

@@ -6,7 +6,7 @@
 namespace bmfr {
 
 /// Reads an EXR as `channels` floats per pixel (3: R,G,B, or a single channel replicated;
-/// 1: Y, R or the only channel). Throws bmfr::Error naming the file when it is missing,
+/// 2: R,G; 1: Y, R or the only channel). Throws bmfr::Error naming the file when it is missing,
 /// unreadable, empty or lacks the channels.
 ImageF readExr(const std::string& path, int channels);
 

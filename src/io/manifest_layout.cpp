@@ -69,6 +69,12 @@ class ManifestReader : public SequenceReader {
                                 std::to_string(info_.extraNames.size()));
             }
             f.reference = info_.hasReference ? readExr(file("reference"), 3) : ImageF();
+            f.aovs.clear();
+            if (loadAovs_ && j.contains("aovs"))
+                for (const auto& [name, entry] : j["aovs"].items()) {
+                    const std::string path = (fs::path(info_.directory) / entry.at("file").get<std::string>()).string();
+                    f.aovs.emplace_back(name, readExr(path, entry.at("channels").get<int>()));
+                }
             const json& m = j.at("view_projection");
             if (m.size() != 4) throw Error(where + ": view_projection must be 4 rows of 4");
             for (int r = 0; r < 4; ++r) {
@@ -101,6 +107,28 @@ std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory)
 ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo& info)
     : dir_(directory), info_(info) {
     fs::create_directories(directory);
+    const fs::path existing = fs::path(directory) / "sequence.json";
+    if (!fs::exists(existing)) return;
+    try {
+        std::ifstream in(existing);
+        json doc = json::parse(in);
+        if (doc.value("width", 0) != info.width || doc.value("height", 0) != info.height)
+            throw Error(existing.string() + " holds a " + std::to_string(doc.value("width", 0)) + "x" +
+                        std::to_string(doc.value("height", 0)) + " sequence; refusing to mix it with " +
+                        std::to_string(info.width) + "x" + std::to_string(info.height) + " frames");
+        for (const json& f : doc.at("frames")) frameJson_.push_back(f.dump());
+    } catch (const json::exception& e) {
+        throw Error(existing.string() + ": " + e.what());
+    }
+}
+
+bool ManifestWriter::hasFrame(int index) const {
+    if (index < 0 || size_t(index) >= frameJson_.size() || frameJson_[size_t(index)].empty()) return false;
+    json j = json::parse(frameJson_[size_t(index)]);
+    for (const char* key : {"color", "albedo", "normal", "position"})
+        if (!j.contains(key) || !fs::exists(fs::path(dir_) / j[key].get<std::string>())) return false;
+    if (j.contains("reference") && !fs::exists(fs::path(dir_) / j["reference"].get<std::string>())) return false;
+    return true;
 }
 
 void ManifestWriter::addFrame(int index, const FrameData& f) {
@@ -121,6 +149,11 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
         j["extras"] = json::array();
         for (size_t e = 0; e < f.extras.size(); ++e)
             j["extras"].push_back(put(info_.extraNames.at(e).c_str(), f.extras[e]));
+    }
+    if (!f.aovs.empty()) {
+        j["aovs"] = json::object();
+        for (const auto& [name, img] : f.aovs)
+            j["aovs"][name] = {{"file", put(name.c_str(), img)}, {"channels", img.channels}};
     }
     json m = json::array();
     for (int r = 0; r < 4; ++r)

@@ -15,6 +15,8 @@ struct FrameData {
     ImageF color, albedo, normal, position;
     std::vector<ImageF> extras; ///< 1-channel extra features, in SequenceInfo::extraNames order
     ImageF reference;           ///< empty (0x0) when the sequence has none
+    /// Further named outputs (depth, motion, direct/indirect, diffuse/glossy splits...).
+    std::vector<std::pair<std::string, ImageF>> aovs;
     Mat4 viewProjection;
     float jitter[2] = {0, 0};
 
@@ -43,9 +45,12 @@ class SequenceReader {
 
     /// Detects the layout of `directory` (sequence.json, or camera_matrices.h + color0.exr).
     static std::unique_ptr<SequenceReader> open(const std::string& directory);
+    /// Also load FrameData::aovs (this project's layout only; off by default).
+    void setLoadAovs(bool on) { loadAovs_ = on; }
 
   protected:
     SequenceInfo info_;
+    bool loadAovs_ = false;
     void checkFrame(int index, const FrameData& f) const;
 };
 
@@ -56,8 +61,11 @@ std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory)
 /// stopped writer leaves a readable prefix).
 class ManifestWriter {
   public:
+    /// Keeps the frames of an existing sequence.json of the same size (resuming a render).
     ManifestWriter(const std::string& directory, const SequenceInfo& info);
     void addFrame(int index, const FrameData& frame);
+    /// True when frame `index` is recorded and all its files exist.
+    bool hasFrame(int index) const;
 
   private:
     std::string dir_;
@@ -67,7 +75,22 @@ class ManifestWriter {
 
 /// Writes the original BMFR dataset layout (colour demodulated by albedo, as that dataset is):
 /// color{N}.exr, albedo{N}.exr, shading_normal{N}.exr, world_position{N}.exr,
-/// reference{N}.exr and camera_matrices.h.
+/// reference{N}.exr and camera_matrices.h (written first, for all frames).
+class BmfrLayoutWriter {
+  public:
+    /// matrices/jitters of every frame of the sequence (the header needs them all).
+    BmfrLayoutWriter(const std::string& directory, const std::vector<Mat4>& matrices,
+                     const std::vector<std::array<float, 2>>& jitters, float positionLimitSquared,
+                     float normalLimitSquared);
+    void addFrame(int index, const FrameData& frame);
+    /// True when the frame's last-written file exists (writes are atomic).
+    bool hasFrame(int index) const;
+
+  private:
+    std::string dir_;
+};
+
+/// All frames at once (BmfrLayoutWriter underneath).
 void writeBmfrLayout(const std::string& directory, const std::vector<FrameData>& frames,
                      float positionLimitSquared, float normalLimitSquared);
 

@@ -1,0 +1,122 @@
+#include "render/frame_renderer.h"
+#include "core/reprojection.h"
+#include <chrono>
+#include <tbb/parallel_for.h>
+
+namespace bmfr::render {
+
+namespace {
+
+float halton(int i, int base) {
+    float f = 1, r = 0;
+    for (; i > 0; i /= base) f /= float(base), r += f * float(i % base);
+    return r;
+}
+
+} // namespace
+
+void frameJitter(int index, bool enabled, float jitter[2]) {
+    jitter[0] = enabled ? halton(index + 1, 2) - 0.5f : 0.0f;
+    jitter[1] = enabled ? halton(index + 1, 3) - 0.5f : 0.0f;
+}
+
+std::vector<std::string> FrameRenderer::extraNames() { return {"material_id", "roughness"}; }
+std::vector<std::string> FrameRenderer::aovNames() {
+    return {"depth", "motion", "direct", "indirect", "diffuse", "glossy"};
+}
+
+FrameRenderer::FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height, int bounces,
+                             uint32_t seed)
+    : scene_(scene), accel_(accel), width_(width), height_(height), bounces_(bounces), seed_(seed) {
+    Vec3 lo, hi;
+    scene.bounds(lo, hi);
+    float diag = std::fmax(length(hi - lo), 1e-3f);
+    zNear_ = 1e-3f * diag;
+    zFar_ = 10.0f * diag + kSkyDistance;
+}
+
+bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& previousPose, bool hasPrevious,
+                           const LightSet& lights, bool jitterOn, int referenceSpp, FrameData& out,
+                           FrameRenderStats& stats, const std::atomic<bool>* cancel) const {
+    using Clock = std::chrono::steady_clock;
+    const int w = width_, h = height_;
+    out.viewProjection = viewProjection(pose, w, h, zNear_, zFar_);
+    frameJitter(index, jitterOn, out.jitter);
+    Mat4 prevVp = viewProjection(previousPose, w, h, zNear_, zFar_), inv;
+    float prevJitter[2];
+    frameJitter(index - 1, jitterOn, prevJitter);
+    invert(out.viewProjection, inv);
+    for (ImageF* img : {&out.color, &out.albedo, &out.normal, &out.position}) img->resize(w, h, 3);
+    out.extras.assign(2, ImageF(w, h, 1));
+    out.aovs.clear();
+    for (const std::string& n : aovNames()) out.aovs.emplace_back(n, ImageF(w, h, n == "depth" ? 1 : n == "motion" ? 2 : 3));
+    out.reference = referenceSpp > 0 ? ImageF(w, h, 3) : ImageF();
+
+    const Integrator integrator(scene_, accel_, lights, bounces_);
+    const float spread = 2.0f * std::tan(0.5f * pose.fovY) / float(h);
+    const Vec3 forward = normalize(pose.target - pose.position);
+    std::atomic<uint64_t> rays{0};
+    std::atomic<bool> stopped{false};
+    auto t0 = Clock::now();
+    double referenceSeconds = 0;
+
+    auto rowLoop = [&](bool reference) {
+        tbb::parallel_for(0, h, [&](int y) {
+            if (stopped || (cancel && *cancel)) {
+                stopped = true;
+                return;
+            }
+            uint64_t localRays = 0;
+            for (int x = 0; x < w; ++x) {
+                const long i = long(y) * w + x;
+                const float sx = (float(x) + 0.5f + out.jitter[0]) / float(w) * 2 - 1;
+                const float sy = (float(y) + 0.5f + out.jitter[1]) / float(h) * 2 - 1;
+                Vec4 a = transformPoint(inv, {sx, sy, -1}), b = transformPoint(inv, {sx, sy, 1});
+                Vec3 far{b.x / b.w, b.y / b.w, b.z / b.w}, near{a.x / a.w, a.y / a.w, a.z / a.w};
+                const Vec3 dir = normalize(far - near);
+                PrimaryHit ph = integrator.primary(pose.position, dir, spread, localRays);
+                if (reference) {
+                    Vec3 sum{};
+                    for (int s = 1; s <= referenceSpp; ++s) {
+                        Rng rng(uint32_t(i), uint32_t(index), uint32_t(s), seed_);
+                        sum += integrator.sample(ph, rng, localRays).total;
+                    }
+                    store3(out.reference.data(), i, sum / float(referenceSpp));
+                    continue;
+                }
+                Rng rng(uint32_t(i), uint32_t(index), 0u, seed_);
+                PathContribution c = integrator.sample(ph, rng, localRays);
+                store3(out.color.data(), i, c.total);
+                store3(out.aovs[2].second.data(), i, c.direct);
+                store3(out.aovs[3].second.data(), i, c.indirect);
+                store3(out.aovs[4].second.data(), i, c.diffuse);
+                store3(out.aovs[5].second.data(), i, c.glossy);
+                const SurfacePoint& s = ph.surface;
+                Vec3 p = ph.hit ? s.p : pose.position + kSkyDistance * dir;
+                store3(out.albedo.data(), i, ph.hit ? s.baseColor : Vec3{1, 1, 1});
+                store3(out.normal.data(), i, ph.hit ? s.ns : -1.0f * dir);
+                store3(out.position.data(), i, p);
+                out.extras[0].data()[i] = ph.hit ? float(s.material) : -1.0f;
+                out.extras[1].data()[i] = ph.hit ? s.roughness : 1.0f;
+                out.aovs[0].second.data()[i] = dot(p - pose.position, forward);
+                Vec2 prev{float(x), float(y)};
+                if (hasPrevious && !projectToPixel(prevVp, p, prevJitter, w, h, prev)) prev = {float(x), float(y)};
+                out.aovs[1].second.data()[2 * i] = prev.x - float(x);
+                out.aovs[1].second.data()[2 * i + 1] = prev.y - float(y);
+            }
+            rays += localRays;
+        });
+    };
+    rowLoop(false);
+    stats.inputSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (referenceSpp > 0 && !stopped) {
+        auto t1 = Clock::now();
+        rowLoop(true);
+        referenceSeconds = std::chrono::duration<double>(Clock::now() - t1).count();
+    }
+    stats.referenceSeconds = referenceSeconds;
+    stats.rays = rays;
+    return !stopped;
+}
+
+} // namespace bmfr::render

@@ -1,0 +1,43 @@
+// Renders one frame of a sequence: the 1-spp input with every feature and split, and the
+// reference (the same estimator averaged over many samples, same camera and sub-pixel offset).
+#pragma once
+#include "io/sequence.h"
+#include "render/camera_path.h"
+#include "render/integrator.h"
+#include <atomic>
+#include <cstdint>
+
+namespace bmfr::render {
+
+struct FrameRenderStats {
+    uint64_t rays = 0;
+    double inputSeconds = 0, referenceSeconds = 0;
+};
+
+/// Sub-pixel offset of frame `index`: Halton (2, 3) minus 0.5, pixels.
+void frameJitter(int index, bool enabled, float jitter[2]);
+
+class FrameRenderer {
+  public:
+    FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height, int bounces, uint32_t seed);
+
+    /// Fills `out` (colour, albedo, normal, position, extras material_id and roughness, AOVs
+    /// depth, motion, direct, indirect, diffuse, glossy; reference when referenceSpp > 0).
+    /// Returns false when `cancel` became true (out is then incomplete and must be dropped).
+    bool render(int index, const CameraPose& pose, const CameraPose& previousPose, bool hasPrevious,
+                const LightSet& lights, bool jitter, int referenceSpp, FrameData& out, FrameRenderStats& stats,
+                const std::atomic<bool>* cancel) const;
+
+    /// Names of FrameData::extras and FrameData::aovs in the order render() fills them.
+    static std::vector<std::string> extraNames();
+    static std::vector<std::string> aovNames();
+
+  private:
+    const Scene& scene_;
+    const RayAccel& accel_;
+    int width_, height_, bounces_;
+    uint32_t seed_;
+    float zNear_, zFar_;
+};
+
+} // namespace bmfr::render

@@ -1,0 +1,51 @@
+// The paper's 1-spp light transport (section 3.1): primary hit, next event estimation (one shadow
+// ray to a random point on a random light), one BSDF-sampled secondary ray combined by multiple
+// importance sampling, and a second shadow ray from the secondary hit; `bounces` secondary rays
+// in general. The reference averages the same estimator over many samples.
+#pragma once
+#include "render/bsdf.h"
+#include "render/lights.h"
+#include "render/ray_accel.h"
+#include "render/sampling.h"
+#include <cstdint>
+
+namespace bmfr::render {
+
+/// The deterministic first hit of a camera ray, with its feature values.
+struct PrimaryHit {
+    bool hit = false;
+    Vec3 origin, direction;
+    SurfacePoint surface;
+    int lightQuad = -1; ///< the hit is analytic quad light k
+};
+
+/// One sample's radiance and its splits (direct + indirect = diffuse + glossy = total).
+struct PathContribution {
+    Vec3 total, direct, indirect, diffuse, glossy;
+};
+
+class Integrator {
+  public:
+    /// bounces = number of BSDF-sampled secondary rays per path; [0, 64]; the paper uses 1.
+    Integrator(const Scene& scene, const RayAccel& accel, const LightSet& lights, int bounces);
+
+    /// spreadAngle: radians per pixel, for the texture level of detail (ray cones).
+    PrimaryHit primary(Vec3 origin, Vec3 direction, float spreadAngle, uint64_t& rays) const;
+    PathContribution sample(const PrimaryHit& first, Rng& rng, uint64_t& rays) const;
+
+  private:
+    const Scene& scene_;
+    const RayAccel& accel_;
+    const LightSet& lights_;
+    int bounces_;
+
+    /// Closest surface (mesh or quad light) along a ray; fills the shading point.
+    bool trace(Vec3 o, Vec3 d, float coneWidthAtUnitDistance, float travelled, SurfacePoint& sp,
+               int& quad, float& t, uint64_t& rays) const;
+    void shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidth, SurfacePoint& sp) const;
+};
+
+/// Distance at which escaped camera rays place their position feature, scene units.
+inline constexpr float kSkyDistance = 1000.0f;
+
+} // namespace bmfr::render

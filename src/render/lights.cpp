@@ -1,0 +1,135 @@
+#include "render/lights.h"
+#include "core/color.h"
+#include "render/sampling.h"
+#include <algorithm>
+
+namespace bmfr::render {
+
+float LightSet::area(int tri) const {
+    const Vec3* p = &scene_.positions[3 * size_t(tri)];
+    return 0.5f * length(cross(p[1] - p[0], p[2] - p[0]));
+}
+
+LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env)
+    : scene_(scene), quads_(quads), env_(env) {
+    std::vector<float> weights;
+    triangleEntry_.assign(scene.triangleCount(), -1);
+    float total = 0;
+    for (size_t t = 0; t < scene.triangleCount(); ++t) {
+        const Material& m = scene.materials[size_t(scene.triangleMaterial[t])];
+        float w = area(int(t)) * luminance(m.emission);
+        if (w <= 0) continue;
+        triangleEntry_[t] = int(entries_.size());
+        entries_.push_back({Kind::Triangle, int(t), 0});
+        weights.push_back(w);
+        total += w;
+    }
+    for (size_t q = 0; q < quads.size(); ++q) {
+        float w = length(cross(quads[q].edgeU, quads[q].edgeV)) * luminance(quads[q].radiance);
+        quadEntry_.push_back(int(entries_.size()));
+        entries_.push_back({Kind::Quad, int(q), 0});
+        weights.push_back(w);
+        total += w;
+    }
+    if (env.sun.enabled()) {
+        float r = 0.5f * env.sun.angularDiameter;
+        sunCosMax_ = std::cos(r);
+        sunSolidAngle_ = 2 * kPi * (1 - sunCosMax_);
+        sunRadiance_ = env.sun.irradiance / sunSolidAngle_;
+        sunEntry_ = int(entries_.size());
+        entries_.push_back({Kind::Sun, 0, 0});
+        // Local lights and the sun have no common power scale: half of the samples each.
+        weights.push_back(total > 0 ? total : 1.0f);
+        total += weights.back();
+    }
+    float acc = 0;
+    for (size_t i = 0; i < entries_.size(); ++i) {
+        entries_[i].probability = weights[i] / total;
+        acc += entries_[i].probability;
+        cdf_.push_back(acc);
+    }
+    if (!cdf_.empty()) cdf_.back() = 1.0f;
+}
+
+LightSample LightSet::sample(Vec3 p, float uSelect, float u1, float u2) const {
+    LightSample s;
+    if (entries_.empty()) return s;
+    size_t i = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), uSelect) - cdf_.begin());
+    i = std::min(i, entries_.size() - 1);
+    const Entry& e = entries_[i];
+    Vec3 q, n;
+    float a = 0;
+    if (e.kind == Kind::Sun) {
+        s.wi = toWorld(uniformCone(u1, u2, sunCosMax_), env_.sun.direction);
+        s.distance = 1e30f;
+        s.radiance = sunRadiance_;
+        s.pdf = e.probability / sunSolidAngle_;
+        return s;
+    }
+    if (e.kind == Kind::Triangle) {
+        const Vec3* v = &scene_.positions[3 * size_t(e.index)];
+        float b1, b2;
+        uniformTriangle(u1, u2, b1, b2);
+        q = (1 - b1 - b2) * v[0] + b1 * v[1] + b2 * v[2];
+        n = cross(v[1] - v[0], v[2] - v[0]);
+        a = 0.5f * length(n);
+        s.radiance = scene_.materials[size_t(scene_.triangleMaterial[size_t(e.index)])].emission;
+    } else {
+        const QuadLight& ql = quads_[size_t(e.index)];
+        q = ql.corner + u1 * ql.edgeU + u2 * ql.edgeV;
+        n = cross(ql.edgeU, ql.edgeV);
+        a = length(n);
+        s.radiance = ql.radiance;
+    }
+    Vec3 d = q - p;
+    float d2 = dot(d, d);
+    s.distance = std::sqrt(d2);
+    s.wi = d / s.distance;
+    float cosL = std::fabs(dot(n, s.wi)) / length(n);
+    s.pdf = cosL > 1e-7f ? e.probability * d2 / (a * cosL) : 0.0f;
+    return s;
+}
+
+float LightSet::pdfTriangle(int tri, Vec3 p, Vec3 q) const {
+    int e = triangleEntry_[size_t(tri)];
+    if (e < 0) return 0;
+    const Vec3* v = &scene_.positions[3 * size_t(tri)];
+    Vec3 n = cross(v[1] - v[0], v[2] - v[0]), d = q - p;
+    float d2 = dot(d, d), cosL = std::fabs(dot(n, d)) / (length(n) * std::sqrt(d2));
+    return cosL > 1e-7f ? entries_[size_t(e)].probability * d2 / (0.5f * length(n) * cosL) : 0.0f;
+}
+
+float LightSet::pdfQuad(int quad, Vec3 p, Vec3 q) const {
+    const QuadLight& ql = quads_[size_t(quad)];
+    Vec3 n = cross(ql.edgeU, ql.edgeV), d = q - p;
+    float d2 = dot(d, d), cosL = std::fabs(dot(n, d)) / (length(n) * std::sqrt(d2));
+    return cosL > 1e-7f ? entries_[size_t(quadEntry_[size_t(quad)])].probability * d2 / (length(n) * cosL) : 0.0f;
+}
+
+float LightSet::pdfSun() const {
+    return sunEntry_ < 0 ? 0.0f : entries_[size_t(sunEntry_)].probability / sunSolidAngle_;
+}
+
+Vec3 LightSet::sunRadiance(Vec3 d) const {
+    if (sunEntry_ < 0 || dot(d, env_.sun.direction) < sunCosMax_) return {};
+    return sunRadiance_;
+}
+
+int LightSet::intersectQuads(Vec3 o, Vec3 d, float tMax, float& t) const {
+    int best = -1;
+    for (size_t i = 0; i < quads_.size(); ++i) {
+        const QuadLight& q = quads_[i];
+        Vec3 n = cross(q.edgeU, q.edgeV);
+        float denom = dot(n, d);
+        if (std::fabs(denom) < 1e-12f) continue;
+        float tt = dot(n, q.corner - o) / denom;
+        if (tt <= 1e-4f || tt >= tMax) continue;
+        Vec3 x = o + tt * d - q.corner;
+        float uu = dot(x, q.edgeU) / dot(q.edgeU, q.edgeU), vv = dot(x, q.edgeV) / dot(q.edgeV, q.edgeV);
+        if (uu < 0 || uu > 1 || vv < 0 || vv > 1) continue;
+        tMax = tt, t = tt, best = int(i);
+    }
+    return best;
+}
+
+} // namespace bmfr::render

@@ -1,0 +1,70 @@
+// Light sources and their sampling: emissive triangles, analytic quads (may move per frame), a
+// sun with angular size, and a constant sky (reached by BSDF rays only).
+#pragma once
+#include "render/scene.h"
+#include <vector>
+
+namespace bmfr::render {
+
+/// Two-sided emitting parallelogram corner + s*edgeU + t*edgeV, s, t in [0, 1].
+struct QuadLight {
+    Vec3 corner, edgeU, edgeV;
+    Vec3 radiance; ///< W/(sr m^2)
+};
+
+struct Sun {
+    Vec3 direction{0, 1, 0};  ///< unit vector towards the sun
+    float angularDiameter = 0.00930f; ///< radians (0.53 degrees)
+    Vec3 irradiance{0, 0, 0}; ///< W/m^2 on a surface facing the sun
+    bool enabled() const { return irradiance.x + irradiance.y + irradiance.z > 0; }
+};
+
+struct Environment {
+    Sun sun;
+    Vec3 sky{0, 0, 0}; ///< constant radiance of directions that escape the scene
+};
+
+struct LightSample {
+    Vec3 wi;
+    float distance = 0; ///< to the sampled point (1e30 for the sun)
+    Vec3 radiance;
+    float pdf = 0; ///< solid angle, selection included
+};
+
+class LightSet {
+  public:
+    LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env);
+    bool empty() const { return entries_.empty(); }
+    LightSample sample(Vec3 p, float uSelect, float u1, float u2) const;
+    /// Solid-angle pdf of sample() returning the point q on emissive triangle `tri`.
+    float pdfTriangle(int tri, Vec3 p, Vec3 q) const;
+    float pdfQuad(int quad, Vec3 p, Vec3 q) const;
+    float pdfSun() const;
+    const std::vector<QuadLight>& quads() const { return quads_; }
+    const Environment& environment() const { return env_; }
+    /// Closest analytic quad light hit before tMax; returns its index or -1.
+    int intersectQuads(Vec3 o, Vec3 d, float tMax, float& t) const;
+    /// Sun radiance seen along an escaping direction (0 outside the disk).
+    Vec3 sunRadiance(Vec3 d) const;
+
+  private:
+    enum class Kind { Triangle, Quad, Sun };
+    struct Entry {
+        Kind kind;
+        int index;
+        float probability;
+    };
+    const Scene& scene_;
+    std::vector<QuadLight> quads_;
+    Environment env_;
+    std::vector<Entry> entries_;
+    std::vector<float> cdf_;
+    std::vector<int> triangleEntry_; ///< scene triangle -> entry, -1 when not emissive
+    std::vector<int> quadEntry_;
+    int sunEntry_ = -1;
+    float sunCosMax_ = 1, sunSolidAngle_ = 0;
+    Vec3 sunRadiance_;
+    float area(int tri) const;
+};
+
+} // namespace bmfr::render

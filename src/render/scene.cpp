@@ -1,0 +1,85 @@
+#include "render/scene.h"
+#include <bmfr/error.h>
+#include <cmath>
+#include <filesystem>
+
+namespace bmfr::render {
+
+void Scene::addTriangle(Vec3 a, Vec3 b, Vec3 c, int material) {
+    Vec3 n = cross(b - a, c - a);
+    float len = length(n);
+    n = len > 0 ? n / len : Vec3{0, 1, 0};
+    positions.insert(positions.end(), {a, b, c});
+    normals.insert(normals.end(), {n, n, n});
+    uvs.insert(uvs.end(), {Vec2f{0, 0}, Vec2f{1, 0}, Vec2f{0, 1}});
+    triangleMaterial.push_back(material);
+}
+
+void Scene::bounds(Vec3& lo, Vec3& hi) const {
+    lo = {INFINITY, INFINITY, INFINITY};
+    hi = -1.0f * lo;
+    for (Vec3 p : positions) lo = vmin(lo, p), hi = vmax(hi, p);
+}
+
+namespace {
+
+void addQuad(Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, int m) {
+    s.addTriangle(a, b, c, m);
+    s.addTriangle(a, c, d, m);
+}
+
+/// Axis-aligned box of half-size `h` rotated by `angle` around y, standing on y = 0.
+void addBlock(Scene& s, Vec3 centre, Vec3 h, float angle, int m) {
+    float c = std::cos(angle), sn = std::sin(angle);
+    auto at = [&](float x, float y, float z) {
+        return Vec3{centre.x + c * x * h.x + sn * z * h.z, y * h.y * 2, centre.z - sn * x * h.x + c * z * h.z};
+    };
+    Vec3 p[8];
+    for (int i = 0; i < 8; ++i) p[i] = at(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : 0.f, i & 4 ? 1.f : -1.f);
+    addQuad(s, p[2], p[6], p[7], p[3], m); // top
+    addQuad(s, p[0], p[1], p[5], p[4], m); // bottom
+    addQuad(s, p[0], p[2], p[3], p[1], m); // -z
+    addQuad(s, p[4], p[5], p[7], p[6], m); // +z
+    addQuad(s, p[0], p[4], p[6], p[2], m); // -x
+    addQuad(s, p[1], p[3], p[7], p[5], m); // +x
+}
+
+} // namespace
+
+Scene builtinCornellBox() {
+    Scene s;
+    auto mat = [&](const char* name, Vec3 albedo, Vec3 emission = {}) {
+        Material m;
+        m.name = name, m.baseColor = albedo, m.roughness = 1.0f, m.emission = emission;
+        s.materials.push_back(m);
+        return int(s.materials.size() - 1);
+    };
+    int white = mat("white", {0.725f, 0.71f, 0.68f}), red = mat("red", {0.63f, 0.065f, 0.05f}),
+        green = mat("green", {0.14f, 0.45f, 0.091f}), light = mat("light", {0.78f, 0.78f, 0.78f}, {17, 12, 4});
+    addQuad(s, {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, white);   // floor
+    addQuad(s, {-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}, white);   // ceiling
+    addQuad(s, {-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1}, white); // back
+    addQuad(s, {-1, 0, -1}, {-1, 2, -1}, {-1, 2, 1}, {-1, 0, 1}, red);   // left
+    addQuad(s, {1, 0, -1}, {1, 0, 1}, {1, 2, 1}, {1, 2, -1}, green);     // right
+    addQuad(s, {-0.24f, 1.98f, -0.22f}, {0.23f, 1.98f, -0.22f}, {0.23f, 1.98f, 0.16f},
+            {-0.24f, 1.98f, 0.16f}, light);
+    addBlock(s, {0.33f, 0, 0.37f}, {0.3f, 0.3f, 0.3f}, -0.29f, white);  // short block
+    addBlock(s, {-0.34f, 0, -0.28f}, {0.3f, 0.6f, 0.3f}, 0.31f, white); // tall block
+    NamedCamera cam;
+    cam.name = "front";
+    cam.position = {0, 1, 3.4f}, cam.forward = {0, 0, -1}, cam.up = {0, 1, 0}, cam.fovY = 0.69f;
+    s.cameras.push_back(cam);
+    return s;
+}
+
+Scene loadScene(const std::string& path) {
+    if (path == "builtin:cornell") return builtinCornellBox();
+    if (!std::filesystem::exists(path)) throw Error("scene file not found: " + path);
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower((unsigned char)c));
+    if (ext == ".gltf" || ext == ".glb") return loadGltf(path);
+    if (ext == ".obj") return loadObj(path);
+    throw Error("unsupported scene format '" + ext + "' (" + path + "): use .gltf, .glb or .obj");
+}
+
+} // namespace bmfr::render

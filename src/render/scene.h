@@ -1,0 +1,59 @@
+// The renderer's scene: world-space triangles, materials, textures, lights, cameras.
+#pragma once
+#include "core/vec.h"
+#include "render/texture.h"
+#include <string>
+#include <vector>
+
+namespace bmfr::render {
+
+/// Lambertian + GGX (metal/rough, as glTF). Every setting in the units of glTF 2.0.
+struct Material {
+    std::string name;
+    Vec3 baseColor{0.8f, 0.8f, 0.8f}; ///< linear RGB multiplier, [0, 1]
+    int baseColorTexture = -1;        ///< index into Scene::textures, -1 = none
+    float roughness = 0.5f;           ///< perceptual roughness, [0, 1]; GGX alpha = roughness^2
+    float metallic = 0.0f;            ///< [0, 1]
+    int normalTexture = -1;
+    float normalScale = 1.0f;
+    bool alphaMask = false;           ///< glTF alphaMode MASK
+    float alphaCutoff = 0.5f;
+    Vec3 emission{0, 0, 0};           ///< emitted radiance, W/(sr m^2) per channel, both sides
+};
+
+struct Vec2f {
+    float x = 0, y = 0;
+};
+
+/// A camera keyframe as read from a file (glTF cameras).
+struct NamedCamera {
+    std::string name;
+    Vec3 position, forward, up;
+    float fovY = 1.0f; ///< radians
+};
+
+/// Unindexed triangles in world space: vertex k of triangle t is at [3t + k].
+struct Scene {
+    std::vector<Vec3> positions, normals;
+    std::vector<Vec2f> uvs;
+    std::vector<int> triangleMaterial;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<NamedCamera> cameras;
+    std::vector<std::string> warnings;
+    size_t triangleCount() const { return triangleMaterial.size(); }
+    void addTriangle(Vec3 a, Vec3 b, Vec3 c, int material);
+    /// Axis-aligned bounds of all vertices.
+    void bounds(Vec3& lo, Vec3& hi) const;
+};
+
+/// The built-in Cornell box (needs no files): 2 m box, two blocks, a ceiling light.
+Scene builtinCornellBox();
+/// Loads glTF 2.0 (.gltf/.glb). Throws bmfr::Error for unsupported required features.
+Scene loadGltf(const std::string& path);
+/// Loads OBJ + MTL (Kd, Ke, map_Kd, d/map_d ignored, Ns -> roughness).
+Scene loadObj(const std::string& path);
+/// Chooses the loader by extension ("builtin:cornell" for the built-in box).
+Scene loadScene(const std::string& path);
+
+} // namespace bmfr::render

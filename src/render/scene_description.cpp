@@ -1,0 +1,175 @@
+#include "render/scene_description.h"
+#include <bmfr/error.h>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+namespace bmfr::render {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+QuadLight QuadLightSpec::at(float frame) const {
+    Vec3 c = centre;
+    if (!path.empty()) {
+        if (frame <= path.front().first) c = path.front().second;
+        else if (frame >= path.back().first) c = path.back().second;
+        else
+            for (size_t i = 0; i + 1 < path.size(); ++i)
+                if (frame >= path[i].first && frame <= path[i + 1].first) {
+                    float t = (frame - path[i].first) / (path[i + 1].first - path[i].first);
+                    c = lerp(path[i].second, path[i + 1].second, t);
+                }
+    }
+    return {c - 0.5f * edgeU - 0.5f * edgeV, edgeU, edgeV, radiance};
+}
+
+namespace {
+
+Vec3 vec3(const json& j, const char* what) {
+    if (!j.is_array() || j.size() != 3) throw Error(std::string("scene description: '") + what + "' must be [x, y, z]");
+    return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
+}
+
+const std::map<std::string, const char*>& presets() {
+    static const std::map<std::string, const char*> p = {
+        {"cornell-moving", R"({
+            "mesh": "builtin:cornell", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
+            "camera": {"keyframes": [
+                {"frame": 0,  "position": [-0.55, 1.05, 3.3], "target": [0.0, 0.95, 0.0], "fov_deg": 40},
+                {"frame": 30, "position": [0.0, 1.25, 3.0],   "target": [0.05, 0.9, 0.0], "fov_deg": 40},
+                {"frame": 59, "position": [0.6, 1.0, 3.3],    "target": [0.0, 1.0, 0.0],  "fov_deg": 40}]}})"},
+        {"sponza-moving", R"({
+            "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
+            "reference_spp": 4096,
+            "sun": {"direction": [0.28, 1.0, 0.12], "angular_diameter_deg": 0.53, "irradiance": [7.0, 6.6, 6.0]},
+            "sky": {"radiance": [0.45, 0.55, 0.75]},
+            "camera": {"keyframes": [
+                {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
+                {"frame": 30, "position": [9.0, 5.0, -2.0],  "target": [-4.0, 6.0, 0.0], "fov_deg": 50},
+                {"frame": 59, "position": [3.0, 5.2, -4.5],  "target": [-10.0, 6.5, 1.0], "fov_deg": 50}]}})"},
+        {"sponza-static", R"({
+            "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
+            "reference_spp": 4096,
+            "sun": {"direction": [0.28, 1.0, 0.12], "angular_diameter_deg": 0.53, "irradiance": [7.0, 6.6, 6.0]},
+            "sky": {"radiance": [0.45, 0.55, 0.75]},
+            "camera": {"keyframes": [
+                {"frame": 0, "position": [12.0, 4.8, -3.0], "target": [0.0, 6.0, 1.5], "fov_deg": 50}]}})"},
+        {"sponza-light", R"({
+            "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
+            "reference_spp": 4096,
+            "sky": {"radiance": [0.04, 0.05, 0.07]},
+            "lights": [{"type": "quad", "centre": [8.0, 9.0, 0.0], "u": [0.6, 0, 0], "v": [0, 0, 0.6],
+                        "radiance": [120, 105, 85],
+                        "path": [{"frame": 0, "centre": [10.0, 9.0, -1.0]}, {"frame": 59, "centre": [-8.0, 9.0, 1.0]}]}],
+            "camera": {"keyframes": [
+                {"frame": 0, "position": [14.0, 5.0, 0.0], "target": [0.0, 6.5, 0.0], "fov_deg": 55}]}})"},
+        {"sponza-glossy", R"({
+            "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
+            "reference_spp": 4096, "roughness_override": 0.1,
+            "sun": {"direction": [0.28, 1.0, 0.12], "angular_diameter_deg": 0.53, "irradiance": [7.0, 6.6, 6.0]},
+            "sky": {"radiance": [0.45, 0.55, 0.75]},
+            "camera": {"keyframes": [
+                {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
+                {"frame": 59, "position": [3.0, 5.2, -4.5],  "target": [-10.0, 6.5, 1.0], "fov_deg": 50}]}})"},
+    };
+    return p;
+}
+
+} // namespace
+
+std::vector<std::string> presetNames() {
+    std::vector<std::string> names;
+    for (const auto& [k, v] : presets()) names.push_back(k);
+    return names;
+}
+
+SceneDescription parseSceneDescription(const json& j, const std::string& baseDir) {
+    SceneDescription d;
+    try {
+        d.mesh = j.at("mesh").get<std::string>();
+        if (d.mesh.rfind("builtin:", 0) != 0 && fs::path(d.mesh).is_relative())
+            d.mesh = (fs::path(baseDir) / d.mesh).lexically_normal().string();
+        d.roughnessOverride = j.value("roughness_override", -1.0f);
+        d.width = j.value("width", d.width);
+        d.height = j.value("height", d.height);
+        d.frames = j.value("frames", d.frames);
+        d.referenceSpp = j.value("reference_spp", d.referenceSpp);
+        d.bounces = j.value("bounces", d.bounces);
+        d.seed = j.value("seed", d.seed);
+        d.jitter = j.value("jitter", d.jitter);
+        if (j.contains("sky")) d.environment.sky = vec3(j["sky"].at("radiance"), "sky.radiance");
+        if (j.contains("sun")) {
+            const json& s = j["sun"];
+            d.environment.sun.direction = normalize(vec3(s.at("direction"), "sun.direction"));
+            d.environment.sun.angularDiameter = s.value("angular_diameter_deg", 0.53f) * 3.14159265f / 180.0f;
+            d.environment.sun.irradiance = vec3(s.at("irradiance"), "sun.irradiance");
+            if (!(d.environment.sun.angularDiameter > 0))
+                throw Error("scene description: sun.angular_diameter_deg must be > 0");
+        }
+        for (const json& l : j.value("lights", json::array())) {
+            if (l.value("type", "") != "quad") throw Error("scene description: light type must be \"quad\"");
+            QuadLightSpec q;
+            q.centre = vec3(l.at("centre"), "light centre");
+            q.edgeU = vec3(l.at("u"), "light u");
+            q.edgeV = vec3(l.at("v"), "light v");
+            q.radiance = vec3(l.at("radiance"), "light radiance");
+            if (std::fabs(dot(q.edgeU, q.edgeV)) > 1e-4f * length(q.edgeU) * length(q.edgeV))
+                throw Error("scene description: quad light edges u and v must be perpendicular");
+            for (const json& k : l.value("path", json::array()))
+                q.path.emplace_back(k.at("frame").get<float>(), vec3(k.at("centre"), "light path centre"));
+            std::sort(q.path.begin(), q.path.end(), [](auto& a, auto& b) { return a.first < b.first; });
+            d.quadLights.push_back(q);
+        }
+        const json& cam = j.at("camera");
+        if (cam.contains("gltf_camera")) {
+            d.gltfCamera = cam["gltf_camera"].get<std::string>();
+        } else {
+            for (const json& k : cam.at("keyframes")) {
+                CameraKey key;
+                key.frame = k.value("frame", 0.0f);
+                key.pose.position = vec3(k.at("position"), "camera position");
+                key.pose.target = vec3(k.at("target"), "camera target");
+                key.pose.fovY = k.value("fov_deg", 45.0f) * 3.14159265f / 180.0f;
+                d.cameraKeys.push_back(key);
+            }
+            if (d.cameraKeys.empty()) throw Error("scene description: camera.keyframes is empty");
+        }
+    } catch (const json::exception& e) {
+        throw Error(std::string("scene description: ") + e.what());
+    }
+    if (d.width < 1 || d.height < 1 || d.width > 16384 || d.height > 16384)
+        throw Error("scene description: resolution " + std::to_string(d.width) + "x" + std::to_string(d.height) +
+                    " outside [1, 16384]");
+    if (d.frames < 1) throw Error("scene description: frames must be at least 1");
+    if (d.referenceSpp < 0) throw Error("scene description: reference_spp must be >= 0");
+    if (d.bounces < 0 || d.bounces > 64) throw Error("scene description: bounces must be in [0, 64]");
+    return d;
+}
+
+SceneDescription loadSceneDescription(const std::string& presetOrFile, const std::string& scenesDir) {
+    if (auto it = presets().find(presetOrFile); it != presets().end()) {
+        std::string text = it->second;
+        for (size_t at; (at = text.find("{scenes}")) != std::string::npos;) text.replace(at, 8, scenesDir);
+        SceneDescription d = parseSceneDescription(json::parse(text), ".");
+        d.name = presetOrFile;
+        return d;
+    }
+    if (!fs::exists(presetOrFile)) {
+        std::string list;
+        for (const std::string& n : presetNames()) list += " " + n;
+        throw Error("'" + presetOrFile + "' is neither a scene description file nor a preset (presets:" + list + ")");
+    }
+    std::ifstream in(presetOrFile);
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::exception& e) {
+        throw Error(presetOrFile + ": " + e.what());
+    }
+    SceneDescription d = parseSceneDescription(j, fs::path(presetOrFile).parent_path().string());
+    d.name = fs::path(presetOrFile).stem().string();
+    return d;
+}
+
+} // namespace bmfr::render

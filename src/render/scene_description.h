@@ -1,0 +1,41 @@
+// The scene description (JSON): mesh, lights, camera path, resolution, frame count, reference
+// spp, moving lights; and the built-in presets matching the BMFR paper's test sequences.
+#pragma once
+#include "render/camera_path.h"
+#include "render/lights.h"
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace bmfr::render {
+
+/// A rectangular two-sided light whose centre may follow keyframes (a moving light).
+struct QuadLightSpec {
+    Vec3 centre, edgeU, edgeV, radiance;
+    std::vector<std::pair<float, Vec3>> path; ///< (frame, centre) keys, linear between
+    QuadLight at(float frame) const;
+};
+
+struct SceneDescription {
+    std::string name;
+    std::string mesh;               ///< glTF/OBJ path or "builtin:cornell"
+    float roughnessOverride = -1;   ///< >= 0: every material gets this roughness (glossy preset)
+    int width = 1280, height = 720; ///< pixels
+    int frames = 60;
+    int referenceSpp = 4096;        ///< samples per pixel of the reference; 0 = no reference
+    int bounces = 1;                ///< BSDF-sampled secondary rays per path; the paper uses 1
+    uint32_t seed = 1;
+    bool jitter = true;             ///< per-frame sub-pixel offsets (Halton 2,3)
+    Environment environment;
+    std::vector<QuadLightSpec> quadLights;
+    std::vector<CameraKey> cameraKeys;
+    std::string gltfCamera;         ///< use this named camera of the mesh file (static)
+};
+
+/// Parses a description; relative mesh paths resolve against `baseDir`. Throws bmfr::Error.
+SceneDescription parseSceneDescription(const nlohmann::json& j, const std::string& baseDir);
+/// Loads a preset by name or a JSON file. `scenesDir` replaces {scenes} in preset mesh paths.
+SceneDescription loadSceneDescription(const std::string& presetOrFile, const std::string& scenesDir);
+std::vector<std::string> presetNames();
+
+} // namespace bmfr::render
