@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <fmt/core.h>
 #include <fstream>
-#include <thread>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 namespace bmfr::app {
 

@@ -11,10 +11,13 @@ namespace bmfr::app {
 namespace {
 
 std::atomic<bool> gInterrupted{false};
-extern "C" void onInterrupt(int) { gInterrupted = true; }
+extern "C" void onInterrupt(int) {
+    gInterrupted = true;
+}
 
 struct RenderJob {
-    std::string output, scene = "cornell-moving", scenesDir = "../shared/scenes", layout = "manifest";
+    std::string output, scene = "cornell-moving", scenesDir = "../shared/scenes",
+                        layout = "manifest";
     std::optional<int> width, height, frames, referenceSpp, bounces;
     std::optional<uint32_t> seed;
     bool noReference = false, quiet = false, list = false;
@@ -38,14 +41,18 @@ int runRender(const RenderJob& job) {
     if (job.noReference) d.referenceSpp = 0;
     if (job.bounces) d.bounces = *job.bounces;
     if (job.seed) d.seed = *job.seed;
-    if (d.width < 1 || d.height < 1 || d.frames < 1 || d.referenceSpp < 0 || d.bounces < 0 || d.bounces > 64)
-        throw Error("render: width, height, frames must be >= 1, reference spp >= 0, bounces in [0, 64]");
+    if (d.width < 1 || d.height < 1 || d.frames < 1 || d.referenceSpp < 0 || d.bounces < 0 ||
+        d.bounces > 64)
+        throw Error(
+            "render: width, height, frames must be >= 1, reference spp >= 0, bounces in [0, 64]");
 
     gInterrupted = false;
     auto previous = std::signal(SIGINT, onInterrupt);
     if (!job.quiet)
-        fmt::print("bmfr render: {} ({}), {}x{}, {} frames, {} bounce(s), reference {} spp -> {} ({} layout)\n",
-                   d.name, d.mesh, d.width, d.height, d.frames, d.bounces, d.referenceSpp, job.output, job.layout);
+        fmt::print("bmfr render: {} ({}), {}x{}, {} frames, {} bounce(s), reference {} spp -> {} "
+                   "({} layout)\n",
+                   d.name, d.mesh, d.width, d.height, d.frames, d.bounces, d.referenceSpp,
+                   job.output, job.layout);
     Progress progress("render", d.frames, job.quiet);
     render::SequenceRenderOptions o{job.output, job.layout, job.quiet};
     render::SequenceRenderReport r = render::renderSequence(
@@ -55,15 +62,16 @@ int runRender(const RenderJob& job) {
     std::signal(SIGINT, previous);
     const double seconds = r.inputSeconds + r.referenceSeconds;
     if (!job.quiet) {
-        fmt::print("{} triangles (load + BVH {:.2f} s); rendered {} frame(s), {} already on disk\n", r.triangles,
-                   r.loadSeconds, r.rendered, r.skipped);
+        fmt::print("{} triangles (load + BVH {:.2f} s); rendered {} frame(s), {} already on disk\n",
+                   r.triangles, r.loadSeconds, r.rendered, r.skipped);
         if (r.rendered)
             fmt::print("1-spp input {:.3f} s/frame, reference {:.2f} s/frame, {:.2f} Mrays/s\n",
                        r.inputSeconds / r.rendered, r.referenceSeconds / r.rendered,
                        seconds > 0 ? double(r.rays) / seconds * 1e-6 : 0.0);
     }
     if (r.interrupted) {
-        fmt::print(stderr, "bmfr: interrupted; {} complete frame(s) kept; run the same command to resume\n",
+        fmt::print(stderr,
+                   "bmfr: interrupted; {} complete frame(s) kept; run the same command to resume\n",
                    r.rendered + r.skipped);
         return 130;
     }
@@ -72,18 +80,24 @@ int runRender(const RenderJob& job) {
 
 void addRenderCommand(CLI::App& app, int& exitCode) {
     auto job = std::make_shared<RenderJob>();
-    CLI::App* cmd = app.add_subcommand("render", "path trace a sequence: 1-spp input, features, reference");
+    CLI::App* cmd =
+        app.add_subcommand("render", "path trace a sequence: 1-spp input, features, reference");
     cmd->add_option("output", job->output, "output directory");
-    cmd->add_option("-s,--scene", job->scene, "preset name or scene description JSON")->default_val("cornell-moving");
-    cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")->default_val("../shared/scenes");
+    cmd->add_option("-s,--scene", job->scene, "preset name or scene description JSON")
+        ->default_val("cornell-moving");
+    cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")
+        ->default_val("../shared/scenes");
     cmd->add_option("--width", job->width, "pixels");
     cmd->add_option("--height", job->height, "pixels");
     cmd->add_option("--frames", job->frames, "frame count");
-    cmd->add_option("--reference-spp", job->referenceSpp, "reference samples per pixel (default 4096)");
+    cmd->add_option("--reference-spp", job->referenceSpp,
+                    "reference samples per pixel (default 4096)");
     cmd->add_flag("--no-reference", job->noReference, "skip the reference");
-    cmd->add_option("--bounces", job->bounces, "BSDF-sampled secondary rays per path (default 1, as the paper)");
+    cmd->add_option("--bounces", job->bounces,
+                    "BSDF-sampled secondary rays per path (default 1, as the paper)");
     cmd->add_option("--seed", job->seed, "random seed");
-    cmd->add_option("--layout", job->layout, "manifest (sequence.json) or bmfr (original dataset)")->default_val("manifest");
+    cmd->add_option("--layout", job->layout, "manifest (sequence.json) or bmfr (original dataset)")
+        ->default_val("manifest");
     cmd->add_flag("--list-presets", job->list, "print the preset names");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     cmd->callback([job, &exitCode] { exitCode = runRender(*job); });

@@ -10,7 +10,8 @@ void addTonemapCommand(CLI::App& app, int& exitCode) {
         float exposure = 1.0f;
     };
     auto job = std::make_shared<Job>();
-    CLI::App* cmd = app.add_subcommand("tonemap", "write an EXR as a viewable PNG: clamp((x * exposure)^(1/2.2), 0, 1)");
+    CLI::App* cmd = app.add_subcommand(
+        "tonemap", "write an EXR as a viewable PNG: clamp((x * exposure)^(1/2.2), 0, 1)");
     cmd->add_option("input", job->input, "EXR file")->required();
     cmd->add_option("output", job->output, "PNG file")->required();
     cmd->add_option("--exposure", job->exposure, "linear scale applied first")->default_val(1.0);

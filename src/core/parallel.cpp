@@ -8,8 +8,14 @@ ThreadPool::ThreadPool(int threads)
                                                            : tbb::info::default_concurrency())) {}
 ThreadPool::~ThreadPool() = default;
 
-tbb::task_arena& ThreadPool::arena() { return *arena_; }
-int ThreadPool::threadCount() const { return arena_->max_concurrency(); }
-int ThreadPool::currentThreadIndex() { return tbb::this_task_arena::current_thread_index(); }
+tbb::task_arena& ThreadPool::arena() {
+    return *arena_;
+}
+int ThreadPool::threadCount() const {
+    return arena_->max_concurrency();
+}
+int ThreadPool::currentThreadIndex() {
+    return tbb::this_task_arena::current_thread_index();
+}
 
 } // namespace bmfr

@@ -205,8 +205,8 @@ std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory) {
 }
 
 BmfrLayoutWriter::BmfrLayoutWriter(const std::string& directory, const std::vector<Mat4>& matrices,
-                                   const std::vector<std::array<float, 2>>& jitters, float positionLimitSquared,
-                                   float normalLimitSquared)
+                                   const std::vector<std::array<float, 2>>& jitters,
+                                   float positionLimitSquared, float normalLimitSquared)
     : dir_(directory) {
     fs::create_directories(directory);
     std::ostringstream h;
@@ -245,7 +245,8 @@ std::string layoutPath(const std::string& dir, const char* stem, int n) {
 
 void BmfrLayoutWriter::addFrame(int i, const FrameData& f) {
     ImageF demod = f.color;
-    for (long k = 0; k < demod.pixelCount() * 3; ++k) demod.data()[k] /= std::max(f.albedo.data()[k], 0.001f);
+    for (long k = 0; k < demod.pixelCount() * 3; ++k)
+        demod.data()[k] /= std::max(f.albedo.data()[k], 0.001f);
     writeExr(layoutPath(dir_, "albedo", i), f.albedo);
     writeExr(layoutPath(dir_, "shading_normal", i), f.normal);
     writeExr(layoutPath(dir_, "world_position", i), f.position);
@@ -253,13 +254,16 @@ void BmfrLayoutWriter::addFrame(int i, const FrameData& f) {
     writeExr(layoutPath(dir_, "color", i), demod); // last: its presence marks a complete frame
 }
 
-bool BmfrLayoutWriter::hasFrame(int index) const { return fs::exists(layoutPath(dir_, "color", index)); }
+bool BmfrLayoutWriter::hasFrame(int index) const {
+    return fs::exists(layoutPath(dir_, "color", index));
+}
 
 void writeBmfrLayout(const std::string& directory, const std::vector<FrameData>& frames,
                      float positionLimitSquared, float normalLimitSquared) {
     std::vector<Mat4> matrices;
     std::vector<std::array<float, 2>> jitters;
-    for (const FrameData& f : frames) matrices.push_back(f.viewProjection), jitters.push_back({f.jitter[0], f.jitter[1]});
+    for (const FrameData& f : frames)
+        matrices.push_back(f.viewProjection), jitters.push_back({f.jitter[0], f.jitter[1]});
     BmfrLayoutWriter w(directory, matrices, jitters, positionLimitSquared, normalLimitSquared);
     for (size_t i = 0; i < frames.size(); ++i) w.addFrame(int(i), frames[i]);
 }

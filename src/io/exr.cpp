@@ -29,6 +29,8 @@ ImageF readExr(const std::string& path, int channels) {
         std::vector<std::string> pick;
         if (channels == 3 && has("R") && has("G") && has("B"))
             pick = {"R", "G", "B"};
+        else if (channels == 2 && has("R") && has("G"))
+            pick = {"R", "G"};
         else if (channels == 1 && has("Y"))
             pick = {"Y"};
         else if (channels == 1 && has("R"))
@@ -39,7 +41,9 @@ ImageF readExr(const std::string& path, int channels) {
             std::string list;
             for (auto& s : names) list += (list.empty() ? "" : ",") + s;
             throw Error(path + ": has channels [" + list + "], expected " +
-                        (channels == 3 ? "R,G,B" : channels == 2 ? "R,G" : "Y or a single channel"));
+                        (channels == 3   ? "R,G,B"
+                         : channels == 2 ? "R,G"
+                                         : "Y or a single channel"));
         }
         ImageF img(int(w), int(h), channels);
         Imf::FrameBuffer fb;

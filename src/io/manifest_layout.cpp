@@ -71,9 +71,11 @@ class ManifestReader : public SequenceReader {
             f.reference = info_.hasReference ? readExr(file("reference"), 3) : ImageF();
             f.aovs.clear();
             if (loadAovs_ && j.contains("aovs"))
-                for (const auto& [name, entry] : j["aovs"].items()) {
-                    const std::string path = (fs::path(info_.directory) / entry.at("file").get<std::string>()).string();
-                    f.aovs.emplace_back(name, readExr(path, entry.at("channels").get<int>()));
+                for (const json& entry : j["aovs"]) {
+                    const std::string path =
+                        (fs::path(info_.directory) / entry.at("file").get<std::string>()).string();
+                    f.aovs.emplace_back(entry.at("name").get<std::string>(),
+                                        readExr(path, entry.at("channels").get<int>()));
                 }
             const json& m = j.at("view_projection");
             if (m.size() != 4) throw Error(where + ": view_projection must be 4 rows of 4");
@@ -113,9 +115,10 @@ ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo&
         std::ifstream in(existing);
         json doc = json::parse(in);
         if (doc.value("width", 0) != info.width || doc.value("height", 0) != info.height)
-            throw Error(existing.string() + " holds a " + std::to_string(doc.value("width", 0)) + "x" +
-                        std::to_string(doc.value("height", 0)) + " sequence; refusing to mix it with " +
-                        std::to_string(info.width) + "x" + std::to_string(info.height) + " frames");
+            throw Error(existing.string() + " holds a " + std::to_string(doc.value("width", 0)) +
+                        "x" + std::to_string(doc.value("height", 0)) +
+                        " sequence; refusing to mix it with " + std::to_string(info.width) + "x" +
+                        std::to_string(info.height) + " frames");
         for (const json& f : doc.at("frames")) frameJson_.push_back(f.dump());
     } catch (const json::exception& e) {
         throw Error(existing.string() + ": " + e.what());
@@ -123,11 +126,14 @@ ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo&
 }
 
 bool ManifestWriter::hasFrame(int index) const {
-    if (index < 0 || size_t(index) >= frameJson_.size() || frameJson_[size_t(index)].empty()) return false;
+    if (index < 0 || size_t(index) >= frameJson_.size() || frameJson_[size_t(index)].empty())
+        return false;
     json j = json::parse(frameJson_[size_t(index)]);
     for (const char* key : {"color", "albedo", "normal", "position"})
-        if (!j.contains(key) || !fs::exists(fs::path(dir_) / j[key].get<std::string>())) return false;
-    if (j.contains("reference") && !fs::exists(fs::path(dir_) / j["reference"].get<std::string>())) return false;
+        if (!j.contains(key) || !fs::exists(fs::path(dir_) / j[key].get<std::string>()))
+            return false;
+    if (j.contains("reference") && !fs::exists(fs::path(dir_) / j["reference"].get<std::string>()))
+        return false;
     return true;
 }
 
@@ -151,9 +157,10 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
             j["extras"].push_back(put(info_.extraNames.at(e).c_str(), f.extras[e]));
     }
     if (!f.aovs.empty()) {
-        j["aovs"] = json::object();
+        j["aovs"] = json::array();
         for (const auto& [name, img] : f.aovs)
-            j["aovs"][name] = {{"file", put(name.c_str(), img)}, {"channels", img.channels}};
+            j["aovs"].push_back(
+                {{"name", name}, {"file", put(name.c_str(), img)}, {"channels", img.channels}});
     }
     json m = json::array();
     for (int r = 0; r < 4; ++r)

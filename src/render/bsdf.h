@@ -8,11 +8,11 @@ namespace bmfr::render {
 
 /// A shaded surface point; all vectors world space, normals facing the incoming ray's side.
 struct SurfacePoint {
-    Vec3 p, ng, ns, wo;    ///< position, geometric and shading normal, direction to the viewer
-    Vec3 baseColor;        ///< first-hit albedo feature
-    Vec3 diffuse;          ///< diffuse reflectance (baseColor * (1 - metallic))
-    Vec3 f0;               ///< normal-incidence Fresnel reflectance
-    float alpha = 0.25f;   ///< GGX alpha = roughness^2 (floored)
+    Vec3 p, ng, ns, wo;  ///< position, geometric and shading normal, direction to the viewer
+    Vec3 baseColor;      ///< first-hit albedo feature
+    Vec3 diffuse;        ///< diffuse reflectance (baseColor * (1 - metallic))
+    Vec3 f0;             ///< normal-incidence Fresnel reflectance
+    float alpha = 0.25f; ///< GGX alpha = roughness^2 (floored)
     float roughness = 0.5f;
     Vec3 emission;
     int material = 0;
@@ -28,7 +28,9 @@ inline float ggxD(float cosH, float a2) {
     float d = cosH * cosH * (a2 - 1) + 1;
     return a2 / (kPi * d * d);
 }
-inline float smithG1(float c, float a2) { return 2 * c / (c + std::sqrt(a2 + (1 - a2) * c * c)); }
+inline float smithG1(float c, float a2) {
+    return 2 * c / (c + std::sqrt(a2 + (1 - a2) * c * c));
+}
 inline Vec3 schlick(Vec3 f0, float c) {
     float k = std::pow(1 - std::fmax(0.0f, c), 5.0f);
     return f0 + k * (Vec3{1, 1, 1} - f0);
@@ -58,11 +60,13 @@ inline BsdfValue evalBsdf(const SurfacePoint& s, Vec3 wi) {
 }
 
 /// Samples wi from the mixture of the cosine lobe and the GGX normal distribution.
-inline bool sampleBsdf(const SurfacePoint& s, float uLobe, float u1, float u2, Vec3& wi, BsdfValue& value) {
+inline bool sampleBsdf(const SurfacePoint& s, float uLobe, float u1, float u2, Vec3& wi,
+                       BsdfValue& value) {
     if (dot(s.ns, s.wo) <= 0) return false;
     if (uLobe < glossyProbability(s)) {
         float a2 = s.alpha * s.alpha;
-        float cosH = std::sqrt((1 - u1) / (1 + (a2 - 1) * u1)), sinH = std::sqrt(std::fmax(0.0f, 1 - cosH * cosH));
+        float cosH = std::sqrt((1 - u1) / (1 + (a2 - 1) * u1)),
+              sinH = std::sqrt(std::fmax(0.0f, 1 - cosH * cosH));
         float phi = 2 * kPi * u2;
         Vec3 h = toWorld({sinH * std::cos(phi), sinH * std::sin(phi), cosH}, s.ns);
         wi = 2 * dot(s.wo, h) * h - s.wo;

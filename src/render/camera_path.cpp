@@ -6,7 +6,8 @@ namespace bmfr::render {
 
 CameraPath::CameraPath(std::vector<CameraKey> keys) : keys_(std::move(keys)) {
     if (keys_.empty()) throw Error("camera path needs at least one keyframe");
-    std::sort(keys_.begin(), keys_.end(), [](const CameraKey& a, const CameraKey& b) { return a.frame < b.frame; });
+    std::sort(keys_.begin(), keys_.end(),
+              [](const CameraKey& a, const CameraKey& b) { return a.frame < b.frame; });
 }
 
 namespace {
@@ -30,7 +31,8 @@ CameraPose CameraPath::at(float frame) const {
     const CameraKey& k3 = keys_[std::min(i + 2, keys_.size() - 1)];
     float t = (frame - k1.frame) / (k2.frame - k1.frame);
     CameraPose p = k1.pose;
-    p.position = catmullRom(k0.pose.position, k1.pose.position, k2.pose.position, k3.pose.position, t);
+    p.position =
+        catmullRom(k0.pose.position, k1.pose.position, k2.pose.position, k3.pose.position, t);
     p.target = catmullRom(k0.pose.target, k1.pose.target, k2.pose.target, k3.pose.target, t);
     p.fovY = k1.pose.fovY + t * (k2.pose.fovY - k1.pose.fovY);
     return p;

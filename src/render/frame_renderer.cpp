@@ -20,13 +20,15 @@ void frameJitter(int index, bool enabled, float jitter[2]) {
     jitter[1] = enabled ? halton(index + 1, 3) - 0.5f : 0.0f;
 }
 
-std::vector<std::string> FrameRenderer::extraNames() { return {"material_id", "roughness"}; }
+std::vector<std::string> FrameRenderer::extraNames() {
+    return {"material_id", "roughness"};
+}
 std::vector<std::string> FrameRenderer::aovNames() {
     return {"depth", "motion", "direct", "indirect", "diffuse", "glossy"};
 }
 
-FrameRenderer::FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height, int bounces,
-                             uint32_t seed)
+FrameRenderer::FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height,
+                             int bounces, uint32_t seed)
     : scene_(scene), accel_(accel), width_(width), height_(height), bounces_(bounces), seed_(seed) {
     Vec3 lo, hi;
     scene.bounds(lo, hi);
@@ -35,9 +37,10 @@ FrameRenderer::FrameRenderer(const Scene& scene, const RayAccel& accel, int widt
     zFar_ = 10.0f * diag + kSkyDistance;
 }
 
-bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& previousPose, bool hasPrevious,
-                           const LightSet& lights, bool jitterOn, int referenceSpp, FrameData& out,
-                           FrameRenderStats& stats, const std::atomic<bool>* cancel) const {
+bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& previousPose,
+                           bool hasPrevious, const LightSet& lights, bool jitterOn,
+                           int referenceSpp, FrameData& out, FrameRenderStats& stats,
+                           const std::atomic<bool>* cancel) const {
     using Clock = std::chrono::steady_clock;
     const int w = width_, h = height_;
     out.viewProjection = viewProjection(pose, w, h, zNear_, zFar_);
@@ -49,7 +52,8 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     for (ImageF* img : {&out.color, &out.albedo, &out.normal, &out.position}) img->resize(w, h, 3);
     out.extras.assign(2, ImageF(w, h, 1));
     out.aovs.clear();
-    for (const std::string& n : aovNames()) out.aovs.emplace_back(n, ImageF(w, h, n == "depth" ? 1 : n == "motion" ? 2 : 3));
+    for (const std::string& n : aovNames())
+        out.aovs.emplace_back(n, ImageF(w, h, n == "depth" ? 1 : n == "motion" ? 2 : 3));
     out.reference = referenceSpp > 0 ? ImageF(w, h, 3) : ImageF();
 
     const Integrator integrator(scene_, accel_, lights, bounces_);
@@ -100,7 +104,8 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 out.extras[1].data()[i] = ph.hit ? s.roughness : 1.0f;
                 out.aovs[0].second.data()[i] = dot(p - pose.position, forward);
                 Vec2 prev{float(x), float(y)};
-                if (hasPrevious && !projectToPixel(prevVp, p, prevJitter, w, h, prev)) prev = {float(x), float(y)};
+                if (hasPrevious && !projectToPixel(prevVp, p, prevJitter, w, h, prev))
+                    prev = {float(x), float(y)};
                 out.aovs[1].second.data()[2 * i] = prev.x - float(x);
                 out.aovs[1].second.data()[2 * i + 1] = prev.y - float(y);
             }

@@ -19,14 +19,15 @@ void frameJitter(int index, bool enabled, float jitter[2]);
 
 class FrameRenderer {
   public:
-    FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height, int bounces, uint32_t seed);
+    FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height, int bounces,
+                  uint32_t seed);
 
     /// Fills `out` (colour, albedo, normal, position, extras material_id and roughness, AOVs
     /// depth, motion, direct, indirect, diffuse, glossy; reference when referenceSpp > 0).
     /// Returns false when `cancel` became true (out is then incomplete and must be dropped).
     bool render(int index, const CameraPose& pose, const CameraPose& previousPose, bool hasPrevious,
-                const LightSet& lights, bool jitter, int referenceSpp, FrameData& out, FrameRenderStats& stats,
-                const std::atomic<bool>* cancel) const;
+                const LightSet& lights, bool jitter, int referenceSpp, FrameData& out,
+                FrameRenderStats& stats, const std::atomic<bool>* cancel) const;
 
     /// Names of FrameData::extras and FrameData::aovs in the order render() fills them.
     static std::vector<std::string> extraNames();

@@ -8,14 +8,18 @@ namespace {
 float offsetScale(Vec3 p) {
     return 1e-4f * (1.0f + std::fmax(std::fabs(p.x), std::fmax(std::fabs(p.y), std::fabs(p.z))));
 }
-bool isBlack(Vec3 v) { return v.x <= 0 && v.y <= 0 && v.z <= 0; }
+bool isBlack(Vec3 v) {
+    return v.x <= 0 && v.y <= 0 && v.z <= 0;
+}
 
 } // namespace
 
-Integrator::Integrator(const Scene& scene, const RayAccel& accel, const LightSet& lights, int bounces)
+Integrator::Integrator(const Scene& scene, const RayAccel& accel, const LightSet& lights,
+                       int bounces)
     : scene_(scene), accel_(accel), lights_(lights), bounces_(bounces) {}
 
-void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidth, SurfacePoint& sp) const {
+void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidth,
+                               SurfacePoint& sp) const {
     const size_t b = 3 * size_t(tri);
     const Vec3* P = &scene_.positions[b];
     const Vec3* N = &scene_.normals[b];
@@ -29,8 +33,10 @@ void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidt
     ng = worldArea2 > 0 ? ng / worldArea2 : Vec3{0, 1, 0};
     Vec3 ns = w * N[0] + u * N[1] + v * N[2];
     ns = length(ns) > 0 ? normalize(ns) : ng;
-    const float tu = w * T[0].x + u * T[1].x + v * T[2].x, tv = w * T[0].y + u * T[1].y + v * T[2].y;
-    const float du1 = T[1].x - T[0].x, dv1 = T[1].y - T[0].y, du2 = T[2].x - T[0].x, dv2 = T[2].y - T[0].y;
+    const float tu = w * T[0].x + u * T[1].x + v * T[2].x,
+                tv = w * T[0].y + u * T[1].y + v * T[2].y;
+    const float du1 = T[1].x - T[0].x, dv1 = T[1].y - T[0].y, du2 = T[2].x - T[0].x,
+                dv2 = T[2].y - T[0].y;
     const float uvArea2 = std::fabs(du1 * dv2 - du2 * dv1);
 
     // Texture level of detail from the ray cone footprint (Akenine-Moller et al. 2019).
@@ -38,7 +44,8 @@ void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidt
         if (uvArea2 <= 0 || worldArea2 <= 0) return 0.0f;
         float texels = uvArea2 * float(tex.width()) * float(tex.height());
         float cosine = std::fmax(std::fabs(dot(ng, d)), 1e-3f);
-        return 0.5f * std::log2(texels / worldArea2) + std::log2(std::fmax(coneWidth, 1e-12f) / cosine);
+        return 0.5f * std::log2(texels / worldArea2) +
+               std::log2(std::fmax(coneWidth, 1e-12f) / cosine);
     };
     Vec3 base = m.baseColor;
     if (m.baseColorTexture >= 0) {
@@ -56,7 +63,8 @@ void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidt
                 Vec3 bi = cross(ns, tangent);
                 if (dot(bi, bitangent) < 0) bi = -1.0f * bi;
                 Vec3 t = tex.sample(tu, tv, lod(tex)).rgb;
-                Vec3 local{(2 * t.x - 1) * m.normalScale, (2 * t.y - 1) * m.normalScale, 2 * t.z - 1};
+                Vec3 local{(2 * t.x - 1) * m.normalScale, (2 * t.y - 1) * m.normalScale,
+                           2 * t.z - 1};
                 Vec3 mapped = local.x * tangent + local.y * bi + local.z * ns;
                 if (length(mapped) > 0) ns = normalize(mapped);
             }
@@ -70,7 +78,7 @@ void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidt
     sp.wo = -1.0f * d;
     sp.baseColor = base;
     sp.diffuse = (1 - m.metallic) * base;
-    sp.f0 = lerp(Vec3{0.04f, 0.04f, 0.04f}, base, m.metallic);
+    sp.f0 = lerp(Vec3{m.specular, m.specular, m.specular}, base, m.metallic);
     sp.roughness = m.roughness;
     sp.alpha = std::fmax(m.roughness * m.roughness, 1e-3f);
     sp.emission = m.emission;
@@ -78,8 +86,8 @@ void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidt
     sp.triangle = tri;
 }
 
-bool Integrator::trace(Vec3 o, Vec3 d, float spread, float travelled, SurfacePoint& sp, int& quad, float& t,
-                       uint64_t& rays) const {
+bool Integrator::trace(Vec3 o, Vec3 d, float spread, float travelled, SurfacePoint& sp, int& quad,
+                       float& t, uint64_t& rays) const {
     ++rays;
     RayHit h = accel_.intersect(o, d, 1e30f);
     float tq = 0;
@@ -101,7 +109,8 @@ bool Integrator::trace(Vec3 o, Vec3 d, float spread, float travelled, SurfacePoi
     return true;
 }
 
-PrimaryHit Integrator::primary(Vec3 origin, Vec3 direction, float spreadAngle, uint64_t& rays) const {
+PrimaryHit Integrator::primary(Vec3 origin, Vec3 direction, float spreadAngle,
+                               uint64_t& rays) const {
     PrimaryHit ph;
     ph.origin = origin, ph.direction = direction;
     float t = 0;
@@ -140,13 +149,18 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
                 const float c = dot(sp.ns, ls.wi);
                 if ((!isBlack(f.diffuse) || !isBlack(f.glossy))) {
                     ++rays;
-                    float tMax = ls.distance >= 1e29f ? 1e30f : ls.distance * (1 - 1e-4f) - offsetScale(sp.p);
+                    float tMax = ls.distance >= 1e29f
+                                     ? 1e30f
+                                     : ls.distance * (1 - 1e-4f) - offsetScale(sp.p);
                     if (!accel_.occluded(origin, ls.wi, tMax)) {
                         // At the last vertex no BSDF ray follows: light sampling takes it all.
                         float w = last ? 1.0f : powerHeuristic(ls.pdf, f.pdf);
                         Vec3 L = (c * w / ls.pdf) * ls.radiance;
-                        if (vertex == 0) add(0, f.diffuse * L, f.glossy * L);
-                        else add(vertex, tD * ((f.diffuse + f.glossy) * L), tG * ((f.diffuse + f.glossy) * L));
+                        if (vertex == 0)
+                            add(0, f.diffuse * L, f.glossy * L);
+                        else
+                            add(vertex, tD * ((f.diffuse + f.glossy) * L),
+                                tG * ((f.diffuse + f.glossy) * L));
                     }
                 }
             }

@@ -103,7 +103,9 @@ float LightSet::pdfQuad(int quad, Vec3 p, Vec3 q) const {
     const QuadLight& ql = quads_[size_t(quad)];
     Vec3 n = cross(ql.edgeU, ql.edgeV), d = q - p;
     float d2 = dot(d, d), cosL = std::fabs(dot(n, d)) / (length(n) * std::sqrt(d2));
-    return cosL > 1e-7f ? entries_[size_t(quadEntry_[size_t(quad)])].probability * d2 / (length(n) * cosL) : 0.0f;
+    return cosL > 1e-7f
+               ? entries_[size_t(quadEntry_[size_t(quad)])].probability * d2 / (length(n) * cosL)
+               : 0.0f;
 }
 
 float LightSet::pdfSun() const {
@@ -125,7 +127,8 @@ int LightSet::intersectQuads(Vec3 o, Vec3 d, float tMax, float& t) const {
         float tt = dot(n, q.corner - o) / denom;
         if (tt <= 1e-4f || tt >= tMax) continue;
         Vec3 x = o + tt * d - q.corner;
-        float uu = dot(x, q.edgeU) / dot(q.edgeU, q.edgeU), vv = dot(x, q.edgeV) / dot(q.edgeV, q.edgeV);
+        float uu = dot(x, q.edgeU) / dot(q.edgeU, q.edgeU),
+              vv = dot(x, q.edgeV) / dot(q.edgeV, q.edgeV);
         if (uu < 0 || uu > 1 || vv < 0 || vv > 1) continue;
         tMax = tt, t = tt, best = int(i);
     }

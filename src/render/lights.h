@@ -13,9 +13,9 @@ struct QuadLight {
 };
 
 struct Sun {
-    Vec3 direction{0, 1, 0};  ///< unit vector towards the sun
+    Vec3 direction{0, 1, 0};          ///< unit vector towards the sun
     float angularDiameter = 0.00930f; ///< radians (0.53 degrees)
-    Vec3 irradiance{0, 0, 0}; ///< W/m^2 on a surface facing the sun
+    Vec3 irradiance{0, 0, 0};         ///< W/m^2 on a surface facing the sun
     bool enabled() const { return irradiance.x + irradiance.y + irradiance.z > 0; }
 };
 

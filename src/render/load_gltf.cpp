@@ -15,7 +15,9 @@ namespace {
 
 using Mat = std::array<double, 16>; // column-major, as glTF
 
-Mat identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+Mat identity() {
+    return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+}
 
 Mat mul(const Mat& a, const Mat& b) {
     Mat r{};
@@ -32,12 +34,26 @@ Mat nodeMatrix(const tinygltf::Node& n) {
         return m;
     }
     Mat t = identity(), r = identity(), s = identity();
-    if (n.translation.size() == 3) t[12] = n.translation[0], t[13] = n.translation[1], t[14] = n.translation[2];
+    if (n.translation.size() == 3)
+        t[12] = n.translation[0], t[13] = n.translation[1], t[14] = n.translation[2];
     if (n.rotation.size() == 4) {
         double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
-        r = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
-             2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
-             2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0, 0, 0, 0, 1};
+        r = {1 - 2 * (y * y + z * z),
+             2 * (x * y + z * w),
+             2 * (x * z - y * w),
+             0,
+             2 * (x * y - z * w),
+             1 - 2 * (x * x + z * z),
+             2 * (y * z + x * w),
+             0,
+             2 * (x * z + y * w),
+             2 * (y * z - x * w),
+             1 - 2 * (x * x + y * y),
+             0,
+             0,
+             0,
+             0,
+             1};
     }
     if (n.scale.size() == 3) s[0] = n.scale[0], s[5] = n.scale[1], s[10] = n.scale[2];
     return mul(t, mul(r, s));
@@ -49,7 +65,8 @@ Vec3 point(const Mat& m, Vec3 p) {
             float(m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14])};
 }
 Vec3 direction(const Mat& m, Vec3 d) {
-    return {float(m[0] * d.x + m[4] * d.y + m[8] * d.z), float(m[1] * d.x + m[5] * d.y + m[9] * d.z),
+    return {float(m[0] * d.x + m[4] * d.y + m[8] * d.z),
+            float(m[1] * d.x + m[5] * d.y + m[9] * d.z),
             float(m[2] * d.x + m[6] * d.y + m[10] * d.z)};
 }
 
@@ -62,9 +79,11 @@ struct AccessorReader {
     size_t count = 0;
 
     AccessorReader(const tinygltf::Model& m, int index, const std::string& what) {
-        if (index < 0 || size_t(index) >= m.accessors.size()) throw Error("glTF: bad accessor for " + what);
+        if (index < 0 || size_t(index) >= m.accessors.size())
+            throw Error("glTF: bad accessor for " + what);
         const tinygltf::Accessor& a = m.accessors[size_t(index)];
-        if (a.sparse.isSparse) throw Error("unsupported glTF feature: sparse accessor (" + what + ")");
+        if (a.sparse.isSparse)
+            throw Error("unsupported glTF feature: sparse accessor (" + what + ")");
         if (a.bufferView < 0) throw Error("glTF: accessor without bufferView (" + what + ")");
         const tinygltf::BufferView& v = m.bufferViews[size_t(a.bufferView)];
         const tinygltf::Buffer& b = m.buffers[size_t(v.buffer)];
@@ -75,32 +94,55 @@ struct AccessorReader {
         stride = v.byteStride ? v.byteStride : size_t(size * components);
         normalized = a.normalized;
         count = a.count;
-        if (v.byteOffset + a.byteOffset + (count ? (count - 1) * stride + size_t(size * components) : 0) >
+        if (v.byteOffset + a.byteOffset +
+                (count ? (count - 1) * stride + size_t(size * components) : 0) >
             b.data.size())
             throw Error("glTF: accessor for " + what + " runs past its buffer");
     }
     float component(size_t i, int c) const {
         const unsigned char* p = data + i * stride;
         switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p + 4 * c, 4); return f; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[c] / 255.0f : p[c];
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p + 2 * c, 2); return normalized ? v / 65535.0f : v; }
-        default: throw Error("unsupported glTF feature: component type " + std::to_string(componentType));
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+            float f;
+            std::memcpy(&f, p + 4 * c, 4);
+            return f;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return normalized ? p[c] / 255.0f : p[c];
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t v;
+            std::memcpy(&v, p + 2 * c, 2);
+            return normalized ? v / 65535.0f : v;
+        }
+        default:
+            throw Error("unsupported glTF feature: component type " +
+                        std::to_string(componentType));
         }
     }
     uint32_t index(size_t i) const {
         const unsigned char* p = data + i * stride;
         switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
-        default: throw Error("glTF: bad index component type");
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return p[0];
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            return v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            uint32_t v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
+        default:
+            throw Error("glTF: bad index component type");
         }
     }
 };
 
 // Images are decoded by our Texture class (so a missing file is a warning, not a failure).
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+               const unsigned char*, int, void*) {
     return true;
 }
 
@@ -121,9 +163,11 @@ struct Loader {
         std::string error, file = (std::filesystem::path(dir) / img.uri).string();
         int result = -1;
         if (img.uri.empty()) {
-            scene.warnings.push_back("texture '" + img.name + "' is embedded (not supported): flat colour used");
+            scene.warnings.push_back("texture '" + img.name +
+                                     "' is embedded (not supported): flat colour used");
         } else if (!t.load(file, srgb, error)) {
-            scene.warnings.push_back("missing texture " + file + " (" + error + "): flat colour used");
+            scene.warnings.push_back("missing texture " + file + " (" + error +
+                                     "): flat colour used");
         } else {
             scene.textures.push_back(std::move(t));
             result = int(scene.textures.size() - 1);
@@ -138,7 +182,8 @@ struct Loader {
             m.name = gm.name;
             const auto& pbr = gm.pbrMetallicRoughness;
             if (pbr.baseColorFactor.size() >= 3)
-                m.baseColor = {float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]), float(pbr.baseColorFactor[2])};
+                m.baseColor = {float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
+                               float(pbr.baseColorFactor[2])};
             m.baseColorTexture = texture(pbr.baseColorTexture.index, true);
             m.roughness = float(pbr.roughnessFactor);
             m.metallic = float(pbr.metallicFactor);
@@ -147,10 +192,12 @@ struct Loader {
             m.alphaMask = gm.alphaMode == "MASK";
             m.alphaCutoff = float(gm.alphaCutoff);
             if (gm.alphaMode == "BLEND")
-                scene.warnings.push_back("material '" + gm.name + "': alphaMode BLEND rendered as MASK");
+                scene.warnings.push_back("material '" + gm.name +
+                                         "': alphaMode BLEND rendered as MASK");
             m.alphaMask = m.alphaMask || gm.alphaMode == "BLEND";
             if (gm.emissiveFactor.size() == 3)
-                m.emission = {float(gm.emissiveFactor[0]), float(gm.emissiveFactor[1]), float(gm.emissiveFactor[2])};
+                m.emission = {float(gm.emissiveFactor[0]), float(gm.emissiveFactor[1]),
+                              float(gm.emissiveFactor[2])};
             scene.materials.push_back(m);
         }
         Material fallback;
@@ -170,16 +217,19 @@ struct Loader {
             for (int c = 0; c < 3; ++c) n[c * 4 + r] = cof(r, c);
         for (const tinygltf::Primitive& p : mesh.primitives) {
             if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
-                scene.warnings.push_back("mesh '" + mesh.name + "': primitive mode " + std::to_string(p.mode) +
-                                         " is not triangles, skipped");
+                scene.warnings.push_back("mesh '" + mesh.name + "': primitive mode " +
+                                         std::to_string(p.mode) + " is not triangles, skipped");
                 continue;
             }
             auto pos = p.attributes.find("POSITION");
-            if (pos == p.attributes.end()) throw Error("glTF: mesh '" + mesh.name + "' has no POSITION");
+            if (pos == p.attributes.end())
+                throw Error("glTF: mesh '" + mesh.name + "' has no POSITION");
             AccessorReader P(model, pos->second, "POSITION");
             std::optional<AccessorReader> N, T;
-            if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) N.emplace(model, it->second, "NORMAL");
-            if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) T.emplace(model, it->second, "TEXCOORD_0");
+            if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end())
+                N.emplace(model, it->second, "NORMAL");
+            if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end())
+                T.emplace(model, it->second, "TEXCOORD_0");
             std::optional<AccessorReader> I;
             if (p.indices >= 0) I.emplace(model, p.indices, "indices");
             const size_t count = I ? I->count : P.count;
@@ -189,9 +239,13 @@ struct Loader {
                 Vec2f uv[3];
                 for (int j = 0; j < 3; ++j) {
                     size_t idx = I ? I->index(k + size_t(j)) : k + size_t(j);
-                    if (idx >= P.count) throw Error("glTF: index out of range in mesh '" + mesh.name + "'");
-                    v[j] = point(m, {P.component(idx, 0), P.component(idx, 1), P.component(idx, 2)});
-                    if (N) nn[j] = normalize(direction(n, {N->component(idx, 0), N->component(idx, 1), N->component(idx, 2)}));
+                    if (idx >= P.count)
+                        throw Error("glTF: index out of range in mesh '" + mesh.name + "'");
+                    v[j] =
+                        point(m, {P.component(idx, 0), P.component(idx, 1), P.component(idx, 2)});
+                    if (N)
+                        nn[j] = normalize(direction(
+                            n, {N->component(idx, 0), N->component(idx, 1), N->component(idx, 2)}));
                     if (T) uv[j] = {T->component(idx, 0), T->component(idx, 1)};
                 }
                 scene.addTriangle(v[0], v[1], v[2], material);
@@ -208,7 +262,8 @@ struct Loader {
         const tinygltf::Node& nd = model.nodes[size_t(index)];
         Mat m = mul(parent, nodeMatrix(nd));
         if (nd.mesh >= 0) mesh(model.meshes[size_t(nd.mesh)], m);
-        if (nd.skin >= 0) scene.warnings.push_back("node '" + nd.name + "': skinning ignored (static pose)");
+        if (nd.skin >= 0)
+            scene.warnings.push_back("node '" + nd.name + "': skinning ignored (static pose)");
         if (nd.camera >= 0) {
             const tinygltf::Camera& c = model.cameras[size_t(nd.camera)];
             if (c.type == "perspective") {

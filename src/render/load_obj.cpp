@@ -13,7 +13,8 @@ Scene loadObj(const std::string& path) {
     cfg.triangulate = true;
     cfg.mtl_search_path = std::filesystem::path(path).parent_path().string();
     tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path, cfg)) throw Error("cannot load OBJ " + path + ": " + reader.Error());
+    if (!reader.ParseFromFile(path, cfg))
+        throw Error("cannot load OBJ " + path + ": " + reader.Error());
     Scene s;
     if (!reader.Warning().empty()) s.warnings.push_back("OBJ " + path + ": " + reader.Warning());
     const auto& attrib = reader.GetAttrib();
@@ -26,8 +27,10 @@ Scene loadObj(const std::string& path) {
         const bool specular = om.specular[0] + om.specular[1] + om.specular[2] > 0;
         // Blinn-Phong exponent to GGX: alpha = sqrt(2 / (Ns + 2)), roughness = sqrt(alpha).
         m.roughness = specular ? std::sqrt(std::sqrt(2.0f / (float(om.shininess) + 2.0f))) : 1.0f;
+        m.specular = specular ? 0.04f : 0.0f;
         if (!om.diffuse_texname.empty()) {
-            std::string file = (std::filesystem::path(cfg.mtl_search_path) / om.diffuse_texname).string();
+            std::string file =
+                (std::filesystem::path(cfg.mtl_search_path) / om.diffuse_texname).string();
             if (auto it = textures.find(file); it != textures.end()) {
                 m.baseColorTexture = it->second;
             } else {
@@ -38,7 +41,8 @@ Scene loadObj(const std::string& path) {
                     m.baseColorTexture = textures[file] = int(s.textures.size() - 1);
                     m.baseColor = {1, 1, 1};
                 } else {
-                    s.warnings.push_back("missing texture " + file + " (" + error + "): flat colour used");
+                    s.warnings.push_back("missing texture " + file + " (" + error +
+                                         "): flat colour used");
                     textures[file] = -1;
                 }
             }
@@ -56,21 +60,24 @@ Scene loadObj(const std::string& path) {
             Vec3 v[3];
             for (int j = 0; j < 3; ++j) {
                 const int vi = idx[f + size_t(j)].vertex_index;
-                v[j] = {attrib.vertices[3 * size_t(vi)], attrib.vertices[3 * size_t(vi) + 1], attrib.vertices[3 * size_t(vi) + 2]};
+                v[j] = {attrib.vertices[3 * size_t(vi)], attrib.vertices[3 * size_t(vi) + 1],
+                        attrib.vertices[3 * size_t(vi) + 2]};
             }
             s.addTriangle(v[0], v[1], v[2], material);
             const size_t base = s.positions.size() - 3;
             for (int j = 0; j < 3; ++j) {
                 const auto& ix = idx[f + size_t(j)];
                 if (ix.normal_index >= 0) {
-                    Vec3 n{attrib.normals[3 * size_t(ix.normal_index)], attrib.normals[3 * size_t(ix.normal_index) + 1],
+                    Vec3 n{attrib.normals[3 * size_t(ix.normal_index)],
+                           attrib.normals[3 * size_t(ix.normal_index) + 1],
                            attrib.normals[3 * size_t(ix.normal_index) + 2]};
                     if (length(n) > 0) s.normals[base + size_t(j)] = normalize(n);
                 }
-                s.uvs[base + size_t(j)] = ix.texcoord_index >= 0
-                                              ? Vec2f{attrib.texcoords[2 * size_t(ix.texcoord_index)],
-                                                      1.0f - attrib.texcoords[2 * size_t(ix.texcoord_index) + 1]}
-                                              : Vec2f{};
+                s.uvs[base + size_t(j)] =
+                    ix.texcoord_index >= 0
+                        ? Vec2f{attrib.texcoords[2 * size_t(ix.texcoord_index)],
+                                1.0f - attrib.texcoords[2 * size_t(ix.texcoord_index) + 1]}
+                        : Vec2f{};
             }
         }
     }

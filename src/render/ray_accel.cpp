@@ -21,7 +21,8 @@ struct RayAccel::Impl {
         const Vec2f* uv = &scene->uvs[3 * size_t(tri)];
         float w = 1 - u - v;
         return scene->textures[size_t(m.baseColorTexture)]
-            .sample(w * uv[0].x + u * uv[1].x + v * uv[2].x, w * uv[0].y + u * uv[1].y + v * uv[2].y, 0)
+            .sample(w * uv[0].x + u * uv[1].x + v * uv[2].x,
+                    w * uv[0].y + u * uv[1].y + v * uv[2].y, 0)
             .alpha;
     }
 };
@@ -39,9 +40,10 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] != -1) continue;
         unsigned prim = RTCHitN_primID(args->hit, args->N, i);
         int tri = ctx->impl->geometryTriangles[ctx->geomID][prim];
-        const Material& m = ctx->impl->scene->materials[size_t(ctx->impl->scene->triangleMaterial[size_t(tri)])];
-        if (ctx->impl->alphaAt(tri, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)) <
-            m.alphaCutoff)
+        const Material& m =
+            ctx->impl->scene->materials[size_t(ctx->impl->scene->triangleMaterial[size_t(tri)])];
+        if (ctx->impl->alphaAt(tri, RTCHitN_u(args->hit, args->N, i),
+                               RTCHitN_v(args->hit, args->N, i)) < m.alphaCutoff)
             args->valid[i] = 0;
     }
 }
@@ -56,19 +58,21 @@ RayAccel::RayAccel(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     m.rtc = rtcNewScene(m.device);
     std::vector<int> opaque, masked;
     for (size_t t = 0; t < scene.triangleCount(); ++t)
-        (scene.materials[size_t(scene.triangleMaterial[t])].alphaMask ? masked : opaque).push_back(int(t));
+        (scene.materials[size_t(scene.triangleMaterial[t])].alphaMask ? masked : opaque)
+            .push_back(int(t));
     for (int pass = 0; pass < 2; ++pass) {
         const std::vector<int>& tris = pass == 0 ? opaque : masked;
         if (tris.empty()) continue;
         RTCGeometry g = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                              3 * sizeof(float), tris.size() * 3));
-        auto* ix = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                  3 * sizeof(unsigned), tris.size()));
+        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), tris.size() * 3));
+        auto* ix = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), tris.size()));
         for (size_t k = 0; k < tris.size(); ++k)
             for (int j = 0; j < 3; ++j) {
                 Vec3 p = scene.positions[3 * size_t(tris[k]) + size_t(j)];
-                v[9 * k + 3 * size_t(j)] = p.x, v[9 * k + 3 * size_t(j) + 1] = p.y, v[9 * k + 3 * size_t(j) + 2] = p.z;
+                v[9 * k + 3 * size_t(j)] = p.x, v[9 * k + 3 * size_t(j) + 1] = p.y,
+                              v[9 * k + 3 * size_t(j) + 2] = p.z;
                 ix[3 * k + size_t(j)] = unsigned(3 * k + size_t(j));
             }
         const unsigned id = unsigned(m.geometryTriangles.size());

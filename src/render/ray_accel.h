@@ -8,7 +8,7 @@ namespace bmfr::render {
 
 struct RayHit {
     float t = 0;
-    int triangle = -1; ///< index into Scene triangles, -1 = miss
+    int triangle = -1;  ///< index into Scene triangles, -1 = miss
     float u = 0, v = 0; ///< barycentrics of vertices 1 and 2
 };
 

@@ -55,6 +55,8 @@ inline void uniformTriangle(float u1, float u2, float& b1, float& b2) {
     b2 = u2 * su;
 }
 
-inline float powerHeuristic(float a, float b) { return a * a / (a * a + b * b); }
+inline float powerHeuristic(float a, float b) {
+    return a * a / (a * a + b * b);
+}
 
 } // namespace bmfr::render

@@ -32,10 +32,12 @@ void addQuad(Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, int m) {
 void addBlock(Scene& s, Vec3 centre, Vec3 h, float angle, int m) {
     float c = std::cos(angle), sn = std::sin(angle);
     auto at = [&](float x, float y, float z) {
-        return Vec3{centre.x + c * x * h.x + sn * z * h.z, y * h.y * 2, centre.z - sn * x * h.x + c * z * h.z};
+        return Vec3{centre.x + c * x * h.x + sn * z * h.z, y * h.y * 2,
+                    centre.z - sn * x * h.x + c * z * h.z};
     };
     Vec3 p[8];
-    for (int i = 0; i < 8; ++i) p[i] = at(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : 0.f, i & 4 ? 1.f : -1.f);
+    for (int i = 0; i < 8; ++i)
+        p[i] = at(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : 0.f, i & 4 ? 1.f : -1.f);
     addQuad(s, p[2], p[6], p[7], p[3], m); // top
     addQuad(s, p[0], p[1], p[5], p[4], m); // bottom
     addQuad(s, p[0], p[2], p[3], p[1], m); // -z
@@ -50,12 +52,14 @@ Scene builtinCornellBox() {
     Scene s;
     auto mat = [&](const char* name, Vec3 albedo, Vec3 emission = {}) {
         Material m;
-        m.name = name, m.baseColor = albedo, m.roughness = 1.0f, m.emission = emission;
+        m.name = name, m.baseColor = albedo, m.roughness = 1.0f, m.specular = 0.0f,
+        m.emission = emission;
         s.materials.push_back(m);
         return int(s.materials.size() - 1);
     };
     int white = mat("white", {0.725f, 0.71f, 0.68f}), red = mat("red", {0.63f, 0.065f, 0.05f}),
-        green = mat("green", {0.14f, 0.45f, 0.091f}), light = mat("light", {0.78f, 0.78f, 0.78f}, {17, 12, 4});
+        green = mat("green", {0.14f, 0.45f, 0.091f}),
+        light = mat("light", {0.78f, 0.78f, 0.78f}, {17, 12, 4});
     addQuad(s, {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, white);   // floor
     addQuad(s, {-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}, white);   // ceiling
     addQuad(s, {-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1}, white); // back

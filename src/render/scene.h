@@ -14,11 +14,13 @@ struct Material {
     int baseColorTexture = -1;        ///< index into Scene::textures, -1 = none
     float roughness = 0.5f;           ///< perceptual roughness, [0, 1]; GGX alpha = roughness^2
     float metallic = 0.0f;            ///< [0, 1]
+    float specular = 0.04f;           ///< dielectric normal-incidence reflectance F0, [0, 1];
+                                      ///< 0 = purely Lambertian (glTF implies 0.04)
     int normalTexture = -1;
     float normalScale = 1.0f;
-    bool alphaMask = false;           ///< glTF alphaMode MASK
+    bool alphaMask = false; ///< glTF alphaMode MASK
     float alphaCutoff = 0.5f;
-    Vec3 emission{0, 0, 0};           ///< emitted radiance, W/(sr m^2) per channel, both sides
+    Vec3 emission{0, 0, 0}; ///< emitted radiance, W/(sr m^2) per channel, both sides
 };
 
 struct Vec2f {

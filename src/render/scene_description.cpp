@@ -12,8 +12,10 @@ using nlohmann::json;
 QuadLight QuadLightSpec::at(float frame) const {
     Vec3 c = centre;
     if (!path.empty()) {
-        if (frame <= path.front().first) c = path.front().second;
-        else if (frame >= path.back().first) c = path.back().second;
+        if (frame <= path.front().first)
+            c = path.front().second;
+        else if (frame >= path.back().first)
+            c = path.back().second;
         else
             for (size_t i = 0; i + 1 < path.size(); ++i)
                 if (frame >= path[i].first && frame <= path[i + 1].first) {
@@ -27,7 +29,8 @@ QuadLight QuadLightSpec::at(float frame) const {
 namespace {
 
 Vec3 vec3(const json& j, const char* what) {
-    if (!j.is_array() || j.size() != 3) throw Error(std::string("scene description: '") + what + "' must be [x, y, z]");
+    if (!j.is_array() || j.size() != 3)
+        throw Error(std::string("scene description: '") + what + "' must be [x, y, z]");
     return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
 }
 
@@ -42,8 +45,8 @@ const std::map<std::string, const char*>& presets() {
         {"sponza-moving", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
-            "sun": {"direction": [0.28, 1.0, 0.12], "angular_diameter_deg": 0.53, "irradiance": [7.0, 6.6, 6.0]},
-            "sky": {"radiance": [0.45, 0.55, 0.75]},
+            "sun": {"direction": [0.15, 1.0, 0.5], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+            "sky": {"radiance": [3.0, 3.5, 4.5]},
             "camera": {"keyframes": [
                 {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
                 {"frame": 30, "position": [9.0, 5.0, -2.0],  "target": [-4.0, 6.0, 0.0], "fov_deg": 50},
@@ -51,8 +54,8 @@ const std::map<std::string, const char*>& presets() {
         {"sponza-static", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
-            "sun": {"direction": [0.28, 1.0, 0.12], "angular_diameter_deg": 0.53, "irradiance": [7.0, 6.6, 6.0]},
-            "sky": {"radiance": [0.45, 0.55, 0.75]},
+            "sun": {"direction": [0.15, 1.0, 0.5], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+            "sky": {"radiance": [3.0, 3.5, 4.5]},
             "camera": {"keyframes": [
                 {"frame": 0, "position": [12.0, 4.8, -3.0], "target": [0.0, 6.0, 1.5], "fov_deg": 50}]}})"},
         {"sponza-light", R"({
@@ -67,8 +70,8 @@ const std::map<std::string, const char*>& presets() {
         {"sponza-glossy", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096, "roughness_override": 0.1,
-            "sun": {"direction": [0.28, 1.0, 0.12], "angular_diameter_deg": 0.53, "irradiance": [7.0, 6.6, 6.0]},
-            "sky": {"radiance": [0.45, 0.55, 0.75]},
+            "sun": {"direction": [0.15, 1.0, 0.5], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+            "sky": {"radiance": [3.0, 3.5, 4.5]},
             "camera": {"keyframes": [
                 {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
                 {"frame": 59, "position": [3.0, 5.2, -4.5],  "target": [-10.0, 6.5, 1.0], "fov_deg": 50}]}})"},
@@ -102,13 +105,15 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         if (j.contains("sun")) {
             const json& s = j["sun"];
             d.environment.sun.direction = normalize(vec3(s.at("direction"), "sun.direction"));
-            d.environment.sun.angularDiameter = s.value("angular_diameter_deg", 0.53f) * 3.14159265f / 180.0f;
+            d.environment.sun.angularDiameter =
+                s.value("angular_diameter_deg", 0.53f) * 3.14159265f / 180.0f;
             d.environment.sun.irradiance = vec3(s.at("irradiance"), "sun.irradiance");
             if (!(d.environment.sun.angularDiameter > 0))
                 throw Error("scene description: sun.angular_diameter_deg must be > 0");
         }
         for (const json& l : j.value("lights", json::array())) {
-            if (l.value("type", "") != "quad") throw Error("scene description: light type must be \"quad\"");
+            if (l.value("type", "") != "quad")
+                throw Error("scene description: light type must be \"quad\"");
             QuadLightSpec q;
             q.centre = vec3(l.at("centre"), "light centre");
             q.edgeU = vec3(l.at("u"), "light u");
@@ -117,8 +122,10 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
             if (std::fabs(dot(q.edgeU, q.edgeV)) > 1e-4f * length(q.edgeU) * length(q.edgeV))
                 throw Error("scene description: quad light edges u and v must be perpendicular");
             for (const json& k : l.value("path", json::array()))
-                q.path.emplace_back(k.at("frame").get<float>(), vec3(k.at("centre"), "light path centre"));
-            std::sort(q.path.begin(), q.path.end(), [](auto& a, auto& b) { return a.first < b.first; });
+                q.path.emplace_back(k.at("frame").get<float>(),
+                                    vec3(k.at("centre"), "light path centre"));
+            std::sort(q.path.begin(), q.path.end(),
+                      [](auto& a, auto& b) { return a.first < b.first; });
             d.quadLights.push_back(q);
         }
         const json& cam = j.at("camera");
@@ -139,18 +146,21 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         throw Error(std::string("scene description: ") + e.what());
     }
     if (d.width < 1 || d.height < 1 || d.width > 16384 || d.height > 16384)
-        throw Error("scene description: resolution " + std::to_string(d.width) + "x" + std::to_string(d.height) +
-                    " outside [1, 16384]");
+        throw Error("scene description: resolution " + std::to_string(d.width) + "x" +
+                    std::to_string(d.height) + " outside [1, 16384]");
     if (d.frames < 1) throw Error("scene description: frames must be at least 1");
     if (d.referenceSpp < 0) throw Error("scene description: reference_spp must be >= 0");
-    if (d.bounces < 0 || d.bounces > 64) throw Error("scene description: bounces must be in [0, 64]");
+    if (d.bounces < 0 || d.bounces > 64)
+        throw Error("scene description: bounces must be in [0, 64]");
     return d;
 }
 
-SceneDescription loadSceneDescription(const std::string& presetOrFile, const std::string& scenesDir) {
+SceneDescription loadSceneDescription(const std::string& presetOrFile,
+                                      const std::string& scenesDir) {
     if (auto it = presets().find(presetOrFile); it != presets().end()) {
         std::string text = it->second;
-        for (size_t at; (at = text.find("{scenes}")) != std::string::npos;) text.replace(at, 8, scenesDir);
+        for (size_t at; (at = text.find("{scenes}")) != std::string::npos;)
+            text.replace(at, 8, scenesDir);
         SceneDescription d = parseSceneDescription(json::parse(text), ".");
         d.name = presetOrFile;
         return d;
@@ -158,7 +168,8 @@ SceneDescription loadSceneDescription(const std::string& presetOrFile, const std
     if (!fs::exists(presetOrFile)) {
         std::string list;
         for (const std::string& n : presetNames()) list += " " + n;
-        throw Error("'" + presetOrFile + "' is neither a scene description file nor a preset (presets:" + list + ")");
+        throw Error("'" + presetOrFile +
+                    "' is neither a scene description file nor a preset (presets:" + list + ")");
     }
     std::ifstream in(presetOrFile);
     json j;

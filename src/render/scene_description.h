@@ -22,20 +22,21 @@ struct SceneDescription {
     float roughnessOverride = -1;   ///< >= 0: every material gets this roughness (glossy preset)
     int width = 1280, height = 720; ///< pixels
     int frames = 60;
-    int referenceSpp = 4096;        ///< samples per pixel of the reference; 0 = no reference
-    int bounces = 1;                ///< BSDF-sampled secondary rays per path; the paper uses 1
+    int referenceSpp = 4096; ///< samples per pixel of the reference; 0 = no reference
+    int bounces = 1;         ///< BSDF-sampled secondary rays per path; the paper uses 1
     uint32_t seed = 1;
-    bool jitter = true;             ///< per-frame sub-pixel offsets (Halton 2,3)
+    bool jitter = true; ///< per-frame sub-pixel offsets (Halton 2,3)
     Environment environment;
     std::vector<QuadLightSpec> quadLights;
     std::vector<CameraKey> cameraKeys;
-    std::string gltfCamera;         ///< use this named camera of the mesh file (static)
+    std::string gltfCamera; ///< use this named camera of the mesh file (static)
 };
 
 /// Parses a description; relative mesh paths resolve against `baseDir`. Throws bmfr::Error.
 SceneDescription parseSceneDescription(const nlohmann::json& j, const std::string& baseDir);
 /// Loads a preset by name or a JSON file. `scenesDir` replaces {scenes} in preset mesh paths.
-SceneDescription loadSceneDescription(const std::string& presetOrFile, const std::string& scenesDir);
+SceneDescription loadSceneDescription(const std::string& presetOrFile,
+                                      const std::string& scenesDir);
 std::vector<std::string> presetNames();
 
 } // namespace bmfr::render

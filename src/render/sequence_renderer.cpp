@@ -6,7 +6,8 @@
 namespace bmfr::render {
 
 SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRenderOptions& o,
-                                    const std::atomic<bool>* cancel, const std::function<void(int, int)>& progress,
+                                    const std::atomic<bool>* cancel,
+                                    const std::function<void(int, int)>& progress,
                                     const std::function<void(const std::string&)>& warn) {
     using Clock = std::chrono::steady_clock;
     SequenceRenderReport report;
@@ -19,9 +20,11 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
 
     bool anyEmitter = d.environment.sun.enabled() || !d.quadLights.empty() ||
                       d.environment.sky.x + d.environment.sky.y + d.environment.sky.z > 0;
-    for (const Material& m : scene.materials) anyEmitter = anyEmitter || m.emission.x + m.emission.y + m.emission.z > 0;
+    for (const Material& m : scene.materials)
+        anyEmitter = anyEmitter || m.emission.x + m.emission.y + m.emission.z > 0;
     if (!anyEmitter)
-        throw Error("scene '" + d.name + "' has no light: no emissive material, sun, sky or quad light");
+        throw Error("scene '" + d.name +
+                    "' has no light: no emissive material, sun, sky or quad light");
 
     std::vector<CameraKey> keys = d.cameraKeys;
     if (!d.gltfCamera.empty()) {
@@ -53,7 +56,8 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
             Vec3 lo, hi;
             scene.bounds(lo, hi);
             float diag = std::fmax(length(hi - lo), 1e-3f);
-            matrices.push_back(viewProjection(path.at(float(i)), d.width, d.height, 1e-3f * diag, 10.0f * diag + kSkyDistance));
+            matrices.push_back(viewProjection(path.at(float(i)), d.width, d.height, 1e-3f * diag,
+                                              10.0f * diag + kSkyDistance));
         }
     }
     SequenceInfo info;
@@ -64,9 +68,12 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     info.extraNames = FrameRenderer::extraNames();
     std::unique_ptr<ManifestWriter> manifest;
     std::unique_ptr<BmfrLayoutWriter> original;
-    if (o.layout == "manifest") manifest = std::make_unique<ManifestWriter>(o.output, info);
-    else if (o.layout == "bmfr") original = std::make_unique<BmfrLayoutWriter>(o.output, matrices, jitters, 0.01f, 1.0f);
-    else throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
+    if (o.layout == "manifest")
+        manifest = std::make_unique<ManifestWriter>(o.output, info);
+    else if (o.layout == "bmfr")
+        original = std::make_unique<BmfrLayoutWriter>(o.output, matrices, jitters, 0.01f, 1.0f);
+    else
+        throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
 
     FrameData frame;
     for (int i = 0; i < d.frames; ++i) {
@@ -79,8 +86,8 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
         for (const QuadLightSpec& q : d.quadLights) quads.push_back(q.at(float(i)));
         LightSet lights(scene, quads, d.environment);
         FrameRenderStats stats;
-        bool done = renderer.render(i, path.at(float(i)), path.at(float(i - 1)), i > 0, lights, d.jitter,
-                                    d.referenceSpp, frame, stats, cancel);
+        bool done = renderer.render(i, path.at(float(i)), path.at(float(i - 1)), i > 0, lights,
+                                    d.jitter, d.referenceSpp, frame, stats, cancel);
         report.rays += stats.rays;
         if (!done) {
             report.interrupted = true;
@@ -88,8 +95,10 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
         }
         report.inputSeconds += stats.inputSeconds;
         report.referenceSeconds += stats.referenceSeconds;
-        if (manifest) manifest->addFrame(i, frame);
-        else original->addFrame(i, frame);
+        if (manifest)
+            manifest->addFrame(i, frame);
+        else
+            original->addFrame(i, frame);
         ++report.rendered;
         progress(i + 1, d.frames);
         if (cancel && *cancel) {

@@ -23,8 +23,10 @@ struct SequenceRenderReport {
 
 /// Renders every frame not already on disk. `progress(done, total)` is called per frame.
 /// Stops cleanly (no partial files) when `cancel` becomes true.
-SequenceRenderReport renderSequence(const SceneDescription& desc, const SequenceRenderOptions& options,
-                                    const std::atomic<bool>* cancel, const std::function<void(int, int)>& progress,
+SequenceRenderReport renderSequence(const SceneDescription& desc,
+                                    const SequenceRenderOptions& options,
+                                    const std::atomic<bool>* cancel,
+                                    const std::function<void(int, int)>& progress,
                                     const std::function<void(const std::string&)>& warn);
 
 } // namespace bmfr::render

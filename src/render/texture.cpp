@@ -45,7 +45,9 @@ bool Texture::load(const std::string& path, bool srgb, std::string& error) {
 }
 
 void Texture::makeFlat(Vec3 rgb, float alpha) {
-    auto byte = [&](float v) { return srgb_ ? linearToSrgbByte(v) : uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255)); };
+    auto byte = [&](float v) {
+        return srgb_ ? linearToSrgbByte(v) : uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
+    };
     srgb_ = true;
     levels_.assign(1, Level{1, 1, {byte(rgb.x), byte(rgb.y), byte(rgb.z), uint8_t(alpha * 255)}});
 }
@@ -62,7 +64,8 @@ void Texture::buildMips() {
                     float s = 0;
                     for (int dy = 0; dy < 2; ++dy)
                         for (int dx = 0; dx < 2; ++dx) {
-                            int sx = std::min(a.w - 1, 2 * x + dx), sy = std::min(a.h - 1, 2 * y + dy);
+                            int sx = std::min(a.w - 1, 2 * x + dx),
+                                sy = std::min(a.h - 1, 2 * y + dy);
                             uint8_t v = a.rgba[(size_t(sy) * a.w + sx) * 4 + c];
                             s += (srgb_ && c < 3) ? lut[v] : float(v) / 255.0f;
                         }
@@ -99,7 +102,8 @@ TexSample Texture::sample(float u, float v, float lod) const {
         return (1 - ax) * (1 - ay) * a + ax * (1 - ay) * b + (1 - ax) * ay * c + ax * ay * d;
     };
     TexSample r;
-    r.rgb = {mix(s00.rgb.x, s10.rgb.x, s01.rgb.x, s11.rgb.x), mix(s00.rgb.y, s10.rgb.y, s01.rgb.y, s11.rgb.y),
+    r.rgb = {mix(s00.rgb.x, s10.rgb.x, s01.rgb.x, s11.rgb.x),
+             mix(s00.rgb.y, s10.rgb.y, s01.rgb.y, s11.rgb.y),
              mix(s00.rgb.z, s10.rgb.z, s01.rgb.z, s11.rgb.z)};
     r.alpha = mix(s00.alpha, s10.alpha, s01.alpha, s11.alpha);
     return r;

@@ -1,0 +1,174 @@
+// Scene loading (glTF, OBJ, built-in), scene descriptions and presets, clear errors, resume.
+#include "io/sequence.h"
+#include "render/ray_accel.h"
+#include "render/sequence_renderer.h"
+#include <bmfr/error.h>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+
+namespace bmfr::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Tests run from build/tests; the shared scenes sit beside the checkout.
+fs::path scenesDir() {
+    for (fs::path p :
+         {fs::path(BMFR_SOURCE_DIR) / ".." / "shared" / "scenes", fs::path("../shared/scenes")})
+        if (fs::exists(p / "sponza")) return p;
+    return {};
+}
+
+fs::path freshDir(const std::string& name) {
+    fs::path p =
+        fs::temp_directory_path() / ("bmfr_render_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+
+void expectError(const std::function<void()>& f, const std::string& needle) {
+    try {
+        f();
+        ADD_FAILURE() << "no error, expected: " << needle;
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+}
+
+TEST(RenderScene, SponzaGltfLoadsWithTexturesAlphaMasksAndCameras) {
+    fs::path dir = scenesDir();
+    if (dir.empty()) GTEST_SKIP() << "../shared/scenes not found";
+    Scene s = loadScene((dir / "sponza" / "Sponza.gltf").string());
+    EXPECT_GT(s.triangleCount(), 250000u);
+    EXPECT_EQ(s.cameras.size(), 4u);
+    EXPECT_EQ(s.cameras[0].name, "CameraMain");
+    int masked = 0, textured = 0;
+    for (const Material& m : s.materials)
+        masked += m.alphaMask, textured += m.baseColorTexture >= 0;
+    EXPECT_GE(masked, 2);
+    EXPECT_GE(textured, 20);
+    for (const std::string& w : s.warnings)
+        EXPECT_EQ(w.find("missing texture"), std::string::npos) << w;
+}
+
+TEST(RenderScene, CornellObjLoadsItsLight) {
+    fs::path dir = scenesDir();
+    if (dir.empty()) GTEST_SKIP() << "../shared/scenes not found";
+    Scene s = loadScene((dir / "cornellbox" / "CornellBox-Original.obj").string());
+    EXPECT_GT(s.triangleCount(), 20u);
+    bool light = false;
+    for (const Material& m : s.materials)
+        if (m.name == "light")
+            light = m.emission.x == 17 && m.emission.y == 12 && m.emission.z == 4;
+    EXPECT_TRUE(light);
+}
+
+TEST(RenderScene, MissingTextureIsAWarningAndAFlatColour) {
+    fs::path d = freshDir("missing_tex");
+    std::ofstream(d / "m.mtl") << "newmtl wall\nKd 0.5 0.4 0.3\nmap_Kd does_not_exist.png\n";
+    std::ofstream(d / "m.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wall\nf 1 2 3\n";
+    Scene s = loadScene((d / "m.obj").string());
+    ASSERT_EQ(s.warnings.size(), 1u);
+    EXPECT_NE(s.warnings[0].find("missing texture"), std::string::npos);
+    EXPECT_EQ(s.materials[0].baseColorTexture, -1);
+    EXPECT_FLOAT_EQ(s.materials[0].baseColor.y, 0.4f);
+    fs::remove_all(d);
+}
+
+TEST(RenderScene, UnsupportedGltfFeatureAndBadFilesAreClearErrors) {
+    fs::path d = freshDir("gltf");
+    std::ofstream(d / "draco.gltf") << R"({"asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_draco_mesh_compression"],
+        "extensionsRequired": ["KHR_draco_mesh_compression"], "scenes": [{"nodes": []}]})";
+    expectError([&] { loadScene((d / "draco.gltf").string()); },
+                "unsupported glTF feature in " + (d / "draco.gltf").string() +
+                    ": required extension KHR_draco_mesh_compression");
+    expectError([&] { loadScene((d / "nothing.gltf").string()); }, "scene file not found");
+    std::ofstream(d / "x.ply") << "ply";
+    expectError([&] { loadScene((d / "x.ply").string()); }, "unsupported scene format");
+    fs::remove_all(d);
+}
+
+TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
+    for (const std::string& name : presetNames()) {
+        SceneDescription d = loadSceneDescription(name, "/scenes");
+        EXPECT_FALSE(d.cameraKeys.empty()) << name;
+        EXPECT_EQ(d.referenceSpp, 4096) << name;
+    }
+    EXPECT_EQ(presetNames().size(), 5u);
+    EXPECT_FLOAT_EQ(loadSceneDescription("sponza-glossy", "/s").roughnessOverride, 0.1f);
+    EXPECT_EQ(loadSceneDescription("sponza-light", "/s").quadLights.size(), 1u);
+    expectError([] { loadSceneDescription("no-such-preset", "."); }, "presets: cornell-moving");
+}
+
+TEST(RenderScene, SceneWithoutLightIsAnError) {
+    fs::path d = freshDir("dark");
+    std::ofstream(d / "m.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(d / "dark.json") << R"({"mesh": "m.obj", "width": 8, "height": 8, "frames": 1,
+        "camera": {"keyframes": [{"position": [0, 0, 3], "target": [0, 0, 0]}]}})";
+    SceneDescription desc = loadSceneDescription((d / "dark.json").string(), ".");
+    expectError(
+        [&] {
+            renderSequence(
+                desc, {(d / "out").string()}, nullptr, [](int, int) {}, [](const std::string&) {});
+        },
+        "has no light");
+    fs::remove_all(d);
+}
+
+TEST(RenderScene, ResumeSkipsFinishedFramesAndBothLayoutsAreReadable) {
+    fs::path d = freshDir("resume");
+    SceneDescription desc = loadSceneDescription("cornell-moving", ".");
+    desc.width = 24, desc.height = 16, desc.frames = 3, desc.referenceSpp = 4;
+    auto run = [&](const std::string& layout) {
+        return renderSequence(
+            desc, {(d / layout).string(), layout}, nullptr, [](int, int) {},
+            [](const std::string&) {});
+    };
+    SequenceRenderReport first = run("manifest");
+    EXPECT_EQ(first.rendered, 3);
+    SequenceRenderReport again = run("manifest");
+    EXPECT_EQ(again.rendered, 0);
+    EXPECT_EQ(again.skipped, 3);
+    fs::remove(d / "manifest" / "reference_0002.exr"); // an unfinished frame is rendered again
+    EXPECT_EQ(run("manifest").rendered, 1);
+
+    EXPECT_EQ(run("bmfr").rendered, 3);
+    for (const char* layout : {"manifest", "bmfr"}) {
+        auto reader = SequenceReader::open((d / layout).string());
+        EXPECT_EQ(reader->info().frameCount, 3) << layout;
+        EXPECT_TRUE(reader->info().hasReference) << layout;
+        FrameData f;
+        reader->load(2, f);
+        EXPECT_EQ(f.color.width, 24);
+    }
+    // The AOVs come back from our own layout on request.
+    auto reader = SequenceReader::open((d / "manifest").string());
+    reader->setLoadAovs(true);
+    FrameData f;
+    reader->load(1, f);
+    ASSERT_EQ(f.aovs.size(), 6u);
+    EXPECT_EQ(f.aovs[1].first, "motion");
+    EXPECT_EQ(f.aovs[1].second.channels, 2);
+    fs::remove_all(d);
+}
+
+TEST(RenderScene, CancelStopsWithoutWritingAFrame) {
+    fs::path d = freshDir("cancel");
+    SceneDescription desc = loadSceneDescription("cornell-moving", ".");
+    desc.width = 16, desc.height = 16, desc.frames = 2, desc.referenceSpp = 2;
+    std::atomic<bool> cancel{true};
+    SequenceRenderReport r = renderSequence(
+        desc, {d.string()}, &cancel, [](int, int) {}, [](const std::string&) {});
+    EXPECT_TRUE(r.interrupted);
+    EXPECT_EQ(r.rendered, 0);
+    EXPECT_FALSE(fs::exists(d / "color_0000.exr"));
+    for (const auto& e : fs::directory_iterator(d))
+        EXPECT_EQ(e.path().extension(), ".json") << e.path();
+    fs::remove_all(d);
+}
+
+} // namespace
+} // namespace bmfr::render

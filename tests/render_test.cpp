@@ -1,0 +1,191 @@
+// The path tracer against analytic answers: white furnace, Lambertian plane under a distant
+// light, unbiasedness of the 1-spp estimator, and feature buffers of a known camera and plane.
+#include "core/reprojection.h"
+#include "render/frame_renderer.h"
+#include <cmath>
+#include <gtest/gtest.h>
+
+namespace bmfr::render {
+namespace {
+
+int addMaterial(Scene& s, Vec3 albedo, Vec3 emission) {
+    Material m;
+    m.baseColor = albedo, m.emission = emission, m.roughness = 1, m.specular = 0;
+    s.materials.push_back(m);
+    return int(s.materials.size() - 1);
+}
+
+void addQuad(Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, int m) {
+    s.addTriangle(a, b, c, m);
+    s.addTriangle(a, c, d, m);
+}
+
+Scene closedBox(float albedo, float emission) {
+    Scene s;
+    int m = addMaterial(s, {albedo, albedo, albedo}, {emission, emission, emission});
+    Vec3 p[8];
+    for (int i = 0; i < 8; ++i) p[i] = {i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f};
+    addQuad(s, p[0], p[1], p[3], p[2], m);
+    addQuad(s, p[4], p[6], p[7], p[5], m);
+    addQuad(s, p[0], p[4], p[5], p[1], m);
+    addQuad(s, p[2], p[3], p[7], p[6], m);
+    addQuad(s, p[0], p[2], p[6], p[4], m);
+    addQuad(s, p[1], p[5], p[7], p[3], m);
+    return s;
+}
+
+double meanOf(const ImageF& img) {
+    double s = 0;
+    for (float v : img.pixels) s += v;
+    return s / double(img.pixels.size());
+}
+
+FrameData renderOnce(const Scene& scene, const CameraPose& pose, const Environment& env, int w,
+                     int h, int bounces, int refSpp, int frame = 0,
+                     const CameraPose* previous = nullptr) {
+    RayAccel accel(scene);
+    LightSet lights(scene, {}, env);
+    FrameRenderer r(scene, accel, w, h, bounces, 7);
+    FrameData out;
+    FrameRenderStats stats;
+    EXPECT_TRUE(r.render(frame, pose, previous ? *previous : pose, previous != nullptr, lights,
+                         false, refSpp, out, stats, nullptr));
+    return out;
+}
+
+TEST(Render, WhiteFurnaceMatchesTheTruncatedNeumannSeries) {
+    // Inside a closed Lambertian box emitting Le everywhere with albedo a, a path with B
+    // secondary rays and a light sample at its last vertex sees Le * sum_{k=0}^{B+1} a^k.
+    const float a = 0.5f, Le = 1.0f;
+    Scene box = closedBox(a, Le);
+    CameraPose pose;
+    pose.position = {0.1f, -0.2f, 0.3f}, pose.target = {0.5f, 0.1f, -1.0f}, pose.fovY = 1.2f;
+    for (int bounces : {0, 1, 3}) {
+        FrameData f = renderOnce(box, pose, {}, 12, 10, bounces, 512);
+        double expected = 0;
+        for (int k = 0; k <= bounces + 1; ++k) expected += Le * std::pow(a, k);
+        EXPECT_NEAR(meanOf(f.reference), expected, 0.01 * expected) << bounces << " bounces";
+    }
+}
+
+TEST(Render, LambertianPlaneUnderTheSunMatchesAnalyticIrradiance) {
+    Scene plane;
+    const float albedo = 0.6f;
+    int m = addMaterial(plane, {albedo, albedo, albedo}, {0, 0, 0});
+    addQuad(plane, {-100, 0, -100}, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, m);
+    Environment env;
+    const float theta = 1.0471976f; // 60 degrees from the normal
+    env.sun.direction = {std::sin(theta), std::cos(theta), 0};
+    env.sun.irradiance = {2, 2, 2};
+    env.sun.angularDiameter = 0.00930f;
+    CameraPose pose;
+    pose.position = {0, 3, 2}, pose.target = {0, 0, 0}, pose.fovY = 0.5f;
+    FrameData f = renderOnce(plane, pose, env, 16, 12, 1, 64);
+    const double expected = albedo / 3.14159265 * 2.0 * std::cos(theta);
+    for (float v : f.reference.pixels) ASSERT_NEAR(v, expected, 0.01 * expected);
+    // The 1-spp frame is exact too here: the light sample alone carries it.
+    EXPECT_NEAR(meanOf(f.color), expected, 0.01 * expected);
+    // And its splits: all direct, all diffuse.
+    EXPECT_NEAR(meanOf(f.aovs[2].second), expected, 0.01 * expected);
+    EXPECT_NEAR(meanOf(f.aovs[3].second), 0.0, 1e-9);
+}
+
+TEST(Render, OneSppMeanEqualsTheReferenceWithinTheNoise) {
+    Scene box = builtinCornellBox();
+    CameraPose pose;
+    pose.position = {0, 1, 3.4f}, pose.target = {0, 1, 0}, pose.fovY = 0.69f;
+    const int w = 24, h = 18, frames = 300;
+    RayAccel accel(box);
+    LightSet lights(box, {}, {});
+    FrameRenderer r(box, accel, w, h, 1, 3);
+    FrameData ref, f;
+    FrameRenderStats stats;
+    ASSERT_TRUE(r.render(0, pose, pose, false, lights, false, 2048, ref, stats, nullptr));
+    std::vector<double> sum(size_t(w) * h * 3, 0.0), sum2(sum.size(), 0.0);
+    for (int k = 1; k <= frames; ++k) { // different frame index = different random numbers
+        ASSERT_TRUE(r.render(k, pose, pose, false, lights, false, 0, f, stats, nullptr));
+        for (size_t i = 0; i < sum.size(); ++i)
+            sum[i] += f.color.pixels[i], sum2[i] += double(f.color.pixels[i]) * f.color.pixels[i];
+    }
+    // Compare 6x6-pixel tiles: mean of the 1-spp frames vs the reference, in standard errors.
+    double worst = 0;
+    for (int ty = 0; ty < h; ty += 6)
+        for (int tx = 0; tx < w; tx += 6) {
+            double m = 0, v = 0, refMean = 0;
+            int n = 0;
+            for (int y = ty; y < ty + 6; ++y)
+                for (int x = tx; x < tx + 6; ++x)
+                    for (int c = 0; c < 3; ++c, ++n) {
+                        size_t i = (size_t(y) * w + x) * 3 + size_t(c);
+                        double mean = sum[i] / frames;
+                        m += mean;
+                        v += (sum2[i] / frames - mean * mean) / frames;
+                        refMean += ref.reference.pixels[i];
+                    }
+            double se = std::sqrt(v * (1.0 + double(frames) / 2048.0)) + 1e-6;
+            worst = std::max(worst, std::fabs(m - refMean) / se);
+        }
+    EXPECT_LT(worst, 4.5) << "largest tile deviation in standard errors";
+}
+
+TEST(Render, FeatureBuffersMatchAKnownCameraAndPlane) {
+    Scene wall;
+    int m = addMaterial(wall, {0.3f, 0.5f, 0.7f}, {0, 0, 0});
+    addQuad(wall, {-50, -50, -5}, {50, -50, -5}, {50, 50, -5}, {-50, 50, -5}, m);
+    Environment env;
+    env.sky = {1, 1, 1};
+    CameraPose pose;
+    pose.position = {0, 0, 0}, pose.target = {0, 0, -1}, pose.fovY = 1.5707963f;
+    const int w = 32, h = 24;
+    FrameData f = renderOnce(wall, pose, env, w, h, 1, 0);
+    const double tanHalf = 1.0; // tan(45 degrees)
+    const double aspect = double(w) / h;
+    for (int y = 0; y < h; y += 5)
+        for (int x = 0; x < w; x += 3) {
+            // Ray through the pixel centre, written out by hand: rows grow downwards.
+            double sx = ((x + 0.5) / w * 2 - 1) * tanHalf * aspect,
+                   sy = -((y + 0.5) / h * 2 - 1) * tanHalf;
+            double px = sx * 5, py = sy * 5, pz = -5;
+            EXPECT_NEAR(f.position.at(x, y, 0), px, 1e-3);
+            EXPECT_NEAR(f.position.at(x, y, 1), py, 1e-3);
+            EXPECT_NEAR(f.position.at(x, y, 2), pz, 1e-3);
+            EXPECT_NEAR(f.normal.at(x, y, 2), 1.0, 1e-6);
+            EXPECT_NEAR(f.albedo.at(x, y, 1), 0.5, 1e-6);
+            EXPECT_NEAR(f.aovs[0].second.at(x, y), 5.0, 1e-3); // depth along the view axis
+            EXPECT_EQ(f.extras[0].at(x, y), 0.0f);             // material id
+        }
+}
+
+TEST(Render, WorldPositionReprojectsToThePixelItsMotionVectorNames) {
+    Scene wall;
+    int m = addMaterial(wall, {0.5f, 0.5f, 0.5f}, {0, 0, 0});
+    addQuad(wall, {-50, -50, -5}, {50, -50, -5}, {50, 50, -5}, {-50, 50, -5}, m);
+    Environment env;
+    env.sky = {1, 1, 1};
+    CameraPose a, b;
+    a.position = {0, 0, 0}, a.target = {0, 0, -1}, a.fovY = 1.2f;
+    b = a;
+    b.position = {0.3f, 0.1f, 0.2f}, b.target = {0.35f, 0.1f, -0.8f};
+    const int w = 40, h = 30;
+    FrameData f0 = renderOnce(wall, a, env, w, h, 1, 0, 0);
+    FrameData f1 = renderOnce(wall, b, env, w, h, 1, 0, 1, &a);
+    int checked = 0;
+    for (int y = 2; y < h - 2; ++y)
+        for (int x = 2; x < w - 2; ++x) {
+            const ImageF& mv = f1.aovs[1].second;
+            Vec2 prev{x + mv.at(x, y, 0), y + mv.at(x, y, 1)};
+            if (prev.x < 0 || prev.y < 0 || prev.x > w - 2 || prev.y > h - 2) continue;
+            // Bilinear lookup of the previous frame's position buffer.
+            BilinearFootprint fp = bilinearFootprint(prev);
+            Vec3 p{};
+            for (int t = 0; t < 4; ++t)
+                p += fp.weight[t] * load3(f0.position.data(), long(tapY(fp, t)) * w + tapX(fp, t));
+            Vec3 q = load3(f1.position.data(), long(y) * w + x);
+            ASSERT_LT(length(p - q), 2e-3f) << x << "," << y;
+            ++checked;
+        }
+    EXPECT_GT(checked, 500);
+}
+
+} // namespace
+} // namespace bmfr::render
