@@ -15,7 +15,10 @@ int addMaterial(Scene& s, Vec3 albedo, Vec3 emission) {
     return int(s.materials.size() - 1);
 }
 
-void addQuad(Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, int m) {
+/// Adds a quad wound so that its front faces `towards` (emitters are one-sided).
+void addQuad(Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, int m, Vec3 towards = {0, 0, 0}) {
+    Vec3 n = cross(b - a, c - a), centre = 0.25f * (a + b + c + d);
+    if (dot(n, towards - centre) < 0) std::swap(b, d);
     s.addTriangle(a, b, c, m);
     s.addTriangle(a, c, d, m);
 }

@@ -1,7 +1,6 @@
 #include "commands.h"
-#include "io/sequence.h"
 #include "progress.h"
-#include "synth/procedural_scene.h"
+#include "render/sequence_renderer.h"
 #include <filesystem>
 #include <fmt/core.h>
 
@@ -9,37 +8,50 @@ namespace bmfr::app {
 
 void addDemoCommand(CLI::App& app, int& exitCode) {
     struct DemoJob {
-        std::string output = "bmfr-demo";
-        ProceduralSceneOptions scene;
+        std::string output = "bmfr-demo", scene = "cornell-moving", scenesDir = "../shared/scenes";
+        int width = 320, height = 240, frames = 30, referenceSpp = 256;
         bool quiet = false;
     };
     auto job = std::make_shared<DemoJob>();
     CLI::App* cmd = app.add_subcommand(
-        "demo", "generate the built-in sequence, denoise it, write images and scores");
+        "demo", "path trace a short built-in sequence, denoise it, write images and scores");
     cmd->add_option("-o,--output", job->output, "output directory")->default_val("bmfr-demo");
-    cmd->add_option("--width", job->scene.width, "pixels")->default_val(640);
-    cmd->add_option("--height", job->scene.height, "pixels")->default_val(360);
-    cmd->add_option("--frames", job->scene.frames, "frame count")->default_val(30);
+    cmd->add_option("-s,--scene", job->scene, "preset or scene description")
+        ->default_val("cornell-moving");
+    cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")
+        ->default_val("../shared/scenes");
+    cmd->add_option("--width", job->width, "pixels")->default_val(320);
+    cmd->add_option("--height", job->height, "pixels")->default_val(240);
+    cmd->add_option("--frames", job->frames, "frame count")->default_val(30);
+    cmd->add_option("--reference-spp", job->referenceSpp, "reference samples per pixel")
+        ->default_val(256);
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     cmd->callback([job, &exitCode] {
-        const std::string input = (std::filesystem::path(job->output) / "input").string();
-        ProceduralScene scene(job->scene);
-        ManifestWriter writer(input, scene.info());
-        Progress progress("generate", job->scene.frames, job->quiet);
-        FrameData f;
-        for (int i = 0; i < job->scene.frames; ++i) {
-            scene.render(i, f);
-            writer.addFrame(i, f);
-            progress.step(i + 1);
-        }
+        namespace fs = std::filesystem;
+        render::SceneDescription d = render::loadSceneDescription(job->scene, job->scenesDir);
+        d.width = job->width, d.height = job->height, d.frames = job->frames;
+        d.referenceSpp = job->referenceSpp;
+        const std::string input = (fs::path(job->output) / "input").string();
+        if (!job->quiet)
+            fmt::print(
+                "bmfr demo: rendering {} ({}x{}, {} frames, 1 spp + {} spp reference) into {}\n",
+                d.name, d.width, d.height, d.frames, d.referenceSpp, input);
+        Progress progress("render", d.frames, job->quiet);
+        render::SequenceRenderReport r = render::renderSequence(
+            d, {input, "manifest", job->quiet}, nullptr,
+            [&](int done, int) { progress.step(done); },
+            [&](const std::string& w) { fmt::print(stderr, "bmfr: warning: {}\n", w); });
         progress.finish();
+        if (!job->quiet && r.rendered)
+            fmt::print(
+                "rendered {} frames: {:.3f} s per 1-spp frame, {:.2f} s per reference frame\n\n",
+                r.rendered, r.inputSeconds / r.rendered, r.referenceSeconds / r.rendered);
         DenoiseJob dj;
         dj.input = input;
-        dj.output = (std::filesystem::path(job->output) / "denoised").string();
+        dj.output = (fs::path(job->output) / "denoised").string();
         dj.quiet = job->quiet;
         dj.debug = true;
         exitCode = runDenoise(dj);
-        if (!job->quiet) fmt::print("input (noisy colour, features, truth): {}\n", input);
     });
 }
 

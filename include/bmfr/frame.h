@@ -25,6 +25,10 @@ struct FrameInput {
     ImageView albedo;   ///< first-hit albedo, 3 channels, [0, 1]
     ImageView normal;   ///< first-hit shading normal, world space, unit length, 3 channels
     ImageView position; ///< first-hit world position, scene units, 3 channels
+    /// Optional noise-free radiance emitted at the first hit (visible lights, sky), 3 channels.
+    /// When given it is taken out before filtering and added back before TAA, so emitters keep
+    /// sharp edges and do not bleed into their blocks. Leave data null when unavailable.
+    ImageView emission;
     std::vector<ImageView> extras; ///< optional 1-channel feature buffers (Feature::Extra)
     Mat4 viewProjection;           ///< this frame's world-to-clip matrix
     /// Sub-pixel offset of this frame's primary rays from the pixel centre, pixels, [-0.5, 0.5].

@@ -69,6 +69,7 @@ class ManifestReader : public SequenceReader {
                                 std::to_string(info_.extraNames.size()));
             }
             f.reference = info_.hasReference ? readExr(file("reference"), 3) : ImageF();
+            f.emission = j.contains("emission") ? readExr(file("emission"), 3) : ImageF();
             f.aovs.clear();
             if (loadAovs_ && j.contains("aovs"))
                 for (const json& entry : j["aovs"]) {
@@ -151,6 +152,7 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
     j["normal"] = put("normal", f.normal);
     j["position"] = put("position", f.position);
     if (f.reference.width) j["reference"] = put("reference", f.reference);
+    if (f.emission.width) j["emission"] = put("emission", f.emission);
     if (!f.extras.empty()) {
         j["extras"] = json::array();
         for (size_t e = 0; e < f.extras.size(); ++e)

@@ -12,6 +12,7 @@ FrameInput FrameData::input() const {
     in.albedo = view(albedo);
     in.normal = view(normal);
     in.position = view(position);
+    if (emission.width) in.emission = view(emission);
     for (const ImageF& e : extras) in.extras.push_back(view(e));
     in.viewProjection = viewProjection;
     in.jitter[0] = jitter[0];
@@ -33,6 +34,7 @@ void SequenceReader::checkFrame(int index, const FrameData& f) const {
     check(f.position, "position");
     for (const ImageF& e : f.extras) check(e, "extra");
     if (f.reference.width) check(f.reference, "reference");
+    if (f.emission.width) check(f.emission, "emission");
 }
 
 std::unique_ptr<SequenceReader> SequenceReader::open(const std::string& directory) {

@@ -15,6 +15,7 @@ struct FrameData {
     ImageF color, albedo, normal, position;
     std::vector<ImageF> extras; ///< 1-channel extra features, in SequenceInfo::extraNames order
     ImageF reference;           ///< empty (0x0) when the sequence has none
+    ImageF emission; ///< first-hit emitted radiance (noise-free); empty when the layout has none
     /// Further named outputs (depth, motion, direct/indirect, diffuse/glossy splits...).
     std::vector<std::pair<std::string, ImageF>> aovs;
     Mat4 viewProjection;

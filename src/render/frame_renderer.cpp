@@ -34,7 +34,10 @@ FrameRenderer::FrameRenderer(const Scene& scene, const RayAccel& accel, int widt
     scene.bounds(lo, hi);
     float diag = std::fmax(length(hi - lo), 1e-3f);
     zNear_ = 1e-3f * diag;
-    zFar_ = 10.0f * diag + kSkyDistance;
+    // Escaped rays get a position a scene size away: far enough to read as background, near
+    // enough not to squash the per-block feature scaling of the geometry beside them.
+    skyDistance_ = 2.0f * diag;
+    zFar_ = 10.0f * diag;
 }
 
 bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& previousPose,
@@ -55,6 +58,7 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     for (const std::string& n : aovNames())
         out.aovs.emplace_back(n, ImageF(w, h, n == "depth" ? 1 : n == "motion" ? 2 : 3));
     out.reference = referenceSpp > 0 ? ImageF(w, h, 3) : ImageF();
+    out.emission = ImageF(w, h, 3);
 
     const Integrator integrator(scene_, accel_, lights, bounces_);
     const float spread = 2.0f * std::tan(0.5f * pose.fovY) / float(h);
@@ -96,8 +100,10 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 store3(out.aovs[4].second.data(), i, c.diffuse);
                 store3(out.aovs[5].second.data(), i, c.glossy);
                 const SurfacePoint& s = ph.surface;
-                Vec3 p = ph.hit ? s.p : pose.position + kSkyDistance * dir;
+                Vec3 p = ph.hit ? s.p : pose.position + skyDistance_ * dir;
                 store3(out.albedo.data(), i, ph.hit ? s.baseColor : Vec3{1, 1, 1});
+                store3(out.emission.data(), i,
+                       ph.hit ? s.emission : lights.environment().sky + lights.sunRadiance(dir));
                 store3(out.normal.data(), i, ph.hit ? s.ns : -1.0f * dir);
                 store3(out.position.data(), i, p);
                 out.extras[0].data()[i] = ph.hit ? float(s.material) : -1.0f;

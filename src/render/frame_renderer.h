@@ -38,7 +38,7 @@ class FrameRenderer {
     const RayAccel& accel_;
     int width_, height_, bounces_;
     uint32_t seed_;
-    float zNear_, zFar_;
+    float zNear_, zFar_, skyDistance_;
 };
 
 } // namespace bmfr::render

@@ -70,8 +70,10 @@ void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidt
             }
         }
     }
+    // Mesh emitters are one-sided: they emit on the side their winding faces.
+    const bool front = dot(ng, d) < 0;
     // Two-sided surfaces: face both normals towards the viewer.
-    if (dot(ng, d) > 0) ng = -1.0f * ng;
+    if (!front) ng = -1.0f * ng;
     if (dot(ns, ng) < 0) ns = ns - 2 * dot(ns, ng) * ng;
     sp.ng = ng;
     sp.ns = ns;
@@ -81,7 +83,7 @@ void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidt
     sp.f0 = lerp(Vec3{m.specular, m.specular, m.specular}, base, m.metallic);
     sp.roughness = m.roughness;
     sp.alpha = std::fmax(m.roughness * m.roughness, 1e-3f);
-    sp.emission = m.emission;
+    sp.emission = front ? m.emission : Vec3{0, 0, 0};
     sp.material = scene_.triangleMaterial[size_t(tri)];
     sp.triangle = tri;
 }

@@ -45,7 +45,4 @@ class Integrator {
     void shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidth, SurfacePoint& sp) const;
 };
 
-/// Distance at which escaped camera rays place their position feature, scene units.
-inline constexpr float kSkyDistance = 1000.0f;
-
 } // namespace bmfr::render

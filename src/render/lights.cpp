@@ -85,6 +85,8 @@ LightSample LightSet::sample(Vec3 p, float uSelect, float u1, float u2) const {
     float d2 = dot(d, d);
     s.distance = std::sqrt(d2);
     s.wi = d / s.distance;
+    // Triangles emit on their front (winding) side only; quads on both.
+    if (e.kind == Kind::Triangle && dot(n, s.wi) >= 0) return LightSample{};
     float cosL = std::fabs(dot(n, s.wi)) / length(n);
     s.pdf = cosL > 1e-7f ? e.probability * d2 / (a * cosL) : 0.0f;
     return s;

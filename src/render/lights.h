@@ -1,4 +1,5 @@
-// Light sources and their sampling: emissive triangles, analytic quads (may move per frame), a
+// Light sources and their sampling: emissive triangles (one-sided, front = winding), analytic
+// two-sided quads (may move per frame), a
 // sun with angular size, and a constant sky (reached by BSDF rays only).
 #pragma once
 #include "render/scene.h"
@@ -31,6 +32,8 @@ struct LightSample {
     float pdf = 0; ///< solid angle, selection included
 };
 
+/// Light selection is proportional to power (area x luminance) among local lights; the sun, if
+/// any, takes half of the samples.
 class LightSet {
   public:
     LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env);

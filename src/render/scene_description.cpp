@@ -39,9 +39,9 @@ const std::map<std::string, const char*>& presets() {
         {"cornell-moving", R"({
             "mesh": "builtin:cornell", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
             "camera": {"keyframes": [
-                {"frame": 0,  "position": [-0.55, 1.05, 3.3], "target": [0.0, 0.95, 0.0], "fov_deg": 40},
-                {"frame": 30, "position": [0.0, 1.25, 3.0],   "target": [0.05, 0.9, 0.0], "fov_deg": 40},
-                {"frame": 59, "position": [0.6, 1.0, 3.3],    "target": [0.0, 1.0, 0.0],  "fov_deg": 40}]}})"},
+                {"frame": 0,  "position": [-0.45, 1.0, 0.95], "target": [0.1, 0.8, -1.0],  "fov_deg": 70},
+                {"frame": 30, "position": [0.0, 1.2, 0.9],    "target": [0.0, 0.85, -1.0], "fov_deg": 70},
+                {"frame": 59, "position": [0.45, 1.0, 0.95],  "target": [-0.1, 0.8, -1.0], "fov_deg": 70}]}})"},
         {"sponza-moving", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,

@@ -56,8 +56,8 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
             Vec3 lo, hi;
             scene.bounds(lo, hi);
             float diag = std::fmax(length(hi - lo), 1e-3f);
-            matrices.push_back(viewProjection(path.at(float(i)), d.width, d.height, 1e-3f * diag,
-                                              10.0f * diag + kSkyDistance));
+            matrices.push_back(
+                viewProjection(path.at(float(i)), d.width, d.height, 1e-3f * diag, 10.0f * diag));
         }
     }
     SequenceInfo info;

@@ -12,6 +12,7 @@ void accumulateFitted(const BmfrPassContext& ctx) {
     const bool accumulate = st.hasHistory && s.stages.secondAccumulation;
     const bool remodulate = s.stages.demodulate || s.colorIsDemodulated;
     const float* albedo = ctx.frame.albedo.data;
+    const float* emission = ctx.frame.emission.data;
 
     ctx.pool.parallelFor(st.height, 4, [&](long y0, long y1) {
         for (long i = y0 * w; i < y1 * w; ++i) {
@@ -32,6 +33,10 @@ void accumulateFitted(const BmfrPassContext& ctx) {
             }
             store3(st.accumulatedFitted[cur].data(), i, c);
             if (remodulate) c = c * guardAlbedo(load3(albedo, i), s.albedoEpsilon);
+            if (emission) {
+                Vec3 e = load3(emission, i);
+                if (std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z)) c = c + e;
+            }
             store3(st.remodulated.data(), i, c);
         }
     });

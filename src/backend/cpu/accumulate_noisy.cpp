@@ -25,6 +25,15 @@ InputCounters accumulateNoisy(const BmfrPassContext& ctx) {
                 Vec3 p = finiteOrZero(load3(in.position.data, i), bad);
                 Vec3 c = finiteOrZero(load3(in.color.data, i), bad);
                 Vec3 a = finiteOrZero(load3(in.albedo.data, i), bad);
+                if (in.emission.data) {
+                    // Emission is radiance; a pre-demodulated colour needs it demodulated too.
+                    Vec3 e = finiteOrZero(load3(in.emission.data, i), bad);
+                    if (s.colorIsDemodulated) {
+                        Vec3 g = guardAlbedo(a, s.albedoEpsilon);
+                        e = {e.x / g.x, e.y / g.y, e.z / g.z};
+                    }
+                    c = vmax(c - e, Vec3{0, 0, 0});
+                }
                 for (const ImageView& e : in.extras)
                     if (!std::isfinite(e.data[i])) ++bad;
                 store3(st.normal[cur].data(), i, n);

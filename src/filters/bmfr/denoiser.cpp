@@ -75,6 +75,7 @@ void Denoiser::Impl::checkInput(const FrameInput& f) const {
     checkImage(f.albedo, "albedo", 3, w, h);
     checkImage(f.normal, "normal", 3, w, h);
     checkImage(f.position, "position", 3, w, h);
+    if (f.emission.data) checkImage(f.emission, "emission", 3, w, h);
     for (size_t e = 0; e < f.extras.size(); ++e)
         checkImage(f.extras[e], ("extra" + std::to_string(e)).c_str(), 1, w, h);
     for (const Feature& feat : settings.features)
