@@ -1,11 +1,13 @@
 #include "io/exr.h"
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <bmfr/error.h>
 #include <filesystem>
+#include <thread>
 #include <vector>
 
 namespace bmfr {
@@ -69,7 +71,21 @@ ImageF readExr(const std::string& path, int channels) {
     }
 }
 
+namespace {
+
+/// OpenEXR compresses line blocks on its own thread pool once given one.
+void useAllCoresForExr() {
+    static const bool once = [] {
+        Imf::setGlobalThreadCount(int(std::thread::hardware_concurrency()));
+        return true;
+    }();
+    (void)once;
+}
+
+} // namespace
+
 void writeExr(const std::string& path, const ImageF& image) {
+    useAllCoresForExr();
     if (image.width <= 0 || image.height <= 0) throw Error("refusing to write empty image " + path);
     static const char* kNames[3][3] = {{"Y"}, {"R", "G"}, {"R", "G", "B"}};
     const int ch = image.channels;
@@ -78,6 +94,8 @@ void writeExr(const std::string& path, const ImageF& image) {
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
+        // Level 1: most of the size gain of the default level 6 at a fraction of its time.
+        header.zipCompressionLevel() = 1;
         for (int c = 0; c < ch; ++c)
             header.channels().insert(kNames[ch - 1][c], Imf::Channel(Imf::FLOAT));
         Imf::OutputFile file(tmp.c_str(), header);

@@ -32,7 +32,7 @@ inline float smithG1(float c, float a2) {
     return 2 * c / (c + std::sqrt(a2 + (1 - a2) * c * c));
 }
 inline Vec3 schlick(Vec3 f0, float c) {
-    float k = std::pow(1 - std::fmax(0.0f, c), 5.0f);
+    float m = 1 - std::fmax(0.0f, c), m2 = m * m, k = m2 * m2 * m;
     return f0 + k * (Vec3{1, 1, 1} - f0);
 }
 

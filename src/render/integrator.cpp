@@ -88,7 +88,7 @@ void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidt
     sp.triangle = tri;
 }
 
-bool Integrator::trace(Vec3 o, Vec3 d, float spread, float travelled, SurfacePoint& sp, int& quad,
+bool Integrator::trace(Vec3 o, Vec3 d, float width, float spread, SurfacePoint& sp, int& quad,
                        float& t, uint64_t& rays) const {
     ++rays;
     RayHit h = accel_.intersect(o, d, 1e30f);
@@ -107,16 +107,16 @@ bool Integrator::trace(Vec3 o, Vec3 d, float spread, float travelled, SurfacePoi
     }
     if (h.triangle < 0) return false;
     t = h.t;
-    shadeTriangle(h.triangle, h.u, h.v, d, spread * (travelled + h.t), sp);
+    shadeTriangle(h.triangle, h.u, h.v, d, width + spread * h.t, sp);
     return true;
 }
 
 PrimaryHit Integrator::primary(Vec3 origin, Vec3 direction, float spreadAngle,
                                uint64_t& rays) const {
     PrimaryHit ph;
-    ph.origin = origin, ph.direction = direction;
+    ph.origin = origin, ph.direction = direction, ph.spread = spreadAngle;
     float t = 0;
-    ph.hit = trace(origin, direction, spreadAngle, 0, ph.surface, ph.lightQuad, t, rays);
+    ph.hit = trace(origin, direction, 0.0f, spreadAngle, ph.surface, ph.lightQuad, t, rays);
     return ph;
 }
 
@@ -137,7 +137,7 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         out.diffuse += radianceD;
         out.glossy += radianceG;
     };
-    float travelled = length(sp.p - first.origin);
+    float width = first.spread * length(sp.p - first.origin); // ray-cone footprint here
     for (int vertex = 0; vertex <= bounces_; ++vertex) {
         const bool last = vertex == bounces_;
         const bool reflective = !isBlack(sp.diffuse) || !isBlack(sp.f0);
@@ -184,7 +184,10 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         SurfacePoint next;
         int quad = -1;
         float t = 0;
-        if (!trace(origin, wi, 0.0f, travelled, next, quad, t, rays)) {
+        // Ray cones: a bounce widens the footprint by about the lobe width (GGX alpha, ~1 rad for
+        // diffuse), so indirect hits read coarse mips: less aliasing and far fewer cache misses.
+        const float spread = sp.alpha;
+        if (!trace(origin, wi, width, spread, next, quad, t, rays)) {
             Vec3 L = env.sky + powerHeuristic(f.pdf, lights_.pdfSun()) * lights_.sunRadiance(wi);
             add(vertex, tD * L, tG * L);
             break;
@@ -195,7 +198,7 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
             Vec3 L = powerHeuristic(f.pdf, lightPdf) * next.emission;
             add(vertex, tD * L, tG * L);
         }
-        travelled += t;
+        width += spread * t;
         sp = next;
     }
     out.total = out.direct + out.indirect;

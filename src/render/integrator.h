@@ -15,6 +15,7 @@ namespace bmfr::render {
 struct PrimaryHit {
     bool hit = false;
     Vec3 origin, direction;
+    float spread = 0; ///< radians per pixel of the camera ray cone
     SurfacePoint surface;
     int lightQuad = -1; ///< the hit is analytic quad light k
 };
@@ -40,7 +41,8 @@ class Integrator {
     int bounces_;
 
     /// Closest surface (mesh or quad light) along a ray; fills the shading point.
-    bool trace(Vec3 o, Vec3 d, float coneWidthAtUnitDistance, float travelled, SurfacePoint& sp,
+    /// width: ray-cone footprint at o; spread: its growth per unit distance (radians).
+    bool trace(Vec3 o, Vec3 d, float width, float spread, SurfacePoint& sp,
                int& quad, float& t, uint64_t& rays) const;
     void shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidth, SurfacePoint& sp) const;
 };

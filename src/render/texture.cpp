@@ -11,14 +11,22 @@ float srgbToLinear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
-const float* srgbTable() {
-    static float table[256];
-    static bool init = [] {
-        for (int i = 0; i < 256; ++i) table[i] = srgbToLinear(float(i) / 255.0f);
-        return true;
-    }();
-    (void)init;
-    return table;
+// Filled at load time, so sampling pays no initialisation guard.
+struct SrgbTable {
+    float v[256];
+    SrgbTable() {
+        for (int i = 0; i < 256; ++i) v[i] = srgbToLinear(float(i) / 255.0f);
+    }
+};
+const SrgbTable kSrgb;
+
+const float* srgbTable() { return kSrgb.v; }
+
+/// Wraps into [0, n) with a cheap path for the common in-range case.
+inline int wrap(int i, int n) {
+    if (unsigned(i) < unsigned(n)) return i;
+    i %= n;
+    return i < 0 ? i + n : i;
 }
 
 uint8_t linearToSrgbByte(float v) {
@@ -78,12 +86,21 @@ void Texture::buildMips() {
 }
 
 TexSample Texture::texel(const Level& l, int x, int y) const {
-    x = ((x % l.w) + l.w) % l.w;
-    y = ((y % l.h) + l.h) % l.h;
+    x = wrap(x, l.w);
+    y = wrap(y, l.h);
     const uint8_t* p = &l.rgba[(size_t(y) * l.w + x) * 4];
     const float* lut = srgbTable();
     if (srgb_) return {{lut[p[0]], lut[p[1]], lut[p[2]]}, float(p[3]) / 255.0f};
     return {{p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f}, p[3] / 255.0f};
+}
+
+float Texture::alphaNearest(float u, float v) const {
+    if (levels_.empty()) return 1.0f;
+    const Level& l = levels_[0];
+    float x = u * float(l.w), y = v * float(l.h);
+    if (!(std::fabs(x) < 1e7f) || !(std::fabs(y) < 1e7f)) return 1.0f;
+    return l.rgba[(size_t(wrap(int(std::floor(y)), l.h)) * l.w + size_t(wrap(int(std::floor(x)), l.w))) * 4 + 3] /
+           255.0f;
 }
 
 TexSample Texture::sample(float u, float v, float lod) const {
@@ -91,8 +108,7 @@ TexSample Texture::sample(float u, float v, float lod) const {
     int li = int(std::clamp(std::floor(lod + 0.5f), 0.0f, float(levels_.size() - 1)));
     const Level& l = levels_[size_t(li)];
     float x = u * float(l.w) - 0.5f, y = v * float(l.h) - 0.5f;
-    if (!std::isfinite(x) || !std::isfinite(y)) return texel(l, 0, 0);
-    x = std::fmod(x, float(l.w)), y = std::fmod(y, float(l.h));
+    if (!(std::fabs(x) < 1e7f) || !(std::fabs(y) < 1e7f)) return texel(l, 0, 0);
     float fx = std::floor(x), fy = std::floor(y);
     int x0 = int(fx), y0 = int(fy);
     float ax = x - fx, ay = y - fy;

@@ -20,6 +20,8 @@ class Texture {
     void makeFlat(Vec3 rgb, float alpha = 1);
     /// Bilinear sample at `lod` (0 = full resolution), wrapping (glTF's default sampler).
     TexSample sample(float u, float v, float lod) const;
+    /// Alpha of the nearest full-resolution texel: the cheap lookup an alpha test needs.
+    float alphaNearest(float u, float v) const;
     int width() const { return levels_.empty() ? 0 : levels_[0].w; }
     int height() const { return levels_.empty() ? 0 : levels_[0].h; }
     bool hasAlpha() const { return hasAlpha_; }
