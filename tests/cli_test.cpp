@@ -116,3 +116,58 @@ TEST(Cli, NanInputsGiveOneWarningLine) {
 }
 
 } // namespace
+
+namespace {
+
+TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
+    fs::path in = scratch("eval_in"), den = scratch("eval_den"), noTaa = scratch("eval_notaa"),
+             out = scratch("eval_out");
+    ASSERT_EQ(run("synth " + in.string() + " --width 64 --height 48 --frames 4 -q").code, 0);
+    ASSERT_EQ(run("denoise " + in.string() + " -o " + den.string() + " -q --no-png").code, 0);
+    ASSERT_EQ(
+        run("denoise " + in.string() + " -o " + noTaa.string() + " -q --no-png --disable taa").code,
+        0);
+    Result r =
+        run("eval -r " + in.string() + " -m noisy -m bmfr=" + den.string() +
+            " -m \"no taa=" + noTaa.string() + "\" -o " + out.string() + " --crop 10,10,16,12");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("| bmfr |"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("report: " + (out / "report.html").string()), std::string::npos)
+        << r.output;
+    for (const char* f : {"table.md", "table.csv", "table.json", "per_frame.csv", "plot_rmse.png",
+                          "plot_ssim.png", "plot_flip.png", "plot_temporal.png", "frames.png",
+                          "crop_0.png", "heatmap_0.png", "heatmap_2.png", "report.html"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+    // The report is self-contained: images inline, no external references.
+    std::ifstream html(out / "report.html");
+    std::string text((std::istreambuf_iterator<char>(html)), {});
+    EXPECT_NE(text.find("data:image/png;base64,"), std::string::npos);
+    EXPECT_EQ(text.find("src=\"http"), std::string::npos);
+    EXPECT_EQ(text.find(".png\""), std::string::npos);
+    // Denoised beats noisy, and the best RMSE is in bold.
+    std::ifstream md(out / "table.md");
+    std::string table((std::istreambuf_iterator<char>(md)), {});
+    EXPECT_EQ(table.find("| noisy | **"), std::string::npos) << table;
+    // A crop outside the frame is a clear error.
+    Result bad =
+        run("eval -r " + in.string() + " -m noisy -o " + out.string() + " --crop 60,40,16,16 -q");
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.output.find("outside the 64x48 frame"), std::string::npos) << bad.output;
+    for (const fs::path& p : {in, den, noTaa, out}) fs::remove_all(p);
+}
+
+TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
+    fs::path in = scratch("ablate_in"), out = scratch("ablate_out");
+    ASSERT_EQ(run("synth " + in.string() + " --width 48 --height 32 --frames 3 -q").code, 0);
+    Result r = run("ablate " + in.string() + " -o " + out.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* s : {"without fitting (phase II)", "without TAA",
+                          "## Greedy feature selection", "+ normals", "+ material_id"})
+        EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
+    EXPECT_TRUE(fs::exists(out / "ablation.json"));
+    EXPECT_TRUE(fs::exists(out / "plot_greedy_rmse.png"));
+    fs::remove_all(in);
+    fs::remove_all(out);
+}
+
+} // namespace

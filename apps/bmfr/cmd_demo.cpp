@@ -1,4 +1,5 @@
 #include "commands.h"
+#include "eval/comparison.h"
 #include "progress.h"
 #include "render/sequence_renderer.h"
 #include <filesystem>
@@ -14,7 +15,8 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
     };
     auto job = std::make_shared<DemoJob>();
     CLI::App* cmd = app.add_subcommand(
-        "demo", "path trace a short built-in sequence, denoise it, write images and scores");
+        "demo",
+        "path trace a short built-in sequence, denoise it, score it, write images and the report");
     cmd->add_option("-o,--output", job->output, "output directory")->default_val("bmfr-demo");
     cmd->add_option("-s,--scene", job->scene, "preset or scene description")
         ->default_val("cornell-moving");
@@ -46,12 +48,30 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             fmt::print(
                 "rendered {} frames: {:.3f} s per 1-spp frame, {:.2f} s per reference frame\n\n",
                 r.rendered, r.inputSeconds / r.rendered, r.referenceSeconds / r.rendered);
-        DenoiseJob dj;
-        dj.input = input;
-        dj.output = (fs::path(job->output) / "denoised").string();
-        dj.quiet = job->quiet;
-        dj.debug = true;
-        exitCode = runDenoise(dj);
+        // BMFR and two ablations, as the paper compares them, then the comparison report.
+        struct Variant {
+            const char* name;
+            const char* folder;
+            std::vector<std::string> disabled;
+        };
+        const Variant variants[] = {{"bmfr", "denoised", {}},
+                                    {"accumulation only", "accumulation_only", {"fitting"}},
+                                    {"bmfr without TAA", "bmfr_no_taa", {"taa"}}};
+        ComparisonOptions eval;
+        eval.reference = input;
+        eval.output = (fs::path(job->output) / "report").string();
+        eval.methods.push_back({"noisy", ""});
+        for (const Variant& v : variants) {
+            DenoiseJob dj;
+            dj.input = input;
+            dj.output = (fs::path(job->output) / v.folder).string();
+            dj.quiet = job->quiet || v.disabled.size() > 0; // full summary for BMFR itself
+            dj.debug = v.disabled.empty();
+            dj.options.disabled = v.disabled;
+            runDenoise(dj);
+            eval.methods.push_back({v.name, dj.output});
+        }
+        exitCode = runEval(eval, job->quiet);
     });
 }
 

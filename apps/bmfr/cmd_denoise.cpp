@@ -1,5 +1,6 @@
 #include "commands.h"
 #include "core/image.h"
+#include "eval/frame_scores.h"
 #include "io/exr.h"
 #include "io/png.h"
 #include "io/sequence.h"
@@ -102,16 +103,6 @@ ImageF copyOf(const ImageView& v) {
     return img;
 }
 
-struct Scores {
-    std::vector<double> rmse, psnr, relmse, temporal, noisyRmse, noisyTemporal, refTemporal;
-};
-
-double mean(const std::vector<double>& v) {
-    double s = 0;
-    for (double x : v) s += x;
-    return v.empty() ? 0 : s / double(v.size());
-}
-
 } // namespace
 
 int runDenoise(const DenoiseJob& job) {
@@ -138,9 +129,10 @@ int runDenoise(const DenoiseJob& job) {
     std::vector<double> tAcc, tFit, tAcc2, tTaa, tTotal, tRead, tWrite;
     int64_t nonFinite = 0;
     std::vector<int> badFrames;
-    Scores scores;
+    std::vector<FrameScores> scores, noisyScores;
     FrameData frame;
     ImageF previousOut, previousRef, previousNoisy;
+    std::vector<double> referenceTemporal;
     using Clock = std::chrono::steady_clock;
     auto since = [](Clock::time_point t) {
         return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -185,15 +177,14 @@ int runDenoise(const DenoiseJob& job) {
             if (info.colorIsDemodulated)
                 for (size_t k = 0; k < noisy.pixels.size(); ++k)
                     noisy.pixels[k] *= frame.albedo.pixels[k];
-            scores.rmse.push_back(rmseToneMapped(out, frame.reference));
-            scores.psnr.push_back(psnrToneMapped(out, frame.reference));
-            scores.relmse.push_back(relMseLinear(out, frame.reference));
-            scores.noisyRmse.push_back(rmseToneMapped(noisy, frame.reference));
-            if (i > first) {
-                scores.temporal.push_back(temporalError(out, previousOut));
-                scores.refTemporal.push_back(temporalError(frame.reference, previousRef));
-                scores.noisyTemporal.push_back(temporalError(noisy, previousNoisy));
-            }
+            scores.push_back(
+                scoreFrame(out, frame.reference, i > first ? &previousOut : nullptr, job.flip));
+            FrameScores n;
+            n.rmse = rmseToneMapped(noisy, frame.reference);
+            if (i > first) n.temporal = temporalError(noisy, previousNoisy);
+            noisyScores.push_back(n);
+            referenceTemporal.push_back(i > first ? temporalError(frame.reference, previousRef)
+                                                  : NAN);
             previousRef = frame.reference;
             previousNoisy = std::move(noisy);
         }
@@ -209,6 +200,7 @@ int runDenoise(const DenoiseJob& job) {
                    nonFinite, badFrames.size(), badFrames.front());
 
     nlohmann::json report;
+    std::string summary;
     report["input"] = job.input;
     report["frames"] = last - first;
     report["resolution"] = {info.width, info.height};
@@ -220,21 +212,45 @@ int runDenoise(const DenoiseJob& job) {
                            {"total", median(tTotal)}};
     if (info.hasReference) {
         std::ofstream csv(fs::path(job.output) / "scores.csv");
-        csv << "frame,rmse,psnr_db,relmse,temporal_error,noisy_rmse,reference_temporal_error\n";
-        for (size_t k = 0; k < scores.rmse.size(); ++k)
-            csv << fmt::format("{},{:.6f},{:.4f},{:.6f},{},{:.6f},{}\n", first + int(k),
-                               scores.rmse[k], scores.psnr[k], scores.relmse[k],
-                               k ? fmt::format("{:.6f}", scores.temporal[k - 1]) : "",
-                               scores.noisyRmse[k],
-                               k ? fmt::format("{:.6f}", scores.refTemporal[k - 1]) : "");
-        report["scores"] = {{"rmse", mean(scores.rmse)},
-                            {"psnr_db", mean(scores.psnr)},
-                            {"relmse", mean(scores.relmse)},
-                            {"temporal_error", mean(scores.temporal)},
-                            {"noisy_rmse", mean(scores.noisyRmse)},
-                            {"noisy_temporal_error", mean(scores.noisyTemporal)},
-                            {"reference_temporal_error", mean(scores.refTemporal)},
+        csv << "frame,rmse,psnr_db,ssim,flip,relmse,temporal_error,noisy_rmse,reference_temporal_"
+               "error\n";
+        auto f6 = [](double v) {
+            return std::isfinite(v) ? fmt::format("{:.6f}", v) : std::string();
+        };
+        for (size_t k = 0; k < scores.size(); ++k)
+            csv << first + int(k) << "," << f6(scores[k].rmse) << "," << f6(scores[k].psnr) << ","
+                << f6(scores[k].ssim) << "," << f6(scores[k].flip) << "," << f6(scores[k].relmse)
+                << "," << f6(scores[k].temporal) << "," << f6(noisyScores[k].rmse) << ","
+                << f6(referenceTemporal[k]) << "\n";
+        const FrameScores m = meanScores(scores), nm = meanScores(noisyScores);
+        double refTemporal = 0;
+        int n = 0;
+        for (double v : referenceTemporal)
+            if (std::isfinite(v)) refTemporal += v, ++n;
+        refTemporal = n ? refTemporal / n : NAN;
+        auto num = [](double v) {
+            return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+        };
+        report["scores"] = {{"rmse", num(m.rmse)},
+                            {"psnr_db", num(m.psnr)},
+                            {"ssim", num(m.ssim)},
+                            {"flip", num(m.flip)},
+                            {"relmse", num(m.relmse)},
+                            {"temporal_error", num(m.temporal)},
+                            {"noisy_rmse", num(nm.rmse)},
+                            {"noisy_temporal_error", num(nm.temporal)},
+                            {"reference_temporal_error", num(refTemporal)},
                             {"color_space", "tone-mapped: clamp(x^(1/2.2), 0, 1); relmse linear"}};
+        summary = fmt::format(
+            "\nScores vs reference (mean over frames; tone-mapped x^(1/2.2), relMSE linear):\n"
+            "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13}\n"
+            "  {:<10} {:>8.4f} {:>8} {:>7} {:>7} {:>8} {:>13.4f}\n"
+            "  {:<10} {:>8.4f} {:>8.2f} {:>7.4f} {:>7} {:>8.4f} {:>13.4f}\n"
+            "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13.4f}\n",
+            "", "RMSE", "PSNR dB", "SSIM", "FLIP", "relMSE", "temporal err", "noisy", nm.rmse, "",
+            "", "", "", nm.temporal, "bmfr", m.rmse, m.psnr, m.ssim,
+            std::isfinite(m.flip) ? fmt::format("{:.4f}", m.flip) : "-", m.relmse, m.temporal,
+            "reference", "", "", "", "", "", refTemporal);
     }
     std::ofstream(fs::path(job.output) / "report.json") << report.dump(2) << "\n";
 
@@ -246,18 +262,7 @@ int runDenoise(const DenoiseJob& job) {
                    "total {:7.2f}   (read {:.1f}, write {:.1f})\n",
                    median(tAcc), median(tFit), median(tAcc2), median(tTaa), median(tTotal),
                    median(tRead), median(tWrite));
-        if (info.hasReference) {
-            fmt::print("\nScores vs reference (mean over frames; tone-mapped x^(1/2.2)):\n");
-            fmt::print("  {:<10} {:>9} {:>9} {:>10} {:>15}\n", "", "RMSE", "PSNR dB", "relMSE",
-                       "temporal err");
-            fmt::print("  {:<10} {:>9.4f} {:>9} {:>10} {:>15.4f}\n", "noisy",
-                       mean(scores.noisyRmse), "", "", mean(scores.noisyTemporal));
-            fmt::print("  {:<10} {:>9.4f} {:>9.2f} {:>10.4f} {:>15.4f}\n", "bmfr",
-                       mean(scores.rmse), mean(scores.psnr), mean(scores.relmse),
-                       mean(scores.temporal));
-            fmt::print("  {:<10} {:>9} {:>9} {:>10} {:>15.4f}\n", "reference", "", "", "",
-                       mean(scores.refTemporal));
-        }
+        fmt::print("{}", summary);
         fmt::print("\nwrote {}/denoised_NNNN.exr{}, report.json{}\n", job.output,
                    job.png ? " and .png" : "", info.hasReference ? ", scores.csv" : "");
     }
@@ -275,6 +280,7 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("--debug", job->debug,
                   "also write accumulated colour, fitted frame, history length, discard mask");
     cmd->add_flag("!--no-png", job->png, "skip the tone-mapped PNGs");
+    cmd->add_flag("!--no-flip", job->flip, "skip FLIP when scoring (the slowest metric)");
     job->options.addTo(*cmd);
     cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });
 }

@@ -1,5 +1,6 @@
 // Subcommands of the bmfr tool and the denoise job they share.
 #pragma once
+#include "eval/comparison.h"
 #include <CLI/CLI.hpp>
 #include <bmfr/settings.h>
 #include <optional>
@@ -22,7 +23,7 @@ struct SettingsOptions {
 struct DenoiseJob {
     std::string input, output;
     std::string frames; ///< "A:B" (A..B-1), "A:" or ":B"; empty = all
-    bool quiet = false, debug = false, png = true;
+    bool quiet = false, debug = false, png = true, flip = true;
     SettingsOptions options;
 };
 
@@ -30,11 +31,16 @@ struct DenoiseJob {
 /// references). Returns the process exit code.
 int runDenoise(const DenoiseJob& job);
 
+/// Runs `bmfr eval`; prints the table and the report path unless quiet.
+int runEval(const ComparisonOptions& options, bool quiet);
+
 void addDenoiseCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);
 void addDemoCommand(CLI::App& app, int& exitCode);
 void addSynthCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, int& exitCode);
 void addTonemapCommand(CLI::App& app, int& exitCode);
+void addEvalCommand(CLI::App& app, int& exitCode);
+void addAblateCommand(CLI::App& app, int& exitCode);
 
 } // namespace bmfr::app

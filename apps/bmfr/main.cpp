@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
     bmfr::app::addDemoCommand(app, exitCode);
     bmfr::app::addRenderCommand(app, exitCode);
     bmfr::app::addDenoiseCommand(app, exitCode);
+    bmfr::app::addEvalCommand(app, exitCode);
+    bmfr::app::addAblateCommand(app, exitCode);
     bmfr::app::addBenchCommand(app, exitCode);
     bmfr::app::addSynthCommand(app, exitCode);
     bmfr::app::addTonemapCommand(app, exitCode);

@@ -1,10 +1,10 @@
 #include "io/exr.h"
 #include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfThreading.h>
 #include <bmfr/error.h>
 #include <filesystem>
 #include <thread>

@@ -46,6 +46,11 @@ double relMseLinear(const ImageF& a, const ImageF& r) {
     });
 }
 
+double psnr(const ImageF& a, const ImageF& r, double range) {
+    double e = rmseLinear(a, r);
+    return e > 0 ? 20.0 * std::log10(range / e) : INFINITY;
+}
+
 double psnrToneMapped(const ImageF& a, const ImageF& r) {
     double e = rmseToneMapped(a, r);
     return e > 0 ? -20.0 * std::log10(e) : INFINITY;

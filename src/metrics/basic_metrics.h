@@ -12,6 +12,8 @@ double rmseToneMapped(const ImageF& a, const ImageF& reference);
 double rmseLinear(const ImageF& a, const ImageF& reference);
 /// Relative MSE of linear radiance: mean((a-r)^2 / (r^2 + 0.01)).
 double relMseLinear(const ImageF& a, const ImageF& reference);
+/// PSNR in dB of images whose values lie in [0, range]: 10 log10(range^2 / MSE).
+double psnr(const ImageF& a, const ImageF& reference, double range = 1.0);
 /// PSNR in dB of tone-mapped images (peak 1).
 double psnrToneMapped(const ImageF& a, const ImageF& reference);
 /// Temporal error (Schied et al. 2017): mean |Y(current) - Y(previous)| of tone-mapped luminance.

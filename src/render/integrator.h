@@ -42,8 +42,8 @@ class Integrator {
 
     /// Closest surface (mesh or quad light) along a ray; fills the shading point.
     /// width: ray-cone footprint at o; spread: its growth per unit distance (radians).
-    bool trace(Vec3 o, Vec3 d, float width, float spread, SurfacePoint& sp,
-               int& quad, float& t, uint64_t& rays) const;
+    bool trace(Vec3 o, Vec3 d, float width, float spread, SurfacePoint& sp, int& quad, float& t,
+               uint64_t& rays) const;
     void shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidth, SurfacePoint& sp) const;
 };
 

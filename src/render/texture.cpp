@@ -20,7 +20,9 @@ struct SrgbTable {
 };
 const SrgbTable kSrgb;
 
-const float* srgbTable() { return kSrgb.v; }
+const float* srgbTable() {
+    return kSrgb.v;
+}
 
 /// Wraps into [0, n) with a cheap path for the common in-range case.
 inline int wrap(int i, int n) {
@@ -99,7 +101,10 @@ float Texture::alphaNearest(float u, float v) const {
     const Level& l = levels_[0];
     float x = u * float(l.w), y = v * float(l.h);
     if (!(std::fabs(x) < 1e7f) || !(std::fabs(y) < 1e7f)) return 1.0f;
-    return l.rgba[(size_t(wrap(int(std::floor(y)), l.h)) * l.w + size_t(wrap(int(std::floor(x)), l.w))) * 4 + 3] /
+    return l.rgba[(size_t(wrap(int(std::floor(y)), l.h)) * l.w +
+                   size_t(wrap(int(std::floor(x)), l.w))) *
+                      4 +
+                  3] /
            255.0f;
 }
 

@@ -1,0 +1,47 @@
+#include "commands.h"
+#include "eval/ablation.h"
+#include "io/sequence.h"
+#include <fmt/core.h>
+#include <fstream>
+#include <sstream>
+
+namespace bmfr::app {
+
+void addAblateCommand(CLI::App& app, int& exitCode) {
+    struct Job {
+        std::string input, output, frames;
+        bool quiet = false;
+        SettingsOptions options;
+    };
+    auto job = std::make_shared<Job>();
+    CLI::App* cmd = app.add_subcommand(
+        "ablate", "BMFR ablations: each stage off in turn, and the paper's greedy "
+                  "feature-set study, scored against the references");
+    cmd->add_option("input", job->input, "sequence folder with references")->required();
+    cmd->add_option("-o,--output", job->output, "output folder")->required();
+    cmd->add_option("--frames", job->frames, "frame range A:B (A..B-1)");
+    cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
+    job->options.addTo(*cmd);
+    cmd->callback([job, &exitCode] {
+        auto reader = SequenceReader::open(job->input);
+        const SequenceInfo& info = reader->info();
+        Settings base = job->options.resolve(info.positionLimitSquared, info.normalLimitSquared,
+                                             info.colorIsDemodulated);
+        int n = 0;
+        runAblation(job->input, job->output, job->frames, base, [&](const std::string& name) {
+            if (!job->quiet)
+                fmt::print(stderr, "\rablate: configuration {} ({})          ", ++n, name);
+        });
+        if (!job->quiet) {
+            std::ifstream md(std::filesystem::path(job->output) / "ablation.md");
+            std::stringstream ss;
+            ss << md.rdbuf();
+            fmt::print(stderr, "\n");
+            fmt::print("{}\nwrote {}/ablation.md, .csv, .json and plot_greedy_*.png\n", ss.str(),
+                       job->output);
+        }
+        exitCode = 0;
+    });
+}
+
+} // namespace bmfr::app

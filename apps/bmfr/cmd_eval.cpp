@@ -1,0 +1,80 @@
+#include "commands.h"
+#include "eval/comparison.h"
+#include "progress.h"
+#include <bmfr/error.h>
+#include <fmt/core.h>
+#include <memory>
+
+namespace bmfr::app {
+
+namespace {
+
+std::array<int, 4> parseCrop(const std::string& s) {
+    std::array<int, 4> c{};
+    if (std::sscanf(s.c_str(), "%d,%d,%d,%d", &c[0], &c[1], &c[2], &c[3]) != 4)
+        throw Error("--crop expects x,y,w,h, got '" + s + "'");
+    return c;
+}
+
+} // namespace
+
+int runEval(const ComparisonOptions& o, bool quiet) {
+    std::unique_ptr<Progress> bar; // the frame count is known once the reference is open
+    ComparisonResult r = runComparison(o, [&](int done, int total) {
+        if (!bar) bar = std::make_unique<Progress>("eval", total, quiet);
+        bar->step(done);
+    });
+    if (bar) bar->finish();
+    if (!quiet) {
+        fmt::print("\nScores, mean over frames {}:{} (tone-mapped; relMSE linear):\n\n{}\n",
+                   r.first, r.last, markdownTable(r));
+        fmt::print("report: {}\n", r.reportPath);
+    }
+    return 0;
+}
+
+void addEvalCommand(CLI::App& app, int& exitCode) {
+    struct Job {
+        ComparisonOptions options;
+        std::vector<std::string> methods, crops;
+        bool quiet = false, noFlip = false;
+    };
+    auto job = std::make_shared<Job>();
+    CLI::App* cmd =
+        app.add_subcommand("eval", "score result sequences against a reference; tables, plots, "
+                                   "crops, heat maps and an HTML report");
+    cmd->add_option("-r,--reference", job->options.reference,
+                    "sequence folder holding the reference frames")
+        ->required();
+    cmd->add_option(
+           "-m,--method", job->methods,
+           "NAME=PATH: a `bmfr denoise` output or a sequence (its noisy colour); NAME alone = the "
+           "reference sequence's noisy colour")
+        ->required();
+    cmd->add_option("-o,--output", job->options.output, "output folder")->required();
+    cmd->add_option("--frames", job->options.frames, "frame range A:B (A..B-1)");
+    cmd->add_option("--crop", job->crops, "x,y,w,h inset (repeatable); default: largest error");
+    cmd->add_option("--crops", job->options.autoCrops, "automatic insets when no --crop")
+        ->default_val(2);
+    cmd->add_option("--crop-size", job->options.cropSize, "automatic inset size, pixels")
+        ->default_val(48);
+    cmd->add_option("--zoom", job->options.zoom, "inset enlargement")->default_val(4);
+    cmd->add_option("--show-frame", job->options.showFrame,
+                    "frame for pictures and heat maps (default: last)");
+    cmd->add_flag("--no-flip", job->noFlip, "skip FLIP (the slowest metric)");
+    cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
+    cmd->callback([job, &exitCode] {
+        ComparisonOptions o = job->options;
+        for (const std::string& m : job->methods) {
+            size_t eq = m.find('=');
+            o.methods.push_back(eq == std::string::npos
+                                    ? MethodSource{m, ""}
+                                    : MethodSource{m.substr(0, eq), m.substr(eq + 1)});
+        }
+        for (const std::string& c : job->crops) o.crops.push_back(parseCrop(c));
+        o.flip = !job->noFlip;
+        exitCode = runEval(o, job->quiet);
+    });
+}
+
+} // namespace bmfr::app

@@ -1,0 +1,34 @@
+// Scores of one result frame against its reference. Colour spaces: RMSE, PSNR, SSIM, FLIP and
+// the temporal error use the paper's display transform clamp(x^(1/2.2), 0, 1); relMSE uses
+// linear HDR radiance.
+#pragma once
+#include "core/image.h"
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace bmfr {
+
+struct FrameScores {
+    double rmse = NAN, psnr = NAN, ssim = NAN, flip = NAN, relmse = NAN;
+    double temporal = NAN; ///< against the previous result frame; NaN for the first frame
+};
+
+/// The metric names in table order, with "lower is better" flags.
+struct MetricInfo {
+    const char* key;
+    const char* label;
+    bool lowerIsBetter;
+};
+const std::vector<MetricInfo>& metricList();
+double metricValue(const FrameScores& s, const std::string& key);
+
+/// Scores `result` (linear RGB) against `reference` (linear RGB); `previous` (may be null) is the
+/// previous result frame, for the temporal error. `withFlip` switches the slowest metric.
+FrameScores scoreFrame(const ImageF& result, const ImageF& reference, const ImageF* previous,
+                       bool withFlip = true);
+
+/// Mean of each metric over frames (ignoring NaN).
+FrameScores meanScores(const std::vector<FrameScores>& frames);
+
+} // namespace bmfr
