@@ -171,3 +171,23 @@ TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
 }
 
 } // namespace
+
+namespace {
+
+TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
+    fs::path in = scratch("svgf_in"), out = scratch("svgf_out");
+    ASSERT_EQ(run("synth " + in.string() + " --width 64 --height 48 --frames 3 -q").code, 0);
+    Result r = run("denoise " + in.string() + " -o " + out.string() +
+                   " --filter svgf --sample-fraction 0.5 --no-png");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("bmfr denoise (svgf)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("atrous"), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(out / "denoised_0002.exr"));
+    Result bad = run("denoise " + in.string() + " -o " + out.string() + " --filter nlm");
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.output.find("unknown filter 'nlm'"), std::string::npos) << bad.output;
+    fs::remove_all(in);
+    fs::remove_all(out);
+}
+
+} // namespace

@@ -1,8 +1,10 @@
 #include "commands.h"
+#include "stage_log.h"
 #include "synth/procedural_scene.h"
 #include <algorithm>
 #include <bmfr/denoiser.h>
 #include <bmfr/error.h>
+#include <bmfr/svgf.h>
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -15,12 +17,8 @@ struct BenchJob {
     std::vector<std::string> sizes{"1280x720"};
     int warmup = 5, frames = 30, distinct = 8, threads = 0;
     bool json = false;
+    std::string filter = "bmfr";
 };
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
 nlohmann::json benchOne(const BenchJob& job, int w, int h) {
     ProceduralSceneOptions so;
@@ -30,24 +28,18 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h) {
     for (int i = 0; i < job.distinct; ++i) scene.render(i, frames[size_t(i)]);
     Settings s;
     s.threads = job.threads;
-    Denoiser d(s);
-    std::vector<double> acc, fit, acc2, taa, total;
+    SvgfSettings sv;
+    sv.threads = job.threads;
+    std::unique_ptr<Filter> d = makeFilter(job.filter, s, sv);
+    StageLog log;
     for (int i = 0; i < job.warmup + job.frames; ++i) {
         // Cycle forwards then backwards so the camera motion stays continuous.
         int period = 2 * job.distinct - 2, k = period > 0 ? i % period : 0;
         if (k >= job.distinct) k = period - k;
-        d.denoise(frames[size_t(k)].input());
-        if (i < job.warmup) continue;
-        const StageTimes& t = d.lastStats().times;
-        acc.push_back(t.accumulate), fit.push_back(t.fit), acc2.push_back(t.accumulateFitted);
-        taa.push_back(t.taa), total.push_back(t.total);
+        d->denoise(frames[size_t(k)].input());
+        if (i >= job.warmup) log.add(d->lastStats().times);
     }
-    return {{"total_ms", median(total)},
-            {"stages",
-             {{"accumulate", median(acc)},
-              {"fit", median(fit)},
-              {"accumulate_fitted", median(acc2)},
-              {"taa", median(taa)}}}};
+    return {{"total_ms", log.totalMedian()}, {"stages", log.medians()}, {"line", log.line()}};
 }
 
 } // namespace
@@ -63,6 +55,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--frames", job->frames, "timed frames")->default_val(30);
     cmd->add_option("--threads", job->threads, "worker threads, 0 = all cores")->default_val(0);
     cmd->add_flag("--json", job->json, "print one JSON object");
+    cmd->add_option("--filter", job->filter, "bmfr or svgf")->default_val("bmfr");
     cmd->callback([job, &exitCode] {
         nlohmann::json all;
         for (const std::string& size : job->sizes) {
@@ -72,15 +65,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
             if (!(in >> w >> x >> h) || x != 'x' || w <= 0 || h <= 0)
                 throw Error("--sizes: '" + size + "' is not WxH");
             nlohmann::json r = benchOne(*job, w, h);
-            all[size] = r;
             if (!job->json)
-                fmt::print("{:>10}: total {:8.2f} ms | accumulate {:7.2f} | fit {:7.2f} | "
-                           "accumulate fitted {:7.2f} | taa {:7.2f}   (median of {} frames)\n",
-                           size, r["total_ms"].get<double>(),
-                           r["stages"]["accumulate"].get<double>(),
-                           r["stages"]["fit"].get<double>(),
-                           r["stages"]["accumulate_fitted"].get<double>(),
-                           r["stages"]["taa"].get<double>(), job->frames);
+                fmt::print("{:>10} {}: {} ms   (median of {} frames)\n", size, job->filter,
+                           r["line"].get<std::string>(), job->frames);
+            r.erase("line");
+            all[size] = r;
         }
         if (job->json) fmt::print("{}\n", all.dump());
         exitCode = 0;

@@ -53,10 +53,12 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             const char* name;
             const char* folder;
             std::vector<std::string> disabled;
+            const char* filter;
         };
-        const Variant variants[] = {{"bmfr", "denoised", {}},
-                                    {"accumulation only", "accumulation_only", {"fitting"}},
-                                    {"bmfr without TAA", "bmfr_no_taa", {"taa"}}};
+        const Variant variants[] = {{"bmfr", "denoised", {}, "bmfr"},
+                                    {"accumulation only", "accumulation_only", {"fitting"}, "bmfr"},
+                                    {"bmfr without TAA", "bmfr_no_taa", {"taa"}, "bmfr"},
+                                    {"svgf", "svgf", {}, "svgf"}};
         ComparisonOptions eval;
         eval.reference = input;
         eval.output = (fs::path(job->output) / "report").string();
@@ -65,8 +67,10 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             DenoiseJob dj;
             dj.input = input;
             dj.output = (fs::path(job->output) / v.folder).string();
-            dj.quiet = job->quiet || v.disabled.size() > 0; // full summary for BMFR itself
-            dj.debug = v.disabled.empty();
+            const bool main = v.disabled.empty() && std::string(v.filter) == "bmfr";
+            dj.quiet = job->quiet || !main; // the full summary for BMFR itself
+            dj.debug = main;
+            dj.filter = v.filter;
             dj.options.disabled = v.disabled;
             runDenoise(dj);
             eval.methods.push_back({v.name, dj.output});

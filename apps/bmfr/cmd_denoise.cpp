@@ -1,4 +1,5 @@
 #include "commands.h"
+#include "core/hash.h"
 #include "core/image.h"
 #include "eval/frame_scores.h"
 #include "io/exr.h"
@@ -6,9 +7,11 @@
 #include "io/sequence.h"
 #include "metrics/basic_metrics.h"
 #include "progress.h"
+#include "stage_log.h"
 #include <algorithm>
 #include <bmfr/denoiser.h>
 #include <bmfr/error.h>
+#include <bmfr/svgf.h>
 #include <chrono>
 #include <filesystem>
 #include <fmt/core.h>
@@ -91,12 +94,6 @@ std::pair<int, int> frameRange(const std::string& spec, int count) {
     return {a, b};
 }
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
 ImageF copyOf(const ImageView& v) {
     ImageF img(v.width, v.height, v.channels);
     std::copy(v.data, v.data + img.pixels.size(), img.data());
@@ -118,15 +115,26 @@ int runDenoise(const DenoiseJob& job) {
     fs::create_directories(job.output);
     if (job.debug) fs::create_directories(fs::path(job.output) / "debug");
 
-    Denoiser denoiser(settings);
-    denoiser.setDebugOutputs(job.debug);
+    SvgfSettings svgf = job.svgf;
+    svgf.positionLimitSquared = settings.positionLimitSquared;
+    svgf.normalLimitSquared = settings.normalLimitSquared;
+    svgf.colorIsDemodulated = settings.colorIsDemodulated;
+    svgf.threads = settings.threads;
+    svgf.taa = settings.stages.taa;
+    std::unique_ptr<Filter> filter = makeFilter(job.filter, settings, svgf);
+    auto* bmfrFilter = dynamic_cast<Denoiser*>(filter.get());
+    if (bmfrFilter) bmfrFilter->setDebugOutputs(job.debug);
     if (!job.quiet)
-        fmt::print("bmfr denoise: {} ({} layout, {}x{}, frames {}:{}), features {}\n", job.input,
-                   info.layout, info.width, info.height, first, last,
-                   formatFeatures(settings.features));
+        fmt::print("bmfr denoise ({}): {} ({} layout, {}x{}, frames {}:{}){}\n", job.filter,
+                   job.input, info.layout, info.width, info.height, first, last,
+                   bmfrFilter ? ", features " + formatFeatures(settings.features) : std::string());
 
     Progress progress("denoise", last - first, job.quiet);
-    std::vector<double> tAcc, tFit, tAcc2, tTaa, tTotal, tRead, tWrite;
+    if (!(job.sampleFraction > 0.0f && job.sampleFraction <= 1.0f))
+        throw Error(fmt::format("--sample-fraction {} is outside (0, 1]", job.sampleFraction));
+    ImageF sampleMask(info.width, info.height, 1);
+    StageLog stages;
+    std::vector<double> tRead, tWrite;
     int64_t nonFinite = 0;
     std::vector<int> badFrames;
     std::vector<FrameScores> scores, noisyScores;
@@ -143,13 +151,18 @@ int runDenoise(const DenoiseJob& job) {
         reader->load(i, frame);
         tRead.push_back(since(t0));
         FrameInput in = frame.input();
-        ImageF out = copyOf(denoiser.denoise(in));
-        const FrameStats& st = denoiser.lastStats();
-        tAcc.push_back(st.times.accumulate);
-        tFit.push_back(st.times.fit);
-        tAcc2.push_back(st.times.accumulateFitted);
-        tTaa.push_back(st.times.taa);
-        tTotal.push_back(st.times.total);
+        if (job.sampleFraction < 1.0f) {
+            // Fewer than 1 spp, simulated: a fixed pseudo-random subset of pixels per frame.
+            for (long k = 0; k < sampleMask.pixelCount(); ++k)
+                sampleMask.data()[k] =
+                    unitFloat(hashKeys(uint32_t(k), uint32_t(i), 0x5eedu)) < job.sampleFraction
+                        ? 1.0f
+                        : 0.0f;
+            in.sampleMask = view(sampleMask);
+        }
+        ImageF out = copyOf(filter->denoise(in));
+        const FrameStats& st = filter->lastStats();
+        stages.add(st.times);
         if (st.nonFiniteInputs) nonFinite += st.nonFiniteInputs, badFrames.push_back(i);
 
         auto t1 = Clock::now();
@@ -158,8 +171,8 @@ int runDenoise(const DenoiseJob& job) {
         if (job.png)
             writePngToneMapped((fs::path(job.output) / ("denoised_" + stem + ".png")).string(),
                                out);
-        if (job.debug) {
-            DebugBuffers d = denoiser.debug();
+        if (job.debug && bmfrFilter) {
+            DebugBuffers d = bmfrFilter->debug();
             const fs::path dd = fs::path(job.output) / "debug";
             writeExr((dd / ("accumulated_" + stem + ".exr")).string(), copyOf(d.accumulatedNoisy));
             writeExr((dd / ("fitted_" + stem + ".exr")).string(), copyOf(d.fitted));
@@ -205,11 +218,9 @@ int runDenoise(const DenoiseJob& job) {
     report["frames"] = last - first;
     report["resolution"] = {info.width, info.height};
     report["features"] = formatFeatures(settings.features);
-    report["median_ms"] = {{"accumulate", median(tAcc)},
-                           {"fit", median(tFit)},
-                           {"accumulate_fitted", median(tAcc2)},
-                           {"taa", median(tTaa)},
-                           {"total", median(tTotal)}};
+    report["filter"] = job.filter;
+    report["median_ms"] = stages.medians();
+    report["median_ms"]["total"] = stages.totalMedian();
     if (info.hasReference) {
         std::ofstream csv(fs::path(job.output) / "scores.csv");
         csv << "frame,rmse,psnr_db,ssim,flip,relmse,temporal_error,noisy_rmse,reference_temporal_"
@@ -258,10 +269,8 @@ int runDenoise(const DenoiseJob& job) {
         fmt::print("\n{} frames, {}x{}, {} threads. Median ms per frame:\n", last - first,
                    info.width, info.height,
                    settings.threads ? settings.threads : int(std::thread::hardware_concurrency()));
-        fmt::print("  accumulate {:7.2f} | fit {:7.2f} | accumulate fitted {:7.2f} | taa {:7.2f} | "
-                   "total {:7.2f}   (read {:.1f}, write {:.1f})\n",
-                   median(tAcc), median(tFit), median(tAcc2), median(tTaa), median(tTotal),
-                   median(tRead), median(tWrite));
+        fmt::print("  {}   (read {:.1f}, write {:.1f})\n", stages.line(), median(tRead),
+                   median(tWrite));
         fmt::print("{}", summary);
         fmt::print("\nwrote {}/denoised_NNNN.exr{}, report.json{}\n", job.output,
                    job.png ? " and .png" : "", info.hasReference ? ", scores.csv" : "");
@@ -281,6 +290,20 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
                   "also write accumulated colour, fitted frame, history length, discard mask");
     cmd->add_flag("!--no-png", job->png, "skip the tone-mapped PNGs");
     cmd->add_flag("!--no-flip", job->flip, "skip FLIP when scoring (the slowest metric)");
+    cmd->add_option("--filter", job->filter, "bmfr or svgf")->default_val("bmfr");
+    cmd->add_option("--svgf-kernel-radius", job->svgf.kernelRadius,
+                    "SVGF: 2 = 5x5 (Schied), 1 = 3x3 (progressive)")
+        ->default_val(2);
+    cmd->add_flag("--svgf-reverse-levels", job->svgf.reverseLevels,
+                  "SVGF: coarse-to-fine levels (progressive)");
+    cmd->add_option("--svgf-iterations", job->svgf.iterations, "SVGF: a-trous levels [1, 8]")
+        ->default_val(5);
+    cmd->add_option("--svgf-spatial-variance-frames", job->svgf.spatialVarianceFrames,
+                    "SVGF: 7x7 variance estimate below this history length; 0 = off")
+        ->default_val(4);
+    cmd->add_option("--sample-fraction", job->sampleFraction,
+                    "simulate fewer than 1 spp: keep this fraction of pixels per frame (0, 1]")
+        ->default_val(1.0);
     job->options.addTo(*cmd);
     cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });
 }

@@ -3,6 +3,7 @@
 #include "eval/comparison.h"
 #include <CLI/CLI.hpp>
 #include <bmfr/settings.h>
+#include <bmfr/svgf.h>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,9 @@ struct DenoiseJob {
     std::string input, output;
     std::string frames; ///< "A:B" (A..B-1), "A:" or ":B"; empty = all
     bool quiet = false, debug = false, png = true, flip = true;
+    std::string filter = "bmfr"; ///< "bmfr" or "svgf"
+    SvgfSettings svgf;
+    float sampleFraction = 1.0f; ///< < 1 simulates fewer than 1 spp with a per-frame pixel mask
     SettingsOptions options;
 };
 

@@ -3,5 +3,7 @@
 #include <bmfr/denoiser.h>
 #include <bmfr/error.h>
 #include <bmfr/features.h>
+#include <bmfr/filter.h>
 #include <bmfr/frame.h>
 #include <bmfr/settings.h>
+#include <bmfr/svgf.h>

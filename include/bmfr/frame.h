@@ -29,6 +29,9 @@ struct FrameInput {
     /// When given it is taken out before filtering and added back before TAA, so emitters keep
     /// sharp edges and do not bleed into their blocks. Leave data null when unavailable.
     ImageView emission;
+    /// Optional 1-channel mask, > 0.5 where this frame has a sample (fewer than 1 spp). SVGF
+    /// keeps the history of unsampled pixels; BMFR ignores the mask. Leave data null for 1 spp.
+    ImageView sampleMask;
     std::vector<ImageView> extras; ///< optional 1-channel feature buffers (Feature::Extra)
     Mat4 viewProjection;           ///< this frame's world-to-clip matrix
     /// Sub-pixel offset of this frame's primary rays from the pixel centre, pixels, [-0.5, 0.5].
@@ -36,13 +39,18 @@ struct FrameInput {
     bool reset = false; ///< camera cut: drop all history before this frame
 };
 
-/// Per-stage wall time of the last frame, milliseconds.
+/// Per-stage wall time of the last frame, milliseconds; each filter names its own stages.
 struct StageTimes {
-    double accumulate = 0; ///< phase I: demodulation, reprojection, first accumulation
-    double fit = 0;        ///< phase II: block gather, scaling, QR, back substitution, weighted sum
-    double accumulateFitted = 0; ///< phase III: second accumulation and re-modulation
-    double taa = 0;              ///< phase III: TAA
+    static constexpr int kMaxStages = 8;
+    const char* name[kMaxStages] = {};
+    double ms[kMaxStages] = {};
+    int count = 0;
     double total = 0;
+    void clear() { count = 0, total = 0; }
+    void add(const char* stage, double value) {
+        if (count < kMaxStages) name[count] = stage, ms[count++] = value;
+        total += value;
+    }
 };
 
 /// Facts about the last frame.

@@ -71,6 +71,10 @@ BMFR_HD Vec3 lerp(Vec3 a, Vec3 b, float t) {
 BMFR_HD Vec3 load3(const float* p, long i) {
     return {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
 }
+/// RGB of pixel i in a 4-channel (RGB + one more) buffer.
+BMFR_HD Vec3 load3Stride4(const float* p, long i) {
+    return {p[4 * i], p[4 * i + 1], p[4 * i + 2]};
+}
 BMFR_HD void store3(float* p, long i, Vec3 v) {
     p[3 * i] = v.x;
     p[3 * i + 1] = v.y;

@@ -16,7 +16,11 @@ InputCounters accumulateNoisy(const BmfrPassContext& ctx);
 void fitBlocks(const BmfrPassContext& ctx);
 /// Phase III: second accumulation reusing phase I's taps, then re-modulation by albedo.
 void accumulateFitted(const BmfrPassContext& ctx);
-/// Phase III: TAA with a YCoCg neighbourhood clamp.
-void temporalAntiAliasing(const BmfrPassContext& ctx);
+/// TAA with a 3x3 YCoCg neighbourhood clamp (Karis 2014, the authors' variant), bilinear history
+/// at `previousPixel` (2 floats per pixel), weight `alpha` for the current frame. Shared by
+/// every filter. With enabled = false it copies `current` to `out`.
+void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
+                          const float* previousPixel, float* out, int width, int height,
+                          float alpha, bool enabled);
 
 } // namespace bmfr::cpu

@@ -5,24 +5,19 @@
 
 namespace bmfr::cpu {
 
-void temporalAntiAliasing(const BmfrPassContext& ctx) {
-    BmfrState& st = ctx.state;
-    const int w = st.width, h = st.height;
-    const float* current = st.remodulated.data();
-    float* out = st.output[st.cur].data();
-    if (!ctx.settings.stages.taa || !st.hasHistory) {
-        std::memcpy(out, current, st.remodulated.pixels.size() * sizeof(float));
+void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* hist,
+                          const float* previousPixel, float* out, int w, int h, float alpha,
+                          bool enabled) {
+    if (!enabled) {
+        std::memcpy(out, current, size_t(w) * size_t(h) * 3 * sizeof(float));
         return;
     }
-    const float* hist = st.output[1 - st.cur].data();
-    const float alpha = ctx.settings.taaBlendAlpha;
-
-    ctx.pool.parallelFor(h, 4, [&](long y0, long y1) {
+    pool.parallelFor(h, 4, [&](long y0, long y1) {
         for (long y = y0; y < y1; ++y) {
             for (int x = 0; x < w; ++x) {
                 const long i = y * w + x;
                 const Vec3 c = load3(current, i);
-                Vec2 pp{st.previousPixel.data()[2 * i], st.previousPixel.data()[2 * i + 1]};
+                Vec2 pp{previousPixel[2 * i], previousPixel[2 * i + 1]};
                 BilinearFootprint fp = bilinearFootprint(pp);
                 if (fp.x0 < -1 || fp.y0 < -1 || fp.x0 >= w || fp.y0 >= h) {
                     store3(out, i, c);

@@ -2,6 +2,7 @@
 #include "core/hash.h"
 #include "core/mat4.h"
 #include "filters/bmfr/state.h"
+#include "filters/frame_checks.h"
 #include <bmfr/denoiser.h>
 #include <bmfr/error.h>
 #include <chrono>
@@ -47,49 +48,8 @@ struct Denoiser::Impl {
 
     explicit Impl(const Settings& s) : settings(s), pool(s.threads) {}
 
-    void checkInput(const FrameInput& f) const;
     void fillNoise();
 };
-
-namespace {
-
-void checkImage(const ImageView& v, const char* name, int channels, int w, int h) {
-    if (!v.data) throw Error(std::string("input buffer '") + name + "' is missing");
-    if (v.width <= 0 || v.height <= 0)
-        throw Error(std::string("input buffer '") + name + "' has zero size (" +
-                    std::to_string(v.width) + "x" + std::to_string(v.height) + ")");
-    if (v.channels != channels)
-        throw Error(std::string("input buffer '") + name + "' has " + std::to_string(v.channels) +
-                    " channels, expected " + std::to_string(channels));
-    if (v.width != w || v.height != h)
-        throw Error(std::string("input buffer '") + name + "' is " + std::to_string(v.width) + "x" +
-                    std::to_string(v.height) + ", colour is " + std::to_string(w) + "x" +
-                    std::to_string(h));
-}
-
-} // namespace
-
-void Denoiser::Impl::checkInput(const FrameInput& f) const {
-    const int w = f.color.width, h = f.color.height;
-    checkImage(f.color, "color", 3, w, h);
-    checkImage(f.albedo, "albedo", 3, w, h);
-    checkImage(f.normal, "normal", 3, w, h);
-    checkImage(f.position, "position", 3, w, h);
-    if (f.emission.data) checkImage(f.emission, "emission", 3, w, h);
-    for (size_t e = 0; e < f.extras.size(); ++e)
-        checkImage(f.extras[e], ("extra" + std::to_string(e)).c_str(), 1, w, h);
-    for (const Feature& feat : settings.features)
-        if (feat.source == FeatureSource::Extra && feat.extraIndex >= int(f.extras.size()))
-            throw Error("feature extra" + std::to_string(feat.extraIndex) + " needs " +
-                        std::to_string(feat.extraIndex + 1) + " extra buffers, the frame has " +
-                        std::to_string(f.extras.size()));
-    if (f.extras.size() > 16) throw Error("at most 16 extra buffers");
-    if (!isUsableCameraMatrix(f.viewProjection))
-        throw Error("view-projection matrix is not finite or not invertible");
-    for (float j : f.jitter)
-        if (!std::isfinite(j) || std::fabs(j) > 1.0f)
-            throw Error("sub-pixel jitter " + std::to_string(j) + " is outside [-1, 1] pixels");
-}
 
 void Denoiser::Impl::fillNoise() {
     const int W = settings.blockSize * settings.blockSize, M = int(settings.features.size());
@@ -131,7 +91,7 @@ ImageView Denoiser::denoise(const FrameInput& frame) {
         return std::chrono::duration<double, std::milli>(b - a).count();
     };
     Impl& m = *impl_;
-    m.checkInput(frame);
+    checkFrameInput(frame, m.settings.features);
     BmfrState& st = m.state;
     if (frame.color.width != st.width || frame.color.height != st.height)
         st.allocate(frame.color.width, frame.color.height, m.settings, m.pool.threadCount());
@@ -147,7 +107,10 @@ ImageView Denoiser::denoise(const FrameInput& frame) {
     auto t2 = Clock::now();
     cpu::accumulateFitted(ctx);
     auto t3 = Clock::now();
-    cpu::temporalAntiAliasing(ctx);
+    cpu::temporalAntiAliasing(m.pool, st.remodulated.data(), st.output[1 - st.cur].data(),
+                              st.previousPixel.data(), st.output[st.cur].data(), st.width,
+                              st.height, m.settings.taaBlendAlpha,
+                              m.settings.stages.taa && st.hasHistory);
     auto t4 = Clock::now();
 
     if (m.debug) {
@@ -156,7 +119,11 @@ ImageView Denoiser::denoise(const FrameInput& frame) {
             st.acceptMaskF.data()[i] = st.acceptMask.data()[i];
         }
     }
-    m.stats.times = {ms(t0, t1), ms(t1, t2), ms(t2, t3), ms(t3, t4), ms(t0, t4)};
+    m.stats.times.clear();
+    m.stats.times.add("accumulate", ms(t0, t1));
+    m.stats.times.add("fit", ms(t1, t2));
+    m.stats.times.add("accumulate_fitted", ms(t2, t3));
+    m.stats.times.add("taa", ms(t3, t4));
     m.stats.nonFiniteInputs = counters.nonFinite;
     m.stats.discardedPixels = counters.discarded;
     st.hasHistory = true;

@@ -1,0 +1,160 @@
+// SVGF: the a-trous filter keeps constants and edges, the variance estimate converges, and the
+// whole filter denoises, also with fewer than 1 spp.
+#include "backend/cpu/svgf_passes.h"
+#include "core/hash.h"
+#include "metrics/basic_metrics.h"
+#include "synth/procedural_scene.h"
+#include "test_scenes.h"
+#include <bmfr/bmfr.h>
+#include <bmfr/error.h>
+#include <cmath>
+#include <cstring>
+#include <gtest/gtest.h>
+
+namespace bmfr {
+namespace {
+
+struct Planes {
+    ImageF colorVar, normal, depth, gradient;
+    ImageU8 length;
+    Planes(int w, int h)
+        : colorVar(w, h, 4), normal(w, h, 3), depth(w, h, 1), gradient(w, h, 2), length(w, h, 1) {
+        for (auto& v : length.pixels) v = 1;
+    }
+};
+
+ImageF runAtrous(const Planes& p, const SvgfSettings& s, int levels) {
+    ThreadPool pool(2);
+    ImageF a = p.colorVar, b(p.colorVar.width, p.colorVar.height, 4);
+    for (int k = 0; k < levels; ++k) {
+        cpu::svgfAtrous(pool, s, a, b, p.normal, p.depth, p.gradient, p.length, 1 << k);
+        std::swap(a, b);
+    }
+    return a;
+}
+
+TEST(Svgf, AtrousLeavesAConstantImageUnchanged) {
+    const int w = 40, h = 30;
+    Planes p(w, h);
+    for (long i = 0; i < long(w) * h; ++i) {
+        float* c = p.colorVar.data() + 4 * i;
+        c[0] = 0.3f, c[1] = 0.5f, c[2] = 0.7f, c[3] = unitFloat(wangHash(uint32_t(i)));
+        Vec3 n = normalize(
+            Vec3{unitFloat(wangHash(uint32_t(i) + 7)), 1, unitFloat(wangHash(uint32_t(i) + 9))});
+        store3(p.normal.data(), i, n);
+        p.depth.data()[i] = 3 + unitFloat(wangHash(uint32_t(i) + 11));
+        p.gradient.data()[2 * i] = 0.1f, p.gradient.data()[2 * i + 1] = -0.05f;
+    }
+    for (int radius : {1, 2}) {
+        SvgfSettings s;
+        s.kernelRadius = radius;
+        ImageF out = runAtrous(p, s, 5);
+        for (long i = 0; i < long(w) * h; ++i) {
+            ASSERT_NEAR(out.data()[4 * i], 0.3f, 1e-5f);
+            ASSERT_NEAR(out.data()[4 * i + 1], 0.5f, 1e-5f);
+            ASSERT_NEAR(out.data()[4 * i + 2], 0.7f, 1e-5f);
+        }
+    }
+}
+
+TEST(Svgf, EdgeStoppingKeepsAStepBetweenTwoPlanes) {
+    const int w = 64, h = 16;
+    for (bool depthStep : {false, true}) {
+        Planes p(w, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const long i = long(y) * w + x;
+                const bool left = x < w / 2;
+                const float v = left ? 0.2f : 0.8f;
+                float* c = p.colorVar.data() + 4 * i;
+                c[0] = c[1] = c[2] = v, c[3] = 4.0f; // large variance: luminance alone would blur
+                // Either the normals differ (perpendicular planes) or the depths do.
+                store3(p.normal.data(), i, depthStep || left ? Vec3{0, 0, 1} : Vec3{1, 0, 0});
+                p.depth.data()[i] = depthStep && !left ? 6.0f : 5.0f;
+            }
+        ImageF out = runAtrous(p, SvgfSettings{}, 5);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float expected = x < w / 2 ? 0.2f : 0.8f;
+                ASSERT_NEAR(out.at(x, y, 1), expected, 1e-4f)
+                    << (depthStep ? "depth" : "normal") << " step, x " << x;
+            }
+    }
+}
+
+TEST(Svgf, VarianceOfAStaticNoisySequenceConvergesToTheTrueVariance) {
+    const int w = 48, h = 32;
+    const Mat4 cam = test::cameraAt({0, 0, 0}, w, h);
+    SvgfSettings s;
+    s.threads = 2;
+    SvgfDenoiser d(s);
+    FrameData f = test::planeFrame(cam, w, h, {1, 1, 1}, [](int, int) { return -4.0f; });
+    const double trueVariance = 1.0 / 12.0; // uniform noise of width 1
+    for (int k = 0; k < 60; ++k) {
+        for (long i = 0; i < long(w) * h; ++i) {
+            float v = 1.0f + unitFloat(hashKeys(uint32_t(i), uint32_t(k), 3)) - 0.5f;
+            store3(f.color.data(), i, {v, v, v});
+        }
+        d.denoise(f.input());
+    }
+    double mean = 0;
+    ImageView var = d.variance();
+    for (long i = 0; i < long(w) * h; ++i) mean += var.data[i];
+    mean /= double(w) * h;
+    // Exponential moments with weight a estimate the variance times 1 - a / (2 - a).
+    const double expected = trueVariance * (1.0 - 0.2 / 1.8);
+    EXPECT_NEAR(mean, expected, 0.06 * expected);
+    EXPECT_NEAR(mean, trueVariance, 0.15 * trueVariance);
+}
+
+double meanRmse(Filter& f, int frames, float sampleFraction, double* noisy) {
+    ProceduralSceneOptions o;
+    o.width = 128, o.height = 96, o.frames = frames;
+    ProceduralScene scene(o);
+    FrameData fr;
+    ImageF mask(o.width, o.height, 1);
+    double out = 0, in = 0;
+    for (int i = 0; i < frames; ++i) {
+        scene.render(i, fr);
+        FrameInput input = fr.input();
+        if (sampleFraction < 1) {
+            for (long k = 0; k < mask.pixelCount(); ++k)
+                mask.data()[k] =
+                    unitFloat(hashKeys(uint32_t(k), uint32_t(i), 1)) < sampleFraction ? 1.0f : 0.0f;
+            input.sampleMask = view(mask);
+        }
+        ImageView v = f.denoise(input);
+        ImageF img(v.width, v.height, 3);
+        std::memcpy(img.data(), v.data, img.pixels.size() * sizeof(float));
+        for (float x : img.pixels) EXPECT_TRUE(std::isfinite(x));
+        if (i >= frames / 2)
+            out += rmseToneMapped(img, fr.reference), in += rmseToneMapped(fr.color, fr.reference);
+    }
+    if (noisy) *noisy = in;
+    return out;
+}
+
+TEST(Svgf, DenoisesTheProceduralSequenceAndHandlesMissingSamples) {
+    for (bool progressive : {false, true}) {
+        SvgfSettings s;
+        if (progressive) s.kernelRadius = 1, s.reverseLevels = true, s.spatialVarianceFrames = 0;
+        SvgfDenoiser full(s), half(s);
+        double noisy = 0;
+        double errFull = meanRmse(full, 12, 1.0f, &noisy);
+        EXPECT_LT(errFull, 0.3 * noisy) << (progressive ? "progressive" : "original");
+        double errHalf = meanRmse(half, 12, 0.5f, nullptr);
+        EXPECT_LT(errHalf, 0.4 * noisy) << "half the samples";
+    }
+}
+
+TEST(Svgf, SettingsAndFactoryErrors) {
+    SvgfSettings bad;
+    bad.kernelRadius = 3;
+    EXPECT_THROW(SvgfDenoiser{bad}, Error);
+    EXPECT_THROW(makeFilter("nlm", Settings{}, SvgfSettings{}), Error);
+    EXPECT_STREQ(makeFilter("svgf", Settings{}, SvgfSettings{})->name(), "svgf");
+    EXPECT_STREQ(makeFilter("bmfr", Settings{}, SvgfSettings{})->name(), "bmfr");
+}
+
+} // namespace
+} // namespace bmfr
