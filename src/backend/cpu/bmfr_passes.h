@@ -18,9 +18,9 @@ void fitBlocks(const BmfrPassContext& ctx);
 void accumulateFitted(const BmfrPassContext& ctx);
 /// TAA with a 3x3 YCoCg neighbourhood clamp (Karis 2014, the authors' variant), bilinear history
 /// at `previousPixel` (2 floats per pixel), weight `alpha` for the current frame. Shared by
-/// every filter. With enabled = false it copies `current` to `out`.
-void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
-                          const float* previousPixel, float* out, int width, int height,
-                          float alpha, bool enabled);
+/// every filter. ycocgScratch holds 3 floats per pixel. With enabled = false it copies `current`
+/// to `out`.
+void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history, const float* previousPixel,
+                          float* ycocgScratch, float* out, int width, int height, float alpha, bool enabled);
 
 } // namespace bmfr::cpu

@@ -9,36 +9,91 @@ namespace bmfr::cpu {
 
 namespace {
 
-/// Fills the block's noise-free feature columns and colour columns; marks owned pixels.
+/// Gathers the block's pixels as structure-of-arrays (normal, position, extras, colour) and
+/// marks the pixels it owns. Interior blocks skip the mirroring arithmetic.
 void gatherBlock(const BmfrPassContext& ctx, const BlockGrid& g, int bx, int by, FitScratch& sc) {
-    const Settings& s = ctx.settings;
     const BmfrState& st = ctx.state;
-    const int B = g.blockSize, W = B * B, M = int(s.features.size());
+    const int B = g.blockSize, W = B * B, M = int(ctx.settings.features.size());
     const float* normal = st.normal[st.cur].data();
     const float* position = st.position[st.cur].data();
     const float* color = st.accumulatedNoisy[st.cur].data();
     const auto& extras = ctx.frame.extras;
-    float extra[16] = {};
+    float* n[3] = {sc.soa.data(), sc.soa.data() + W, sc.soa.data() + 2 * W};
+    float* p[3] = {sc.soa.data() + 3 * W, sc.soa.data() + 4 * W, sc.soa.data() + 5 * W};
+    float* z[3] = {sc.work.data() + long(M) * W, sc.work.data() + long(M + 1) * W,
+                   sc.work.data() + long(M + 2) * W};
     const int ox = g.originX(bx), oy = g.originY(by);
+    const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     for (int ly = 0; ly < B; ++ly) {
-        const int uy = oy + ly, iy = mirrorIndex(uy, g.height);
+        const int uy = oy + ly, iy = inside ? uy : mirrorIndex(uy, g.height);
         const bool rowInside = uy >= 0 && uy < g.height;
         for (int lx = 0; lx < B; ++lx) {
-            const int ux = ox + lx, ix = mirrorIndex(ux, g.width);
+            const int ux = ox + lx, ix = inside ? ux : mirrorIndex(ux, g.width);
             const int k = ly * B + lx;
             const long idx = long(iy) * g.width + ix;
-            Vec3 n = load3(normal, idx), p = load3(position, idx);
-            for (size_t e = 0; e < extras.size(); ++e) {
-                float v = extras[e].data[idx];
-                extra[e] = std::isfinite(v) ? v : 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                n[c][k] = normal[3 * idx + c];
+                p[c][k] = position[3 * idx + c];
+                z[c][k] = color[3 * idx + c];
             }
-            for (int f = 0; f < M; ++f)
-                sc.clean[long(f) * W + k] = featureValue(s.features[f], n, p, extra);
-            Vec3 c = load3(color, idx);
-            sc.work[long(M) * W + k] = c.x;
-            sc.work[long(M + 1) * W + k] = c.y;
-            sc.work[long(M + 2) * W + k] = c.z;
+            for (size_t e = 0; e < extras.size(); ++e) {
+                const float v = extras[e].data[idx];
+                sc.soa[(6 + e) * size_t(W) + size_t(k)] = std::isfinite(v) ? v : 0.0f;
+            }
             sc.imageIndex[k] = rowInside && ux >= 0 && ux < g.width ? int(idx) : -1;
+        }
+    }
+    // Feature columns, one source array each: the switch runs per column, not per pixel.
+    for (int f = 0; f < M; ++f) {
+        const Feature& feat = ctx.settings.features[f];
+        float* col = sc.clean.data() + long(f) * W;
+        const float* src = nullptr;
+        switch (feat.source) {
+        case FeatureSource::One:
+            std::fill(col, col + W, 1.0f);
+            continue;
+        case FeatureSource::NormalX:
+            src = n[0];
+            break;
+        case FeatureSource::NormalY:
+            src = n[1];
+            break;
+        case FeatureSource::NormalZ:
+            src = n[2];
+            break;
+        case FeatureSource::PositionX:
+            src = p[0];
+            break;
+        case FeatureSource::PositionY:
+            src = p[1];
+            break;
+        case FeatureSource::PositionZ:
+            src = p[2];
+            break;
+        case FeatureSource::Extra:
+            src = sc.soa.data() + (6 + size_t(feat.extraIndex)) * size_t(W);
+            break;
+        }
+        if (feat.exponent == 1.0f)
+            std::copy(src, src + W, col);
+        else if (feat.exponent == 2.0f)
+            for (int k = 0; k < W; ++k) col[k] = src[k] * src[k];
+        else
+            for (int k = 0; k < W; ++k) col[k] = applyExponent(src[k], feat.exponent);
+    }
+}
+
+/// out[c][k] = sum_f coeffs[f][c] * clean[f][k]; compiled for AVX2 and baseline, chosen at run
+/// time.
+__attribute__((target_clones("avx2", "default"))) void
+weightedSum(const float* clean, const float* coeffs, int M, int W, float* sum) {
+    std::fill(sum, sum + 3 * W, 0.0f);
+    for (int f = 0; f < M; ++f) {
+        const float* col = clean + long(f) * W;
+        for (int c = 0; c < 3; ++c) {
+            const float a = coeffs[f * 3 + c];
+            float* out = sum + long(c) * W;
+            for (int k = 0; k < W; ++k) out[k] += a * col[k];
         }
     }
 }
@@ -66,15 +121,7 @@ void fitBlock(const BmfrPassContext& ctx, const BlockGrid& g, int bx, int by, Fi
 
     // Weighted sum with the noise-free features; only owned pixels are written.
     float* sum = sc.sum.data();
-    std::fill(sum, sum + 3 * W, 0.0f);
-    for (int f = 0; f < M; ++f) {
-        const float* col = sc.clean.data() + long(f) * W;
-        for (int c = 0; c < 3; ++c) {
-            const float a = coeffs[f * 3 + c];
-            float* out = sum + long(c) * W;
-            for (int k = 0; k < W; ++k) out[k] += a * col[k];
-        }
-    }
+    weightedSum(sc.clean.data(), coeffs, M, W, sum);
     float* fitted = ctx.state.fitted.data();
     for (int k = 0; k < W; ++k) {
         const int idx = sc.imageIndex[k];

@@ -24,6 +24,7 @@ void BmfrState::allocate(int w, int h, const Settings& s, int threads) {
     acceptMask.resize(w, h, 1);
     fitted.resize(w, h, 3);
     remodulated.resize(w, h, 3);
+    ycocg.resize(w, h, 3);
     historyLengthF.resize(w, h, 1);
     acceptMaskF.resize(w, h, 1);
     const int W = s.blockSize * s.blockSize, M = int(s.features.size());
@@ -33,6 +34,7 @@ void BmfrState::allocate(int w, int h, const Settings& s, int threads) {
         sc.clean.assign(size_t(M) * W, 0.0f);
         sc.work.assign(size_t(M + 3) * W, 0.0f);
         sc.sum.assign(size_t(3) * W, 0.0f);
+        sc.soa.assign(size_t(6 + 16) * W, 0.0f);
         sc.imageIndex.assign(W, -1);
     }
     hasHistory = false;
@@ -108,8 +110,8 @@ ImageView Denoiser::denoise(const FrameInput& frame) {
     cpu::accumulateFitted(ctx);
     auto t3 = Clock::now();
     cpu::temporalAntiAliasing(m.pool, st.remodulated.data(), st.output[1 - st.cur].data(),
-                              st.previousPixel.data(), st.output[st.cur].data(), st.width,
-                              st.height, m.settings.taaBlendAlpha,
+                              st.previousPixel.data(), st.ycocg.data(), st.output[st.cur].data(),
+                              st.width, st.height, m.settings.taaBlendAlpha,
                               m.settings.stages.taa && st.hasHistory);
     auto t4 = Clock::now();
 

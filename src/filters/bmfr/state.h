@@ -14,6 +14,7 @@ struct FitScratch {
     std::vector<float> clean;    ///< M scaled feature columns, noise-free (used for the sum)
     std::vector<float> work;     ///< M noised columns + 3 colour columns, overwritten by QR
     std::vector<float> sum;      ///< 3 x W weighted-sum accumulators
+    std::vector<float> soa;      ///< (6 + 16) x W gathered normal, position and extras
     std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
 };
 
@@ -33,6 +34,7 @@ struct BmfrState {
     ImageU8 acceptMask;    ///< accepted bilinear taps, bit i = tap i
     ImageF fitted;         ///< phase II output, demodulated
     ImageF remodulated;    ///< phase III output before TAA
+    ImageF ycocg;          ///< TAA scratch
     ImageF historyLengthF; ///< debug copy of the history length as float
     ImageF acceptMaskF;    ///< debug copy of the accept mask as float
 

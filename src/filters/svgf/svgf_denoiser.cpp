@@ -40,7 +40,7 @@ void SvgfState::allocate(int w, int h) {
     }
     integrated.resize(w, h, 3), integratedMoments.resize(w, h, 2), depth.resize(w, h, 1);
     depthGradient.resize(w, h, 2), variance.resize(w, h, 1), previousPixel.resize(w, h, 2);
-    accept.resize(w, h, 1), remodulated.resize(w, h, 3);
+    accept.resize(w, h, 1), remodulated.resize(w, h, 3), ycocg.resize(w, h, 3);
 }
 
 struct SvgfDenoiser::Impl {
@@ -110,7 +110,7 @@ ImageView SvgfDenoiser::denoise(const FrameInput& frame) {
     }
     auto t3 = Clock::now();
     cpu::temporalAntiAliasing(m.pool, st.remodulated.data(), st.output[1 - st.cur].data(),
-                              st.previousPixel.data(), st.output[st.cur].data(), st.width,
+                              st.previousPixel.data(), st.ycocg.data(), st.output[st.cur].data(), st.width,
                               st.height, m.settings.taaBlendAlpha, m.settings.taa && st.hasHistory);
     auto t4 = Clock::now();
     m.stats.times.clear();

@@ -25,6 +25,7 @@ struct SvgfState {
     ImageF previousPixel; ///< 2 channels, shared with TAA
     ImageU8 accept;
     ImageF remodulated;
+    ImageF ycocg; ///< TAA scratch
     bool hasHistory = false;
     Mat4 previousViewProjection;
     float previousJitter[2] = {0, 0};
