@@ -1,6 +1,7 @@
 #include "commands.h"
 #include "core/hash.h"
 #include "core/image.h"
+#include "eval/comparison.h"
 #include "eval/frame_scores.h"
 #include "io/exr.h"
 #include "io/png.h"
@@ -77,23 +78,6 @@ Settings SettingsOptions::resolve(std::optional<float> seqPos, std::optional<flo
 
 namespace {
 
-std::pair<int, int> frameRange(const std::string& spec, int count) {
-    if (spec.empty()) return {0, count};
-    size_t colon = spec.find(':');
-    if (colon == std::string::npos)
-        throw Error("--frames expects A:B, A: or :B, got '" + spec + "'");
-    auto num = [&](const std::string& s, int dflt) {
-        if (s.empty()) return dflt;
-        if (s.find_first_not_of("0123456789") != std::string::npos)
-            throw Error("--frames: '" + s + "' is not a frame number");
-        return std::stoi(s);
-    };
-    int a = num(spec.substr(0, colon), 0), b = num(spec.substr(colon + 1), count);
-    if (a >= b || b > count)
-        throw Error(fmt::format("--frames {}: the sequence has frames 0:{}", spec, count));
-    return {a, b};
-}
-
 ImageF copyOf(const ImageView& v) {
     ImageF img(v.width, v.height, v.channels);
     std::copy(v.data, v.data + img.pixels.size(), img.data());
@@ -111,7 +95,7 @@ int runDenoise(const DenoiseJob& job) {
         if (f.source == FeatureSource::Extra && f.extraIndex >= int(info.extraNames.size()))
             throw Error(fmt::format("feature extra{} requested, {} has {} extra buffers",
                                     f.extraIndex, job.input, info.extraNames.size()));
-    auto [first, last] = frameRange(job.frames, info.frameCount);
+    auto [first, last] = parseFrameRange(job.frames, info.frameCount);
     fs::create_directories(job.output);
     if (job.debug) fs::create_directories(fs::path(job.output) / "debug");
 

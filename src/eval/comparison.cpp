@@ -102,6 +102,17 @@ std::string fmtValue(double v) {
     return std::isfinite(v) ? fmt::format("{:.4f}", v) : "-";
 }
 
+/// Whether method i has the best mean of metric m (ties count as best).
+bool isBest(const ComparisonResult& r, size_t i, const MetricInfo& m) {
+    const double v = metricValue(r.means[i], m.key);
+    if (!std::isfinite(v)) return false;
+    for (const FrameScores& o : r.means) {
+        const double w = metricValue(o, m.key);
+        if (std::isfinite(w) && (m.lowerIsBetter ? w < v : w > v)) return false;
+    }
+    return true;
+}
+
 } // namespace
 
 std::string markdownTable(const ComparisonResult& r) {
@@ -114,12 +125,8 @@ std::string markdownTable(const ComparisonResult& r) {
     for (size_t i = 0; i < r.names.size(); ++i) {
         md += "| " + r.names[i] + " |";
         for (const MetricInfo& m : metricList()) {
-            double v = metricValue(r.means[i], m.key);
-            bool best = std::isfinite(v);
-            for (const FrameScores& o : r.means) {
-                double w = metricValue(o, m.key);
-                if (std::isfinite(w) && (m.lowerIsBetter ? w < v : w > v)) best = false;
-            }
+            const double v = metricValue(r.means[i], m.key);
+            const bool best = isBest(r, i, m);
             md += best ? fmt::format(" **{}** |", fmtValue(v)) : fmt::format(" {} |", fmtValue(v));
         }
         md += "\n";
@@ -319,12 +326,8 @@ ComparisonResult runComparison(const ComparisonOptions& o,
     for (size_t i = 0; i < r.names.size(); ++i) {
         html += "<tr><td>" + r.names[i] + "</td>";
         for (const MetricInfo& m : metricList()) {
-            double v = metricValue(r.means[i], m.key);
-            bool best = std::isfinite(v);
-            for (const FrameScores& x : r.means) {
-                double w = metricValue(x, m.key);
-                if (std::isfinite(w) && (m.lowerIsBetter ? w < v : w > v)) best = false;
-            }
+            const double v = metricValue(r.means[i], m.key);
+            const bool best = isBest(r, i, m);
             html += best ? "<td><b>" + fmtValue(v) + "</b></td>" : "<td>" + fmtValue(v) + "</td>";
         }
         html += "</tr>";

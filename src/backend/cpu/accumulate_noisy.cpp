@@ -12,7 +12,6 @@ InputCounters accumulateNoisy(const BmfrPassContext& ctx) {
     BmfrState& st = ctx.state;
     const int w = st.width, h = st.height, cur = st.cur, prev = 1 - st.cur;
     const bool history = st.hasHistory;
-    const bool demodulate = s.stages.demodulate && !s.colorIsDemodulated;
     const DiscardLimits limits{s.positionLimitSquared, s.normalLimitSquared};
     std::atomic<int64_t> nonFinite{0}, discarded{0};
 
@@ -21,27 +20,12 @@ InputCounters accumulateNoisy(const BmfrPassContext& ctx) {
         for (long y = y0; y < y1; ++y) {
             for (int x = 0; x < w; ++x) {
                 const long i = y * w + x;
-                Vec3 n = finiteOrZero(load3(in.normal.data, i), bad);
-                Vec3 p = finiteOrZero(load3(in.position.data, i), bad);
-                Vec3 c = finiteOrZero(load3(in.color.data, i), bad);
-                Vec3 a = finiteOrZero(load3(in.albedo.data, i), bad);
-                if (in.emission.data) {
-                    // Emission is radiance; a pre-demodulated colour needs it demodulated too.
-                    Vec3 e = finiteOrZero(load3(in.emission.data, i), bad);
-                    if (s.colorIsDemodulated) {
-                        Vec3 g = guardAlbedo(a, s.albedoEpsilon);
-                        e = {e.x / g.x, e.y / g.y, e.z / g.z};
-                    }
-                    c = vmax(c - e, Vec3{0, 0, 0});
-                }
-                for (const ImageView& e : in.extras)
-                    if (!std::isfinite(e.data[i])) ++bad;
+                const PixelInput px = readPixel(in, i, s.colorIsDemodulated, s.stages.demodulate,
+                                                s.albedoEpsilon, bad);
+                const Vec3 n = px.normal, p = px.position;
+                Vec3 c = px.color;
                 store3(st.normal[cur].data(), i, n);
                 store3(st.position[cur].data(), i, p);
-                if (demodulate) {
-                    Vec3 g = guardAlbedo(a, s.albedoEpsilon);
-                    c = {c.x / g.x, c.y / g.y, c.z / g.z};
-                }
 
                 Vec2 pp{-1e6f, -1e6f}; // out of every image: TAA and phase III skip it
                 uint8_t accept = 0;

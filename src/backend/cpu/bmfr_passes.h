@@ -20,7 +20,8 @@ void accumulateFitted(const BmfrPassContext& ctx);
 /// at `previousPixel` (2 floats per pixel), weight `alpha` for the current frame. Shared by
 /// every filter. ycocgScratch holds 3 floats per pixel. With enabled = false it copies `current`
 /// to `out`.
-void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history, const float* previousPixel,
-                          float* ycocgScratch, float* out, int width, int height, float alpha, bool enabled);
+void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
+                          const float* previousPixel, float* ycocgScratch, float* out, int width,
+                          int height, float alpha, bool enabled);
 
 } // namespace bmfr::cpu

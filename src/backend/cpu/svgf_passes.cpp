@@ -18,17 +18,9 @@ int64_t svgfAccumulate(const SvgfPassContext& ctx) {
     ctx.pool.parallelFor(h, 4, [&](long y0, long y1) {
         int64_t bad = 0;
         for (long i = y0 * w; i < y1 * w; ++i) {
-            Vec3 n = finiteOrZero(load3(in.normal.data, i), bad),
-                 p = finiteOrZero(load3(in.position.data, i), bad);
-            Vec3 c = finiteOrZero(load3(in.color.data, i), bad),
-                 a = finiteOrZero(load3(in.albedo.data, i), bad);
-            const Vec3 g = guardAlbedo(a, s.albedoEpsilon);
-            if (in.emission.data) {
-                Vec3 e = finiteOrZero(load3(in.emission.data, i), bad);
-                c = s.colorIsDemodulated ? c - Vec3{e.x / g.x, e.y / g.y, e.z / g.z} : c - e;
-                c = vmax(c, Vec3{0, 0, 0});
-            }
-            if (!s.colorIsDemodulated) c = {c.x / g.x, c.y / g.y, c.z / g.z};
+            const PixelInput px =
+                readPixel(in, i, s.colorIsDemodulated, true, s.albedoEpsilon, bad);
+            const Vec3 n = px.normal, p = px.position, c = px.color;
             store3(st.normal[cur].data(), i, n);
             store3(st.position[cur].data(), i, p);
             st.depth.data()[i] = transformPoint(in.viewProjection, p).w;

@@ -110,8 +110,9 @@ ImageView SvgfDenoiser::denoise(const FrameInput& frame) {
     }
     auto t3 = Clock::now();
     cpu::temporalAntiAliasing(m.pool, st.remodulated.data(), st.output[1 - st.cur].data(),
-                              st.previousPixel.data(), st.ycocg.data(), st.output[st.cur].data(), st.width,
-                              st.height, m.settings.taaBlendAlpha, m.settings.taa && st.hasHistory);
+                              st.previousPixel.data(), st.ycocg.data(), st.output[st.cur].data(),
+                              st.width, st.height, m.settings.taaBlendAlpha,
+                              m.settings.taa && st.hasHistory);
     auto t4 = Clock::now();
     m.stats.times.clear();
     m.stats.times.add("accumulate", ms(t0, t1));
