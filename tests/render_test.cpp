@@ -192,3 +192,27 @@ TEST(Render, WorldPositionReprojectsToThePixelItsMotionVectorNames) {
 
 } // namespace
 } // namespace bmfr::render
+
+namespace bmfr::render {
+namespace {
+
+TEST(Render, LambertianPlaneUnderAConstantSkyReflectsAlbedoTimesSky) {
+    // Irradiance pi L from the whole upper hemisphere: radiance a / pi * pi L = a L.
+    Scene plane;
+    const float albedo = 0.7f;
+    int m = addMaterial(plane, {albedo, albedo, albedo}, {0, 0, 0});
+    addQuad(plane, {-1000, 0, -1000}, {-1000, 0, 1000}, {1000, 0, 1000}, {1000, 0, -1000}, m,
+            {0, 1, 0});
+    Environment env;
+    env.sky = {0.5f, 1.0f, 2.0f};
+    CameraPose pose;
+    pose.position = {0, 2, 1}, pose.target = {0, 0, 0}, pose.fovY = 0.4f;
+    FrameData f = renderOnce(plane, pose, env, 12, 10, 1, 1024);
+    for (long i = 0; i < f.reference.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(f.reference.data()[3 * i + c], albedo * env.sky[c],
+                        0.02 * albedo * env.sky[c]);
+}
+
+} // namespace
+} // namespace bmfr::render

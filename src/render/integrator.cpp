@@ -145,7 +145,7 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         // Next event estimation.
         const float uSel = rng.next(), u1 = rng.next(), u2 = rng.next();
         if (reflective && !lights_.empty()) {
-            LightSample ls = lights_.sample(sp.p, uSel, u1, u2);
+            LightSample ls = lights_.sample(sp.p, sp.ns, uSel, u1, u2);
             if (ls.pdf > 0) {
                 BsdfValue f = evalBsdf(sp, ls.wi);
                 const float c = dot(sp.ns, ls.wi);
@@ -188,7 +188,10 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         // diffuse), so indirect hits read coarse mips: less aliasing and far fewer cache misses.
         const float spread = sp.alpha;
         if (!trace(origin, wi, width, spread, next, quad, t, rays)) {
-            Vec3 L = env.sky + powerHeuristic(f.pdf, lights_.pdfSun()) * lights_.sunRadiance(wi);
+            Vec3 sky, sun;
+            float skyPdf, sunPdf;
+            lights_.escaped(wi, sp.ns, sky, skyPdf, sun, sunPdf);
+            Vec3 L = powerHeuristic(f.pdf, skyPdf) * sky + powerHeuristic(f.pdf, sunPdf) * sun;
             add(vertex, tD * L, tG * L);
             break;
         }

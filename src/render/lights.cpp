@@ -31,6 +31,7 @@ LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, cons
         weights.push_back(w);
         total += w;
     }
+    const float localTotal = total;
     if (env.sun.enabled()) {
         float r = 0.5f * env.sun.angularDiameter;
         sunCosMax_ = std::cos(r);
@@ -38,8 +39,14 @@ LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, cons
         sunRadiance_ = env.sun.irradiance / sunSolidAngle_;
         sunEntry_ = int(entries_.size());
         entries_.push_back({Kind::Sun, 0, 0});
-        // Local lights and the sun have no common power scale: half of the samples each.
-        weights.push_back(total > 0 ? total : 1.0f);
+        // Local lights and the sun have no common power scale: each gets the local lights' weight.
+        weights.push_back(localTotal > 0 ? localTotal : 1.0f);
+        total += weights.back();
+    }
+    if (env.sky.x + env.sky.y + env.sky.z > 0) {
+        skyEntry_ = int(entries_.size());
+        entries_.push_back({Kind::Sky, 0, 0});
+        weights.push_back(localTotal > 0 ? localTotal : 1.0f);
         total += weights.back();
     }
     float acc = 0;
@@ -51,7 +58,7 @@ LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, cons
     if (!cdf_.empty()) cdf_.back() = 1.0f;
 }
 
-LightSample LightSet::sample(Vec3 p, float uSelect, float u1, float u2) const {
+LightSample LightSet::sample(Vec3 p, Vec3 surfaceNormal, float uSelect, float u1, float u2) const {
     LightSample s;
     if (entries_.empty()) return s;
     size_t i = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), uSelect) - cdf_.begin());
@@ -59,6 +66,14 @@ LightSample LightSet::sample(Vec3 p, float uSelect, float u1, float u2) const {
     const Entry& e = entries_[i];
     Vec3 q, n;
     float a = 0;
+    if (e.kind == Kind::Sky) {
+        Vec3 local = cosineHemisphere(u1, u2);
+        s.wi = toWorld(local, surfaceNormal);
+        s.distance = 1e30f;
+        s.radiance = env_.sky;
+        s.pdf = e.probability * local.z / kPi;
+        return s;
+    }
     if (e.kind == Kind::Sun) {
         s.wi = toWorld(uniformCone(u1, u2, sunCosMax_), env_.sun.direction);
         s.distance = 1e30f;
@@ -112,6 +127,18 @@ float LightSet::pdfQuad(int quad, Vec3 p, Vec3 q) const {
 
 float LightSet::pdfSun() const {
     return sunEntry_ < 0 ? 0.0f : entries_[size_t(sunEntry_)].probability / sunSolidAngle_;
+}
+
+float LightSet::pdfSky(Vec3 d, Vec3 n) const {
+    if (skyEntry_ < 0) return 0.0f;
+    return entries_[size_t(skyEntry_)].probability * std::fmax(dot(d, n), 0.0f) / kPi;
+}
+
+void LightSet::escaped(Vec3 d, Vec3 n, Vec3& sky, float& skyPdf, Vec3& sun, float& sunPdf) const {
+    sky = env_.sky;
+    skyPdf = pdfSky(d, n);
+    sun = sunRadiance(d);
+    sunPdf = pdfSun();
 }
 
 Vec3 LightSet::sunRadiance(Vec3 d) const {

@@ -1,5 +1,5 @@
 // Light sources and their sampling: emissive triangles (one-sided, front = winding), analytic
-// two-sided quads (may move per frame), a
+// two-sided quads (may move per frame), a constant sky (cosine-sampled around the normal), and a
 // sun with angular size, and a constant sky (reached by BSDF rays only).
 #pragma once
 #include "render/scene.h"
@@ -32,17 +32,24 @@ struct LightSample {
     float pdf = 0; ///< solid angle, selection included
 };
 
-/// Light selection is proportional to power (area x luminance) among local lights; the sun, if
-/// any, takes half of the samples.
+/// Light selection is proportional to power (area x luminance) among local lights; the sun and
+/// the sky, when present, each weigh as much as all local lights together.
 class LightSet {
   public:
     LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env);
     bool empty() const { return entries_.empty(); }
-    LightSample sample(Vec3 p, float uSelect, float u1, float u2) const;
+    /// A light sample seen from p with surface normal n (the sky is sampled cosine-weighted
+    /// around n).
+    LightSample sample(Vec3 p, Vec3 n, float uSelect, float u1, float u2) const;
     /// Solid-angle pdf of sample() returning the point q on emissive triangle `tri`.
     float pdfTriangle(int tri, Vec3 p, Vec3 q) const;
     float pdfQuad(int quad, Vec3 p, Vec3 q) const;
     float pdfSun() const;
+    /// Solid-angle pdf of sample() returning sky direction d at a point with normal n.
+    float pdfSky(Vec3 d, Vec3 n) const;
+    /// Radiance and light pdf of an escaping direction (sky plus sun disk), for MIS weighting:
+    /// returns the radiance split into its sky and sun parts.
+    void escaped(Vec3 d, Vec3 n, Vec3& sky, float& skyPdf, Vec3& sun, float& sunPdf) const;
     const std::vector<QuadLight>& quads() const { return quads_; }
     const Environment& environment() const { return env_; }
     /// Closest analytic quad light hit before tMax; returns its index or -1.
@@ -51,7 +58,7 @@ class LightSet {
     Vec3 sunRadiance(Vec3 d) const;
 
   private:
-    enum class Kind { Triangle, Quad, Sun };
+    enum class Kind { Triangle, Quad, Sun, Sky };
     struct Entry {
         Kind kind;
         int index;
@@ -64,7 +71,7 @@ class LightSet {
     std::vector<float> cdf_;
     std::vector<int> triangleEntry_; ///< scene triangle -> entry, -1 when not emissive
     std::vector<int> quadEntry_;
-    int sunEntry_ = -1;
+    int sunEntry_ = -1, skyEntry_ = -1;
     float sunCosMax_ = 1, sunSolidAngle_ = 0;
     Vec3 sunRadiance_;
     float area(int tri) const;
