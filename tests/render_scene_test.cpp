@@ -3,6 +3,7 @@
 #include "render/ray_accel.h"
 #include "render/sequence_renderer.h"
 #include <bmfr/error.h>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
@@ -143,6 +144,16 @@ TEST(RenderScene, ResumeSkipsFinishedFramesAndBothLayoutsAreReadable) {
         FrameData f;
         reader->load(2, f);
         EXPECT_EQ(f.color.width, 24);
+    }
+    // Both layouts carry the matrices the frames were rendered with.
+    {
+        FrameData a, b;
+        SequenceReader::open((d / "manifest").string())->load(2, a);
+        SequenceReader::open((d / "bmfr").string())->load(2, b);
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c)
+                EXPECT_NEAR(a.viewProjection.m[r][c], b.viewProjection.m[r][c],
+                            1e-6f * (1 + std::fabs(a.viewProjection.m[r][c])));
     }
     // The AOVs come back from our own layout on request.
     auto reader = SequenceReader::open((d / "manifest").string());

@@ -40,15 +40,19 @@ FrameRenderer::FrameRenderer(const Scene& scene, const RayAccel& accel, int widt
     zFar_ = 10.0f * diag;
 }
 
+Mat4 FrameRenderer::viewProjectionOf(const CameraPose& pose) const {
+    return viewProjection(pose, width_, height_, zNear_, zFar_);
+}
+
 bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& previousPose,
                            bool hasPrevious, const LightSet& lights, bool jitterOn,
                            int referenceSpp, FrameData& out, FrameRenderStats& stats,
                            const std::atomic<bool>* cancel) const {
     using Clock = std::chrono::steady_clock;
     const int w = width_, h = height_;
-    out.viewProjection = viewProjection(pose, w, h, zNear_, zFar_);
+    out.viewProjection = viewProjectionOf(pose);
     frameJitter(index, jitterOn, out.jitter);
-    Mat4 prevVp = viewProjection(previousPose, w, h, zNear_, zFar_), inv;
+    Mat4 prevVp = viewProjectionOf(previousPose), inv;
     float prevJitter[2];
     frameJitter(index - 1, jitterOn, prevJitter);
     invert(out.viewProjection, inv);

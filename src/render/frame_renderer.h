@@ -29,6 +29,9 @@ class FrameRenderer {
                 const LightSet& lights, bool jitter, int referenceSpp, FrameData& out,
                 FrameRenderStats& stats, const std::atomic<bool>* cancel) const;
 
+    /// The world-to-clip matrix render() uses for `pose`.
+    Mat4 viewProjectionOf(const CameraPose& pose) const;
+
     /// Names of FrameData::extras and FrameData::aovs in the order render() fills them.
     static std::vector<std::string> extraNames();
     static std::vector<std::string> aovNames();

@@ -44,21 +44,15 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     report.loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     FrameRenderer renderer(scene, accel, d.width, d.height, d.bounces, d.seed);
 
-    // Matrices of all frames up front: the original layout's header lists them all.
+    // Matrices of all frames up front (the original layout's header lists them all); the
+    // renderer's own matrices, so the header matches the frames exactly.
     std::vector<Mat4> matrices;
     std::vector<std::array<float, 2>> jitters;
-    {
-        FrameData probe;
-        for (int i = 0; i < d.frames; ++i) {
-            float j[2];
-            frameJitter(i, d.jitter, j);
-            jitters.push_back({j[0], j[1]});
-            Vec3 lo, hi;
-            scene.bounds(lo, hi);
-            float diag = std::fmax(length(hi - lo), 1e-3f);
-            matrices.push_back(
-                viewProjection(path.at(float(i)), d.width, d.height, 1e-3f * diag, 10.0f * diag));
-        }
+    for (int i = 0; i < d.frames; ++i) {
+        float j[2];
+        frameJitter(i, d.jitter, j);
+        jitters.push_back({j[0], j[1]});
+        matrices.push_back(renderer.viewProjectionOf(path.at(float(i))));
     }
     SequenceInfo info;
     info.width = d.width, info.height = d.height, info.frameCount = d.frames;
