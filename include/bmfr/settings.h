@@ -15,6 +15,12 @@ struct StageSwitches {
     bool taa = true;                ///< phase III: temporal anti-aliasing
 };
 
+/// Which CPU passes run. Both give the same output within rounding (tests hold them to 1e-3).
+enum class Implementation {
+    Fast,     ///< SIMD, block-streamed fitting, phase III fused with TAA (default)
+    Reference ///< one straightforward pass per stage: the specification of the fast passes
+};
+
 /// BMFR settings. Defaults are the paper's (Koskela et al. 2019) and the authors' code.
 struct Settings {
     /// Edge of the square regression block, pixels; [8, 64]; default 32.
@@ -47,6 +53,8 @@ struct Settings {
     StageSwitches stages{};
     /// Worker threads; 0 = all cores; [0, 1024].
     int threads = 0;
+    /// Fast (default) or Reference passes.
+    Implementation implementation = Implementation::Fast;
 };
 
 /// Throws bmfr::Error naming the first setting out of its range.

@@ -13,9 +13,10 @@ template <typename T> struct Image {
 
     Image() = default;
     Image(int w, int h, int c) { resize(w, h, c); }
-    void resize(int w, int h, int c) {
+    /// `padding` zeroed elements follow the last pixel, for SIMD loads that read past it.
+    void resize(int w, int h, int c, int padding = 0) {
         width = w, height = h, channels = c;
-        pixels.assign(size_t(w) * size_t(h) * size_t(c), T{});
+        pixels.assign(size_t(w) * size_t(h) * size_t(c) + size_t(padding), T{});
     }
     long pixelCount() const { return long(width) * height; }
     T* data() { return pixels.data(); }

@@ -1,28 +1,31 @@
-#include "backend/cpu/bmfr_passes.h"
+#include "backend/cpu/fast_passes.h"
+#include "core/simd.h"
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/feature_columns.h"
-#include "filters/bmfr/householder_fit.h"
 #include <algorithm>
-#include <cstring>
 
 namespace bmfr::cpu {
 
+using namespace simd;
+
 namespace {
 
-/// Gathers the block's pixels as structure-of-arrays (normal, position, extras, colour) and
-/// marks the pixels it owns. Interior blocks skip the mirroring arithmetic.
-void gatherBlock(const BmfrPassContext& ctx, const BlockGrid& g, int bx, int by, FitScratch& sc) {
-    const BmfrState& st = ctx.state;
-    const int B = g.blockSize, W = B * B, M = int(ctx.settings.features.size());
-    const float* normal = st.normal[st.cur].data();
-    const float* position = st.position[st.cur].data();
-    const float* color = st.accumulatedNoisy[st.cur].data();
-    const auto& extras = ctx.frame.extras;
-    float* n[3] = {sc.soa.data(), sc.soa.data() + W, sc.soa.data() + 2 * W};
-    float* p[3] = {sc.soa.data() + 3 * W, sc.soa.data() + 4 * W, sc.soa.data() + 5 * W};
-    float* z[3] = {sc.work.data() + long(M) * W, sc.work.data() + long(M + 1) * W,
-                   sc.work.data() + long(M + 2) * W};
-    const int ox = g.originX(bx), oy = g.originY(by);
+struct Phase2 {
+    const BmfrPassContext& ctx;
+    Buffers& b;
+    BlockGrid grid;
+};
+
+/// Gathers the block's pixels (mirrored at the image border) as structure-of-arrays from the
+/// 32-byte surface and 16-byte colour records, and marks the pixels it owns.
+BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) {
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize, W = B * B, M = int(a.ctx.settings.features.size());
+    const float* surface = a.b.surface[a.ctx.timeline.cur].data();
+    const float* noisy = a.b.noisy[a.ctx.timeline.cur].data();
+    const auto& extras = a.ctx.frame.extras;
+    float* soa = sc.soa.data();
+    float* z = sc.work.data() + long(M) * W;
     const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     for (int ly = 0; ly < B; ++ly) {
         const int uy = oy + ly, iy = inside ? uy : mirrorIndex(uy, g.height);
@@ -31,118 +34,106 @@ void gatherBlock(const BmfrPassContext& ctx, const BlockGrid& g, int bx, int by,
             const int ux = ox + lx, ix = inside ? ux : mirrorIndex(ux, g.width);
             const int k = ly * B + lx;
             const long idx = long(iy) * g.width + ix;
-            for (int c = 0; c < 3; ++c) {
-                n[c][k] = normal[3 * idx + c];
-                p[c][k] = position[3 * idx + c];
-                z[c][k] = color[3 * idx + c];
+            const f4 p = load4(surface + 8 * idx), n = load4(surface + 8 * idx + 4);
+            const f4 c = load4(noisy + 4 * idx);
+            for (int ch = 0; ch < 3; ++ch) {
+                soa[ch * W + k] = n[ch];
+                soa[(3 + ch) * W + k] = p[ch];
+                z[ch * W + k] = c[ch];
             }
             for (size_t e = 0; e < extras.size(); ++e) {
                 const float v = extras[e].data[idx];
-                sc.soa[(6 + e) * size_t(W) + size_t(k)] = std::isfinite(v) ? v : 0.0f;
+                soa[(6 + e) * size_t(W) + size_t(k)] = std::isfinite(v) ? v : 0.0f;
             }
             sc.imageIndex[k] = rowInside && ux >= 0 && ux < g.width ? int(idx) : -1;
         }
     }
-    // Feature columns, one source array each: the switch runs per column, not per pixel.
-    for (int f = 0; f < M; ++f) {
-        const Feature& feat = ctx.settings.features[f];
-        float* col = sc.clean.data() + long(f) * W;
-        const float* src = nullptr;
-        switch (feat.source) {
-        case FeatureSource::One:
-            std::fill(col, col + W, 1.0f);
-            continue;
-        case FeatureSource::NormalX:
-            src = n[0];
-            break;
-        case FeatureSource::NormalY:
-            src = n[1];
-            break;
-        case FeatureSource::NormalZ:
-            src = n[2];
-            break;
-        case FeatureSource::PositionX:
-            src = p[0];
-            break;
-        case FeatureSource::PositionY:
-            src = p[1];
-            break;
-        case FeatureSource::PositionZ:
-            src = p[2];
-            break;
-        case FeatureSource::Extra:
-            src = sc.soa.data() + (6 + size_t(feat.extraIndex)) * size_t(W);
-            break;
-        }
-        if (feat.exponent == 1.0f)
-            std::copy(src, src + W, col);
-        else if (feat.exponent == 2.0f)
-            for (int k = 0; k < W; ++k) col[k] = src[k] * src[k];
-        else
-            for (int k = 0; k < W; ++k) col[k] = applyExponent(src[k], feat.exponent);
-    }
 }
 
-/// out[c][k] = sum_f coeffs[f][c] * clean[f][k]; compiled for AVX2 and baseline, chosen at run
-/// time.
-__attribute__((target_clones("avx2", "default"))) void
-weightedSum(const float* clean, const float* coeffs, int M, int W, float* sum) {
-    std::fill(sum, sum + 3 * W, 0.0f);
-    for (int f = 0; f < M; ++f) {
-        const float* col = clean + long(f) * W;
-        for (int c = 0; c < 3; ++c) {
-            const float a = coeffs[f * 3 + c];
-            float* out = sum + long(c) * W;
-            for (int k = 0; k < W; ++k) out[k] += a * col[k];
+/// Block scaling and regularisation of one column: clean = scaled, noised = scaled + noise.
+BMFR_SIMD_INLINE void scaleAndNoise(float* clean, float* noised, const float* noise, int W,
+                                    bool scaled) {
+    if (scaled) {
+        f8 lo = splat8(clean[0]), hi = lo;
+        int k = 0;
+        for (; k + 8 <= W; k += 8) {
+            const f8 v = load8(clean + k);
+            lo = min8(lo, v), hi = max8(hi, v);
         }
+        float mn = hmin8(lo), mx = hmax8(hi);
+        for (; k < W; ++k) mn = std::min(mn, clean[k]), mx = std::max(mx, clean[k]);
+        // scaleFeature's rule, with one reciprocal per column instead of a division per pixel.
+        const float range = mx - mn, inv = range > 1.0f ? 1.0f / range : 1.0f;
+        for (k = 0; k < W; ++k) clean[k] = (clean[k] - mn) * inv;
     }
+    for (int k = 0; k < W; ++k) noised[k] = clean[k] + noise[k];
 }
 
-void fitBlock(const BmfrPassContext& ctx, const BlockGrid& g, int bx, int by, FitScratch& sc) {
-    const Settings& s = ctx.settings;
-    const int W = g.blockSize * g.blockSize, M = int(s.features.size());
-    gatherBlock(ctx, g, bx, by, sc);
-
-    const float* noise = ctx.state.noise.data();
-    for (int f = 0; f < M; ++f) {
-        float* col = sc.clean.data() + long(f) * W;
-        if (s.features[f].scaled) {
-            auto [lo, hi] = std::minmax_element(col, col + W);
-            const float mn = *lo, mx = *hi;
-            for (int k = 0; k < W; ++k) col[k] = scaleFeature(col[k], mn, mx);
-        }
-        float* dst = sc.work.data() + long(f) * W;
-        const float* nz = noise + long(f) * W;
-        for (int k = 0; k < W; ++k) dst[k] = col[k] + nz[k];
-    }
+BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
+    const Settings& s = a.ctx.settings;
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize, W = B * B, M = int(s.features.size());
+    const int ox = g.originX(bx), oy = g.originY(by);
+    // Blocks that own no pixel (entirely outside the image after the offset) are skipped.
+    if (ox + B <= 0 || oy + B <= 0 || ox >= g.width || oy >= g.height) return;
+    gatherBlock(a, ox, oy, sc);
+    const float* soa = sc.soa.data();
+    const BlockSources src{{soa, soa + W, soa + 2 * W}, {soa + 3 * W, soa + 4 * W, soa + 5 * W},
+                           soa + 6 * W};
+    buildFeatureColumns(s.features, src, W, sc.clean.data());
+    const float* noise = a.ctx.timeline.noise.data();
+    for (int f = 0; f < M; ++f)
+        scaleAndNoise(sc.clean.data() + long(f) * W, sc.work.data() + long(f) * W,
+                      noise + long(f) * W, W, s.features[f].scaled);
 
     float coeffs[kMaxFeatures * 3];
-    solveHouseholder(sc.work.data(), M, W, coeffs);
+    solveHouseholderFast(sc.work.data(), M, W, coeffs);
 
-    // Weighted sum with the noise-free features; only owned pixels are written.
-    float* sum = sc.sum.data();
-    weightedSum(sc.clean.data(), coeffs, M, W, sum);
-    float* fitted = ctx.state.fitted.data();
-    for (int k = 0; k < W; ++k) {
-        const int idx = sc.imageIndex[k];
-        if (idx < 0) continue;
-        for (int c = 0; c < 3; ++c) fitted[3L * idx + c] = std::max(0.0f, sum[long(c) * W + k]);
+    // Weighted sum of the noise-free features, 8 pixels at a time, straight to owned pixels.
+    float* fitted = a.b.fitted.data();
+    const float* clean = sc.clean.data();
+    for (int k = 0; k < W; k += 8) {
+        f8 sum[3] = {};
+        const int n = std::min(8, W - k);
+        if (n == 8) {
+            for (int f = 0; f < M; ++f) {
+                const f8 col = load8(clean + long(f) * W + k);
+                for (int c = 0; c < 3; ++c) sum[c] += coeffs[f * 3 + c] * col;
+            }
+        } else {
+            for (int f = 0; f < M; ++f)
+                for (int l = 0; l < n; ++l)
+                    for (int c = 0; c < 3; ++c)
+                        sum[c][l] += coeffs[f * 3 + c] * clean[long(f) * W + k + l];
+        }
+        for (int l = 0; l < n; ++l) {
+            const int idx = sc.imageIndex[k + l];
+            if (idx < 0) continue;
+            store4(fitted + 4L * idx, max4(f4{}, f4{sum[0][l], sum[1][l], sum[2][l], 0.0f}));
+        }
     }
 }
 
 } // namespace
 
-void fitBlocks(const BmfrPassContext& ctx) {
-    BmfrState& st = ctx.state;
+void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
+    const BmfrTimeline& t = ctx.timeline;
     if (!ctx.settings.stages.fitting) {
-        std::memcpy(st.fitted.data(), st.accumulatedNoisy[st.cur].data(),
-                    st.fitted.pixels.size() * sizeof(float));
+        const float* noisy = b.noisy[t.cur].data();
+        ctx.pool.parallelFor(long(t.width) * t.height, 4096, [&](long i0, long i1) {
+            for (long i = i0; i < i1; ++i) {
+                f4 c = load4(noisy + 4 * i);
+                c[3] = 0.0f;
+                store4(b.fitted.data() + 4 * i, c);
+            }
+        });
         return;
     }
-    const BlockGrid g = makeBlockGrid(st.width, st.height, ctx.settings.blockSize, st.frameIndex);
-    ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
-        FitScratch& sc = st.scratch[ThreadPool::currentThreadIndex()];
-        for (long b = b0; b < b1; ++b) fitBlock(ctx, g, int(b % g.blocksX), int(b / g.blocksX), sc);
+    const Phase2 a{ctx, b, makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex)};
+    ctx.pool.parallelFor(a.grid.blockCount(), 1, [&](long b0, long b1) {
+        Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
+        for (long k = b0; k < b1; ++k)
+            fitBlock(a, int(k % a.grid.blocksX), int(k / a.grid.blocksX), sc);
     });
 }
 

@@ -1,5 +1,5 @@
 #include "backend/cpu/svgf_passes.h"
-#include "backend/cpu/sanitize.h"
+#include "filters/pixel_input.h"
 #include "core/color.h"
 #include "core/reprojection.h"
 #include "filters/bmfr/temporal_blend.h"

@@ -1,60 +1,60 @@
-// Everything BMFR keeps between frames (double-buffered history) and its per-frame buffers.
+// What every implementation of BMFR's passes shares: the frame timeline, the per-frame context
+// and the interface an implementation (reference or fast CPU passes) offers the Denoiser.
 #pragma once
-#include "core/image.h"
 #include "core/parallel.h"
+#include <bmfr/denoiser.h>
 #include <bmfr/frame.h>
 #include <bmfr/settings.h>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
 namespace bmfr {
 
-/// Per-thread scratch of the block fitter: one block's columns, contiguous.
-struct FitScratch {
-    std::vector<float> clean;    ///< M scaled feature columns, noise-free (used for the sum)
-    std::vector<float> work;     ///< M noised columns + 3 colour columns, overwritten by QR
-    std::vector<float> sum;      ///< 3 x W weighted-sum accumulators
-    std::vector<float> soa;      ///< (6 + 16) x W gathered normal, position and extras
-    std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
-};
-
-struct BmfrState {
+/// Where the sequence stands: which history slot is current, the previous camera, the noise.
+struct BmfrTimeline {
     int width = 0, height = 0;
     int cur = 0; ///< history slot written this frame; 1 - cur holds the previous frame
-
-    // History, [slot].
-    ImageF normal[2], position[2]; ///< sanitised features (discard tests)
-    ImageF accumulatedNoisy[2];    ///< phase I output, demodulated
-    ImageU8 historyLength[2];      ///< phase I sample count, 1..255
-    ImageF accumulatedFitted[2];   ///< phase III accumulation, demodulated
-    ImageF output[2];              ///< final (TAA) output, linear
-
-    // This frame only.
-    ImageF previousPixel;  ///< 2 channels: continuous pixel in the previous frame
-    ImageU8 acceptMask;    ///< accepted bilinear taps, bit i = tap i
-    ImageF fitted;         ///< phase II output, demodulated
-    ImageF remodulated;    ///< phase III output before TAA
-    ImageF ycocg;          ///< TAA scratch
-    ImageF historyLengthF; ///< debug copy of the history length as float
-    ImageF acceptMaskF;    ///< debug copy of the accept mask as float
-
-    std::vector<float> noise;        ///< M x blockPixels regularisation noise of this frame
-    std::vector<FitScratch> scratch; ///< one per worker thread
-
     bool hasHistory = false;
     Mat4 previousViewProjection;
     float previousJitter[2] = {0, 0};
-    long frameIndex = 0; ///< frames since construction: block offset and noise index
-
-    void allocate(int w, int h, const Settings& s, int threads);
+    long frameIndex = 0;      ///< frames since construction: block offset and noise index
+    std::vector<float> noise; ///< M x blockPixels regularisation noise of this frame
 };
 
 /// Inputs of one frame's passes.
 struct BmfrPassContext {
     const Settings& settings;
     const FrameInput& frame;
-    BmfrState& state;
+    const BmfrTimeline& timeline;
     ThreadPool& pool;
 };
+
+/// What phase I counted while reading the inputs.
+struct InputCounters {
+    int64_t nonFinite = 0; ///< input values replaced by 0
+    int64_t discarded = 0; ///< pixels whose whole history was discarded
+};
+
+/// One implementation of BMFR's per-frame passes over its own buffers.
+class BmfrPasses {
+  public:
+    virtual ~BmfrPasses() = default;
+    /// Sizes every buffer for w x h; called when the frame size changes.
+    virtual void allocate(int w, int h, const Settings& s, int threads) = 0;
+    /// Runs phase I to TAA for ctx.frame, writing the output to history slot timeline.cur and
+    /// each stage's wall time to `times`.
+    virtual InputCounters run(const BmfrPassContext& ctx, StageTimes& times) = 0;
+    /// The final output of slot `slot` (3 channels, linear).
+    virtual ImageView output(int slot) const = 0;
+    /// Fills the debug buffers of the frame just run (called only when they are wanted).
+    virtual void captureDebug(const BmfrTimeline& t) = 0;
+    virtual DebugBuffers debug(const BmfrTimeline& t) const = 0;
+};
+
+/// The straightforward passes, one per stage (src/backend/reference).
+std::unique_ptr<BmfrPasses> makeReferencePasses();
+/// The fast CPU passes: SIMD, block-streamed fitting, phase III fused with TAA (src/backend/cpu).
+std::unique_ptr<BmfrPasses> makeFastPasses();
 
 } // namespace bmfr

@@ -1,5 +1,5 @@
-#include "backend/cpu/bmfr_passes.h"
-#include "backend/cpu/sanitize.h"
+#include "backend/cpu/taa.h"
+#include "filters/pixel_input.h"
 #include "backend/cpu/svgf_passes.h"
 #include "core/mat4.h"
 #include "filters/frame_checks.h"
@@ -35,12 +35,12 @@ void SvgfState::allocate(int w, int h) {
     width = w, height = h, cur = 0, hasHistory = false;
     for (int k = 0; k < 2; ++k) {
         normal[k].resize(w, h, 3), position[k].resize(w, h, 3), color[k].resize(w, h, 3);
-        moments[k].resize(w, h, 2), historyLength[k].resize(w, h, 1), output[k].resize(w, h, 3);
+        moments[k].resize(w, h, 2), historyLength[k].resize(w, h, 1), output[k].resize(w, h, 3, 4);
         filtered[k].resize(w, h, 4);
     }
     integrated.resize(w, h, 3), integratedMoments.resize(w, h, 2), depth.resize(w, h, 1);
     depthGradient.resize(w, h, 2), variance.resize(w, h, 1), previousPixel.resize(w, h, 2);
-    accept.resize(w, h, 1), remodulated.resize(w, h, 3), ycocg.resize(w, h, 3);
+    accept.resize(w, h, 1), remodulated.resize(w, h, 3), taaRecords.resize(w, h, 8);
 }
 
 struct SvgfDenoiser::Impl {
@@ -101,7 +101,7 @@ ImageView SvgfDenoiser::denoise(const FrameInput& frame) {
     for (long i = 0; i < st.integrated.pixelCount(); ++i) {
         Vec3 c = load3Stride4(st.filtered[src].data(), i);
         if (remodulate)
-            c = c * cpu::guardAlbedo(load3(frame.albedo.data, i), m.settings.albedoEpsilon);
+            c = c * guardAlbedo(load3(frame.albedo.data, i), m.settings.albedoEpsilon);
         if (frame.emission.data) {
             Vec3 e = load3(frame.emission.data, i);
             if (std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z)) c = c + e;
@@ -110,7 +110,7 @@ ImageView SvgfDenoiser::denoise(const FrameInput& frame) {
     }
     auto t3 = Clock::now();
     cpu::temporalAntiAliasing(m.pool, st.remodulated.data(), st.output[1 - st.cur].data(),
-                              st.previousPixel.data(), st.ycocg.data(), st.output[st.cur].data(),
+                              st.previousPixel.data(), st.taaRecords.data(), st.output[st.cur].data(),
                               st.width, st.height, m.settings.taaBlendAlpha,
                               m.settings.taa && st.hasHistory);
     auto t4 = Clock::now();

@@ -14,7 +14,7 @@ struct SvgfState {
     ImageF color[2];               ///< demodulated colour history (fed back from the step-1 level)
     ImageF moments[2];             ///< 2 channels: luminance and luminance squared
     ImageU8 historyLength[2];      ///< 0 = no sample yet (fewer than 1 spp)
-    ImageF output[2];              ///< final output (TAA history)
+    ImageF output[2];              ///< final output (TAA history), 4 floats of padding
     // This frame.
     ImageF integrated; ///< accumulated colour before filtering
     ImageF integratedMoments;
@@ -25,7 +25,7 @@ struct SvgfState {
     ImageF previousPixel; ///< 2 channels, shared with TAA
     ImageU8 accept;
     ImageF remodulated;
-    ImageF ycocg; ///< TAA scratch
+    ImageF taaRecords; ///< TAA scratch, 8 floats per pixel
     bool hasHistory = false;
     Mat4 previousViewProjection;
     float previousJitter[2] = {0, 0};

@@ -4,7 +4,7 @@
 #include <bmfr/frame.h>
 #include <cstdint>
 
-namespace bmfr::cpu {
+namespace bmfr {
 
 inline Vec3 finiteOrZero(Vec3 v, int64_t& replaced) {
     if (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) return v;
@@ -50,4 +50,4 @@ inline PixelInput readPixel(const FrameInput& in, long i, bool colorIsDemodulate
     return px;
 }
 
-} // namespace bmfr::cpu
+} // namespace bmfr

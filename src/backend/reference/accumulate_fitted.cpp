@@ -1,20 +1,20 @@
-#include "backend/cpu/bmfr_passes.h"
-#include "backend/cpu/sanitize.h"
+#include "backend/reference/reference_passes.h"
+#include "filters/pixel_input.h"
 #include "core/reprojection.h"
 #include "filters/bmfr/temporal_blend.h"
 
-namespace bmfr::cpu {
+namespace bmfr::reference {
 
-void accumulateFitted(const BmfrPassContext& ctx) {
+void accumulateFitted(const BmfrPassContext& ctx, Buffers& st) {
     const Settings& s = ctx.settings;
-    BmfrState& st = ctx.state;
-    const int w = st.width, cur = st.cur, prev = 1 - st.cur;
-    const bool accumulate = st.hasHistory && s.stages.secondAccumulation;
+    const BmfrTimeline& t = ctx.timeline;
+    const int w = t.width, cur = t.cur, prev = 1 - t.cur;
+    const bool accumulate = t.hasHistory && s.stages.secondAccumulation;
     const bool remodulate = s.stages.demodulate || s.colorIsDemodulated;
     const float* albedo = ctx.frame.albedo.data;
     const float* emission = ctx.frame.emission.data;
 
-    ctx.pool.parallelFor(st.height, 4, [&](long y0, long y1) {
+    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
         for (long i = y0 * w; i < y1 * w; ++i) {
             Vec3 c = load3(st.fitted.data(), i);
             const uint8_t accept = st.acceptMask.data()[i];
@@ -42,4 +42,4 @@ void accumulateFitted(const BmfrPassContext& ctx) {
     });
 }
 
-} // namespace bmfr::cpu
+} // namespace bmfr::reference

@@ -1,0 +1,89 @@
+#include "backend/cpu/fast_passes.h"
+#include <chrono>
+
+namespace bmfr::cpu {
+
+namespace {
+
+class FastPasses final : public BmfrPasses {
+  public:
+    void allocate(int w, int h, const Settings& s, int threads) override {
+        const size_t n = size_t(w) * size_t(h);
+        b_.width = w, b_.height = h;
+        for (int k = 0; k < 2; ++k) {
+            b_.surface[k].assign(8 * n, 0.0f);
+            b_.noisy[k].assign(4 * n, 0.0f);
+            b_.accumulatedFitted[k].assign(4 * n, 0.0f);
+            b_.output[k].assign(3 * n + 4, 0.0f);
+        }
+        b_.previousPixel.assign(2 * n, 0.0f);
+        b_.acceptMask.assign(n, 0);
+        b_.fitted.assign(4 * n, 0.0f);
+        const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
+        b_.scratch.resize(size_t(threads));
+        for (Scratch& sc : b_.scratch) {
+            sc.clean.assign(M * W, 0.0f);
+            sc.work.assign((M + 3) * W, 0.0f);
+            sc.soa.assign((6 + 16) * W, 0.0f);
+            sc.imageIndex.assign(W, -1);
+            sc.rows.assign(3 * size_t(w) * 8, 0.0f);
+        }
+        b_.debugNoisy.resize(w, h, 3);
+        b_.debugFitted.resize(w, h, 3);
+        b_.debugLength.resize(w, h, 1);
+        b_.debugAccept.resize(w, h, 1);
+    }
+
+    InputCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
+        using Clock = std::chrono::steady_clock;
+        auto ms = [](Clock::time_point a, Clock::time_point b) {
+            return std::chrono::duration<double, std::milli>(b - a).count();
+        };
+        auto t0 = Clock::now();
+        InputCounters counters = accumulateNoisy(ctx, b_);
+        auto t1 = Clock::now();
+        fitBlocks(ctx, b_);
+        auto t2 = Clock::now();
+        resolve(ctx, b_);
+        auto t3 = Clock::now();
+        times.add("accumulate", ms(t0, t1));
+        times.add("fit", ms(t1, t2));
+        times.add("resolve", ms(t2, t3));
+        return counters;
+    }
+
+    ImageView output(int slot) const override {
+        return ImageView{b_.output[slot].data(), b_.width, b_.height, 3};
+    }
+
+    void captureDebug(const BmfrTimeline& t) override {
+        const long n = long(t.width) * t.height;
+        const float* noisy = b_.noisy[t.cur].data();
+        for (long i = 0; i < n; ++i) {
+            for (int c = 0; c < 3; ++c) {
+                b_.debugNoisy.data()[3 * i + c] = noisy[4 * i + c];
+                b_.debugFitted.data()[3 * i + c] = b_.fitted[size_t(4 * i + c)];
+            }
+            b_.debugLength.data()[i] = noisy[4 * i + 3];
+            b_.debugAccept.data()[i] = b_.acceptMask[size_t(i)];
+        }
+    }
+
+    DebugBuffers debug(const BmfrTimeline&) const override {
+        return {view(b_.debugNoisy), view(b_.debugFitted), view(b_.debugLength),
+                view(b_.debugAccept)};
+    }
+
+  private:
+    Buffers b_;
+};
+
+} // namespace
+
+} // namespace bmfr::cpu
+
+namespace bmfr {
+std::unique_ptr<BmfrPasses> makeFastPasses() {
+    return std::make_unique<cpu::FastPasses>();
+}
+} // namespace bmfr

@@ -1,0 +1,49 @@
+// The fast CPU implementation of BMFR's passes. Buffers are laid out for 16- and 32-byte loads
+// (one load per pixel record), the fitter streams one block at a time through per-thread
+// scratch, and phase III runs fused with TAA row by row.
+#pragma once
+#include "core/image.h"
+#include "filters/bmfr/state.h"
+#include <vector>
+
+namespace bmfr::cpu {
+
+/// Per-thread scratch of the fitter (one block) and of the fused resolve pass (three rows).
+struct Scratch {
+    std::vector<float> clean;    ///< M scaled feature columns, noise-free (used for the sum)
+    std::vector<float> work;     ///< M noised columns + 3 colour columns, overwritten by QR
+    std::vector<float> soa;      ///< (6 + 16) x W gathered normal, position and extras
+    std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
+    std::vector<float> rows;     ///< 3 rows x width x 8: resolved RGB, w, YCoCg, w
+};
+
+struct Buffers {
+    int width = 0, height = 0;
+    // History, [slot].
+    std::vector<float> surface[2]; ///< 8 per pixel: position xyz, 0, normal xyz, 0 (sanitised)
+    std::vector<float> noisy[2];   ///< 4 per pixel: phase I colour (demodulated), history length
+    std::vector<float> accumulatedFitted[2]; ///< 4 per pixel: phase III colour, 0
+    std::vector<float> output[2]; ///< 3 per pixel (+4 floats of padding for 16-byte loads)
+
+    // This frame only.
+    std::vector<float> previousPixel; ///< 2 per pixel: continuous pixel in the previous frame
+    std::vector<uint8_t> acceptMask;  ///< accepted bilinear taps, bit i = tap i
+    std::vector<float> fitted;        ///< 4 per pixel: phase II colour, 0
+
+    std::vector<Scratch> scratch; ///< one per worker thread
+    ImageF debugNoisy, debugFitted, debugLength, debugAccept;
+};
+
+/// Phase I: sanitise and store features, demodulate, reproject, test taps, accumulate colour.
+InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b);
+/// Phase II: per block gather, scale, regularise, Householder QR, back substitution, weighted sum.
+void fitBlocks(const BmfrPassContext& ctx, Buffers& b);
+/// Phase III and TAA in one pass over rows: second accumulation, re-modulation, emission, TAA.
+void resolve(const BmfrPassContext& ctx, Buffers& b);
+
+/// Householder QR of the M + 3 columns (each `rows` long, contiguous) and back substitution,
+/// as bmfr::solveHouseholder, with each step's dot products and updates done in one sweep over
+/// four columns at a time. Returns the number of dependent columns (coefficient 0).
+int solveHouseholderFast(float* columns, int featureCount, int rows, float* coeffs);
+
+} // namespace bmfr::cpu

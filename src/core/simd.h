@@ -1,0 +1,111 @@
+// Four- and eight-wide float vectors (GCC/Clang vector extensions) for the fast CPU passes.
+// Portable source: the compiler lowers them to SSE, AVX2 or NEON for each target clone.
+#pragma once
+#include <cstdint>
+#include <cstring>
+
+namespace bmfr::simd {
+
+typedef float f4 __attribute__((vector_size(16)));
+typedef int32_t i4 __attribute__((vector_size(16)));
+typedef float f8 __attribute__((vector_size(32)));
+
+#define BMFR_SIMD_INLINE [[gnu::always_inline]] inline
+
+// Hot kernels are compiled twice, for x86-64-v3 (AVX2 + FMA) and the baseline, and the loader
+// picks one at run time. Within one machine the choice is fixed, so output bits are repeatable.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define BMFR_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define BMFR_SIMD_CLONES
+#endif
+
+BMFR_SIMD_INLINE f4 load4(const float* p) {
+    f4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+BMFR_SIMD_INLINE void store4(float* p, f4 v) {
+    std::memcpy(p, &v, sizeof v);
+}
+BMFR_SIMD_INLINE f8 load8(const float* p) {
+    f8 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+BMFR_SIMD_INLINE void store8(float* p, f8 v) {
+    std::memcpy(p, &v, sizeof v);
+}
+/// x, y, z of a packed 3-float record, w = 0. `last` marks the final record of a buffer, where
+/// a 16-byte load would read past the end.
+BMFR_SIMD_INLINE f4 loadXyz(const float* p, bool last) {
+    if (last) return f4{p[0], p[1], p[2], 0.0f};
+    f4 v = load4(p);
+    v[3] = 0.0f;
+    return v;
+}
+BMFR_SIMD_INLINE f4 splat4(float a) {
+    return f4{a, a, a, a};
+}
+BMFR_SIMD_INLINE f8 splat8(float a) {
+    return f8{a, a, a, a, a, a, a, a};
+}
+BMFR_SIMD_INLINE f4 min4(f4 a, f4 b) {
+    return b < a ? b : a;
+}
+BMFR_SIMD_INLINE f4 max4(f4 a, f4 b) {
+    return a < b ? b : a;
+}
+BMFR_SIMD_INLINE f8 min8(f8 a, f8 b) {
+    return b < a ? b : a;
+}
+BMFR_SIMD_INLINE f8 max8(f8 a, f8 b) {
+    return a < b ? b : a;
+}
+/// a.x*b.x + a.y*b.y + a.z*b.z, summed in that order.
+BMFR_SIMD_INLINE float dot3(f4 a, f4 b) {
+    const f4 m = a * b;
+    return m[0] + m[1] + m[2];
+}
+/// Sum of the eight lanes, as a fixed tree (repeatable).
+BMFR_SIMD_INLINE float hsum8(f8 v) {
+    return ((v[0] + v[4]) + (v[1] + v[5])) + ((v[2] + v[6]) + (v[3] + v[7]));
+}
+BMFR_SIMD_INLINE float hmin8(f8 v) {
+    float m = v[0];
+    for (int i = 1; i < 8; ++i) m = v[i] < m ? v[i] : m;
+    return m;
+}
+BMFR_SIMD_INLINE float hmax8(f8 v) {
+    float m = v[0];
+    for (int i = 1; i < 8; ++i) m = m < v[i] ? v[i] : m;
+    return m;
+}
+/// (1 - t) a + t b, as bmfr::lerp.
+BMFR_SIMD_INLINE f4 lerp4(f4 a, f4 b, float t) {
+    return (1.0f - t) * a + t * b;
+}
+/// Lanes x, y, z all finite.
+BMFR_SIMD_INLINE bool finiteXyz(f4 v) {
+    const i4 ok = (v - v) == 0.0f;
+    return (ok[0] & ok[1] & ok[2]) != 0;
+}
+/// Non-finite lanes among x, y, z replaced by 0 and counted in `bad`; w set to 0.
+BMFR_SIMD_INLINE f4 finiteOrZero4(f4 v, int64_t& bad) {
+    v[3] = 0.0f;
+    if (__builtin_expect(finiteXyz(v), 1)) return v;
+    const i4 ok = (v - v) == 0.0f;
+    bad += 3 + ok[0] + ok[1] + ok[2]; // ok lanes are -1
+    return ok ? v : f4{};
+}
+/// The unnormalised YCoCg of bmfr::rgbToYCoCg, and back; w is passed through as 0.
+BMFR_SIMD_INLINE f4 rgbToYCoCg4(f4 c) {
+    return f4{c[0] + 2.0f * c[1] + c[2], 2.0f * c[0] - 2.0f * c[2], -c[0] + 2.0f * c[1] - c[2],
+              0.0f};
+}
+BMFR_SIMD_INLINE f4 yCoCgToRgb4(f4 c) {
+    return f4{0.25f * (c[0] + c[1] - c[2]), 0.25f * (c[0] + c[2]), 0.25f * (c[0] - c[1] - c[2]),
+              0.0f};
+}
+
+} // namespace bmfr::simd
