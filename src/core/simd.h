@@ -9,6 +9,7 @@ namespace bmfr::simd {
 typedef float f4 __attribute__((vector_size(16)));
 typedef int32_t i4 __attribute__((vector_size(16)));
 typedef float f8 __attribute__((vector_size(32)));
+typedef int32_t i8 __attribute__((vector_size(32)));
 
 #define BMFR_SIMD_INLINE [[gnu::always_inline]] inline
 
@@ -106,6 +107,16 @@ BMFR_SIMD_INLINE f4 rgbToYCoCg4(f4 c) {
 BMFR_SIMD_INLINE f4 yCoCgToRgb4(f4 c) {
     return f4{0.25f * (c[0] + c[1] - c[2]), 0.25f * (c[0] + c[2]), 0.25f * (c[0] - c[1] - c[2]),
               0.0f};
+}
+
+/// For four vectors whose lanes 3 and 7 are zero: lanes 0-3 = (a0+a1)+(a2+a3) of a, b, c, d
+/// and lanes 4-7 = (a4+a5)+(a6+a7) of each, i.e. x, y, z summed in dot3's order.
+BMFR_SIMD_INLINE f8 sum3Of4(f8 a, f8 b, f8 c, f8 d) {
+    const i8 even = {0, 8, 2, 10, 4, 12, 6, 14}, odd = {1, 9, 3, 11, 5, 13, 7, 15};
+    const f8 ab = __builtin_shuffle(a, b, even) + __builtin_shuffle(a, b, odd);
+    const f8 cd = __builtin_shuffle(c, d, even) + __builtin_shuffle(c, d, odd);
+    const i8 lo = {0, 1, 8, 9, 4, 5, 12, 13}, hi = {2, 3, 10, 11, 6, 7, 14, 15};
+    return __builtin_shuffle(ab, cd, lo) + __builtin_shuffle(ab, cd, hi);
 }
 
 } // namespace bmfr::simd

@@ -1,5 +1,5 @@
 #include "backend/cpu/fast_passes.h"
-#include "core/reprojection.h"
+#include "backend/cpu/reproject8.h"
 #include "core/simd.h"
 #include "filters/bmfr/temporal_blend.h"
 #include <atomic>
@@ -28,12 +28,13 @@ BMFR_SIMD_CLONES void accumulateRows(const Phase1& a, long y0, long y1, int64_t&
     const bool history = t.hasHistory;
     const bool demodulate = s.stages.demodulate && !s.colorIsDemodulated;
     const float eps = s.albedoEpsilon, limP = s.positionLimitSquared, limN = s.normalLimitSquared;
+    const f8 limits = {limP, limP, limP, limP, limN, limN, limN, limN};
     const float* prevSurface = a.b.surface[prev].data();
     const float* prevNoisy = a.b.noisy[prev].data();
     float* surface = a.b.surface[cur].data();
     float* noisy = a.b.noisy[cur].data();
 
-    for (long i = y0 * w; i < y1 * w; ++i) {
+    auto pixel = [&](long i, const Reprojected& r) __attribute__((always_inline)) {
         const bool end = i == last;
         const f4 n = finiteOrZero4(loadXyz(in.normal.data + 3 * i, end), bad);
         const f4 p = finiteOrZero4(loadXyz(in.position.data + 3 * i, end), bad);
@@ -52,25 +53,29 @@ BMFR_SIMD_CLONES void accumulateRows(const Phase1& a, long y0, long y1, int64_t&
         store4(surface + 8 * i, p);
         store4(surface + 8 * i + 4, n);
 
-        Vec2 pp{-1e6f, -1e6f}; // out of every image: TAA and phase III skip it
         uint8_t accept = 0;
         float samples = 0.0f, blend = 1.0f;
-        if (history && projectToPixel(t.previousViewProjection, {p[0], p[1], p[2]},
-                                      t.previousJitter, w, h, pp)) {
-            const BilinearFootprint fp = bilinearFootprint(pp);
+        const Vec2 pp = history ? r.pixel : Vec2{-1e6f, -1e6f}; // far out: phase III skips it
+        if (history && r.valid) {
+            const BilinearFootprint& fp = r.footprint;
+            const TapSet taps = tapSet(fp, w, h);
+            const f8 pn = {p[0], p[1], p[2], 0.0f, n[0], n[1], n[2], 0.0f};
+            f8 d[4];
+            for (int k = 0; k < 4; ++k) {
+                d[k] = load8(prevSurface + 8 * taps.index[k]) - pn;
+                d[k] *= d[k];
+            }
+            // All four taps' squared distances at once: positions in lanes 0-3, normals 4-7.
+            const f8 dist = sum3Of4(d[0], d[1], d[2], d[3]);
+            const i8 pass = dist < limits;
             f4 old{};
             float total = 0.0f;
             for (int k = 0; k < 4; ++k) {
-                const int x = tapX(fp, k), y = tapY(fp, k);
-                if (x < 0 || y < 0 || x >= w || y >= h) continue;
-                const long j = long(y) * w + x;
-                const f4 dp = load4(prevSurface + 8 * j) - p;
-                if (!(dot3(dp, dp) < limP)) continue;
-                const f4 dn = load4(prevSurface + 8 * j + 4) - n;
-                if (!(dot3(dn, dn) < limN)) continue;
-                accept |= uint8_t(1u << k);
-                old += fp.weight[k] * load4(prevNoisy + 4 * j); // colour and length together
-                total += fp.weight[k];
+                const bool ok = taps.inside[k] && pass[k] && pass[k + 4];
+                accept |= uint8_t(ok ? 1u << k : 0u);
+                const float wt = ok ? fp.weight[k] : 0.0f; // a zero weight adds exactly nothing
+                old += wt * load4(prevNoisy + 4 * taps.index[k]); // colour and length together
+                total += wt;
             }
             if (total > 0.0f) {
                 old = old / total;
@@ -85,6 +90,25 @@ BMFR_SIMD_CLONES void accumulateRows(const Phase1& a, long y0, long y1, int64_t&
         a.b.previousPixel[2 * i] = pp.x;
         a.b.previousPixel[2 * i + 1] = pp.y;
         a.b.acceptMask[i] = accept;
+    };
+
+    const Mat4& m = t.previousViewProjection;
+    Reprojected lanes[8];
+    for (long y = y0; y < y1; ++y) {
+        int x = 0;
+        if (history)
+            for (; x + 8 <= w; x += 8) {
+                const long i = y * w + x;
+                reproject8(in.position.data + 3 * i, m, t.previousJitter, w, h, lanes);
+                for (int l = 0; l < 8; ++l) pixel(i + l, lanes[l]);
+            }
+        for (; x < w; ++x) {
+            const long i = y * w + x;
+            int64_t counted = 0; // pixel() counts this pixel's bad values
+            const f4 p = finiteOrZero4(loadXyz(in.position.data + 3 * i, i == last), counted);
+            pixel(i, history ? reprojectOne({p[0], p[1], p[2]}, m, t.previousJitter, w, h)
+                             : Reprojected{});
+        }
     }
 }
 
