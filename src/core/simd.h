@@ -119,4 +119,26 @@ BMFR_SIMD_INLINE f8 sum3Of4(f8 a, f8 b, f8 c, f8 d) {
     return __builtin_shuffle(ab, cd, lo) + __builtin_shuffle(ab, cd, hi);
 }
 
+/// In-place transpose of an 8x8 block held as eight rows.
+BMFR_SIMD_INLINE void transpose8x8(f8 r[8]) {
+    const i8 lo = {0, 8, 1, 9, 4, 12, 5, 13}, hi = {2, 10, 3, 11, 6, 14, 7, 15};
+    const i8 pairLo = {0, 1, 8, 9, 4, 5, 12, 13}, pairHi = {2, 3, 10, 11, 6, 7, 14, 15};
+    const i8 halfLo = {0, 1, 2, 3, 8, 9, 10, 11}, halfHi = {4, 5, 6, 7, 12, 13, 14, 15};
+    f8 t[8], u[8];
+    for (int k = 0; k < 4; ++k) {
+        t[2 * k] = __builtin_shuffle(r[2 * k], r[2 * k + 1], lo);
+        t[2 * k + 1] = __builtin_shuffle(r[2 * k], r[2 * k + 1], hi);
+    }
+    for (int k = 0; k < 2; ++k) {
+        u[4 * k] = __builtin_shuffle(t[4 * k], t[4 * k + 2], pairLo);
+        u[4 * k + 1] = __builtin_shuffle(t[4 * k], t[4 * k + 2], pairHi);
+        u[4 * k + 2] = __builtin_shuffle(t[4 * k + 1], t[4 * k + 3], pairLo);
+        u[4 * k + 3] = __builtin_shuffle(t[4 * k + 1], t[4 * k + 3], pairHi);
+    }
+    for (int k = 0; k < 4; ++k) {
+        r[k] = __builtin_shuffle(u[k], u[k + 4], halfLo);
+        r[k + 4] = __builtin_shuffle(u[k], u[k + 4], halfHi);
+    }
+}
+
 } // namespace bmfr::simd

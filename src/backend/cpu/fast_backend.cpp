@@ -12,7 +12,7 @@ class FastPasses final : public BmfrPasses {
         b_.width = w, b_.height = h;
         for (int k = 0; k < 2; ++k) {
             b_.surface[k].assign(8 * n, 0.0f);
-            b_.noisy[k].assign(4 * n, 0.0f);
+            b_.noisy[k].assign(4 * n + 4, 0.0f); // padding: 8-float loads of the last record
             b_.accumulatedFitted[k].assign(4 * n, 0.0f);
             b_.output[k].assign(3 * n + 4, 0.0f);
         }

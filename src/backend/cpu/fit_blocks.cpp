@@ -16,6 +16,25 @@ struct Phase2 {
     BlockGrid grid;
 };
 
+/// Gathers the extra buffers some feature uses (non-finite values read as 0).
+BMFR_SIMD_INLINE void gatherExtras(const Phase2& a, int ox, int oy, bool inside, Scratch& sc) {
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize, W = B * B;
+    for (const Feature& f : a.ctx.settings.features) {
+        if (f.source != FeatureSource::Extra) continue;
+        const float* src = a.ctx.frame.extras[size_t(f.extraIndex)].data;
+        float* dst = sc.soa.data() + (6 + size_t(f.extraIndex)) * size_t(W);
+        for (int ly = 0; ly < B; ++ly) {
+            const int iy = inside ? oy + ly : mirrorIndex(oy + ly, g.height);
+            for (int lx = 0; lx < B; ++lx) {
+                const int ix = inside ? ox + lx : mirrorIndex(ox + lx, g.width);
+                const float v = src[long(iy) * g.width + ix];
+                dst[ly * B + lx] = std::isfinite(v) ? v : 0.0f;
+            }
+        }
+    }
+}
+
 /// Gathers the block's pixels (mirrored at the image border) as structure-of-arrays from the
 /// 32-byte surface and 16-byte colour records, and marks the pixels it owns.
 BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) {
@@ -23,10 +42,32 @@ BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) 
     const int B = g.blockSize, W = B * B, M = int(a.ctx.settings.features.size());
     const float* surface = a.b.surface[a.ctx.timeline.cur].data();
     const float* noisy = a.b.noisy[a.ctx.timeline.cur].data();
-    const auto& extras = a.ctx.frame.extras;
     float* soa = sc.soa.data();
     float* z = sc.work.data() + long(M) * W;
     const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
+    gatherExtras(a, ox, oy, inside, sc);
+    if (inside && B % 8 == 0) {
+        // Interior block: eight pixels per step, records transposed into columns.
+        for (int ly = 0; ly < B; ++ly) {
+            const long row = long(oy + ly) * g.width + ox;
+            for (int lx = 0; lx < B; lx += 8) {
+                const int k = ly * B + lx;
+                f8 r[8];
+                for (int l = 0; l < 8; ++l) r[l] = load8(surface + 8 * (row + lx + l));
+                transpose8x8(r);
+                for (int ch = 0; ch < 3; ++ch) {
+                    store8(soa + (3 + ch) * W + k, r[ch]);
+                    store8(soa + ch * W + k, r[4 + ch]);
+                }
+                // Overlapping 8-float loads: pixel l's record then pixel l + 1's.
+                for (int l = 0; l < 8; ++l) r[l] = load8(noisy + 4 * (row + lx + l));
+                transpose8x8(r);
+                for (int ch = 0; ch < 3; ++ch) store8(z + ch * W + k, r[ch]);
+                for (int l = 0; l < 8; ++l) sc.imageIndex[size_t(k + l)] = int(row + lx + l);
+            }
+        }
+        return;
+    }
     for (int ly = 0; ly < B; ++ly) {
         const int uy = oy + ly, iy = inside ? uy : mirrorIndex(uy, g.height);
         const bool rowInside = uy >= 0 && uy < g.height;
@@ -40,10 +81,6 @@ BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) 
                 soa[ch * W + k] = n[ch];
                 soa[(3 + ch) * W + k] = p[ch];
                 z[ch * W + k] = c[ch];
-            }
-            for (size_t e = 0; e < extras.size(); ++e) {
-                const float v = extras[e].data[idx];
-                soa[(6 + e) * size_t(W) + size_t(k)] = std::isfinite(v) ? v : 0.0f;
             }
             sc.imageIndex[k] = rowInside && ux >= 0 && ux < g.width ? int(idx) : -1;
         }
@@ -106,10 +143,22 @@ BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
                     for (int c = 0; c < 3; ++c)
                         sum[c][l] += coeffs[f * 3 + c] * clean[long(f) * W + k + l];
         }
+        for (int c = 0; c < 3; ++c) sum[c] = max8(f8{}, sum[c]);
+        const int first = sc.imageIndex[k];
+        if (n == 8 && first >= 0 && sc.imageIndex[k + 7] == first + 7) {
+            // Eight owned neighbours in one image row: transpose back into 4-float records.
+            f8 r[8] = {sum[0], sum[1], sum[2]};
+            transpose8x8(r);
+            for (int l = 0; l < 8; ++l) {
+                f4 v = {r[l][0], r[l][1], r[l][2], 0.0f};
+                store4(fitted + 4L * (first + l), v);
+            }
+            continue;
+        }
         for (int l = 0; l < n; ++l) {
             const int idx = sc.imageIndex[k + l];
             if (idx < 0) continue;
-            store4(fitted + 4L * idx, max4(f4{}, f4{sum[0][l], sum[1][l], sum[2][l], 0.0f}));
+            store4(fitted + 4L * idx, f4{sum[0][l], sum[1][l], sum[2][l], 0.0f});
         }
     }
 }
