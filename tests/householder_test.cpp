@@ -1,4 +1,6 @@
-// The fitting core against an independent double-precision least-squares solve (Eigen).
+// The fitting core, reference and fast, against an independent double-precision
+// least-squares solve (Eigen), and the two against each other.
+#include "backend/cpu/fast_passes.h"
 #include "core/hash.h"
 #include "filters/bmfr/householder_fit.h"
 #include <Eigen/Dense>
@@ -10,6 +12,14 @@ namespace bmfr {
 namespace {
 
 constexpr int W = 1024;
+
+using Solver = int (*)(float*, int, int, float*);
+struct NamedSolver {
+    const char* name;
+    Solver solve;
+};
+const NamedSolver kSolvers[] = {{"reference", &solveHouseholder},
+                                {"fast", &cpu::solveHouseholderFast}};
 
 float uniform(uint32_t a, uint32_t b, uint32_t c) {
     return unitFloat(hashKeys(a, b, c));
@@ -29,17 +39,16 @@ void regularise(Block& b, float eps, uint32_t seed) {
         for (int k = 0; k < W; ++k) b.at(f, k) += eps * (2 * uniform(seed, f, k) - 1);
 }
 
-/// Fitted values T a for each channel from our solver, and from Eigen in double.
-void compare(Block b, double tolerance, const char* what) {
+void compareOne(const Block& b, double tolerance, const char* what, Solver solve) {
     Eigen::MatrixXd A(W, b.M), Z(W, 3);
     for (int k = 0; k < W; ++k) {
-        for (int f = 0; f < b.M; ++f) A(k, f) = b.at(f, k);
-        for (int c = 0; c < 3; ++c) Z(k, c) = b.at(b.M + c, k);
+        for (int f = 0; f < b.M; ++f) A(k, f) = b.cols[size_t(f) * W + k];
+        for (int c = 0; c < 3; ++c) Z(k, c) = b.cols[size_t(b.M + c) * W + k];
     }
     Eigen::MatrixXd ref = A * A.colPivHouseholderQr().solve(Z);
     std::vector<float> coeffs(size_t(b.M) * 3);
     std::vector<float> work = b.cols;
-    solveHouseholder(work.data(), b.M, W, coeffs.data());
+    solve(work.data(), b.M, W, coeffs.data());
     double scale = Z.cwiseAbs().maxCoeff();
     for (float c : coeffs) ASSERT_TRUE(std::isfinite(c)) << what;
     double worst = 0;
@@ -50,6 +59,14 @@ void compare(Block b, double tolerance, const char* what) {
             worst = std::max(worst, std::fabs(ours - ref(k, c)));
         }
     EXPECT_LE(worst, tolerance * scale) << what << ": max |fitted - reference| = " << worst;
+}
+
+/// Fitted values T a for each channel from both our solvers, and from Eigen in double.
+void compare(Block b, double tolerance, const char* what) {
+    for (const NamedSolver& solver : kSolvers) {
+        SCOPED_TRACE(solver.name);
+        compareOne(b, tolerance, what, solver.solve);
+    }
 }
 
 TEST(Householder, MatchesDoubleLeastSquaresOnRandomBlocks) {
@@ -95,15 +112,55 @@ TEST(Householder, UnregularisedRankDeficiencyGivesFiniteMeanFit) {
         for (int f = 1; f < 10; ++f) b.at(f, k) = 0.3f;
         for (int c = 0; c < 3; ++c) b.at(10 + c, k) = float(k % 7);
     }
-    std::vector<float> coeffs(30);
-    std::vector<float> work = b.cols;
-    int dropped = solveHouseholder(work.data(), 10, W, coeffs.data());
-    EXPECT_EQ(dropped, 9);
     double mean = 0;
     for (int k = 0; k < W; ++k) mean += k % 7;
     mean /= W;
-    for (float c : coeffs) ASSERT_TRUE(std::isfinite(c));
-    EXPECT_NEAR(coeffs[0], mean, 1e-4);
+    for (const NamedSolver& solver : kSolvers) {
+        SCOPED_TRACE(solver.name);
+        std::vector<float> coeffs(30);
+        std::vector<float> work = b.cols;
+        int dropped = solver.solve(work.data(), 10, W, coeffs.data());
+        EXPECT_EQ(dropped, 9);
+        for (float c : coeffs) ASSERT_TRUE(std::isfinite(c));
+        EXPECT_NEAR(coeffs[0], mean, 1e-4);
+    }
+}
+
+// The fast solver's tolerance against the reference: coefficients of well-conditioned blocks
+// within 1e-4 relative (only the summation order differs), the same columns dropped, and any
+// row count (heads and tails around the 8-wide body).
+TEST(Householder, FastSolverMatchesReferenceForAnyRowCount) {
+    for (int rows : {64, 81, 144, 1024, 4096}) {
+        for (uint32_t trial = 0; trial < 5; ++trial) {
+            const int M = 10;
+            std::vector<float> cols(size_t(M + 3) * rows);
+            for (int k = 0; k < rows; ++k) {
+                cols[size_t(k)] = 1.0f;
+                for (int f = 1; f < M; ++f)
+                    cols[size_t(f) * rows + k] = 2 * uniform(trial, f, k) - 1;
+                // Column 5 duplicates column 1 in half the trials: a rank deficiency.
+                if (trial % 2) cols[size_t(5) * rows + k] = cols[size_t(1) * rows + k];
+                for (int c = 0; c < 3; ++c)
+                    cols[size_t(M + c) * rows + k] =
+                        0.5f + 0.3f * cols[size_t(2) * rows + k] * (c + 1) +
+                        0.2f * uniform(trial + 7, c, k);
+            }
+            std::vector<float> a = cols, b = cols, ca(M * 3), cb(M * 3);
+            const int droppedA = solveHouseholder(a.data(), M, rows, ca.data());
+            const int droppedB = cpu::solveHouseholderFast(b.data(), M, rows, cb.data());
+            EXPECT_EQ(droppedA, droppedB) << rows << " rows, trial " << trial;
+            for (int k = 0; k < rows; ++k)
+                for (int c = 0; c < 3; ++c) {
+                    double fa = 0, fb = 0;
+                    for (int f = 0; f < M; ++f) {
+                        fa += double(ca[f * 3 + c]) * cols[size_t(f) * rows + k];
+                        fb += double(cb[f * 3 + c]) * cols[size_t(f) * rows + k];
+                    }
+                    ASSERT_NEAR(fa, fb, 1e-4 * (1.0 + std::fabs(fa)))
+                        << rows << " rows, trial " << trial << ", row " << k;
+                }
+        }
+    }
 }
 
 } // namespace
