@@ -14,32 +14,60 @@ namespace bmfr::app {
 namespace {
 
 struct BenchJob {
-    std::vector<std::string> sizes{"1280x720"};
-    int warmup = 5, frames = 30, distinct = 8, threads = 0;
-    bool json = false;
+    std::vector<std::string> sizes{"1280x720", "1920x1080", "3840x2160"};
+    int warmup = 5, frames = 30, threads = 0;
+    bool json = false, reference = true;
     std::string filter = "bmfr";
 };
 
+/// Distinct input frames cycled through: up to 8, fewer for large images (memory).
+int distinctFrames(int w, int h) {
+    const double pixels = double(w) * h;
+    return std::clamp(int(24e6 / pixels), 2, 8);
+}
+
 nlohmann::json benchOne(const BenchJob& job, int w, int h) {
+    const int distinct = distinctFrames(w, h);
     ProceduralSceneOptions so;
-    so.width = w, so.height = h, so.frames = job.distinct;
+    so.width = w, so.height = h, so.frames = distinct;
     ProceduralScene scene(so);
-    std::vector<FrameData> frames(size_t(job.distinct));
-    for (int i = 0; i < job.distinct; ++i) scene.render(i, frames[size_t(i)]);
+    std::vector<FrameData> frames(static_cast<size_t>(distinct));
+    for (int i = 0; i < distinct; ++i) scene.render(i, frames[size_t(i)]);
     Settings s;
     s.threads = job.threads;
     SvgfSettings sv;
     sv.threads = job.threads;
     std::unique_ptr<Filter> d = makeFilter(job.filter, s, sv);
-    StageLog log;
+    // The reference passes run on the same frames, interleaved frame by frame with the fast
+    // ones, so both see the same machine load.
+    std::unique_ptr<Filter> ref;
+    if (job.reference && job.filter == "bmfr") {
+        Settings rs = s;
+        rs.implementation = Implementation::Reference;
+        ref = makeFilter("bmfr", rs, sv);
+    }
+    StageLog log, refLog;
     for (int i = 0; i < job.warmup + job.frames; ++i) {
         // Cycle forwards then backwards so the camera motion stays continuous.
-        int period = 2 * job.distinct - 2, k = period > 0 ? i % period : 0;
-        if (k >= job.distinct) k = period - k;
-        d->denoise(frames[size_t(k)].input());
+        int period = 2 * distinct - 2, k = period > 0 ? i % period : 0;
+        if (k >= distinct) k = period - k;
+        const FrameInput in = frames[size_t(k)].input();
+        d->denoise(in);
         if (i >= job.warmup) log.add(d->lastStats().times);
+        if (ref) {
+            ref->denoise(in);
+            if (i >= job.warmup) refLog.add(ref->lastStats().times);
+        }
     }
-    return {{"total_ms", log.totalMedian()}, {"stages", log.medians()}, {"line", log.line()}};
+    nlohmann::json r = {{"total_ms", log.totalMedian()}, {"stages", log.medians()},
+                        {"line", log.line()}};
+    if (ref) {
+        r["reference_total_ms"] = refLog.totalMedian();
+        r["reference_stages"] = refLog.medians();
+        r["speedup"] = refLog.totalMedian() / log.totalMedian();
+        r["reference_line"] = refLog.line();
+    }
+    return r;
 }
 
 } // namespace
@@ -50,11 +78,13 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         app.add_subcommand("bench", "median ms per frame and per stage on synthetic input");
     cmd->add_option("--sizes", job->sizes, "resolutions WxH")
         ->delimiter(',')
-        ->default_str("1280x720");
+        ->default_str("1280x720,1920x1080,3840x2160");
     cmd->add_option("--warmup", job->warmup, "untimed frames first")->default_val(5);
     cmd->add_option("--frames", job->frames, "timed frames")->default_val(30);
     cmd->add_option("--threads", job->threads, "worker threads, 0 = all cores")->default_val(0);
     cmd->add_flag("--json", job->json, "print one JSON object");
+    cmd->add_flag("!--no-reference", job->reference,
+                  "skip the reference passes (BMFR's speed-up baseline)");
     cmd->add_option("--filter", job->filter, "bmfr or svgf")->default_val("bmfr");
     cmd->callback([job, &exitCode] {
         nlohmann::json all;
@@ -65,10 +95,16 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
             if (!(in >> w >> x >> h) || x != 'x' || w <= 0 || h <= 0)
                 throw Error("--sizes: '" + size + "' is not WxH");
             nlohmann::json r = benchOne(*job, w, h);
-            if (!job->json)
+            if (!job->json) {
                 fmt::print("{:>10} {}: {} ms   (median of {} frames)\n", size, job->filter,
                            r["line"].get<std::string>(), job->frames);
+                if (r.contains("reference_line"))
+                    fmt::print("{:>10} reference: {} ms   -> fast is {:.1f}x faster\n", "",
+                               r["reference_line"].get<std::string>(), r["speedup"].get<double>());
+                std::fflush(stdout);
+            }
             r.erase("line");
+            r.erase("reference_line");
             all[size] = r;
         }
         if (job->json) fmt::print("{}\n", all.dump());
