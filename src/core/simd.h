@@ -100,13 +100,17 @@ BMFR_SIMD_INLINE f4 finiteOrZero4(f4 v, int64_t& bad) {
     return ok ? v : f4{};
 }
 /// The unnormalised YCoCg of bmfr::rgbToYCoCg, and back; w is passed through as 0.
+/// As matrix columns times broadcast channels; the products by 1, 2 and 0.25 are exact, so the
+/// sums round as in the scalar forms.
 BMFR_SIMD_INLINE f4 rgbToYCoCg4(f4 c) {
-    return f4{c[0] + 2.0f * c[1] + c[2], 2.0f * c[0] - 2.0f * c[2], -c[0] + 2.0f * c[1] - c[2],
-              0.0f};
+    const f4 r = __builtin_shuffle(c, i4{0, 0, 0, 0}), g = __builtin_shuffle(c, i4{1, 1, 1, 1}),
+             b = __builtin_shuffle(c, i4{2, 2, 2, 2});
+    return (r * f4{1, 2, -1, 0} + g * f4{2, 0, 2, 0}) + b * f4{1, -2, -1, 0};
 }
 BMFR_SIMD_INLINE f4 yCoCgToRgb4(f4 c) {
-    return f4{0.25f * (c[0] + c[1] - c[2]), 0.25f * (c[0] + c[2]), 0.25f * (c[0] - c[1] - c[2]),
-              0.0f};
+    const f4 y = __builtin_shuffle(c, i4{0, 0, 0, 0}), co = __builtin_shuffle(c, i4{1, 1, 1, 1}),
+             cg = __builtin_shuffle(c, i4{2, 2, 2, 2});
+    return 0.25f * ((y + co * f4{1, 0, -1, 0}) + cg * f4{-1, 1, -1, 0});
 }
 
 /// For four vectors whose lanes 3 and 7 are zero: lanes 0-3 = (a0+a1)+(a2+a3) of a, b, c, d

@@ -36,12 +36,15 @@ BMFR_SIMD_INLINE void phase3Row(const Phase3& a, long y, bool owned, float* row)
         if (accumulate && accept) {
             const BilinearFootprint fp =
                 bilinearFootprint({a.b.previousPixel[2 * i], a.b.previousPixel[2 * i + 1]});
+            const long j = long(fp.y0) * w + fp.x0; // accepted taps are in the image
+            const long offset[4] = {0, 1, w, long(w) + 1};
             f4 old{};
             float total = 0.0f;
             for (int k = 0; k < 4; ++k) {
-                if (!(accept & (1u << k))) continue;
-                old += fp.weight[k] * load4(hist + 4 * (long(tapY(fp, k)) * w + tapX(fp, k)));
-                total += fp.weight[k];
+                const float wt = accept & (1u << k) ? fp.weight[k] : 0.0f;
+                const long tap = accept & (1u << k) ? j + offset[k] : 0;
+                old += wt * load4(hist + 4 * tap);
+                total += wt;
             }
             if (total > 0.0f) {
                 const uint8_t length = uint8_t(noisy[4 * i + 3]);

@@ -41,13 +41,13 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
         const f4 boxLo = min4(crossLo, min4(min4(c0, c1), min4(c2, c3)));
         const f4 boxHi = max4(crossHi, max4(max4(c0, c1), max4(c2, c3)));
 
+        const TapSet taps = tapSet(fp, w, h);
         f4 old{};
         float total = 0.0f;
         for (int t = 0; t < 4; ++t) {
-            const int tx = tapX(fp, t), ty = tapY(fp, t);
-            if (tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
-            old += fp.weight[t] * load4(history + 3 * (long(ty) * w + tx));
-            total += fp.weight[t];
+            const float wt = taps.inside[t] ? fp.weight[t] : 0.0f; // zero adds exactly nothing
+            old += wt * load4(history + 3 * taps.index[t]);
+            total += wt;
         }
         if (total > 0.0f) old = old / total;
         const f4 lo = 0.5f * (boxLo + crossLo), hi = 0.5f * (boxHi + crossHi);
