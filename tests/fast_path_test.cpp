@@ -131,17 +131,18 @@ TEST(FastPath, MatchesReferenceOnPathTracedFrames) {
         pose.position = {0.05f * float(i), 1.0f, 3.4f}, pose.target = {0, 1, 0};
         pose.fovY = 0.69f;
         FrameRenderStats stats;
-        ASSERT_TRUE(r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)], stats,
-                             nullptr));
+        ASSERT_TRUE(
+            r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)], stats, nullptr));
         previous = pose;
     }
     FrameInput input;
-    expectSameOutputs(Settings{}, n,
-                      [&](int i) -> const FrameInput& {
-                          input = frames[size_t(i)].input();
-                          return input;
-                      },
-                      "path-traced Cornell box, 77x61");
+    expectSameOutputs(
+        Settings{}, n,
+        [&](int i) -> const FrameInput& {
+            input = frames[size_t(i)].input();
+            return input;
+        },
+        "path-traced Cornell box, 77x61");
 }
 
 } // namespace

@@ -141,9 +141,9 @@ TEST(Householder, FastSolverMatchesReferenceForAnyRowCount) {
                 // Column 5 duplicates column 1 in half the trials: a rank deficiency.
                 if (trial % 2) cols[size_t(5) * rows + k] = cols[size_t(1) * rows + k];
                 for (int c = 0; c < 3; ++c)
-                    cols[size_t(M + c) * rows + k] =
-                        0.5f + 0.3f * cols[size_t(2) * rows + k] * (c + 1) +
-                        0.2f * uniform(trial + 7, c, k);
+                    cols[size_t(M + c) * rows + k] = 0.5f +
+                                                     0.3f * cols[size_t(2) * rows + k] * (c + 1) +
+                                                     0.2f * uniform(trial + 7, c, k);
             }
             std::vector<float> a = cols, b = cols, ca(M * 3), cb(M * 3);
             const int droppedA = solveHouseholder(a.data(), M, rows, ca.data());

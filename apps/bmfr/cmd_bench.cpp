@@ -59,8 +59,8 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h) {
             if (i >= job.warmup) refLog.add(ref->lastStats().times);
         }
     }
-    nlohmann::json r = {{"total_ms", log.totalMedian()}, {"stages", log.medians()},
-                        {"line", log.line()}};
+    nlohmann::json r = {
+        {"total_ms", log.totalMedian()}, {"stages", log.medians()}, {"line", log.line()}};
     if (ref) {
         r["reference_total_ms"] = refLog.totalMedian();
         r["reference_stages"] = refLog.medians();

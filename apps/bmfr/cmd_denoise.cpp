@@ -45,6 +45,10 @@ void SettingsOptions::addTo(CLI::App& cmd) {
                    "sequence's value, else 1.0");
     cmd.add_option("--seed", s.seed, "regularisation noise seed")->default_val(0);
     cmd.add_option("--threads", s.threads, "worker threads, 0 = all cores")->default_val(0);
+    cmd.add_flag_function(
+        "--reference", [&s](int64_t) { s.implementation = Implementation::Reference; },
+        "run the straightforward reference passes instead of the fast ones (same output within "
+        "rounding, about 2x slower)");
     cmd.add_option("--disable", disabled,
                    "stages to switch off: demodulate, accumulation, fitting, "
                    "second-accumulation, taa")

@@ -115,8 +115,8 @@ BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
     if (ox + B <= 0 || oy + B <= 0 || ox >= g.width || oy >= g.height) return;
     gatherBlock(a, ox, oy, sc);
     const float* soa = sc.soa.data();
-    const BlockSources src{{soa, soa + W, soa + 2 * W}, {soa + 3 * W, soa + 4 * W, soa + 5 * W},
-                           soa + 6 * W};
+    const BlockSources src{
+        {soa, soa + W, soa + 2 * W}, {soa + 3 * W, soa + 4 * W, soa + 5 * W}, soa + 6 * W};
     buildFeatureColumns(s.features, src, W, sc.clean.data());
     const float* noise = a.ctx.timeline.noise.data();
     for (int f = 0; f < M; ++f)

@@ -1,5 +1,6 @@
 #include "backend/cpu/fast_passes.h"
 #include "core/simd.h"
+#include "filters/bmfr/householder_fit.h"
 #include <algorithm>
 #include <cmath>
 
@@ -54,7 +55,7 @@ BMFR_SIMD_INLINE void axpyGroup(const float* v, float* a, int count, int rows, i
 BMFR_SIMD_CLONES int solveHouseholderFast(float* columns, int featureCount, int rows,
                                           float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
-    float R[kMaxFeatures][kMaxFeatures + 3];
+    TriangularR R;
     bool dead[kMaxFeatures] = {};
     float largestNorm = 0.0f;
     int deficient = 0;
@@ -69,7 +70,7 @@ BMFR_SIMD_CLONES int solveHouseholderFast(float* columns, int featureCount, int 
         if (!(norm > 1e-5f * largestNorm) || !(norm > 1e-30f)) {
             dead[k] = true;
             ++deficient;
-            for (int j = k; j < total; ++j) R[k][j] = j == k ? 0.0f : columns[long(j) * rows + k];
+            dropColumn(R, columns, k, total, rows);
             continue;
         }
         const float alpha = v[k] > 0 ? -norm : norm;
@@ -87,17 +88,7 @@ BMFR_SIMD_CLONES int solveHouseholderFast(float* columns, int featureCount, int 
         }
     }
 
-    for (int c = 0; c < 3; ++c) {
-        for (int k = M - 1; k >= 0; --k) {
-            if (dead[k]) {
-                coeffs[k * 3 + c] = 0.0f;
-                continue;
-            }
-            float s = R[k][M + c];
-            for (int j = k + 1; j < M; ++j) s -= R[k][j] * coeffs[j * 3 + c];
-            coeffs[k * 3 + c] = s / R[k][k];
-        }
-    }
+    backSubstitute(R, dead, M, coeffs);
     return deficient;
 }
 

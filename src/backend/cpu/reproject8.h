@@ -9,9 +9,9 @@ namespace bmfr::cpu {
 
 /// One pixel's reprojection: where it was and its bilinear footprint there.
 struct Reprojected {
-    bool valid = false;           ///< projectToPixel succeeded
-    Vec2 pixel{-1e6f, -1e6f};     ///< continuous previous pixel; far outside when not valid
-    BilinearFootprint footprint;  ///< of `pixel`
+    bool valid = false;          ///< projectToPixel succeeded
+    Vec2 pixel{-1e6f, -1e6f};    ///< continuous previous pixel; far outside when not valid
+    BilinearFootprint footprint; ///< of `pixel`
 };
 
 /// x, y and z lanes of eight packed xyz records (24 floats).

@@ -81,8 +81,8 @@ BMFR_SIMD_CLONES void resolveRows(const Phase3& a, long y0, long y1, float* ring
         const float* mid = row(y);
         const float* up = y > 0 ? row(y - 1) : mid;
         const float* down = y + 1 < h ? row(y + 1) : mid;
-        taaRow(up, mid, down, history, a.b.previousPixel.data() + 2 * y * w, out + 3 * y * w, w,
-               h, a.s.taaBlendAlpha, taa);
+        taaRow(up, mid, down, history, a.b.previousPixel.data() + 2 * y * w, out + 3 * y * w, w, h,
+               a.s.taaBlendAlpha, taa);
     }
 }
 

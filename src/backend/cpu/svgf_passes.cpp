@@ -1,8 +1,8 @@
 #include "backend/cpu/svgf_passes.h"
-#include "filters/pixel_input.h"
 #include "core/color.h"
 #include "core/reprojection.h"
 #include "filters/bmfr/temporal_blend.h"
+#include "filters/pixel_input.h"
 #include "filters/svgf/edge_stopping.h"
 #include <atomic>
 

@@ -5,9 +5,9 @@ namespace bmfr::cpu {
 
 namespace {
 
-BMFR_SIMD_CLONES void taaRows(const float* history,
-                              const float* previousPixel, float* records, float* out, int w,
-                              int h, float alpha, bool enabled, long y0, long y1) {
+BMFR_SIMD_CLONES void taaRows(const float* history, const float* previousPixel, float* records,
+                              float* out, int w, int h, float alpha, bool enabled, long y0,
+                              long y1) {
     for (long y = y0; y < y1; ++y) {
         const float* up = records + 8 * size_t(y > 0 ? y - 1 : y) * size_t(w);
         const float* mid = records + 8 * size_t(y) * size_t(w);

@@ -1,7 +1,7 @@
 #include "backend/reference/reference_passes.h"
-#include "filters/pixel_input.h"
 #include "core/reprojection.h"
 #include "filters/bmfr/temporal_blend.h"
+#include "filters/pixel_input.h"
 #include <atomic>
 
 namespace bmfr::reference {

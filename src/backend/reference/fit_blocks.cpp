@@ -44,8 +44,9 @@ void gatherBlock(const BmfrPassContext& ctx, const Buffers& st, const BlockGrid&
             sc.imageIndex[k] = rowInside && ux >= 0 && ux < g.width ? int(idx) : -1;
         }
     }
-    buildFeatureColumns(ctx.settings.features, {{n[0], n[1], n[2]}, {p[0], p[1], p[2]}, sc.soa.data() + 6 * W},
-                        W, sc.clean.data());
+    buildFeatureColumns(ctx.settings.features,
+                        {{n[0], n[1], n[2]}, {p[0], p[1], p[2]}, sc.soa.data() + 6 * W}, W,
+                        sc.clean.data());
 }
 
 /// out[c][k] = sum_f coeffs[f][c] * clean[f][k]; compiled for AVX2 and baseline, chosen at run
@@ -108,7 +109,8 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& st) {
     const BlockGrid g = makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex);
     ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
         FitScratch& sc = st.scratch[ThreadPool::currentThreadIndex()];
-        for (long b = b0; b < b1; ++b) fitBlock(ctx, st, g, int(b % g.blocksX), int(b / g.blocksX), sc);
+        for (long b = b0; b < b1; ++b)
+            fitBlock(ctx, st, g, int(b % g.blocksX), int(b / g.blocksX), sc);
     });
 }
 

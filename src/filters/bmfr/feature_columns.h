@@ -1,8 +1,8 @@
 // Evaluation and per-block scaling of BMFR feature columns.
 #pragma once
 #include "core/vec.h"
-#include <bmfr/features.h>
 #include <algorithm>
+#include <bmfr/features.h>
 #include <cmath>
 #include <vector>
 

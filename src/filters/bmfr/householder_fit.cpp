@@ -23,7 +23,7 @@ inline void axpyFrom(float f, const float* v, float* a, int begin, int end) {
 __attribute__((target_clones("avx2", "default"))) int
 solveHouseholder(float* columns, int featureCount, int rows, float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
-    float R[kMaxFeatures][kMaxFeatures + 3];
+    TriangularR R;
     bool dead[kMaxFeatures] = {};
     float largestNorm = 0.0f;
     int deficient = 0;
@@ -37,7 +37,7 @@ solveHouseholder(float* columns, int featureCount, int rows, float* coeffs) {
         if (!(norm > 1e-5f * largestNorm) || !(norm > 1e-30f)) {
             dead[k] = true;
             ++deficient;
-            for (int j = k; j < total; ++j) R[k][j] = j == k ? 0.0f : columns[long(j) * rows + k];
+            dropColumn(R, columns, k, total, rows);
             continue;
         }
         // Sign choice avoids cancellation in v_k = x_k - alpha.
@@ -53,17 +53,7 @@ solveHouseholder(float* columns, int featureCount, int rows, float* coeffs) {
         }
     }
 
-    for (int c = 0; c < 3; ++c) {
-        for (int k = M - 1; k >= 0; --k) {
-            if (dead[k]) {
-                coeffs[k * 3 + c] = 0.0f;
-                continue;
-            }
-            float s = R[k][M + c];
-            for (int j = k + 1; j < M; ++j) s -= R[k][j] * coeffs[j * 3 + c];
-            coeffs[k * 3 + c] = s / R[k][k];
-        }
-    }
+    backSubstitute(R, dead, M, coeffs);
     return deficient;
 }
 

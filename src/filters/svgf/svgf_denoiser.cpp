@@ -1,8 +1,8 @@
-#include "backend/cpu/taa.h"
-#include "filters/pixel_input.h"
 #include "backend/cpu/svgf_passes.h"
+#include "backend/cpu/taa.h"
 #include "core/mat4.h"
 #include "filters/frame_checks.h"
+#include "filters/pixel_input.h"
 #include <bmfr/error.h>
 #include <bmfr/svgf.h>
 #include <chrono>
@@ -100,8 +100,7 @@ ImageView SvgfDenoiser::denoise(const FrameInput& frame) {
     const bool remodulate = true;
     for (long i = 0; i < st.integrated.pixelCount(); ++i) {
         Vec3 c = load3Stride4(st.filtered[src].data(), i);
-        if (remodulate)
-            c = c * guardAlbedo(load3(frame.albedo.data, i), m.settings.albedoEpsilon);
+        if (remodulate) c = c * guardAlbedo(load3(frame.albedo.data, i), m.settings.albedoEpsilon);
         if (frame.emission.data) {
             Vec3 e = load3(frame.emission.data, i);
             if (std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z)) c = c + e;
@@ -110,9 +109,9 @@ ImageView SvgfDenoiser::denoise(const FrameInput& frame) {
     }
     auto t3 = Clock::now();
     cpu::temporalAntiAliasing(m.pool, st.remodulated.data(), st.output[1 - st.cur].data(),
-                              st.previousPixel.data(), st.taaRecords.data(), st.output[st.cur].data(),
-                              st.width, st.height, m.settings.taaBlendAlpha,
-                              m.settings.taa && st.hasHistory);
+                              st.previousPixel.data(), st.taaRecords.data(),
+                              st.output[st.cur].data(), st.width, st.height,
+                              m.settings.taaBlendAlpha, m.settings.taa && st.hasHistory);
     auto t4 = Clock::now();
     m.stats.times.clear();
     m.stats.times.add("accumulate", ms(t0, t1));
