@@ -104,10 +104,7 @@ int runDenoise(const DenoiseJob& job) {
     if (job.debug) fs::create_directories(fs::path(job.output) / "debug");
 
     SvgfSettings svgf = job.svgf;
-    svgf.positionLimitSquared = settings.positionLimitSquared;
-    svgf.normalLimitSquared = settings.normalLimitSquared;
-    svgf.colorIsDemodulated = settings.colorIsDemodulated;
-    svgf.threads = settings.threads;
+    static_cast<TemporalSettings&>(svgf) = settings; // one set of shared options for both
     svgf.taa = settings.stages.taa;
     std::unique_ptr<Filter> filter = makeFilter(job.filter, settings, svgf);
     auto* bmfrFilter = dynamic_cast<Denoiser*>(filter.get());

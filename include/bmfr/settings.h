@@ -1,6 +1,7 @@
 // Every setting of the BMFR filter, each with its unit, range and default.
 #pragma once
 #include <bmfr/features.h>
+#include <bmfr/temporal_settings.h>
 #include <cstdint>
 #include <vector>
 
@@ -21,8 +22,9 @@ enum class Implementation {
     Reference ///< one straightforward pass per stage: the specification of the fast passes
 };
 
-/// BMFR settings. Defaults are the paper's (Koskela et al. 2019) and the authors' code.
-struct Settings {
+/// BMFR settings. Defaults are the paper's (Koskela et al. 2019) and the authors' code. The
+/// shared ones (discard limits, TAA weight, albedo floor, threads) are in TemporalSettings.
+struct Settings : TemporalSettings {
     /// Edge of the square regression block, pixels; [8, 64]; default 32.
     int blockSize = 32;
     /// Columns of the regression matrix T; first must be the constant 1; at most kMaxFeatures.
@@ -35,24 +37,10 @@ struct Settings {
     float firstBlendAlpha = 0.2f;
     /// Minimum weight of the new fitted frame in phase III, weight max(1/n, alpha); (0, 1]; 0.1.
     float secondBlendAlpha = 0.1f;
-    /// Weight of the current frame in TAA; (0, 1]; default 0.2.
-    float taaBlendAlpha = 0.2f;
-    /// A history tap is discarded when |p_prev - p|^2 >= this; scene units squared; > 0;
-    /// default 0.01 (the authors' dataset value).
-    float positionLimitSquared = 0.01f;
-    /// A history tap is discarded when |n_prev - n|^2 >= this; unitless; (0, 4]; default 1.0
-    /// (about 60 degrees).
-    float normalLimitSquared = 1.0f;
-    /// Albedo channels below this are treated as this when demodulating; [1e-6, 1]; 0.001.
-    float albedoEpsilon = 0.001f;
     /// Seed of the regularisation noise; same seed and input give the same output bits.
     uint32_t seed = 0;
-    /// The colour input is already divided by albedo (the original BMFR dataset is).
-    bool colorIsDemodulated = false;
     /// Ablation switches.
     StageSwitches stages{};
-    /// Worker threads; 0 = all cores; [0, 1024].
-    int threads = 0;
     /// Fast (default) or Reference passes.
     Implementation implementation = Implementation::Fast;
 };

@@ -2,12 +2,14 @@
 // Dundr's thesis as settings; behind the same Filter interface as BMFR.
 #pragma once
 #include <bmfr/filter.h>
+#include <bmfr/temporal_settings.h>
 #include <cstdint>
 
 namespace bmfr {
 
-/// SVGF settings; defaults are Schied et al. 2017's.
-struct SvgfSettings {
+/// SVGF settings; defaults are Schied et al. 2017's. The shared ones (discard limits, TAA
+/// weight, albedo floor, threads) are in TemporalSettings.
+struct SvgfSettings : TemporalSettings {
     /// Minimum new-frame weight of the colour accumulation (cumulative average before it),
     /// unitless; (0, 1]; default 0.2.
     float colorAlpha = 0.2f;
@@ -30,19 +32,8 @@ struct SvgfSettings {
     /// Spatial 7x7 variance estimate while the history is shorter than this many frames;
     /// [0, 255]; default 4; 0 disables it (progressive variant).
     int spatialVarianceFrames = 4;
-    /// Discard thresholds of the shared reprojection test (as BMFR's): scene units squared, and
-    /// squared normal distance; defaults 0.01 and 1.0.
-    float positionLimitSquared = 0.01f;
-    float normalLimitSquared = 1.0f;
-    /// TAA weight of the current frame; (0, 1]; default 0.2; and a switch.
-    float taaBlendAlpha = 0.2f;
+    /// TAA on or off.
     bool taa = true;
-    /// Albedo floor for demodulation; [1e-6, 1]; default 0.001.
-    float albedoEpsilon = 0.001f;
-    /// The colour input is already divided by albedo.
-    bool colorIsDemodulated = false;
-    /// Worker threads; 0 = all cores.
-    int threads = 0;
 };
 
 /// Throws bmfr::Error naming the first setting out of range.

@@ -7,14 +7,23 @@ namespace bmfr {
 
 namespace {
 
-void checkRange(const char* name, double v, double lo, double hi, bool loOpen = false) {
+void checkRange(const char* name, double v, double lo, double hi, bool loOpen = false,
+                const char* filter = "setting") {
     bool ok = std::isfinite(v) && (loOpen ? v > lo : v >= lo) && v <= hi;
     if (!ok)
-        throw Error(std::string("setting ") + name + " = " + std::to_string(v) + " is outside " +
+        throw Error(std::string(filter) + " " + name + " = " + std::to_string(v) + " is outside " +
                     (loOpen ? "(" : "[") + std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
 
 } // namespace
+
+void validate(const TemporalSettings& s, const char* filter) {
+    checkRange("taaBlendAlpha", s.taaBlendAlpha, 0, 1, true, filter);
+    checkRange("positionLimitSquared", s.positionLimitSquared, 0, 1e30, true, filter);
+    checkRange("normalLimitSquared", s.normalLimitSquared, 0, 4, true, filter);
+    checkRange("albedoEpsilon", s.albedoEpsilon, 1e-6, 1, false, filter);
+    checkRange("threads", s.threads, 0, 1024, false, filter);
+}
 
 void validate(const Settings& s) {
     checkRange("blockSize", s.blockSize, 8, 64);
@@ -29,11 +38,7 @@ void validate(const Settings& s) {
     checkRange("noiseAmplitude", s.noiseAmplitude, 0, 1);
     checkRange("firstBlendAlpha", s.firstBlendAlpha, 0, 1, true);
     checkRange("secondBlendAlpha", s.secondBlendAlpha, 0, 1, true);
-    checkRange("taaBlendAlpha", s.taaBlendAlpha, 0, 1, true);
-    checkRange("positionLimitSquared", s.positionLimitSquared, 0, 1e30, true);
-    checkRange("normalLimitSquared", s.normalLimitSquared, 0, 4, true);
-    checkRange("albedoEpsilon", s.albedoEpsilon, 1e-6, 1);
-    checkRange("threads", s.threads, 0, 1024);
+    validate(static_cast<const TemporalSettings&>(s), "setting");
 }
 
 } // namespace bmfr

@@ -24,11 +24,7 @@ void validate(const SvgfSettings& s) {
     check("phiNormal", s.phiNormal, 1, 1024, false);
     check("phiLuminance", s.phiLuminance, 0, 1e6, true);
     check("spatialVarianceFrames", s.spatialVarianceFrames, 0, 255, false);
-    check("positionLimitSquared", s.positionLimitSquared, 0, 1e30, true);
-    check("normalLimitSquared", s.normalLimitSquared, 0, 4, true);
-    check("taaBlendAlpha", s.taaBlendAlpha, 0, 1, true);
-    check("albedoEpsilon", s.albedoEpsilon, 1e-6, 1, false);
-    check("threads", s.threads, 0, 1024, false);
+    validate(static_cast<const TemporalSettings&>(s), "SVGF setting");
 }
 
 void SvgfState::allocate(int w, int h) {
