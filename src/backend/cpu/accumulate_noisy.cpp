@@ -10,15 +10,8 @@ using namespace simd;
 
 namespace {
 
-struct Phase1 {
-    const Settings& s;
-    const FrameInput& in;
-    const BmfrTimeline& t;
-    Buffers& b;
-};
-
 // One pixel record per load: the previous surface (32 bytes) and colour + length (16 bytes).
-BMFR_SIMD_CLONES void accumulateRows(const Phase1& a, long y0, long y1, int64_t& bad,
+BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64_t& bad,
                                      int64_t& lost) {
     const Settings& s = a.s;
     const FrameInput& in = a.in;
@@ -115,7 +108,7 @@ BMFR_SIMD_CLONES void accumulateRows(const Phase1& a, long y0, long y1, int64_t&
 } // namespace
 
 InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
-    const Phase1 a{ctx.settings, ctx.frame, ctx.timeline, b};
+    const FrameArgs a{ctx.settings, ctx.frame, ctx.timeline, b};
     std::atomic<int64_t> nonFinite{0}, discarded{0};
     ctx.pool.parallelFor(ctx.timeline.height, 8, [&](long y0, long y1) {
         int64_t bad = 0, lost = 0;

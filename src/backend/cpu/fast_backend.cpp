@@ -28,10 +28,6 @@ class FastPasses final : public BmfrPasses {
             sc.imageIndex.assign(W, -1);
             sc.rows.assign(3 * size_t(w) * 8, 0.0f);
         }
-        b_.debugNoisy.resize(w, h, 3);
-        b_.debugFitted.resize(w, h, 3);
-        b_.debugLength.resize(w, h, 1);
-        b_.debugAccept.resize(w, h, 1);
     }
 
     InputCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
@@ -57,6 +53,13 @@ class FastPasses final : public BmfrPasses {
     }
 
     void captureDebug(const BmfrTimeline& t) override {
+        // Sized on first use only: at 4K they would hold 265 MB nobody asked for.
+        if (b_.debugNoisy.width != t.width || b_.debugNoisy.height != t.height) {
+            b_.debugNoisy.resize(t.width, t.height, 3);
+            b_.debugFitted.resize(t.width, t.height, 3);
+            b_.debugLength.resize(t.width, t.height, 1);
+            b_.debugAccept.resize(t.width, t.height, 1);
+        }
         const long n = long(t.width) * t.height;
         const float* noisy = b_.noisy[t.cur].data();
         for (long i = 0; i < n; ++i) {

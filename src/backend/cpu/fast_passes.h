@@ -34,6 +34,14 @@ struct Buffers {
     ImageF debugNoisy, debugFitted, debugLength, debugAccept;
 };
 
+/// What the row kernels of phase I and the resolve pass read.
+struct FrameArgs {
+    const Settings& s;
+    const FrameInput& in;
+    const BmfrTimeline& t;
+    Buffers& b;
+};
+
 /// Phase I: sanitise and store features, demodulate, reproject, test taps, accumulate colour.
 InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b);
 /// Phase II: per block gather, scale, regularise, Householder QR, back substitution, weighted sum.

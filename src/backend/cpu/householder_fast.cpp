@@ -55,28 +55,13 @@ BMFR_SIMD_INLINE void axpyGroup(const float* v, float* a, int count, int rows, i
 BMFR_SIMD_CLONES int solveHouseholderFast(float* columns, int featureCount, int rows,
                                           float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
-    TriangularR R;
-    bool dead[kMaxFeatures] = {};
-    float largestNorm = 0.0f;
-    int deficient = 0;
-
+    HouseholderSteps q;
     for (int k = 0; k < M; ++k) {
         float* v = columns + long(k) * rows;
         float below = 0.0f;
         dotGroup(v, v, 1, rows, k + 1, &below);
-        const float norm = std::sqrt(v[k] * v[k] + below);
-        largestNorm = std::fmax(largestNorm, norm);
-        // Same dependence test as the reference: a dependent column leaves rounding error only.
-        if (!(norm > 1e-5f * largestNorm) || !(norm > 1e-30f)) {
-            dead[k] = true;
-            ++deficient;
-            dropColumn(R, columns, k, total, rows);
-            continue;
-        }
-        const float alpha = v[k] > 0 ? -norm : norm;
-        v[k] -= alpha;
-        const float vtv = v[k] * v[k] + below;
-        R[k][k] = alpha;
+        const float vtv = q.reflect(columns, k, total, rows, below);
+        if (q.dead[k]) continue;
         for (int j = k + 1; j < total; j += kGroup) {
             const int count = total - j < kGroup ? total - j : kGroup;
             float* a = columns + long(j) * rows;
@@ -84,12 +69,11 @@ BMFR_SIMD_CLONES int solveHouseholderFast(float* columns, int featureCount, int 
             dotGroup(v, a, count, rows, k, f);
             for (int g = 0; g < count; ++g) f[g] = 2.0f * f[g] / vtv;
             axpyGroup(v, a, count, rows, k, f);
-            for (int g = 0; g < count; ++g) R[k][j + g] = a[long(g) * rows + k];
+            for (int g = 0; g < count; ++g) q.R[k][j + g] = a[long(g) * rows + k];
         }
     }
 
-    backSubstitute(R, dead, M, coeffs);
-    return deficient;
+    return q.solve(M, coeffs);
 }
 
 } // namespace bmfr::cpu

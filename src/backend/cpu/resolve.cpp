@@ -8,17 +8,10 @@ using namespace simd;
 
 namespace {
 
-struct Phase3 {
-    const Settings& s;
-    const FrameInput& in;
-    const BmfrTimeline& t;
-    Buffers& b;
-};
-
 /// Phase III of row y into a resolved row: second accumulation with phase I's taps,
 /// re-modulation, emission. The history is written only for rows this task owns (`owned`);
 /// the halo rows a neighbouring task owns are recomputed, not shared.
-BMFR_SIMD_INLINE void phase3Row(const Phase3& a, long y, bool owned, float* row) {
+BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, long y, bool owned, float* row) {
     const Settings& s = a.s;
     const BmfrTimeline& t = a.t;
     const int w = t.width, cur = t.cur, prev = 1 - t.cur;
@@ -68,7 +61,7 @@ BMFR_SIMD_INLINE void phase3Row(const Phase3& a, long y, bool owned, float* row)
 
 constexpr int kRowsPerTask = 32;
 
-BMFR_SIMD_CLONES void resolveRows(const Phase3& a, long y0, long y1, float* ring) {
+BMFR_SIMD_CLONES void resolveRows(const FrameArgs& a, long y0, long y1, float* ring) {
     const int w = a.t.width, h = a.t.height;
     const bool taa = a.s.stages.taa && a.t.hasHistory;
     const float* history = a.b.output[1 - a.t.cur].data();
@@ -89,7 +82,7 @@ BMFR_SIMD_CLONES void resolveRows(const Phase3& a, long y0, long y1, float* ring
 } // namespace
 
 void resolve(const BmfrPassContext& ctx, Buffers& b) {
-    const Phase3 a{ctx.settings, ctx.frame, ctx.timeline, b};
+    const FrameArgs a{ctx.settings, ctx.frame, ctx.timeline, b};
     const long h = ctx.timeline.height, tasks = (h + kRowsPerTask - 1) / kRowsPerTask;
     ctx.pool.parallelFor(tasks, 1, [&](long k0, long k1) {
         float* ring = b.scratch[size_t(ThreadPool::currentThreadIndex())].rows.data();

@@ -4,7 +4,6 @@
 #include "filters/frame_checks.h"
 #include <bmfr/denoiser.h>
 #include <bmfr/error.h>
-#include <chrono>
 #include <string>
 
 namespace bmfr {

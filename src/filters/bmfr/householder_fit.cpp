@@ -23,38 +23,20 @@ inline void axpyFrom(float f, const float* v, float* a, int begin, int end) {
 __attribute__((target_clones("avx2", "default"))) int
 solveHouseholder(float* columns, int featureCount, int rows, float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
-    TriangularR R;
-    bool dead[kMaxFeatures] = {};
-    float largestNorm = 0.0f;
-    int deficient = 0;
-
+    HouseholderSteps q;
     for (int k = 0; k < M; ++k) {
         float* v = columns + long(k) * rows;
-        float below = dotFrom(v, v, k + 1, rows);
-        float norm = std::sqrt(v[k] * v[k] + below);
-        largestNorm = std::fmax(largestNorm, norm);
-        // Without regularisation a dependent column leaves only rounding error behind.
-        if (!(norm > 1e-5f * largestNorm) || !(norm > 1e-30f)) {
-            dead[k] = true;
-            ++deficient;
-            dropColumn(R, columns, k, total, rows);
-            continue;
-        }
-        // Sign choice avoids cancellation in v_k = x_k - alpha.
-        float alpha = v[k] > 0 ? -norm : norm;
-        v[k] -= alpha;
-        float vtv = v[k] * v[k] + below;
-        R[k][k] = alpha;
+        const float vtv = q.reflect(columns, k, total, rows, dotFrom(v, v, k + 1, rows));
+        if (q.dead[k]) continue;
         for (int j = k + 1; j < total; ++j) {
             float* a = columns + long(j) * rows;
             float f = 2.0f * dotFrom(v, a, k, rows) / vtv;
             axpyFrom(f, v, a, k, rows);
-            R[k][j] = a[k];
+            q.R[k][j] = a[k];
         }
     }
 
-    backSubstitute(R, dead, M, coeffs);
-    return deficient;
+    return q.solve(M, coeffs);
 }
 
 } // namespace bmfr
