@@ -10,6 +10,7 @@ typedef float f4 __attribute__((vector_size(16)));
 typedef int32_t i4 __attribute__((vector_size(16)));
 typedef float f8 __attribute__((vector_size(32)));
 typedef int32_t i8 __attribute__((vector_size(32)));
+typedef uint8_t u8x8 __attribute__((vector_size(8)));
 
 #define BMFR_SIMD_INLINE [[gnu::always_inline]] inline
 
@@ -37,6 +38,97 @@ BMFR_SIMD_INLINE f8 load8(const float* p) {
 BMFR_SIMD_INLINE void store8(float* p, f8 v) {
     std::memcpy(p, &v, sizeof v);
 }
+/// Lane masks (comparison results: -1 true, 0 false), reduced through shuffles.
+BMFR_SIMD_INLINE bool allLanes(i8 m) {
+    m &= __builtin_shuffle(m, i8{4, 5, 6, 7, 0, 1, 2, 3});
+    m &= __builtin_shuffle(m, i8{2, 3, 0, 1, 6, 7, 4, 5});
+    m &= __builtin_shuffle(m, i8{1, 0, 3, 2, 5, 4, 7, 6});
+    return m[0] != 0;
+}
+BMFR_SIMD_INLINE bool anyLane(i8 m) {
+    m |= __builtin_shuffle(m, i8{4, 5, 6, 7, 0, 1, 2, 3});
+    m |= __builtin_shuffle(m, i8{2, 3, 0, 1, 6, 7, 4, 5});
+    m |= __builtin_shuffle(m, i8{1, 0, 3, 2, 5, 4, 7, 6});
+    return m[0] != 0;
+}
+/// Number of true lanes.
+BMFR_SIMD_INLINE int countLanes(i8 m) {
+    m += __builtin_shuffle(m, i8{4, 5, 6, 7, 0, 1, 2, 3});
+    m += __builtin_shuffle(m, i8{2, 3, 0, 1, 6, 7, 4, 5});
+    m += __builtin_shuffle(m, i8{1, 0, 3, 2, 5, 4, 7, 6});
+    return -m[0];
+}
+/// Smallest lane.
+BMFR_SIMD_INLINE int hminLanes(i8 v) {
+    v = v < __builtin_shuffle(v, i8{4, 5, 6, 7, 0, 1, 2, 3})
+            ? v
+            : __builtin_shuffle(v, i8{4, 5, 6, 7, 0, 1, 2, 3});
+    v = v < __builtin_shuffle(v, i8{2, 3, 0, 1, 6, 7, 4, 5})
+            ? v
+            : __builtin_shuffle(v, i8{2, 3, 0, 1, 6, 7, 4, 5});
+    return v[0] < v[1] ? v[0] : v[1];
+}
+/// Lanes 0 .. n-1 true.
+BMFR_SIMD_INLINE i8 firstLanes(int n) {
+    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    return lane < n;
+}
+
+/// Eight packed xyz records (24 floats) as x, y and z lanes, and back.
+BMFR_SIMD_INLINE void deinterleave3(const float* p, f8& x, f8& y, f8& z) {
+    const f8 a = load8(p), b = load8(p + 8), c = load8(p + 16);
+    x = __builtin_shuffle(__builtin_shuffle(a, b, i8{0, 3, 6, 9, 12, 15, 0, 0}), c,
+                          i8{0, 1, 2, 3, 4, 5, 10, 13});
+    y = __builtin_shuffle(__builtin_shuffle(a, b, i8{1, 4, 7, 10, 13, 0, 0, 0}), c,
+                          i8{0, 1, 2, 3, 4, 8, 11, 14});
+    z = __builtin_shuffle(__builtin_shuffle(a, b, i8{2, 5, 8, 11, 14, 0, 0, 0}), c,
+                          i8{0, 1, 2, 3, 4, 9, 12, 15});
+}
+BMFR_SIMD_INLINE void interleave3(f8 x, f8 y, f8 z, float* p) {
+    store8(p, __builtin_shuffle(__builtin_shuffle(x, y, i8{0, 8, 0, 1, 9, 0, 2, 10}), z,
+                                i8{0, 1, 8, 3, 4, 9, 6, 7}));
+    store8(p + 8, __builtin_shuffle(__builtin_shuffle(x, y, i8{0, 3, 11, 0, 4, 12, 0, 5}), z,
+                                    i8{10, 1, 2, 11, 4, 5, 12, 7}));
+    store8(p + 16, __builtin_shuffle(__builtin_shuffle(x, y, i8{13, 0, 6, 14, 0, 7, 15, 0}), z,
+                                     i8{0, 13, 2, 3, 14, 5, 6, 15}));
+}
+/// The first n (1 to 8) packed xyz records; lanes n to 7 read as 0.
+BMFR_SIMD_INLINE void loadXyz8(const float* p, int n, f8 out[3]) {
+    if (n == 8) return deinterleave3(p, out[0], out[1], out[2]);
+    float staged[24] = {};
+    std::memcpy(staged, p, sizeof(float) * 3 * size_t(n));
+    deinterleave3(staged, out[0], out[1], out[2]);
+}
+/// Stores the first n (1 to 8) records as packed xyz.
+BMFR_SIMD_INLINE void storeXyz8(float* p, int n, const f8 v[3]) {
+    if (n == 8) return interleave3(v[0], v[1], v[2], p);
+    float staged[24];
+    interleave3(v[0], v[1], v[2], staged);
+    std::memcpy(p, staged, sizeof(float) * 3 * size_t(n));
+}
+/// Stores the first n (1 to 8) lanes.
+BMFR_SIMD_INLINE void storeFirst(float* p, f8 v, int n) {
+    if (n == 8) return store8(p, v);
+    std::memcpy(p, &v, sizeof(float) * size_t(n));
+}
+/// base[index[l]] for each lane.
+BMFR_SIMD_INLINE f8 gather8(const float* base, i8 index) {
+    float lanes[8];
+    for (int l = 0; l < 8; ++l) lanes[l] = base[index[l]];
+    return load8(lanes);
+}
+/// Unnormalised YCoCg of bmfr::rgbToYCoCg for eight pixels, and back, with the same roundings.
+BMFR_SIMD_INLINE void rgbToYCoCg8(const f8 c[3], f8 out[3]) {
+    out[0] = (c[0] + 2.0f * c[1]) + c[2];
+    out[1] = 2.0f * c[0] - 2.0f * c[2];
+    out[2] = (2.0f * c[1] - c[0]) - c[2];
+}
+BMFR_SIMD_INLINE void yCoCgToRgb8(const f8 c[3], f8 out[3]) {
+    out[0] = 0.25f * ((c[0] + c[1]) - c[2]);
+    out[1] = 0.25f * (c[0] + c[2]);
+    out[2] = 0.25f * ((c[0] - c[1]) - c[2]);
+}
+
 /// x, y, z of a packed 3-float record, w = 0. `last` marks the final record of a buffer, where
 /// a 16-byte load would read past the end.
 BMFR_SIMD_INLINE f4 loadXyz(const float* p, bool last) {

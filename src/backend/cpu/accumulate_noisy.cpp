@@ -1,8 +1,8 @@
 #include "backend/cpu/fast_passes.h"
 #include "backend/cpu/reproject8.h"
 #include "core/simd.h"
-#include "filters/bmfr/temporal_blend.h"
 #include <atomic>
+#include <cmath>
 
 namespace bmfr::cpu {
 
@@ -10,99 +10,129 @@ using namespace simd;
 
 namespace {
 
-// One pixel record per load: the previous surface (32 bytes) and colour + length (16 bytes).
-BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64_t& bad,
-                                     int64_t& lost) {
-    const Settings& s = a.s;
+/// Non-finite lanes replaced by 0 and counted (staged tails read as 0, which is finite).
+BMFR_SIMD_INLINE void finiteOrZero8(f8 v[3], int64_t& bad) {
+    for (int c = 0; c < 3; ++c) {
+        const i8 ok = (v[c] - v[c]) == 0.0f;
+        if (__builtin_expect(allLanes(ok), 1)) continue;
+        bad += countLanes(~ok);
+        v[c] = ok ? v[c] : f8{};
+    }
+}
+
+/// The eight pixels' inputs as readPixel (filters/pixel_input.h) reads them.
+struct Inputs8 {
+    f8 position[3], normal[3], color[3];
+};
+
+BMFR_SIMD_INLINE Inputs8 readInputs(const FrameArgs& a, long i, int n, int64_t& bad) {
     const FrameInput& in = a.in;
-    const BmfrTimeline& t = a.t;
-    const int w = t.width, h = t.height, cur = t.cur, prev = 1 - t.cur;
-    const long last = long(w) * h - 1;
-    const bool history = t.hasHistory;
-    const bool demodulate = s.stages.demodulate && !s.colorIsDemodulated;
-    const float eps = s.albedoEpsilon, limP = s.positionLimitSquared, limN = s.normalLimitSquared;
-    const f8 limits = {limP, limP, limP, limP, limN, limN, limN, limN};
-    const float* prevSurface = a.b.surface[prev].data();
-    const float* prevNoisy = a.b.noisy[prev].data();
-    float* surface = a.b.surface[cur].data();
-    float* noisy = a.b.noisy[cur].data();
-
-    auto pixel = [&](long i, const Reprojected& r) __attribute__((always_inline)) {
-        const bool end = i == last;
-        const f4 n = finiteOrZero4(loadXyz(in.normal.data + 3 * i, end), bad);
-        const f4 p = finiteOrZero4(loadXyz(in.position.data + 3 * i, end), bad);
-        const f4 alb = finiteOrZero4(loadXyz(in.albedo.data + 3 * i, end), bad);
-        f4 c = finiteOrZero4(loadXyz(in.color.data + 3 * i, end), bad);
-        const f4 g = alb > eps ? alb : splat4(eps);
-        if (in.emission.data) {
-            f4 e = finiteOrZero4(loadXyz(in.emission.data + 3 * i, end), bad);
-            if (s.colorIsDemodulated) e = e / g;
-            c = max4(c - e, f4{});
-        }
-        for (const ImageView& e : in.extras)
-            if (!std::isfinite(e.data[i])) ++bad;
-        if (demodulate) c = c / g;
-        c[3] = 0.0f;
-        store4(surface + 8 * i, p);
-        store4(surface + 8 * i + 4, n);
-
-        uint8_t accept = 0;
-        float samples = 0.0f, blend = 1.0f;
-        const Vec2 pp = history ? r.pixel : Vec2{-1e6f, -1e6f}; // far out: phase III skips it
-        if (history && r.valid) {
-            const BilinearFootprint& fp = r.footprint;
-            const TapSet taps = tapSet(fp, w, h);
-            const f8 pn = {p[0], p[1], p[2], 0.0f, n[0], n[1], n[2], 0.0f};
-            f8 d[4];
-            for (int k = 0; k < 4; ++k) {
-                d[k] = load8(prevSurface + 8 * taps.index[k]) - pn;
-                d[k] *= d[k];
-            }
-            // All four taps' squared distances at once: positions in lanes 0-3, normals 4-7.
-            const f8 dist = sum3Of4(d[0], d[1], d[2], d[3]);
-            const i8 pass = dist < limits;
-            f4 old{};
-            float total = 0.0f;
-            for (int k = 0; k < 4; ++k) {
-                const bool ok = taps.inside[k] && pass[k] && pass[k + 4];
-                accept |= uint8_t(ok ? 1u << k : 0u);
-                const float wt = ok ? fp.weight[k] : 0.0f; // a zero weight adds exactly nothing
-                old += wt * load4(prevNoisy + 4 * taps.index[k]); // colour and length together
-                total += wt;
-            }
-            if (total > 0.0f) {
-                old = old / total;
-                samples = old[3];
-                blend = firstBlendWeight(samples, s.firstBlendAlpha);
-                if (s.stages.firstAccumulation) c = lerp4(old, c, blend);
-            }
-        }
-        if (history && accept == 0) ++lost;
-        c[3] = blend < 1.0f ? float(nextHistoryLength(samples)) : 1.0f;
-        store4(noisy + 4 * i, c);
-        a.b.previousPixel[2 * i] = pp.x;
-        a.b.previousPixel[2 * i + 1] = pp.y;
-        a.b.acceptMask[i] = accept;
-    };
-
-    const Mat4& m = t.previousViewProjection;
-    Reprojected lanes[8];
-    for (long y = y0; y < y1; ++y) {
-        int x = 0;
-        if (history)
-            for (; x + 8 <= w; x += 8) {
-                const long i = y * w + x;
-                reproject8(in.position.data + 3 * i, m, t.previousJitter, w, h, lanes);
-                for (int l = 0; l < 8; ++l) pixel(i + l, lanes[l]);
-            }
-        for (; x < w; ++x) {
-            const long i = y * w + x;
-            int64_t counted = 0; // pixel() counts this pixel's bad values
-            const f4 p = finiteOrZero4(loadXyz(in.position.data + 3 * i, i == last), counted);
-            pixel(i, history ? reprojectOne({p[0], p[1], p[2]}, m, t.previousJitter, w, h)
-                             : Reprojected{});
+    const Settings& s = a.s;
+    Inputs8 px;
+    f8 albedo[3];
+    loadXyz8(in.normal.data + 3 * i, n, px.normal), finiteOrZero8(px.normal, bad);
+    loadXyz8(in.position.data + 3 * i, n, px.position), finiteOrZero8(px.position, bad);
+    loadXyz8(in.albedo.data + 3 * i, n, albedo), finiteOrZero8(albedo, bad);
+    loadXyz8(in.color.data + 3 * i, n, px.color), finiteOrZero8(px.color, bad);
+    const f8 eps = splat8(s.albedoEpsilon);
+    f8 g[3];
+    for (int c = 0; c < 3; ++c) g[c] = albedo[c] > eps ? albedo[c] : eps;
+    if (in.emission.data) {
+        f8 e[3];
+        loadXyz8(in.emission.data + 3 * i, n, e), finiteOrZero8(e, bad);
+        for (int c = 0; c < 3; ++c) {
+            if (s.colorIsDemodulated) e[c] = e[c] / g[c];
+            px.color[c] = max8(px.color[c] - e[c], f8{});
         }
     }
+    for (const ImageView& e : in.extras)
+        for (int l = 0; l < n; ++l)
+            if (!std::isfinite(e.data[i + l])) ++bad;
+    if (s.stages.demodulate && !s.colorIsDemodulated)
+        for (int c = 0; c < 3; ++c) px.color[c] = px.color[c] / g[c];
+    return px;
+}
+
+/// firstBlendWeight and nextHistoryLength (filters/bmfr/temporal_blend.h) for eight lanes.
+BMFR_SIMD_INLINE f8 firstBlendWeight8(f8 samples, float minAlpha) {
+    const f8 w = 1.0f / (samples + 1.0f);
+    return w > minAlpha ? w : splat8(minAlpha);
+}
+BMFR_SIMD_INLINE f8 nextHistoryLength8(f8 samples) {
+    // Round half to even through the 1.5 * 2^23 trick (exact for 0 <= v < 2^22, and larger
+    // values saturate below), as lrintf in the default rounding mode.
+    const f8 rounded = (samples + 12582912.0f) - 12582912.0f;
+    return samples > 254.0f ? splat8(255.0f) : rounded + 1.0f;
+}
+
+/// Phase I of pixels [i, i + n) of one row, n <= 8: inputs, reprojection, the four taps'
+/// discard tests and the cumulative-then-exponential blend with the history.
+BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, long i, int n, int64_t& bad,
+                                      int64_t& lost) {
+    const Settings& s = a.s;
+    const BmfrTimeline& t = a.t;
+    Buffers& b = a.b;
+    const int cur = t.cur, prev = 1 - t.cur;
+    const Inputs8 px = readInputs(a, i, n, bad);
+    for (int c = 0; c < 3; ++c) {
+        storeFirst(b.plane(b.surface[cur], c) + i, px.position[c], n);
+        storeFirst(b.plane(b.surface[cur], 3 + c) + i, px.normal[c], n);
+    }
+    f8 color[3] = {px.color[0], px.color[1], px.color[2]};
+    f8 length = splat8(1.0f), ppx = splat8(-1e6f), ppy = splat8(-1e6f);
+    i8 accept{};
+    if (t.hasHistory) {
+        const i8 valid = project8(px.position, t.previousViewProjection, t.previousJitter, t.width,
+                                  t.height, ppx, ppy);
+        const Footprint8 fp = footprint8(ppx, ppy);
+        const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
+        const f8 limP = splat8(s.positionLimitSquared), limN = splat8(s.normalLimitSquared);
+        f8 old[4] = {}, total{};
+        auto gather = [&] [[gnu::always_inline]] () {
+            for (int k = 0; k < 4; ++k) {
+                f8 d[6];
+                for (int c = 0; c < 3; ++c) {
+                    d[c] = tapPlane(taps, b.plane(b.surface[prev], c), k) - px.position[c];
+                    d[3 + c] = tapPlane(taps, b.plane(b.surface[prev], 3 + c), k) - px.normal[c];
+                }
+                // dot(d, d) in Vec3's order, so the decisions match the reference bit for bit.
+                const f8 dp = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+                const f8 dn = (d[3] * d[3] + d[4] * d[4]) + d[5] * d[5];
+                const i8 ok = taps.inside[k] & (dp < limP) & (dn < limN);
+                accept |= ok & (1 << k);
+                const f8 wt = ok ? fp.weight[k] : f8{}; // a zero weight adds exactly nothing
+                for (int c = 0; c < 4; ++c)
+                    old[c] += wt * tapPlane(taps, b.plane(b.noisy[prev], c), k);
+                total += wt;
+            }
+        };
+        if (taps.coherent)
+            gather();
+        else
+            gather();
+        const f8 safe = total > 0.0f ? total : splat8(1.0f);
+        const f8 samples = old[3] / safe;
+        const f8 blend = firstBlendWeight8(samples, s.firstBlendAlpha);
+        const i8 blended = (total > 0.0f) & (blend < 1.0f);
+        if (s.stages.firstAccumulation)
+            for (int c = 0; c < 3; ++c)
+                color[c] = blended ? (1.0f - blend) * (old[c] / safe) + blend * color[c] : color[c];
+        length = blended ? nextHistoryLength8(samples) : length;
+        lost += countLanes((accept == 0) & firstLanes(n));
+    }
+    for (int c = 0; c < 3; ++c) storeFirst(b.plane(b.noisy[cur], c) + i, color[c], n);
+    storeFirst(b.plane(b.noisy[cur], 3) + i, length, n);
+    storeFirst(b.plane(b.previousPixel, 0) + i, ppx, n);
+    storeFirst(b.plane(b.previousPixel, 1) + i, ppy, n);
+    const u8x8 bytes = __builtin_convertvector(accept, u8x8);
+    std::memcpy(b.acceptMask.data() + i, &bytes, size_t(n));
+}
+
+BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64_t& bad,
+                                     int64_t& lost) {
+    const int w = a.t.width;
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < w; x += 8) accumulateGroup(a, y * w + x, std::min(8, w - x), bad, lost);
 }
 
 } // namespace

@@ -1,4 +1,5 @@
 #include "backend/cpu/fast_passes.h"
+#include "backend/cpu/taa_rows.h"
 #include <chrono>
 
 namespace bmfr::cpu {
@@ -10,15 +11,16 @@ class FastPasses final : public BmfrPasses {
     void allocate(int w, int h, const Settings& s, int threads) override {
         const size_t n = size_t(w) * size_t(h);
         b_.width = w, b_.height = h;
+        b_.stride = (n + 7) / 8 * 8 + 8; // an 8-float load at any pixel stays in its plane
         for (int k = 0; k < 2; ++k) {
-            b_.surface[k].assign(8 * n, 0.0f);
-            b_.noisy[k].assign(4 * n + 4, 0.0f); // padding: 8-float loads of the last record
-            b_.accumulatedFitted[k].assign(4 * n, 0.0f);
-            b_.output[k].assign(3 * n + 4, 0.0f);
+            b_.surface[k].assign(6 * b_.stride, 0.0f);
+            b_.noisy[k].assign(4 * b_.stride, 0.0f);
+            b_.accumulatedFitted[k].assign(3 * b_.stride, 0.0f);
+            b_.output[k].assign(3 * n + 24, 0.0f);
         }
-        b_.previousPixel.assign(2 * n, 0.0f);
-        b_.acceptMask.assign(n, 0);
-        b_.fitted.assign(4 * n, 0.0f);
+        b_.previousPixel.assign(2 * b_.stride, 0.0f);
+        b_.acceptMask.assign(n + 8, 0);
+        b_.fitted.assign(3 * b_.stride, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b_.scratch.resize(size_t(threads));
         for (Scratch& sc : b_.scratch) {
@@ -26,7 +28,7 @@ class FastPasses final : public BmfrPasses {
             sc.work.assign((M + 3) * W, 0.0f);
             sc.soa.assign((6 + 16) * W, 0.0f);
             sc.imageIndex.assign(W, -1);
-            sc.rows.assign(3 * size_t(w) * 8, 0.0f);
+            sc.rows.assign(3 * ResolvedRows::rowFloats(w), 0.0f);
         }
     }
 
@@ -61,13 +63,12 @@ class FastPasses final : public BmfrPasses {
             b_.debugAccept.resize(t.width, t.height, 1);
         }
         const long n = long(t.width) * t.height;
-        const float* noisy = b_.noisy[t.cur].data();
         for (long i = 0; i < n; ++i) {
             for (int c = 0; c < 3; ++c) {
-                b_.debugNoisy.data()[3 * i + c] = noisy[4 * i + c];
-                b_.debugFitted.data()[3 * i + c] = b_.fitted[size_t(4 * i + c)];
+                b_.debugNoisy.data()[3 * i + c] = b_.plane(b_.noisy[t.cur], c)[i];
+                b_.debugFitted.data()[3 * i + c] = b_.plane(b_.fitted, c)[i];
             }
-            b_.debugLength.data()[i] = noisy[4 * i + 3];
+            b_.debugLength.data()[i] = b_.plane(b_.noisy[t.cur], 3)[i];
             b_.debugAccept.data()[i] = b_.acceptMask[size_t(i)];
         }
     }

@@ -14,24 +14,34 @@ struct Scratch {
     std::vector<float> work;     ///< M noised columns + 3 colour columns, overwritten by QR
     std::vector<float> soa;      ///< (6 + 16) x W gathered normal, position and extras
     std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
-    std::vector<float> rows;     ///< 3 rows x width x 8: resolved RGB, w, YCoCg, w
+    std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
 };
 
+/// Per-pixel buffers are planes, one float per pixel and channel (structure of arrays), so
+/// eight neighbouring pixels are one load. Planes are `stride` floats apart; the stride leaves
+/// at least 8 floats after the last pixel, so an 8-float load at any pixel stays inside.
 struct Buffers {
     int width = 0, height = 0;
+    size_t stride = 0;
+
     // History, [slot].
-    std::vector<float> surface[2]; ///< 8 per pixel: position xyz, 0, normal xyz, 0 (sanitised)
-    std::vector<float> noisy[2];   ///< 4 per pixel: phase I colour (demodulated), history length
-    std::vector<float> accumulatedFitted[2]; ///< 4 per pixel: phase III colour, 0
-    std::vector<float> output[2]; ///< 3 per pixel (+4 floats of padding for 16-byte loads)
+    std::vector<float> surface[2]; ///< 6 planes: position xyz, normal xyz (sanitised)
+    std::vector<float> noisy[2];   ///< 4 planes: phase I colour (demodulated), history length
+    std::vector<float> accumulatedFitted[2]; ///< 3 planes: phase III colour
+    std::vector<float> output[2]; ///< 3 floats per pixel (the public image), +24 of padding
 
     // This frame only.
-    std::vector<float> previousPixel; ///< 2 per pixel: continuous pixel in the previous frame
-    std::vector<uint8_t> acceptMask;  ///< accepted bilinear taps, bit i = tap i
-    std::vector<float> fitted;        ///< 4 per pixel: phase II colour, 0
+    std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame
+    std::vector<uint8_t> acceptMask;  ///< accepted bilinear taps, bit i = tap i (+8 padding)
+    std::vector<float> fitted;        ///< 3 planes: phase II colour
 
     std::vector<Scratch> scratch; ///< one per worker thread
     ImageF debugNoisy, debugFitted, debugLength, debugAccept;
+
+    float* plane(std::vector<float>& v, int channel) { return v.data() + size_t(channel) * stride; }
+    const float* plane(const std::vector<float>& v, int channel) const {
+        return v.data() + size_t(channel) * stride;
+    }
 };
 
 /// What the row kernels of phase I and the resolve pass read.

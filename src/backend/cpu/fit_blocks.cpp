@@ -36,33 +36,30 @@ BMFR_SIMD_INLINE void gatherExtras(const Phase2& a, int ox, int oy, bool inside,
 }
 
 /// Gathers the block's pixels (mirrored at the image border) as structure-of-arrays from the
-/// 32-byte surface and 16-byte colour records, and marks the pixels it owns.
+/// surface and colour planes, and marks the pixels it owns.
 BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B, M = int(a.ctx.settings.features.size());
-    const float* surface = a.b.surface[a.ctx.timeline.cur].data();
-    const float* noisy = a.b.noisy[a.ctx.timeline.cur].data();
+    const Buffers& b = a.b;
+    const int cur = a.ctx.timeline.cur;
+    // soa holds normal xyz then position xyz; the surface planes are position then normal.
+    const float* from[6] = {b.plane(b.surface[cur], 3), b.plane(b.surface[cur], 4),
+                            b.plane(b.surface[cur], 5), b.plane(b.surface[cur], 0),
+                            b.plane(b.surface[cur], 1), b.plane(b.surface[cur], 2)};
+    const float* colour[3] = {b.plane(b.noisy[cur], 0), b.plane(b.noisy[cur], 1),
+                              b.plane(b.noisy[cur], 2)};
     float* soa = sc.soa.data();
     float* z = sc.work.data() + long(M) * W;
     const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     gatherExtras(a, ox, oy, inside, sc);
     if (inside && B % 8 == 0) {
-        // Interior block: eight pixels per step, records transposed into columns.
+        // Interior block: block rows are runs of image rows, eight pixels per load.
         for (int ly = 0; ly < B; ++ly) {
             const long row = long(oy + ly) * g.width + ox;
             for (int lx = 0; lx < B; lx += 8) {
                 const int k = ly * B + lx;
-                f8 r[8];
-                for (int l = 0; l < 8; ++l) r[l] = load8(surface + 8 * (row + lx + l));
-                transpose8x8(r);
-                for (int ch = 0; ch < 3; ++ch) {
-                    store8(soa + (3 + ch) * W + k, r[ch]);
-                    store8(soa + ch * W + k, r[4 + ch]);
-                }
-                // Overlapping 8-float loads: pixel l's record then pixel l + 1's.
-                for (int l = 0; l < 8; ++l) r[l] = load8(noisy + 4 * (row + lx + l));
-                transpose8x8(r);
-                for (int ch = 0; ch < 3; ++ch) store8(z + ch * W + k, r[ch]);
+                for (int ch = 0; ch < 6; ++ch) store8(soa + ch * W + k, load8(from[ch] + row + lx));
+                for (int ch = 0; ch < 3; ++ch) store8(z + ch * W + k, load8(colour[ch] + row + lx));
                 for (int l = 0; l < 8; ++l) sc.imageIndex[size_t(k + l)] = int(row + lx + l);
             }
         }
@@ -75,13 +72,8 @@ BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) 
             const int ux = ox + lx, ix = inside ? ux : mirrorIndex(ux, g.width);
             const int k = ly * B + lx;
             const long idx = long(iy) * g.width + ix;
-            const f4 p = load4(surface + 8 * idx), n = load4(surface + 8 * idx + 4);
-            const f4 c = load4(noisy + 4 * idx);
-            for (int ch = 0; ch < 3; ++ch) {
-                soa[ch * W + k] = n[ch];
-                soa[(3 + ch) * W + k] = p[ch];
-                z[ch * W + k] = c[ch];
-            }
+            for (int ch = 0; ch < 6; ++ch) soa[ch * W + k] = from[ch][idx];
+            for (int ch = 0; ch < 3; ++ch) z[ch * W + k] = colour[ch][idx];
             sc.imageIndex[k] = rowInside && ux >= 0 && ux < g.width ? int(idx) : -1;
         }
     }
@@ -127,7 +119,8 @@ BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
     solveHouseholderFast(sc.work.data(), M, W, coeffs);
 
     // Weighted sum of the noise-free features, 8 pixels at a time, straight to owned pixels.
-    float* fitted = a.b.fitted.data();
+    float* fitted[3] = {a.b.plane(a.b.fitted, 0), a.b.plane(a.b.fitted, 1),
+                        a.b.plane(a.b.fitted, 2)};
     const float* clean = sc.clean.data();
     for (int k = 0; k < W; k += 8) {
         f8 sum[3] = {};
@@ -146,19 +139,14 @@ BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
         for (int c = 0; c < 3; ++c) sum[c] = max8(f8{}, sum[c]);
         const int first = sc.imageIndex[k];
         if (n == 8 && first >= 0 && sc.imageIndex[k + 7] == first + 7) {
-            // Eight owned neighbours in one image row: transpose back into 4-float records.
-            f8 r[8] = {sum[0], sum[1], sum[2]};
-            transpose8x8(r);
-            for (int l = 0; l < 8; ++l) {
-                f4 v = {r[l][0], r[l][1], r[l][2], 0.0f};
-                store4(fitted + 4L * (first + l), v);
-            }
+            // Eight owned neighbours in one image row.
+            for (int c = 0; c < 3; ++c) store8(fitted[c] + first, sum[c]);
             continue;
         }
         for (int l = 0; l < n; ++l) {
             const int idx = sc.imageIndex[k + l];
             if (idx < 0) continue;
-            store4(fitted + 4L * idx, f4{sum[0][l], sum[1][l], sum[2][l], 0.0f});
+            for (int c = 0; c < 3; ++c) fitted[c][idx] = sum[c][l];
         }
     }
 }
@@ -168,14 +156,9 @@ BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
 void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
     const BmfrTimeline& t = ctx.timeline;
     if (!ctx.settings.stages.fitting) {
-        const float* noisy = b.noisy[t.cur].data();
-        ctx.pool.parallelFor(long(t.width) * t.height, 4096, [&](long i0, long i1) {
-            for (long i = i0; i < i1; ++i) {
-                f4 c = load4(noisy + 4 * i);
-                c[3] = 0.0f;
-                store4(b.fitted.data() + 4 * i, c);
-            }
-        });
+        for (int c = 0; c < 3; ++c)
+            std::copy_n(b.plane(b.noisy[t.cur], c), size_t(t.width) * size_t(t.height),
+                        b.plane(b.fitted, c));
         return;
     }
     const Phase2 a{ctx, b, makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex)};

@@ -1,5 +1,5 @@
-// Reprojection of eight pixels at once (SIMD across pixels): the previous-frame pixel and the
-// bilinear footprint of each, from packed xyz positions. The same math as core/reprojection.h.
+// Reprojection and bilinear taps of eight pixels at once (SIMD across pixels), shared by phase
+// I, phase III and TAA. The same math and roundings as core/reprojection.h.
 #pragma once
 #include "core/mat4.h"
 #include "core/reprojection.h"
@@ -7,67 +7,112 @@
 
 namespace bmfr::cpu {
 
-/// One pixel's reprojection: where it was and its bilinear footprint there.
-struct Reprojected {
-    bool valid = false;          ///< projectToPixel succeeded
-    Vec2 pixel{-1e6f, -1e6f};    ///< continuous previous pixel; far outside when not valid
-    BilinearFootprint footprint; ///< of `pixel`
-};
-
-/// x, y and z lanes of eight packed xyz records (24 floats).
-BMFR_SIMD_INLINE void deinterleave3(const float* p, simd::f8& x, simd::f8& y, simd::f8& z) {
+/// Where eight surface points were in the previous frame: projectToPixel per lane, with the
+/// lanes where it fails moved far outside every image (-1e6), as phase I stores them. Returns
+/// the lanes where it succeeds.
+BMFR_SIMD_INLINE simd::i8 project8(const simd::f8 p[3], const Mat4& m, const float jitter[2],
+                                   int width, int height, simd::f8& px, simd::f8& py) {
     using namespace simd;
-    const f8 a = load8(p), b = load8(p + 8), c = load8(p + 16);
-    x = __builtin_shuffle(__builtin_shuffle(a, b, i8{0, 3, 6, 9, 12, 15, 0, 0}), c,
-                          i8{0, 1, 2, 3, 4, 5, 10, 13});
-    y = __builtin_shuffle(__builtin_shuffle(a, b, i8{1, 4, 7, 10, 13, 0, 0, 0}), c,
-                          i8{0, 1, 2, 3, 4, 8, 11, 14});
-    z = __builtin_shuffle(__builtin_shuffle(a, b, i8{2, 5, 8, 11, 14, 0, 0, 0}), c,
-                          i8{0, 1, 2, 3, 4, 9, 12, 15});
-}
-
-/// projectToPixel and bilinearFootprint for the eight packed positions at `positions`
-/// (non-finite components count as 0, as the per-pixel input reader makes them).
-BMFR_SIMD_INLINE void reproject8(const float* positions, const Mat4& m, const float jitter[2],
-                                 int width, int height, Reprojected out[8]) {
-    using namespace simd;
-    f8 x, y, z;
-    deinterleave3(positions, x, y, z);
-    x = (x - x) == 0.0f ? x : f8{}, y = (y - y) == 0.0f ? y : f8{}, z = (z - z) == 0.0f ? z : f8{};
-    const f8 cx = m.m[0][0] * x + m.m[0][1] * y + m.m[0][2] * z + m.m[0][3];
-    const f8 cy = m.m[1][0] * x + m.m[1][1] * y + m.m[1][2] * z + m.m[1][3];
-    const f8 cw = m.m[3][0] * x + m.m[3][1] * y + m.m[3][2] * z + m.m[3][3];
-    f8 px = (cx / cw * 0.5f + 0.5f) * float(width) - 0.5f - jitter[0];
-    f8 py = (cy / cw * 0.5f + 0.5f) * float(height) - 0.5f - jitter[1];
+    const f8 cx = ((m.m[0][0] * p[0] + m.m[0][1] * p[1]) + m.m[0][2] * p[2]) + m.m[0][3];
+    const f8 cy = ((m.m[1][0] * p[0] + m.m[1][1] * p[1]) + m.m[1][2] * p[2]) + m.m[1][3];
+    const f8 cw = ((m.m[3][0] * p[0] + m.m[3][1] * p[1]) + m.m[3][2] * p[2]) + m.m[3][3];
+    px = (cx / cw * 0.5f + 0.5f) * float(width) - 0.5f - jitter[0];
+    py = (cy / cw * 0.5f + 0.5f) * float(height) - 0.5f - jitter[1];
     // NaN fails every comparison, so the finite test is folded into the range test.
     const f8 big = splat8(1e8f);
     const i8 valid = (cw > 0.0f) & (px < big) & (px > -big) & (py < big) & (py > -big);
     px = valid ? px : splat8(-1e6f), py = valid ? py : splat8(-1e6f);
-    // floor() through truncation: exact for |v| < 2^31.
+    return valid;
+}
+
+/// bilinearFootprint of eight continuous pixels: top-left tap and the four tap weights.
+struct Footprint8 {
+    simd::i8 x0, y0;
+    simd::f8 weight[4];
+};
+
+BMFR_SIMD_INLINE Footprint8 footprint8(simd::f8 px, simd::f8 py) {
+    using namespace simd;
+    // floor() through truncation: exact for the |v| < 2^31 that reach here; larger values
+    // convert to INT_MIN, which every inside test rejects.
     f8 fx = __builtin_convertvector(__builtin_convertvector(px, i8), f8);
     f8 fy = __builtin_convertvector(__builtin_convertvector(py, i8), f8);
     fx = fx > px ? fx - 1.0f : fx, fy = fy > py ? fy - 1.0f : fy;
     const f8 ax = px - fx, ay = py - fy;
-    const f8 w0 = (1 - ax) * (1 - ay), w1 = ax * (1 - ay), w2 = (1 - ax) * ay, w3 = ax * ay;
-    const i8 ix = __builtin_convertvector(fx, i8), iy = __builtin_convertvector(fy, i8);
-    for (int l = 0; l < 8; ++l) {
-        Reprojected& r = out[l];
-        r.valid = valid[l] != 0;
-        r.pixel = {px[l], py[l]};
-        r.footprint.x0 = ix[l], r.footprint.y0 = iy[l];
-        r.footprint.weight[0] = w0[l], r.footprint.weight[1] = w1[l];
-        r.footprint.weight[2] = w2[l], r.footprint.weight[3] = w3[l];
-    }
+    Footprint8 f;
+    f.x0 = __builtin_convertvector(fx, i8), f.y0 = __builtin_convertvector(fy, i8);
+    f.weight[0] = (1 - ax) * (1 - ay), f.weight[1] = ax * (1 - ay);
+    f.weight[2] = (1 - ax) * ay, f.weight[3] = ax * ay;
+    return f;
 }
 
-/// The same for one pixel (row tails).
-BMFR_SIMD_INLINE Reprojected reprojectOne(Vec3 p, const Mat4& m, const float jitter[2], int width,
-                                          int height) {
-    Reprojected r;
-    r.valid = projectToPixel(m, p, jitter, width, height, r.pixel);
-    if (!r.valid) r.pixel = {-1e6f, -1e6f};
-    r.footprint = bilinearFootprint(r.pixel);
-    return r;
+/// The four taps of eight footprints. Coherent: the active lanes' footprints lie side by side
+/// in one row pair (x0 = lane + d with d taking at most two neighbouring values, one y0), the
+/// common case under smooth motion, so a tap is one or two 8-float loads; inactive lanes (no
+/// valid projection, or no accepted tap) read some pixel in the image and must weigh 0.
+/// Otherwise per-lane indices clamped into the image. `inside` says which taps are in it.
+struct Taps8 {
+    bool coherent = false;
+    bool split = false; ///< coherent with two values of d: lanes in `upper` read one further
+    long base = 0;      ///< pixel of tap 0 for lanes with the smaller d, minus the lane
+    long offset[4];     ///< tap k of lane l is at base + l + offset[k] (+ 1 in `upper`)
+    simd::i8 upper;     ///< lanes with the larger d
+    simd::i8 index[4];  ///< clamped tap pixels (not coherent)
+    simd::i8 inside[4]; ///< taps in the image
+};
+
+BMFR_SIMD_INLINE Taps8 taps8(const Footprint8& f, int width, int height, simd::i8 active) {
+    using namespace simd;
+    Taps8 t;
+    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7}, big = i8{} + (1 << 30);
+    t.offset[0] = 0, t.offset[1] = 1, t.offset[2] = width, t.offset[3] = long(width) + 1;
+    const i8 d = f.x0 - lane;
+    const int dLo = hminLanes(active ? d : big), dHi = -hminLanes(active ? -d : big);
+    const int yLo = hminLanes(active ? f.y0 : big), yHi = -hminLanes(active ? -f.y0 : big);
+    if (dLo <= dHi && dHi - dLo <= 1 && yLo == yHi && dLo >= 0 && dHi + 8 < width && yLo >= 0 &&
+        yLo + 1 < height) {
+        t.coherent = true;
+        t.split = dHi != dLo;
+        t.upper = d == dHi;
+        t.base = long(yLo) * width + dLo;
+        for (int k = 0; k < 4; ++k) t.inside[k] = active;
+        return t;
+    }
+    for (int k = 0; k < 4; ++k) {
+        const i8 x = f.x0 + (k & 1), y = f.y0 + (k >> 1);
+        t.inside[k] = (x >= 0) & (y >= 0) & (x < width) & (y < height);
+        const i8 cx = x < 0 ? i8{} : (x >= width ? i8{} + (width - 1) : x);
+        const i8 cy = y < 0 ? i8{} : (y >= height ? i8{} + (height - 1) : y);
+        t.index[k] = cy * width + cx;
+    }
+    return t;
+}
+
+/// Tap k of the eight lanes from a plane of one float per pixel.
+BMFR_SIMD_INLINE simd::f8 tapPlane(const Taps8& t, const float* plane, int k) {
+    using namespace simd;
+    if (!t.coherent) return gather8(plane, t.index[k]);
+    const float* p = plane + t.base + t.offset[k];
+    return t.split ? (t.upper ? load8(p + 1) : load8(p)) : load8(p);
+}
+
+/// Tap k of the eight lanes from packed xyz records (3 floats per pixel).
+BMFR_SIMD_INLINE void tapXyz(const Taps8& t, const float* records, int k, simd::f8 out[3]) {
+    if (t.coherent) {
+        const float* p = records + 3 * (t.base + t.offset[k]);
+        simd::deinterleave3(p, out[0], out[1], out[2]);
+        if (!t.split) return;
+        simd::f8 next[3];
+        simd::deinterleave3(p + 3, next[0], next[1], next[2]);
+        for (int c = 0; c < 3; ++c) out[c] = t.upper ? next[c] : out[c];
+        return;
+    }
+    float lanes[3][8];
+    for (int l = 0; l < 8; ++l) {
+        const float* r = records + 3 * long(t.index[k][l]);
+        lanes[0][l] = r[0], lanes[1][l] = r[1], lanes[2][l] = r[2];
+    }
+    for (int c = 0; c < 3; ++c) out[c] = simd::load8(lanes[c]);
 }
 
 } // namespace bmfr::cpu

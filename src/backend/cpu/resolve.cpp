@@ -1,6 +1,6 @@
 #include "backend/cpu/fast_passes.h"
+#include "backend/cpu/reproject8.h"
 #include "backend/cpu/taa_rows.h"
-#include "filters/bmfr/temporal_blend.h"
 
 namespace bmfr::cpu {
 
@@ -8,65 +8,92 @@ using namespace simd;
 
 namespace {
 
-/// Phase III of row y into a resolved row: second accumulation with phase I's taps,
-/// re-modulation, emission. The history is written only for rows this task owns (`owned`);
-/// the halo rows a neighbouring task owns are recomputed, not shared.
-BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, long y, bool owned, float* row) {
+/// secondBlendWeight (filters/bmfr/temporal_blend.h) for eight history lengths.
+BMFR_SIMD_INLINE f8 secondBlendWeight8(f8 length, float minAlpha) {
+    const f8 w = 1.0f / (length > 0.0f ? length : splat8(1.0f));
+    return w > minAlpha ? w : splat8(minAlpha);
+}
+
+/// Phase III of pixels [i, i + n) into the resolved row at x: second accumulation with phase
+/// I's taps, re-modulation, emission. The history is stored only when `owned`.
+BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, long i, int x, int n, bool owned, float* row,
+                                  size_t pitch) {
     const Settings& s = a.s;
     const BmfrTimeline& t = a.t;
-    const int w = t.width, cur = t.cur, prev = 1 - t.cur;
-    const long last = long(w) * t.height - 1;
-    const bool accumulate = t.hasHistory && s.stages.secondAccumulation;
-    const bool remodulate = s.stages.demodulate || s.colorIsDemodulated;
-    const float eps = s.albedoEpsilon;
-    const float* hist = a.b.accumulatedFitted[prev].data();
-    const float* noisy = a.b.noisy[cur].data();
-    float* accumulated = a.b.accumulatedFitted[cur].data();
-    for (int x = 0; x < w; ++x) {
-        const long i = y * w + x;
-        f4 c = load4(a.b.fitted.data() + 4 * i);
-        const uint8_t accept = a.b.acceptMask[i];
-        if (accumulate && accept) {
-            const BilinearFootprint fp =
-                bilinearFootprint({a.b.previousPixel[2 * i], a.b.previousPixel[2 * i + 1]});
-            const long j = long(fp.y0) * w + fp.x0; // accepted taps are in the image
-            const long offset[4] = {0, 1, w, long(w) + 1};
-            f4 old{};
-            float total = 0.0f;
+    Buffers& b = a.b;
+    const int cur = t.cur, prev = 1 - t.cur;
+    f8 c[3];
+    for (int ch = 0; ch < 3; ++ch) c[ch] = load8(b.plane(b.fitted, ch) + i);
+    u8x8 bytes;
+    std::memcpy(&bytes, b.acceptMask.data() + i, sizeof bytes);
+    const i8 accept = __builtin_convertvector(bytes, i8) & firstLanes(n);
+    if (t.hasHistory && s.stages.secondAccumulation && anyLane(accept != 0)) {
+        const Footprint8 fp = footprint8(load8(b.plane(b.previousPixel, 0) + i),
+                                         load8(b.plane(b.previousPixel, 1) + i));
+        const Taps8 taps = taps8(fp, t.width, t.height, accept != 0);
+        f8 old[3] = {}, total{};
+        auto gather = [&] [[gnu::always_inline]] () {
             for (int k = 0; k < 4; ++k) {
-                const float wt = accept & (1u << k) ? fp.weight[k] : 0.0f;
-                const long tap = accept & (1u << k) ? j + offset[k] : 0;
-                old += wt * load4(hist + 4 * tap);
+                // Accepted taps are inside the image; the others weigh exactly nothing.
+                const f8 wt = (accept & (1 << k)) != 0 ? fp.weight[k] : f8{};
+                for (int ch = 0; ch < 3; ++ch)
+                    old[ch] += wt * tapPlane(taps, b.plane(b.accumulatedFitted[prev], ch), k);
                 total += wt;
             }
-            if (total > 0.0f) {
-                const uint8_t length = uint8_t(noisy[4 * i + 3]);
-                c = lerp4(old / total, c, secondBlendWeight(length, s.secondBlendAlpha));
-            }
-        }
-        if (owned) store4(accumulated + 4 * i, c);
-        const bool end = i == last;
-        if (remodulate) {
-            const f4 alb = loadXyz(a.in.albedo.data + 3 * i, end);
-            c = c * ((alb - alb) == 0.0f && alb > eps ? alb : splat4(eps));
-        }
-        if (a.in.emission.data) {
-            const f4 e = loadXyz(a.in.emission.data + 3 * i, end);
-            if (finiteXyz(e)) c = c + e;
-        }
-        c[3] = 0.0f;
-        storeResolved(row + 8 * x, c);
+        };
+        if (taps.coherent)
+            gather();
+        else
+            gather();
+        const i8 some = total > 0.0f;
+        const f8 safe = some ? total : splat8(1.0f);
+        const f8 blend =
+            secondBlendWeight8(load8(b.plane(b.noisy[cur], 3) + i), s.secondBlendAlpha);
+        for (int ch = 0; ch < 3; ++ch)
+            c[ch] = some ? (1.0f - blend) * (old[ch] / safe) + blend * c[ch] : c[ch];
     }
+    if (owned)
+        for (int ch = 0; ch < 3; ++ch)
+            storeFirst(b.plane(b.accumulatedFitted[cur], ch) + i, c[ch], n);
+    if (s.stages.demodulate || s.colorIsDemodulated) {
+        f8 albedo[3];
+        loadXyz8(a.in.albedo.data + 3 * i, n, albedo);
+        const f8 eps = splat8(s.albedoEpsilon);
+        for (int ch = 0; ch < 3; ++ch) {
+            const f8 v = albedo[ch];
+            c[ch] = c[ch] * ((v - v) == 0.0f && v > eps ? v : eps); // guardAlbedo
+        }
+    }
+    if (a.in.emission.data) {
+        f8 e[3];
+        loadXyz8(a.in.emission.data + 3 * i, n, e);
+        const i8 finite =
+            ((e[0] - e[0]) == 0.0f) & ((e[1] - e[1]) == 0.0f) & ((e[2] - e[2]) == 0.0f);
+        for (int ch = 0; ch < 3; ++ch) c[ch] = finite ? c[ch] + e[ch] : c[ch];
+    }
+    storeResolved8(row, pitch, x, c);
+}
+
+/// Phase III of image row y into a resolved row. The halo rows a neighbouring task owns are
+/// recomputed, not shared (owned = false).
+BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, long y, bool owned, float* row) {
+    const int w = a.t.width;
+    const size_t pitch = ResolvedRows::pitch(w);
+    for (int x = 0; x < w; x += 8)
+        phase3Group(a, y * w + x, x, std::min(8, w - x), owned, row, pitch);
+    finishResolvedRow(row, pitch, w);
 }
 
 constexpr int kRowsPerTask = 32;
 
 BMFR_SIMD_CLONES void resolveRows(const FrameArgs& a, long y0, long y1, float* ring) {
     const int w = a.t.width, h = a.t.height;
+    const size_t pitch = ResolvedRows::pitch(w);
     const bool taa = a.s.stages.taa && a.t.hasHistory;
-    const float* history = a.b.output[1 - a.t.cur].data();
+    const Buffers& b = a.b;
+    const float* history = b.output[1 - a.t.cur].data();
     float* out = a.b.output[a.t.cur].data();
-    auto row = [&](long y) { return ring + size_t(y % 3) * size_t(w) * 8; };
+    auto row = [&](long y) { return ring + size_t(y % 3) * ResolvedRows::rowFloats(w); };
     if (taa && y0 > 0) phase3Row(a, y0 - 1, false, row(y0 - 1));
     phase3Row(a, y0, true, row(y0));
     for (long y = y0; y < y1; ++y) {
@@ -74,7 +101,8 @@ BMFR_SIMD_CLONES void resolveRows(const FrameArgs& a, long y0, long y1, float* r
         const float* mid = row(y);
         const float* up = y > 0 ? row(y - 1) : mid;
         const float* down = y + 1 < h ? row(y + 1) : mid;
-        taaRow(up, mid, down, history, a.b.previousPixel.data() + 2 * y * w, out + 3 * y * w, w, h,
+        taaRow(up, mid, down, pitch, b.plane(b.previousPixel, 0) + y * w,
+               b.plane(b.previousPixel, 1) + y * w, history, out + 3 * y * w, w, h,
                a.s.taaBlendAlpha, taa);
     }
 }

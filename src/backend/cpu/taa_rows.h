@@ -1,59 +1,103 @@
 // The row kernel of TAA, shared by BMFR's fused resolve pass and the standalone TAA pass.
 #pragma once
-#include "core/reprojection.h"
+#include "backend/cpu/reproject8.h"
 #include "core/simd.h"
+#include <cstddef>
 
 namespace bmfr::cpu {
 
-/// A resolved row: 8 floats per pixel, RGB + 0 then the same colour in YCoCg + 0.
-BMFR_SIMD_INLINE void storeResolved(float* record, simd::f4 rgb) {
-    simd::store4(record, rgb);
-    simd::store4(record + 4, simd::rgbToYCoCg4(rgb));
+/// A resolved row: six planes (R, G, B, then Y, Co, Cg) of `pitch` floats each, pixel x of
+/// plane c at row[c * pitch + kRowPad + x]. The pads hold the edge pixel's YCoCg at x = -1 and
+/// x = width (so the 3x3 clamp box needs no border test) and room for whole 8-pixel groups.
+struct ResolvedRows {
+    static constexpr int kRowPad = 8;
+    static constexpr int kPlanes = 6;
+    /// Floats between planes for rows `width` pixels wide.
+    static size_t pitch(int width) { return size_t((width + 7) / 8 * 8 + 2 * kRowPad); }
+    /// Floats of one resolved row.
+    static size_t rowFloats(int width) { return kPlanes * pitch(width); }
+};
+
+/// Writes eight pixels' RGB and YCoCg at x (all eight lanes; the row has room for them).
+BMFR_SIMD_INLINE void storeResolved8(float* row, size_t pitch, int x, const simd::f8 rgb[3]) {
+    using namespace simd;
+    f8 ycocg[3];
+    rgbToYCoCg8(rgb, ycocg);
+    float* p = row + ResolvedRows::kRowPad + x;
+    for (int c = 0; c < 3; ++c)
+        store8(p + c * pitch, rgb[c]), store8(p + (3 + c) * pitch, ycocg[c]);
 }
 
-/// TAA of image row y (Karis 2014, the authors' variant): clamp box = mean of the 3x3 box and
-/// 5-tap cross bounds in YCoCg; bilinear history at previousPixel, renormalised at the border.
-/// up/mid/down are resolved rows y-1, y, y+1; where a row or column lies outside the image the
-/// nearest inside one stands in, which leaves every min and max unchanged. `history` is the
-/// previous output (3 floats per pixel, readable 4 floats past its end); `out` gets 3 floats
-/// per pixel. With enabled = false the row is copied.
-BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* down,
-                             const float* history, const float* previousPixel, float* out, int w,
-                             int h, float alpha, bool enabled) {
+/// Fills the pads at x = -1 and x = width once a row is complete.
+BMFR_SIMD_INLINE void finishResolvedRow(float* row, size_t pitch, int width) {
+    for (int c = 3; c < 6; ++c) {
+        float* p = row + c * pitch + ResolvedRows::kRowPad;
+        p[-1] = p[0], p[width] = p[width - 1];
+    }
+}
+
+/// TAA of image row y (Karis 2014, the authors' variant), eight pixels at a time: clamp box =
+/// mean of the 3x3 box and 5-tap cross bounds in YCoCg; bilinear history at (previousX,
+/// previousY), renormalised at the border. up/mid/down are resolved rows y-1, y, y+1; where a
+/// row lies outside the image the nearest inside one stands in, which leaves every min and max
+/// unchanged. `history` is the previous output (3 floats per pixel); `out` gets 3 floats per
+/// pixel. With enabled = false the row is copied.
+BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* down, size_t pitch,
+                             const float* previousX, const float* previousY, const float* history,
+                             float* out, int w, int h, float alpha, bool enabled) {
     using namespace simd;
-    for (int x = 0; x < w; ++x) {
-        const f4 c = load4(mid + 8 * x);
-        float* o = out + 3 * x;
-        BilinearFootprint fp;
-        if (enabled) fp = bilinearFootprint({previousPixel[2 * x], previousPixel[2 * x + 1]});
-        if (!enabled || fp.x0 < -1 || fp.y0 < -1 || fp.x0 >= w || fp.y0 >= h) {
-            o[0] = c[0], o[1] = c[1], o[2] = c[2];
+    const int pad = ResolvedRows::kRowPad;
+    for (int x = 0; x < w; x += 8) {
+        const int n = w - x < 8 ? w - x : 8;
+        f8 c[3];
+        for (int ch = 0; ch < 3; ++ch) c[ch] = load8(mid + ch * pitch + pad + x);
+        if (!enabled) {
+            storeXyz8(out + 3 * x, n, c);
             continue;
         }
-        const int xl = 8 * (x > 0 ? x - 1 : x) + 4, xc = 8 * x + 4,
-                  xr = 8 * (x + 1 < w ? x + 1 : x) + 4;
-        const f4 centre = load4(mid + xc), left = load4(mid + xl), right = load4(mid + xr);
-        const f4 top = load4(up + xc), bottom = load4(down + xc);
-        const f4 crossLo = min4(min4(min4(centre, left), min4(right, top)), bottom);
-        const f4 crossHi = max4(max4(max4(centre, left), max4(right, top)), bottom);
-        const f4 c0 = load4(up + xl), c1 = load4(up + xr), c2 = load4(down + xl),
-                 c3 = load4(down + xr);
-        const f4 boxLo = min4(crossLo, min4(min4(c0, c1), min4(c2, c3)));
-        const f4 boxHi = max4(crossHi, max4(max4(c0, c1), max4(c2, c3)));
-
-        const TapSet taps = tapSet(fp, w, h);
-        f4 old{};
-        float total = 0.0f;
-        for (int t = 0; t < 4; ++t) {
-            const float wt = taps.inside[t] ? fp.weight[t] : 0.0f; // zero adds exactly nothing
-            old += wt * load4(history + 3 * taps.index[t]);
-            total += wt;
+        const Footprint8 fp = footprint8(load8(previousX + x), load8(previousY + x));
+        const i8 use = (fp.x0 >= -1) & (fp.y0 >= -1) & (fp.x0 < w) & (fp.y0 < h);
+        if (!anyLane(use)) {
+            storeXyz8(out + 3 * x, n, c);
+            continue;
         }
-        if (total > 0.0f) old = old / total;
-        const f4 lo = 0.5f * (boxLo + crossLo), hi = 0.5f * (boxHi + crossHi);
-        const f4 clamped = yCoCgToRgb4(min4(max4(rgbToYCoCg4(old), lo), hi));
-        const f4 r = lerp4(clamped, c, alpha);
-        o[0] = r[0], o[1] = r[1], o[2] = r[2];
+        f8 lo[3], hi[3];
+        for (int ch = 0; ch < 3; ++ch) {
+            const size_t o = (3 + ch) * pitch + pad + x;
+            const f8 centre = load8(mid + o), left = load8(mid + o - 1), right = load8(mid + o + 1);
+            const f8 top = load8(up + o), bottom = load8(down + o);
+            const f8 crossLo = min8(min8(min8(centre, left), min8(right, top)), bottom);
+            const f8 crossHi = max8(max8(max8(centre, left), max8(right, top)), bottom);
+            const f8 c0 = load8(up + o - 1), c1 = load8(up + o + 1), c2 = load8(down + o - 1),
+                     c3 = load8(down + o + 1);
+            const f8 boxLo = min8(crossLo, min8(min8(c0, c1), min8(c2, c3)));
+            const f8 boxHi = max8(crossHi, max8(max8(c0, c1), max8(c2, c3)));
+            lo[ch] = 0.5f * (boxLo + crossLo), hi[ch] = 0.5f * (boxHi + crossHi);
+        }
+        const Taps8 taps = taps8(fp, w, h, use & firstLanes(n));
+        f8 old[3] = {}, total{};
+        auto gather = [&] [[gnu::always_inline]] () {
+            for (int k = 0; k < 4; ++k) {
+                f8 v[3];
+                tapXyz(taps, history, k, v);
+                const f8 wt = taps.inside[k] ? fp.weight[k] : f8{}; // zero adds exactly nothing
+                for (int ch = 0; ch < 3; ++ch) old[ch] += wt * v[ch];
+                total += wt;
+            }
+        };
+        if (taps.coherent)
+            gather();
+        else
+            gather();
+        const i8 some = total > 0.0f;
+        for (int ch = 0; ch < 3; ++ch) old[ch] = some ? old[ch] / total : old[ch];
+        f8 y[3], clamped[3], r[3];
+        rgbToYCoCg8(old, y);
+        for (int ch = 0; ch < 3; ++ch) y[ch] = min8(max8(y[ch], lo[ch]), hi[ch]);
+        yCoCgToRgb8(y, clamped);
+        for (int ch = 0; ch < 3; ++ch)
+            r[ch] = use ? (1.0f - alpha) * clamped[ch] + alpha * c[ch] : c[ch];
+        storeXyz8(out + 3 * x, n, r);
     }
 }
 

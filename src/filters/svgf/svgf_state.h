@@ -25,7 +25,7 @@ struct SvgfState {
     ImageF previousPixel; ///< 2 channels, shared with TAA
     ImageU8 accept;
     ImageF remodulated;
-    ImageF taaRecords; ///< TAA scratch, 8 floats per pixel
+    ImageF taaRecords; ///< TAA scratch, cpu::taaScratchFloats(w, h) floats
     bool hasHistory = false;
     Mat4 previousViewProjection;
     float previousJitter[2] = {0, 0};
