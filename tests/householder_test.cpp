@@ -145,10 +145,18 @@ TEST(Householder, FastSolverMatchesReferenceForAnyRowCount) {
                                                      0.3f * cols[size_t(2) * rows + k] * (c + 1) +
                                                      0.2f * uniform(trial + 7, c, k);
             }
-            std::vector<float> a = cols, b = cols, ca(M * 3), cb(M * 3);
+            std::vector<float> a = cols, b = cols, ca(M * 3), cb(M * 3), cs(M * 3);
             const int droppedA = solveHouseholder(a.data(), M, rows, ca.data());
             const int droppedB = cpu::solveHouseholderFast(b.data(), M, rows, cb.data());
             EXPECT_EQ(droppedA, droppedB) << rows << " rows, trial " << trial;
+            // The fitter's padded column stride gives the same bits as contiguous columns.
+            const long stride = cpu::qrColumnStride(rows);
+            std::vector<float> padded(size_t(M + 3) * size_t(stride), -7.0f);
+            for (int f = 0; f < M + 3; ++f)
+                std::copy_n(cols.data() + size_t(f) * rows, rows, padded.data() + f * stride);
+            EXPECT_EQ(cpu::solveHouseholderFast(padded.data(), M, rows, stride, cs.data()),
+                      droppedB);
+            EXPECT_EQ(cs, cb) << rows << " rows, trial " << trial;
             for (int k = 0; k < rows; ++k)
                 for (int c = 0; c < 3; ++c) {
                     double fa = 0, fb = 0;

@@ -59,9 +59,19 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b);
 /// Phase III and TAA in one pass over rows: second accumulation, re-modulation, emission, TAA.
 void resolve(const BmfrPassContext& ctx, Buffers& b);
 
-/// Householder QR of the M + 3 columns (each `rows` long, contiguous) and back substitution,
-/// as bmfr::solveHouseholder, with each step's dot products and updates done in one sweep over
-/// four columns at a time. Returns the number of dependent columns (coefficient 0).
+/// Householder QR of the M + 3 columns (each `rows` long, `stride` floats apart) and back
+/// substitution, as bmfr::solveHouseholder. Each step's column updates and the next step's dot
+/// products share one sweep over four columns at a time. Returns the number of dependent
+/// columns (coefficient 0). A stride that is not a multiple of 1024 floats avoids 4K aliasing
+/// between a column's stores and the next column's loads.
+int solveHouseholderFast(float* columns, int featureCount, int rows, long stride, float* coeffs);
+/// The same with contiguous columns (stride = rows).
 int solveHouseholderFast(float* columns, int featureCount, int rows, float* coeffs);
+
+/// Floats between the fitter's QR columns for blocks of `rows` pixels: one cache line more than
+/// the column, so columns do not alias in 4 KiB pages.
+inline long qrColumnStride(int rows) {
+    return (long(rows) + 7) / 8 * 8 + 16;
+}
 
 } // namespace bmfr::cpu

@@ -49,7 +49,8 @@ BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) 
     const float* colour[3] = {b.plane(b.noisy[cur], 0), b.plane(b.noisy[cur], 1),
                               b.plane(b.noisy[cur], 2)};
     float* soa = sc.soa.data();
-    float* z = sc.work.data() + long(M) * W;
+    float* z = sc.work.data() + long(M) * qrColumnStride(W);
+    const long zs = qrColumnStride(W);
     const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     gatherExtras(a, ox, oy, inside, sc);
     if (inside && B % 8 == 0) {
@@ -59,7 +60,8 @@ BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) 
             for (int lx = 0; lx < B; lx += 8) {
                 const int k = ly * B + lx;
                 for (int ch = 0; ch < 6; ++ch) store8(soa + ch * W + k, load8(from[ch] + row + lx));
-                for (int ch = 0; ch < 3; ++ch) store8(z + ch * W + k, load8(colour[ch] + row + lx));
+                for (int ch = 0; ch < 3; ++ch)
+                    store8(z + ch * zs + k, load8(colour[ch] + row + lx));
                 for (int l = 0; l < 8; ++l) sc.imageIndex[size_t(k + l)] = int(row + lx + l);
             }
         }
@@ -73,10 +75,32 @@ BMFR_SIMD_INLINE void gatherBlock(const Phase2& a, int ox, int oy, Scratch& sc) 
             const int k = ly * B + lx;
             const long idx = long(iy) * g.width + ix;
             for (int ch = 0; ch < 6; ++ch) soa[ch * W + k] = from[ch][idx];
-            for (int ch = 0; ch < 3; ++ch) z[ch * W + k] = colour[ch][idx];
+            for (int ch = 0; ch < 3; ++ch) z[ch * zs + k] = colour[ch][idx];
             sc.imageIndex[k] = rowInside && ux >= 0 && ux < g.width ? int(idx) : -1;
         }
     }
+}
+
+/// Asks for a block's rows of the surface and colour planes ahead of its gather. They are short
+/// runs (one block row each) in nine planes, which the hardware prefetchers do not follow; the
+/// fit of the block before hides the wait.
+BMFR_SIMD_INLINE void prefetchBlock(const Phase2& a, int bx, int by) {
+    const BlockGrid& g = a.grid;
+    if (bx >= g.blocksX || by >= g.blocksY) return;
+    const int B = g.blockSize, ox = std::max(0, g.originX(bx)), oy = std::max(0, g.originY(by));
+    const int x1 = std::min(g.width, g.originX(bx) + B), y1 = std::min(g.height, g.originY(by) + B);
+    if (ox >= x1 || oy >= y1) return;
+    const Buffers& b = a.b;
+    const int cur = a.ctx.timeline.cur;
+    const float* planes[9];
+    for (int c = 0; c < 6; ++c) planes[c] = b.plane(b.surface[cur], c);
+    for (int c = 0; c < 3; ++c) planes[6 + c] = b.plane(b.noisy[cur], c);
+    for (int y = oy; y < y1; ++y)
+        for (const float* p : planes) {
+            const float* row = p + long(y) * g.width;
+            for (int x = ox; x < x1; x += 16) __builtin_prefetch(row + x);
+            __builtin_prefetch(row + x1 - 1);
+        }
 }
 
 /// Block scaling and regularisation of one column: clean = scaled, noised = scaled + noise.
@@ -106,17 +130,18 @@ BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
     // Blocks that own no pixel (entirely outside the image after the offset) are skipped.
     if (ox + B <= 0 || oy + B <= 0 || ox >= g.width || oy >= g.height) return;
     gatherBlock(a, ox, oy, sc);
+    prefetchBlock(a, bx + 1 < g.blocksX ? bx + 1 : 0, bx + 1 < g.blocksX ? by : by + 1);
     const float* soa = sc.soa.data();
     const BlockSources src{
         {soa, soa + W, soa + 2 * W}, {soa + 3 * W, soa + 4 * W, soa + 5 * W}, soa + 6 * W};
     buildFeatureColumns(s.features, src, W, sc.clean.data());
     const float* noise = a.ctx.timeline.noise.data();
     for (int f = 0; f < M; ++f)
-        scaleAndNoise(sc.clean.data() + long(f) * W, sc.work.data() + long(f) * W,
+        scaleAndNoise(sc.clean.data() + long(f) * W, sc.work.data() + long(f) * qrColumnStride(W),
                       noise + long(f) * W, W, s.features[f].scaled);
 
     float coeffs[kMaxFeatures * 3];
-    solveHouseholderFast(sc.work.data(), M, W, coeffs);
+    solveHouseholderFast(sc.work.data(), M, W, qrColumnStride(W), coeffs);
 
     // Weighted sum of the noise-free features, 8 pixels at a time, straight to owned pixels.
     float* fitted[3] = {a.b.plane(a.b.fitted, 0), a.b.plane(a.b.fitted, 1),

@@ -22,18 +22,18 @@ struct HouseholderSteps {
     float largestNorm = 0.0f;
     int deficient = 0;
 
-    /// Turns column k (`columns`, stride `rows`) into step k's reflector v, given below = the
-    /// sum of v[i]^2 for i > k, and records R[k][k]. Returns v.v; marks dead[k] instead when the
-    /// column is dependent: its remaining norm is negligible next to the largest seen (without
+    /// Turns column k (`columns`, `stride` floats apart) into step k's reflector v, given below =
+    /// the sum of v[i]^2 for i > k, and records R[k][k]. Returns v.v; marks dead[k] instead when
+    /// the column is dependent: its remaining norm is negligible next to the largest seen (without
     /// regularisation a dependent column leaves only rounding error), so it gets coefficient 0.
-    float reflect(float* columns, int k, int total, int rows, float below) {
-        float* v = columns + long(k) * rows;
+    float reflect(float* columns, int k, int total, long stride, float below) {
+        float* v = columns + long(k) * stride;
         const float norm = std::sqrt(v[k] * v[k] + below);
         largestNorm = std::fmax(largestNorm, norm);
         if (!(norm > 1e-5f * largestNorm) || !(norm > 1e-30f)) {
             dead[k] = true;
             ++deficient;
-            for (int j = k; j < total; ++j) R[k][j] = j == k ? 0.0f : columns[long(j) * rows + k];
+            for (int j = k; j < total; ++j) R[k][j] = j == k ? 0.0f : columns[long(j) * stride + k];
             return 0.0f;
         }
         // Sign choice avoids cancellation in v_k = x_k - alpha.
