@@ -1,0 +1,69 @@
+#include "stream_floor.h"
+#include "core/parallel.h"
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace bmfr::app {
+
+namespace {
+
+/// Planes (one float per pixel) a fast pass reads and writes per frame.
+struct PassTraffic {
+    int reads, writes;
+};
+
+// accumulate: 4 packed xyz inputs (12) + previous surface and colour history (10); writes
+//             surface (6), colour and length (4), previous pixel (2), accept mask (1 byte,
+//             counted as a plane).
+// fit:        surface and colour (9); writes the fitted colour (3).
+// resolve:    fitted (3), accept + length + previous pixel (4), previous phase III output (3),
+//             albedo (3), previous output (3); writes phase III output (3) and output (3).
+constexpr PassTraffic kPasses[] = {{22, 13}, {9, 3}, {16, 6}};
+
+} // namespace
+
+double streamFloorMs(int width, int height, int threads, int repeats) {
+    const long n = long(width) * height;
+    ThreadPool pool(threads);
+    std::vector<std::vector<float>> in(22), out(13);
+    // Filled in parallel so pages land where the workers run.
+    for (auto& p : in) p.resize(size_t(n));
+    for (auto& p : out) p.resize(size_t(n));
+    pool.parallelFor(n, 1 << 16, [&](long i0, long i1) {
+        for (auto& p : in) std::fill(p.begin() + i0, p.begin() + i1, 1.0f);
+        for (auto& p : out) std::fill(p.begin() + i0, p.begin() + i1, 0.0f);
+    });
+    std::vector<double> times;
+    for (int r = 0; r < repeats; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (const PassTraffic& pass : kPasses)
+            pool.parallelFor(height, 8, [&](long y0, long y1) {
+                const long end = y1 * width;
+                long i = y0 * width;
+                for (; i + 64 <= end; i += 64) { // fixed trip counts: the loops vectorise
+                    float sum[64] = {};
+                    for (int p = 0; p < pass.reads; ++p) {
+                        const float* src = in[size_t(p)].data() + i;
+                        for (int k = 0; k < 64; ++k) sum[k] += src[k];
+                    }
+                    for (int p = 0; p < pass.writes; ++p) {
+                        float* dst = out[size_t(p)].data() + i;
+                        for (int k = 0; k < 64; ++k) dst[k] = sum[k];
+                    }
+                }
+                for (; i < end; ++i) {
+                    float sum = 0.0f;
+                    for (int p = 0; p < pass.reads; ++p) sum += in[size_t(p)][size_t(i)];
+                    for (int p = 0; p < pass.writes; ++p) out[size_t(p)][size_t(i)] = sum;
+                }
+            });
+        times.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count());
+    }
+    std::nth_element(times.begin(), times.begin() + long(times.size()) / 2, times.end());
+    return times[times.size() / 2];
+}
+
+} // namespace bmfr::app
