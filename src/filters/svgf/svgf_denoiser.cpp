@@ -36,7 +36,8 @@ void SvgfState::allocate(int w, int h) {
     }
     integrated.resize(w, h, 3), integratedMoments.resize(w, h, 2), depth.resize(w, h, 1);
     depthGradient.resize(w, h, 2), variance.resize(w, h, 1), previousPixel.resize(w, h, 2);
-    accept.resize(w, h, 1), remodulated.resize(w, h, 3), taaRecords.resize(int(cpu::taaScratchFloats(w, h)), 1, 1);
+    accept.resize(w, h, 1), remodulated.resize(w, h, 3),
+        taaRecords.resize(int(cpu::taaScratchFloats(w, h)), 1, 1);
 }
 
 struct SvgfDenoiser::Impl {
