@@ -45,31 +45,6 @@ BMFR_HD int tapY(const BilinearFootprint& f, int tap) {
     return f.y0 + (tap >> 1);
 }
 
-/// The four taps of a footprint as pixel indices, each clamped into the image so it can be
-/// loaded unconditionally; `inside` says which taps are really in the image.
-struct TapSet {
-    long index[4];
-    bool inside[4];
-};
-
-BMFR_HD TapSet tapSet(const BilinearFootprint& f, int width, int height) {
-    TapSet s;
-    if (f.x0 >= 0 && f.y0 >= 0 && f.x0 + 1 < width && f.y0 + 1 < height) {
-        s.index[0] = long(f.y0) * width + f.x0;
-        s.index[1] = s.index[0] + 1, s.index[2] = s.index[0] + width, s.index[3] = s.index[2] + 1;
-        s.inside[0] = s.inside[1] = s.inside[2] = s.inside[3] = true;
-        return s;
-    }
-    for (int t = 0; t < 4; ++t) {
-        const int x = tapX(f, t), y = tapY(f, t);
-        s.inside[t] = x >= 0 && y >= 0 && x < width && y < height;
-        const int cx = x < 0 ? 0 : (x >= width ? width - 1 : x);
-        const int cy = y < 0 ? 0 : (y >= height ? height - 1 : y);
-        s.index[t] = long(cy) * width + cx;
-    }
-    return s;
-}
-
 /// Thresholds of the history discard test.
 struct DiscardLimits {
     float positionSquared = 0.01f; ///< scene units squared

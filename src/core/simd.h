@@ -1,4 +1,4 @@
-// Four- and eight-wide float vectors (GCC/Clang vector extensions) for the fast CPU passes.
+// Eight-wide float vectors (GCC/Clang vector extensions) for the fast CPU passes.
 // Portable source: the compiler lowers them to SSE, AVX2 or NEON for each target clone.
 #pragma once
 #include <cstdint>
@@ -6,8 +6,6 @@
 
 namespace bmfr::simd {
 
-typedef float f4 __attribute__((vector_size(16)));
-typedef int32_t i4 __attribute__((vector_size(16)));
 typedef float f8 __attribute__((vector_size(32)));
 typedef int32_t i8 __attribute__((vector_size(32)));
 typedef uint8_t u8x8 __attribute__((vector_size(8)));
@@ -22,14 +20,6 @@ typedef uint8_t u8x8 __attribute__((vector_size(8)));
 #define BMFR_SIMD_CLONES
 #endif
 
-BMFR_SIMD_INLINE f4 load4(const float* p) {
-    f4 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-BMFR_SIMD_INLINE void store4(float* p, f4 v) {
-    std::memcpy(p, &v, sizeof v);
-}
 BMFR_SIMD_INLINE f8 load8(const float* p) {
     f8 v;
     std::memcpy(&v, p, sizeof v);
@@ -129,36 +119,14 @@ BMFR_SIMD_INLINE void yCoCgToRgb8(const f8 c[3], f8 out[3]) {
     out[2] = 0.25f * ((c[0] - c[1]) - c[2]);
 }
 
-/// x, y, z of a packed 3-float record, w = 0. `last` marks the final record of a buffer, where
-/// a 16-byte load would read past the end.
-BMFR_SIMD_INLINE f4 loadXyz(const float* p, bool last) {
-    if (last) return f4{p[0], p[1], p[2], 0.0f};
-    f4 v = load4(p);
-    v[3] = 0.0f;
-    return v;
-}
-BMFR_SIMD_INLINE f4 splat4(float a) {
-    return f4{a, a, a, a};
-}
 BMFR_SIMD_INLINE f8 splat8(float a) {
     return f8{a, a, a, a, a, a, a, a};
-}
-BMFR_SIMD_INLINE f4 min4(f4 a, f4 b) {
-    return b < a ? b : a;
-}
-BMFR_SIMD_INLINE f4 max4(f4 a, f4 b) {
-    return a < b ? b : a;
 }
 BMFR_SIMD_INLINE f8 min8(f8 a, f8 b) {
     return b < a ? b : a;
 }
 BMFR_SIMD_INLINE f8 max8(f8 a, f8 b) {
     return a < b ? b : a;
-}
-/// a.x*b.x + a.y*b.y + a.z*b.z, summed in that order.
-BMFR_SIMD_INLINE float dot3(f4 a, f4 b) {
-    const f4 m = a * b;
-    return m[0] + m[1] + m[2];
 }
 /// Sum of the eight lanes, as a fixed tree (repeatable).
 BMFR_SIMD_INLINE float hsum8(f8 v) {
@@ -174,67 +142,4 @@ BMFR_SIMD_INLINE float hmax8(f8 v) {
     for (int i = 1; i < 8; ++i) m = m < v[i] ? v[i] : m;
     return m;
 }
-/// (1 - t) a + t b, as bmfr::lerp.
-BMFR_SIMD_INLINE f4 lerp4(f4 a, f4 b, float t) {
-    return (1.0f - t) * a + t * b;
-}
-/// Lanes x, y, z all finite.
-BMFR_SIMD_INLINE bool finiteXyz(f4 v) {
-    const i4 ok = (v - v) == 0.0f;
-    return (ok[0] & ok[1] & ok[2]) != 0;
-}
-/// Non-finite lanes among x, y, z replaced by 0 and counted in `bad`; w set to 0.
-BMFR_SIMD_INLINE f4 finiteOrZero4(f4 v, int64_t& bad) {
-    v[3] = 0.0f;
-    if (__builtin_expect(finiteXyz(v), 1)) return v;
-    const i4 ok = (v - v) == 0.0f;
-    bad += 3 + ok[0] + ok[1] + ok[2]; // ok lanes are -1
-    return ok ? v : f4{};
-}
-/// The unnormalised YCoCg of bmfr::rgbToYCoCg, and back; w is passed through as 0.
-/// As matrix columns times broadcast channels; the products by 1, 2 and 0.25 are exact, so the
-/// sums round as in the scalar forms.
-BMFR_SIMD_INLINE f4 rgbToYCoCg4(f4 c) {
-    const f4 r = __builtin_shuffle(c, i4{0, 0, 0, 0}), g = __builtin_shuffle(c, i4{1, 1, 1, 1}),
-             b = __builtin_shuffle(c, i4{2, 2, 2, 2});
-    return (r * f4{1, 2, -1, 0} + g * f4{2, 0, 2, 0}) + b * f4{1, -2, -1, 0};
-}
-BMFR_SIMD_INLINE f4 yCoCgToRgb4(f4 c) {
-    const f4 y = __builtin_shuffle(c, i4{0, 0, 0, 0}), co = __builtin_shuffle(c, i4{1, 1, 1, 1}),
-             cg = __builtin_shuffle(c, i4{2, 2, 2, 2});
-    return 0.25f * ((y + co * f4{1, 0, -1, 0}) + cg * f4{-1, 1, -1, 0});
-}
-
-/// For four vectors whose lanes 3 and 7 are zero: lanes 0-3 = (a0+a1)+(a2+a3) of a, b, c, d
-/// and lanes 4-7 = (a4+a5)+(a6+a7) of each, i.e. x, y, z summed in dot3's order.
-BMFR_SIMD_INLINE f8 sum3Of4(f8 a, f8 b, f8 c, f8 d) {
-    const i8 even = {0, 8, 2, 10, 4, 12, 6, 14}, odd = {1, 9, 3, 11, 5, 13, 7, 15};
-    const f8 ab = __builtin_shuffle(a, b, even) + __builtin_shuffle(a, b, odd);
-    const f8 cd = __builtin_shuffle(c, d, even) + __builtin_shuffle(c, d, odd);
-    const i8 lo = {0, 1, 8, 9, 4, 5, 12, 13}, hi = {2, 3, 10, 11, 6, 7, 14, 15};
-    return __builtin_shuffle(ab, cd, lo) + __builtin_shuffle(ab, cd, hi);
-}
-
-/// In-place transpose of an 8x8 block held as eight rows.
-BMFR_SIMD_INLINE void transpose8x8(f8 r[8]) {
-    const i8 lo = {0, 8, 1, 9, 4, 12, 5, 13}, hi = {2, 10, 3, 11, 6, 14, 7, 15};
-    const i8 pairLo = {0, 1, 8, 9, 4, 5, 12, 13}, pairHi = {2, 3, 10, 11, 6, 7, 14, 15};
-    const i8 halfLo = {0, 1, 2, 3, 8, 9, 10, 11}, halfHi = {4, 5, 6, 7, 12, 13, 14, 15};
-    f8 t[8], u[8];
-    for (int k = 0; k < 4; ++k) {
-        t[2 * k] = __builtin_shuffle(r[2 * k], r[2 * k + 1], lo);
-        t[2 * k + 1] = __builtin_shuffle(r[2 * k], r[2 * k + 1], hi);
-    }
-    for (int k = 0; k < 2; ++k) {
-        u[4 * k] = __builtin_shuffle(t[4 * k], t[4 * k + 2], pairLo);
-        u[4 * k + 1] = __builtin_shuffle(t[4 * k], t[4 * k + 2], pairHi);
-        u[4 * k + 2] = __builtin_shuffle(t[4 * k + 1], t[4 * k + 3], pairLo);
-        u[4 * k + 3] = __builtin_shuffle(t[4 * k + 1], t[4 * k + 3], pairHi);
-    }
-    for (int k = 0; k < 4; ++k) {
-        r[k] = __builtin_shuffle(u[k], u[k + 4], halfLo);
-        r[k + 4] = __builtin_shuffle(u[k], u[k + 4], halfHi);
-    }
-}
-
 } // namespace bmfr::simd
