@@ -28,6 +28,11 @@ BMFR_SIMD_INLINE f8 load8(const float* p) {
 BMFR_SIMD_INLINE void store8(float* p, f8 v) {
     std::memcpy(p, &v, sizeof v);
 }
+/// (1 - t) a + t b per lane, as bmfr::lerp.
+BMFR_SIMD_INLINE f8 lerp8(f8 a, f8 b, f8 t) {
+    return (1.0f - t) * a + t * b;
+}
+
 /// Lane masks (comparison results: -1 true, 0 false), reduced through shuffles.
 BMFR_SIMD_INLINE bool allLanes(i8 m) {
     m &= __builtin_shuffle(m, i8{4, 5, 6, 7, 0, 1, 2, 3});

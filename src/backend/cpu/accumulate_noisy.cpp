@@ -87,8 +87,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, long i, int n, int64_t
         const Footprint8 fp = footprint8(ppx, ppy);
         const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
         const f8 limP = splat8(s.positionLimitSquared), limN = splat8(s.normalLimitSquared);
-        f8 old[4] = {}, total{};
-        auto gather = [&] [[gnu::always_inline]] () {
+        i8 ok[4];
+        forTaps(taps, [&] [[gnu::always_inline]] () {
             for (int k = 0; k < 4; ++k) {
                 f8 d[6];
                 for (int c = 0; c < 3; ++c) {
@@ -98,25 +98,24 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, long i, int n, int64_t
                 // dot(d, d) in Vec3's order, so the decisions match the reference bit for bit.
                 const f8 dp = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
                 const f8 dn = (d[3] * d[3] + d[4] * d[4]) + d[5] * d[5];
-                const i8 ok = taps.inside[k] & (dp < limP) & (dn < limN);
-                accept |= ok & (1 << k);
-                const f8 wt = ok ? fp.weight[k] : f8{}; // a zero weight adds exactly nothing
-                for (int c = 0; c < 4; ++c)
-                    old[c] += wt * tapPlane(taps, b.plane(b.noisy[prev], c), k);
-                total += wt;
+                ok[k] = taps.inside[k] & (dp < limP) & (dn < limN);
+                accept |= ok[k] & (1 << k);
             }
-        };
-        if (taps.coherent)
-            gather();
-        else
-            gather();
+        });
+        f8 old[4]; // colour and history length
+        const f8 total = weightedTaps<4>(
+            taps, fp.weight, ok,
+            [&](int k, f8* v) {
+                for (int c = 0; c < 4; ++c) v[c] = tapPlane(taps, b.plane(b.noisy[prev], c), k);
+            },
+            old);
         const f8 safe = total > 0.0f ? total : splat8(1.0f);
         const f8 samples = old[3] / safe;
         const f8 blend = firstBlendWeight8(samples, s.firstBlendAlpha);
         const i8 blended = (total > 0.0f) & (blend < 1.0f);
         if (s.stages.firstAccumulation)
             for (int c = 0; c < 3; ++c)
-                color[c] = blended ? (1.0f - blend) * (old[c] / safe) + blend * color[c] : color[c];
+                color[c] = blended ? lerp8(old[c] / safe, color[c], blend) : color[c];
         length = blended ? nextHistoryLength8(samples) : length;
         lost += countLanes((accept == 0) & firstLanes(n));
     }

@@ -96,6 +96,37 @@ BMFR_SIMD_INLINE simd::f8 tapPlane(const Taps8& t, const float* plane, int k) {
     return t.split ? (t.upper ? load8(p + 1) : load8(p)) : load8(p);
 }
 
+/// Runs body() with the taps' addressing mode fixed: two copies of the loop, so the compiler
+/// drops the per-load choice between plain loads and per-lane gathers from each.
+template <typename Body> BMFR_SIMD_INLINE void forTaps(const Taps8& t, Body&& body) {
+    if (t.coherent)
+        body();
+    else
+        body();
+}
+
+/// The bilinear sum of C channels over the four taps: sum[c] = sum over k of w_k tap_k[c], and
+/// the returned sum of the w_k, where w_k = weight[k] in the lanes of use[k] and 0 elsewhere.
+/// A zero weight adds exactly nothing, so this rounds as a sum over the used taps alone.
+/// fetch(k, v) loads tap k's C channels into v.
+template <int C, typename Fetch>
+BMFR_SIMD_INLINE simd::f8 weightedTaps(const Taps8& t, const simd::f8 weight[4],
+                                       const simd::i8 use[4], Fetch&& fetch, simd::f8 sum[C]) {
+    using namespace simd;
+    f8 total{};
+    for (int c = 0; c < C; ++c) sum[c] = f8{};
+    forTaps(t, [&] [[gnu::always_inline]] () {
+        for (int k = 0; k < 4; ++k) {
+            f8 v[C];
+            fetch(k, v);
+            const f8 wt = use[k] ? weight[k] : f8{};
+            for (int c = 0; c < C; ++c) sum[c] += wt * v[c];
+            total += wt;
+        }
+    });
+    return total;
+}
+
 /// Tap k of the eight lanes from packed xyz records (3 floats per pixel).
 BMFR_SIMD_INLINE void tapXyz(const Taps8& t, const float* records, int k, simd::f8 out[3]) {
     if (t.coherent) {

@@ -31,26 +31,22 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, long i, int x, int n, bool
         const Footprint8 fp = footprint8(load8(b.plane(b.previousPixel, 0) + i),
                                          load8(b.plane(b.previousPixel, 1) + i));
         const Taps8 taps = taps8(fp, t.width, t.height, accept != 0);
-        f8 old[3] = {}, total{};
-        auto gather = [&] [[gnu::always_inline]] () {
-            for (int k = 0; k < 4; ++k) {
-                // Accepted taps are inside the image; the others weigh exactly nothing.
-                const f8 wt = (accept & (1 << k)) != 0 ? fp.weight[k] : f8{};
+        // Accepted taps are inside the image.
+        const i8 use[4] = {(accept & 1) != 0, (accept & 2) != 0, (accept & 4) != 0,
+                           (accept & 8) != 0};
+        f8 old[3];
+        const f8 total = weightedTaps<3>(
+            taps, fp.weight, use,
+            [&](int k, f8* v) {
                 for (int ch = 0; ch < 3; ++ch)
-                    old[ch] += wt * tapPlane(taps, b.plane(b.accumulatedFitted[prev], ch), k);
-                total += wt;
-            }
-        };
-        if (taps.coherent)
-            gather();
-        else
-            gather();
+                    v[ch] = tapPlane(taps, b.plane(b.accumulatedFitted[prev], ch), k);
+            },
+            old);
         const i8 some = total > 0.0f;
         const f8 safe = some ? total : splat8(1.0f);
         const f8 blend =
             secondBlendWeight8(load8(b.plane(b.noisy[cur], 3) + i), s.secondBlendAlpha);
-        for (int ch = 0; ch < 3; ++ch)
-            c[ch] = some ? (1.0f - blend) * (old[ch] / safe) + blend * c[ch] : c[ch];
+        for (int ch = 0; ch < 3; ++ch) c[ch] = some ? lerp8(old[ch] / safe, c[ch], blend) : c[ch];
     }
     if (owned)
         for (int ch = 0; ch < 3; ++ch)

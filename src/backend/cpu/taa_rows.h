@@ -75,20 +75,9 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
             lo[ch] = 0.5f * (boxLo + crossLo), hi[ch] = 0.5f * (boxHi + crossHi);
         }
         const Taps8 taps = taps8(fp, w, h, use & firstLanes(n));
-        f8 old[3] = {}, total{};
-        auto gather = [&] [[gnu::always_inline]] () {
-            for (int k = 0; k < 4; ++k) {
-                f8 v[3];
-                tapXyz(taps, history, k, v);
-                const f8 wt = taps.inside[k] ? fp.weight[k] : f8{}; // zero adds exactly nothing
-                for (int ch = 0; ch < 3; ++ch) old[ch] += wt * v[ch];
-                total += wt;
-            }
-        };
-        if (taps.coherent)
-            gather();
-        else
-            gather();
+        f8 old[3];
+        const f8 total = weightedTaps<3>(
+            taps, fp.weight, taps.inside, [&](int k, f8* v) { tapXyz(taps, history, k, v); }, old);
         const i8 some = total > 0.0f;
         for (int ch = 0; ch < 3; ++ch) old[ch] = some ? old[ch] / total : old[ch];
         f8 y[3], clamped[3], r[3];
@@ -96,7 +85,7 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
         for (int ch = 0; ch < 3; ++ch) y[ch] = min8(max8(y[ch], lo[ch]), hi[ch]);
         yCoCgToRgb8(y, clamped);
         for (int ch = 0; ch < 3; ++ch)
-            r[ch] = use ? (1.0f - alpha) * clamped[ch] + alpha * c[ch] : c[ch];
+            r[ch] = use ? lerp8(clamped[ch], c[ch], splat8(alpha)) : c[ch];
         storeXyz8(out + 3 * x, n, r);
     }
 }
