@@ -47,8 +47,10 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h) {
         rs.implementation = Implementation::Reference;
         ref = makeFilter("bmfr", rs, sv);
     }
-    // The memory baseline, measured in this run on buffers freed before the passes start.
-    const double floor = job.filter == "bmfr" ? streamFloorMs(w, h, job.threads, 5) : 0.0;
+    // The memory baselines, measured in this run on buffers freed before the passes start.
+    const bool floors = job.filter == "bmfr";
+    const double floor = floors ? streamFloorMs(w, h, job.threads, 5, fastPassTraffic()) : 0.0;
+    const double single = floors ? streamFloorMs(w, h, job.threads, 5, singlePassTraffic()) : 0.0;
     StageLog log, refLog;
     for (int i = 0; i < job.warmup + job.frames; ++i) {
         // Cycle forwards then backwards so the camera motion stays continuous.
@@ -64,7 +66,7 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h) {
     }
     nlohmann::json r = {
         {"total_ms", log.totalMedian()}, {"stages", log.medians()}, {"line", log.line()}};
-    if (floor > 0.0) r["stream_floor_ms"] = floor;
+    if (floors) r["stream_floor_ms"] = floor, r["single_pass_floor_ms"] = single;
     if (ref) {
         r["reference_total_ms"] = refLog.totalMedian();
         r["reference_stages"] = refLog.medians();
@@ -110,6 +112,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                                "fast is {:.1f}x that\n",
                                "", r["stream_floor_ms"].get<double>(),
                                r["total_ms"].get<double>() / r["stream_floor_ms"].get<double>());
+                if (r.contains("single_pass_floor_ms"))
+                    fmt::print("{:>10} single-pass floor: inputs and float history once, {:.2f} "
+                               "ms\n",
+                               "", r["single_pass_floor_ms"].get<double>());
                 std::fflush(stdout);
             }
             r.erase("line");

@@ -8,25 +8,36 @@ namespace bmfr::app {
 
 namespace {
 
-/// Planes (one float per pixel) a fast pass reads and writes per frame.
-struct PassTraffic {
-    int reads, writes;
-};
-
 // accumulate: 4 packed xyz inputs (12) + previous surface and colour history (10); writes
 //             surface (6), colour and length (4), previous pixel (2), accept mask (1 byte,
 //             counted as a plane).
 // fit:        surface and colour (9); writes the fitted colour (3).
 // resolve:    fitted (3), accept + length + previous pixel (4), previous phase III output (3),
 //             albedo (3), previous output (3); writes phase III output (3) and output (3).
-constexpr PassTraffic kPasses[] = {{22, 13}, {9, 3}, {16, 6}};
+constexpr PassTraffic kFast[] = {{22, 13}, {9, 3}, {16, 6}};
+
+// One pass that reads the four packed xyz inputs (12) and the float history (surface 6, colour
+// and length 4, phase III output 3, output 3), and writes the new history and the output (16).
+constexpr PassTraffic kSinglePass[] = {{28, 16}};
 
 } // namespace
 
-double streamFloorMs(int width, int height, int threads, int repeats) {
+std::span<const PassTraffic> fastPassTraffic() {
+    return kFast;
+}
+std::span<const PassTraffic> singlePassTraffic() {
+    return kSinglePass;
+}
+
+double streamFloorMs(int width, int height, int threads, int repeats,
+                     std::span<const PassTraffic> passes) {
     const long n = long(width) * height;
+    int reads = 0, writes = 0;
+    for (const PassTraffic& pass : passes)
+        reads = std::max(reads, pass.reads), writes = std::max(writes, pass.writes);
     ThreadPool pool(threads);
-    std::vector<std::vector<float>> in(22), out(13);
+    std::vector<std::vector<float>> in(static_cast<size_t>(reads)),
+        out(static_cast<size_t>(writes));
     // Filled in parallel so pages land where the workers run.
     for (auto& p : in) p.resize(size_t(n));
     for (auto& p : out) p.resize(size_t(n));
@@ -37,7 +48,7 @@ double streamFloorMs(int width, int height, int threads, int repeats) {
     std::vector<double> times;
     for (int r = 0; r < repeats; ++r) {
         const auto t0 = std::chrono::steady_clock::now();
-        for (const PassTraffic& pass : kPasses)
+        for (const PassTraffic& pass : passes)
             pool.parallelFor(height, 8, [&](long y0, long y1) {
                 const long end = y1 * width;
                 long i = y0 * width;
