@@ -8,7 +8,6 @@ namespace bmfr::simd {
 
 typedef float f8 __attribute__((vector_size(32)));
 typedef int32_t i8 __attribute__((vector_size(32)));
-typedef uint8_t u8x8 __attribute__((vector_size(8)));
 
 #define BMFR_SIMD_INLINE [[gnu::always_inline]] inline
 
@@ -105,6 +104,29 @@ BMFR_SIMD_INLINE void storeXyz8(float* p, int n, const f8 v[3]) {
 BMFR_SIMD_INLINE void storeFirst(float* p, f8 v, int n) {
     if (n == 8) return store8(p, v);
     std::memcpy(p, &v, sizeof(float) * size_t(n));
+}
+/// The first n (1 to 8) lanes; lanes n to 7 read as 0.
+BMFR_SIMD_INLINE f8 loadFirst(const float* p, int n) {
+    if (n == 8) return load8(p);
+    f8 v{};
+    std::memcpy(&v, p, sizeof(float) * size_t(n));
+    return v;
+}
+/// The low byte of the first n (1 to 8) lanes, as n bytes.
+BMFR_SIMD_INLINE void storeBytes(uint8_t* p, i8 v, int n) {
+    typedef uint8_t u8x32 __attribute__((vector_size(32)));
+    const u8x32 low =
+        __builtin_shuffle(reinterpret_cast<const u8x32&>(v), u8x32{0, 4, 8, 12, 16, 20, 24, 28});
+    std::memcpy(p, &low, n == 8 ? 8 : size_t(n));
+}
+/// n (1 to 8) bytes as the first n lanes; lanes n to 7 read as 0.
+BMFR_SIMD_INLINE i8 loadBytes(const uint8_t* p, int n) {
+    typedef uint32_t u8 __attribute__((vector_size(32)));
+    uint32_t w[2] = {};
+    std::memcpy(w, p, n == 8 ? 8 : size_t(n));
+    const u8 r =
+        u8{w[0], w[0], w[0], w[0], w[1], w[1], w[1], w[1]} >> u8{0, 8, 16, 24, 0, 8, 16, 24};
+    return i8(r & 255u);
 }
 /// base[index[l]] for each lane.
 BMFR_SIMD_INLINE f8 gather8(const float* base, i8 index) {

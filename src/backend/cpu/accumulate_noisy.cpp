@@ -10,11 +10,15 @@ using namespace simd;
 
 namespace {
 
+/// Lanes whose value is finite (x - x is NaN for NaN and Inf).
+BMFR_SIMD_INLINE i8 finite8(f8 v) {
+    return (v - v) == 0.0f;
+}
+
 /// Non-finite lanes replaced by 0 and counted (staged tails read as 0, which is finite).
 BMFR_SIMD_INLINE void finiteOrZero8(f8 v[3], int64_t& bad) {
     for (int c = 0; c < 3; ++c) {
-        const i8 ok = (v[c] - v[c]) == 0.0f;
-        if (__builtin_expect(allLanes(ok), 1)) continue;
+        const i8 ok = finite8(v[c]);
         bad += countLanes(~ok);
         v[c] = ok ? v[c] : f8{};
     }
@@ -29,25 +33,34 @@ BMFR_SIMD_INLINE Inputs8 readInputs(const FrameArgs& a, long i, int n, int64_t& 
     const FrameInput& in = a.in;
     const Settings& s = a.s;
     Inputs8 px;
-    f8 albedo[3];
-    loadXyz8(in.normal.data + 3 * i, n, px.normal), finiteOrZero8(px.normal, bad);
-    loadXyz8(in.position.data + 3 * i, n, px.position), finiteOrZero8(px.position, bad);
-    loadXyz8(in.albedo.data + 3 * i, n, albedo), finiteOrZero8(albedo, bad);
-    loadXyz8(in.color.data + 3 * i, n, px.color), finiteOrZero8(px.color, bad);
+    f8 albedo[3], e[3] = {};
+    loadXyz8(in.normal.data + 3 * i, n, px.normal);
+    loadXyz8(in.position.data + 3 * i, n, px.position);
+    loadXyz8(in.albedo.data + 3 * i, n, albedo);
+    loadXyz8(in.color.data + 3 * i, n, px.color);
+    if (in.emission.data) loadXyz8(in.emission.data + 3 * i, n, e);
+    // One test for all twelve (or fifteen) channels: inputs are almost always finite.
+    i8 ok = finite8(e[0]) & finite8(e[1]) & finite8(e[2]);
+    for (int c = 0; c < 3; ++c)
+        ok &= finite8(px.normal[c]) & finite8(px.position[c]) & finite8(albedo[c]) &
+              finite8(px.color[c]);
+    if (__builtin_expect(!allLanes(ok), 0)) {
+        finiteOrZero8(px.normal, bad), finiteOrZero8(px.position, bad);
+        finiteOrZero8(albedo, bad), finiteOrZero8(px.color, bad), finiteOrZero8(e, bad);
+    }
     const f8 eps = splat8(s.albedoEpsilon);
     f8 g[3];
     for (int c = 0; c < 3; ++c) g[c] = albedo[c] > eps ? albedo[c] : eps;
     if (in.emission.data) {
-        f8 e[3];
-        loadXyz8(in.emission.data + 3 * i, n, e), finiteOrZero8(e, bad);
         for (int c = 0; c < 3; ++c) {
             if (s.colorIsDemodulated) e[c] = e[c] / g[c];
             px.color[c] = max8(px.color[c] - e[c], f8{});
         }
     }
-    for (const ImageView& e : in.extras)
-        for (int l = 0; l < n; ++l)
-            if (!std::isfinite(e.data[i + l])) ++bad;
+    for (const ImageView& extra : in.extras) {
+        const f8 v = loadFirst(extra.data + i, n);
+        bad += countLanes(~finite8(v));
+    }
     if (s.stages.demodulate && !s.colorIsDemodulated)
         for (int c = 0; c < 3; ++c) px.color[c] = px.color[c] / g[c];
     return px;
@@ -123,8 +136,7 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, long i, int n, int64_t
     storeFirst(b.plane(b.noisy[cur], 3) + i, length, n);
     storeFirst(b.plane(b.previousPixel, 0) + i, ppx, n);
     storeFirst(b.plane(b.previousPixel, 1) + i, ppy, n);
-    const u8x8 bytes = __builtin_convertvector(accept, u8x8);
-    std::memcpy(b.acceptMask.data() + i, &bytes, size_t(n));
+    storeBytes(b.acceptMask.data() + i, accept, n);
 }
 
 BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64_t& bad,

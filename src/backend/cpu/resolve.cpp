@@ -24,9 +24,7 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, long i, int x, int n, bool
     const int cur = t.cur, prev = 1 - t.cur;
     f8 c[3];
     for (int ch = 0; ch < 3; ++ch) c[ch] = load8(b.plane(b.fitted, ch) + i);
-    u8x8 bytes;
-    std::memcpy(&bytes, b.acceptMask.data() + i, sizeof bytes);
-    const i8 accept = __builtin_convertvector(bytes, i8) & firstLanes(n);
+    const i8 accept = loadBytes(b.acceptMask.data() + i, n);
     if (t.hasHistory && s.stages.secondAccumulation && anyLane(accept != 0)) {
         const Footprint8 fp = footprint8(load8(b.plane(b.previousPixel, 0) + i),
                                          load8(b.plane(b.previousPixel, 1) + i));
