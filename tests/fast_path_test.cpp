@@ -115,6 +115,11 @@ TEST(FastPath, MatchesReferenceForEveryStageSwitchAndBlockSize) {
     Settings extra;
     extra.features.push_back({FeatureSource::Extra, 0, 1.0f, true});
     expectSameOutputs(extra, 6, p.source(), "an extra feature");
+    // Rows of a block that are not a multiple of eight pixels, and exponents other than 1 and 2.
+    Settings odd;
+    odd.blockSize = 14;
+    odd.features = parseFeatures("1,n.x,n.y,n.z,p.x,p.y^3,p.z^0.5,p.x^2,extra0^2");
+    expectSameOutputs(odd, 6, p.source(), "block size 14, exponents 3, 0.5 and 2 on an extra");
 }
 
 TEST(FastPath, MatchesReferenceOnPathTracedFrames) {

@@ -147,7 +147,11 @@ BMFR_SIMD_INLINE void yCoCgToRgb8(const f8 c[3], f8 out[3]) {
 }
 
 BMFR_SIMD_INLINE f8 splat8(float a) {
-    return f8{a, a, a, a, a, a, a, a};
+    // Lane by lane: GCC 12 builds an inlined f8{a, a, ...} from eight inserts in target clones,
+    // where this loop becomes one broadcast.
+    f8 v{};
+    for (int l = 0; l < 8; ++l) v[l] = a;
+    return v;
 }
 BMFR_SIMD_INLINE f8 min8(f8 a, f8 b) {
     return b < a ? b : a;

@@ -10,9 +10,9 @@ namespace bmfr::cpu {
 
 /// Per-thread scratch of the fitter (one block) and of the fused resolve pass (three rows).
 struct Scratch {
-    std::vector<float> clean;    ///< M scaled feature columns, noise-free (used for the sum)
-    std::vector<float> work;     ///< M noised columns + 3 colour columns, overwritten by QR
-    std::vector<float> soa;      ///< (6 + 16) x W gathered normal, position and extras
+    std::vector<float> clean; ///< M scaled feature columns, noise-free (used for the sum)
+    std::vector<float> work;  ///< M noised columns + 3 colour columns, overwritten by QR
+    std::vector<float> soa;   ///< (9 + 16) x W: a border block's normal, position, colour; extras
     std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
     std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
 };
