@@ -1,7 +1,6 @@
 #include "backend/cpu/fast_passes.h"
 #include "backend/cpu/reproject8.h"
 #include "core/simd.h"
-#include <atomic>
 #include <cmath>
 
 namespace bmfr::cpu {
@@ -148,16 +147,8 @@ BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64
 
 } // namespace
 
-InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
-    const FrameArgs a{ctx.settings, ctx.frame, ctx.timeline, b};
-    std::atomic<int64_t> nonFinite{0}, discarded{0};
-    ctx.pool.parallelFor(ctx.timeline.height, 8, [&](long y0, long y1) {
-        int64_t bad = 0, lost = 0;
-        accumulateRows(a, y0, y1, bad, lost);
-        nonFinite += bad;
-        discarded += lost;
-    });
-    return {nonFinite.load(), discarded.load()};
+void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, InputCounters& counters) {
+    accumulateRows(a, y0, y1, counters.nonFinite, counters.discarded);
 }
 
 } // namespace bmfr::cpu

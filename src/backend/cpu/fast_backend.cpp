@@ -21,6 +21,7 @@ class FastPasses final : public BmfrPasses {
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
         b_.acceptMask.assign(n + 8, 0);
         b_.fitted.assign(3 * b_.stride, 0.0f);
+        b_.earlyRow.assign(size_t(h), 0);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b_.scratch.resize(size_t(threads));
         for (Scratch& sc : b_.scratch) {
@@ -37,16 +38,16 @@ class FastPasses final : public BmfrPasses {
         auto ms = [](Clock::time_point a, Clock::time_point b) {
             return std::chrono::duration<double, std::milli>(b - a).count();
         };
-        auto t0 = Clock::now();
-        InputCounters counters = accumulateNoisy(ctx, b_);
+        // Phase I and the fit run interleaved; their wall time is split by the workers' time in
+        // each (StageSplit).
+        StageSplit split;
+        InputCounters counters = accumulateAndFit(ctx, b_, split);
         auto t1 = Clock::now();
-        fitBlocks(ctx, b_);
-        auto t2 = Clock::now();
         resolve(ctx, b_);
-        auto t3 = Clock::now();
-        times.add("accumulate", ms(t0, t1));
-        times.add("fit", ms(t1, t2));
-        times.add("resolve", ms(t2, t3));
+        auto t2 = Clock::now();
+        times.add("accumulate", split.firstMs);
+        times.add("fit", split.secondMs);
+        times.add("resolve", ms(t1, t2));
         return counters;
     }
 

@@ -3,6 +3,7 @@
 // scratch, and phase III runs fused with TAA row by row.
 #pragma once
 #include "core/image.h"
+#include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/state.h"
 #include <vector>
 
@@ -34,6 +35,8 @@ struct Buffers {
     std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame
     std::vector<uint8_t> acceptMask;  ///< accepted bilinear taps, bit i = tap i (+8 padding)
     std::vector<float> fitted;        ///< 3 planes: phase II colour
+    std::vector<uint8_t>
+        earlyRow; ///< rows phase I runs before the block rows (see accumulateAndFit)
 
     std::vector<Scratch> scratch; ///< one per worker thread
     ImageF debugNoisy, debugFitted, debugLength, debugAccept;
@@ -52,10 +55,26 @@ struct FrameArgs {
     Buffers& b;
 };
 
-/// Phase I: sanitise and store features, demodulate, reproject, test taps, accumulate colour.
-InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b);
-/// Phase II: per block gather, scale, regularise, Householder QR, back substitution, weighted sum.
-void fitBlocks(const BmfrPassContext& ctx, Buffers& b);
+/// Wall time of a pass that interleaves two stages, split between them in proportion to the
+/// time the workers spent in each.
+struct StageSplit {
+    double firstMs = 0.0, secondMs = 0.0;
+};
+
+/// Phase I and phase II, block row by block row: each task runs phase I over the image rows a
+/// row of blocks owns, then fits those blocks while the rows are still in cache. Tasks on
+/// different cores drift apart, so one core's memory-bound phase I overlaps the other's
+/// arithmetic-bound fit. Rows that a block reads through mirroring at the top and bottom edges
+/// but does not own are done first.
+InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSplit& split);
+
+/// Phase I of image rows [y0, y1): sanitise and store features, demodulate, reproject, test
+/// taps, accumulate colour. Counts are added to `counters`.
+void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, InputCounters& counters);
+/// Phase II of block row `by`: per block gather, scale, regularise, Householder QR, back
+/// substitution, weighted sum. Reads only the rows the blocks cover, mirrored at the edges.
+void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
+                 Scratch& sc);
 /// Phase III and TAA in one pass over rows: second accumulation, re-modulation, emission, TAA.
 void resolve(const BmfrPassContext& ctx, Buffers& b);
 

@@ -254,7 +254,7 @@ BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
     if (ox + B <= 0 || oy + B <= 0 || ox >= g.width || oy >= g.height) return;
     const BlockRows rows = blockRows(a, ox, oy, sc);
     buildColumns(a, rows, sc);
-    prefetchBlock(a, bx + 1 < g.blocksX ? bx + 1 : 0, bx + 1 < g.blocksX ? by : by + 1);
+    prefetchBlock(a, bx + 1, by); // the next block of this row (none after the last)
 
     float coeffs[kMaxFeatures * 3];
     solveHouseholderFast(sc.work.data(), M, W, qrColumnStride(W), coeffs);
@@ -307,20 +307,10 @@ BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
 
 } // namespace
 
-void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
-    const BmfrTimeline& t = ctx.timeline;
-    if (!ctx.settings.stages.fitting) {
-        for (int c = 0; c < 3; ++c)
-            std::copy_n(b.plane(b.noisy[t.cur], c), size_t(t.width) * size_t(t.height),
-                        b.plane(b.fitted, c));
-        return;
-    }
-    const Phase2 a{ctx, b, makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex)};
-    ctx.pool.parallelFor(a.grid.blockCount(), 1, [&](long b0, long b1) {
-        Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
-        for (long k = b0; k < b1; ++k)
-            fitBlock(a, int(k % a.grid.blocksX), int(k / a.grid.blocksX), sc);
-    });
+void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
+                 Scratch& sc) {
+    const Phase2 a{ctx, b, grid};
+    for (int bx = 0; bx < grid.blocksX; ++bx) fitBlock(a, bx, by, sc);
 }
 
 } // namespace bmfr::cpu
