@@ -68,23 +68,43 @@ BMFR_SIMD_INLINE i8 firstLanes(int n) {
     return lane < n;
 }
 
-/// Eight packed xyz records (24 floats) as x, y and z lanes, and back.
+typedef float f4 __attribute__((vector_size(16)));
+
+/// Eight packed xyz records (24 floats) as x, y and z lanes, and back. Each 16-byte half of
+/// the three registers m0, m1, m2 holds four records (records 0-3 low, 4-7 high) as
+/// x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3, so a channel is two blends and one permute within
+/// halves, none across them.
 BMFR_SIMD_INLINE void deinterleave3(const float* p, f8& x, f8& y, f8& z) {
-    const f8 a = load8(p), b = load8(p + 8), c = load8(p + 16);
-    x = __builtin_shuffle(__builtin_shuffle(a, b, i8{0, 3, 6, 9, 12, 15, 0, 0}), c,
-                          i8{0, 1, 2, 3, 4, 5, 10, 13});
-    y = __builtin_shuffle(__builtin_shuffle(a, b, i8{1, 4, 7, 10, 13, 0, 0, 0}), c,
-                          i8{0, 1, 2, 3, 4, 8, 11, 14});
-    z = __builtin_shuffle(__builtin_shuffle(a, b, i8{2, 5, 8, 11, 14, 0, 0, 0}), c,
-                          i8{0, 1, 2, 3, 4, 9, 12, 15});
+    auto halves = [p](int lo, int hi) {
+        f4 a, b;
+        std::memcpy(&a, p + 4 * lo, sizeof a);
+        std::memcpy(&b, p + 4 * hi, sizeof b);
+        return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
+    };
+    const f8 m0 = halves(0, 3), m1 = halves(1, 4), m2 = halves(2, 5);
+    x = __builtin_shuffle(__builtin_shuffle(m0, m1, i8{0, 1, 10, 3, 4, 5, 14, 7}), m2,
+                          i8{0, 9, 2, 3, 4, 13, 6, 7}); // x0 x3 x2 x1
+    y = __builtin_shuffle(__builtin_shuffle(m0, m1, i8{8, 1, 2, 11, 12, 5, 6, 15}), m2,
+                          i8{0, 1, 10, 3, 4, 5, 14, 7}); // y1 y0 y3 y2
+    z = __builtin_shuffle(__builtin_shuffle(m0, m1, i8{0, 9, 2, 3, 4, 13, 6, 7}), m2,
+                          i8{8, 1, 2, 11, 12, 5, 6, 15}); // z2 z1 z0 z3
+    x = __builtin_shuffle(x, i8{0, 3, 2, 1, 4, 7, 6, 5});
+    y = __builtin_shuffle(y, i8{1, 0, 3, 2, 5, 4, 7, 6});
+    z = __builtin_shuffle(z, i8{2, 1, 0, 3, 6, 5, 4, 7});
 }
 BMFR_SIMD_INLINE void interleave3(f8 x, f8 y, f8 z, float* p) {
-    store8(p, __builtin_shuffle(__builtin_shuffle(x, y, i8{0, 8, 0, 1, 9, 0, 2, 10}), z,
-                                i8{0, 1, 8, 3, 4, 9, 6, 7}));
-    store8(p + 8, __builtin_shuffle(__builtin_shuffle(x, y, i8{0, 3, 11, 0, 4, 12, 0, 5}), z,
-                                    i8{10, 1, 2, 11, 4, 5, 12, 7}));
-    store8(p + 16, __builtin_shuffle(__builtin_shuffle(x, y, i8{13, 0, 6, 14, 0, 7, 15, 0}), z,
-                                     i8{0, 13, 2, 3, 14, 5, 6, 15}));
+    x = __builtin_shuffle(x, i8{0, 3, 2, 1, 4, 7, 6, 5});
+    y = __builtin_shuffle(y, i8{1, 0, 3, 2, 5, 4, 7, 6});
+    z = __builtin_shuffle(z, i8{2, 1, 0, 3, 6, 5, 4, 7});
+    const f8 m0 = __builtin_shuffle(__builtin_shuffle(x, y, i8{0, 9, 2, 3, 4, 13, 6, 7}), z,
+                                    i8{0, 1, 10, 3, 4, 5, 14, 7});
+    const f8 m1 = __builtin_shuffle(__builtin_shuffle(y, z, i8{0, 9, 2, 3, 4, 13, 6, 7}), x,
+                                    i8{0, 1, 10, 3, 4, 5, 14, 7});
+    const f8 m2 = __builtin_shuffle(__builtin_shuffle(z, x, i8{0, 9, 2, 3, 4, 13, 6, 7}), y,
+                                    i8{0, 1, 10, 3, 4, 5, 14, 7});
+    store8(p, __builtin_shuffle(m0, m1, i8{0, 1, 2, 3, 8, 9, 10, 11}));
+    store8(p + 8, __builtin_shuffle(m2, m0, i8{0, 1, 2, 3, 12, 13, 14, 15}));
+    store8(p + 16, __builtin_shuffle(m1, m2, i8{4, 5, 6, 7, 12, 13, 14, 15}));
 }
 /// The first n (1 to 8) packed xyz records; lanes n to 7 read as 0.
 BMFR_SIMD_INLINE void loadXyz8(const float* p, int n, f8 out[3]) {

@@ -38,12 +38,12 @@ BMFR_SIMD_INLINE Inputs8 readInputs(const FrameArgs& a, long i, int n, int64_t& 
     loadXyz8(in.albedo.data + 3 * i, n, albedo);
     loadXyz8(in.color.data + 3 * i, n, px.color);
     if (in.emission.data) loadXyz8(in.emission.data + 3 * i, n, e);
-    // One test for all twelve (or fifteen) channels: inputs are almost always finite.
-    i8 ok = finite8(e[0]) & finite8(e[1]) & finite8(e[2]);
-    for (int c = 0; c < 3; ++c)
-        ok &= finite8(px.normal[c]) & finite8(px.position[c]) & finite8(albedo[c]) &
-              finite8(px.color[c]);
-    if (__builtin_expect(!allLanes(ok), 0)) {
+    // One test for all channels, on their sum: a NaN or an infinity in any makes the sum
+    // non-finite. So can an overflow of finite values, which only sends the group through the
+    // exact per-channel test.
+    f8 sum = (e[0] + e[1]) + e[2];
+    for (int c = 0; c < 3; ++c) sum += (px.normal[c] + px.position[c]) + (albedo[c] + px.color[c]);
+    if (__builtin_expect(!allLanes(finite8(sum)), 0)) {
         finiteOrZero8(px.normal, bad), finiteOrZero8(px.position, bad);
         finiteOrZero8(albedo, bad), finiteOrZero8(px.color, bad), finiteOrZero8(e, bad);
     }
