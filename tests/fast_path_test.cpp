@@ -97,6 +97,15 @@ TEST(FastPath, MatchesReferenceOnProceduralFramesOfOddSize) {
     expectSameOutputs(Settings{}, 12, p.source(), "default settings, 203x117, with NaN/Inf");
 }
 
+TEST(FastPath, MatchesReferenceOnImagesSmallerThanABlock) {
+    // Blocks mirror the image more than once, so most rows are read by rows of blocks that do
+    // not own them (accumulated ahead of the rows of blocks, see accumulate_fit.cpp).
+    ProceduralFrames tall(9, 70, 6, false), wide(70, 9, 6, false), tiny(5, 3, 6, false);
+    expectSameOutputs(Settings{}, 6, tall.source(), "9x70");
+    expectSameOutputs(Settings{}, 6, wide.source(), "70x9");
+    expectSameOutputs(Settings{}, 6, tiny.source(), "5x3");
+}
+
 TEST(FastPath, MatchesReferenceForEveryStageSwitchAndBlockSize) {
     ProceduralFrames p(96, 72, 6, false);
     for (int b : {8, 20, 24, 64}) {
