@@ -79,16 +79,14 @@ BMFR_SIMD_INLINE f8 nextHistoryLength8(f8 samples) {
 
 /// Phase I of pixels [i, i + n) of one row, n <= 8: inputs, reprojection, the four taps'
 /// discard tests and the cumulative-then-exponential blend with the history.
-BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, long i, int n, int64_t& bad,
-                                      int64_t& lost) {
+BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl, long i, int n,
+                                      int64_t& bad, int64_t& lost) {
     const Settings& s = a.s;
     const BmfrTimeline& t = a.t;
-    Buffers& b = a.b;
-    const int cur = t.cur, prev = 1 - t.cur;
     const Inputs8 px = readInputs(a, i, n, bad);
     for (int c = 0; c < 3; ++c) {
-        storeFirst(b.plane(b.surface[cur], c) + i, px.position[c], n);
-        storeFirst(b.plane(b.surface[cur], 3 + c) + i, px.normal[c], n);
+        storeFirst(pl.surface[c] + i, px.position[c], n);
+        storeFirst(pl.surface[3 + c] + i, px.normal[c], n);
     }
     f8 color[3] = {px.color[0], px.color[1], px.color[2]};
     f8 length = splat8(1.0f), ppx = splat8(-1e6f), ppy = splat8(-1e6f);
@@ -104,8 +102,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, long i, int n, int64_t
             for (int k = 0; k < 4; ++k) {
                 f8 d[6];
                 for (int c = 0; c < 3; ++c) {
-                    d[c] = tapPlane(taps, b.plane(b.surface[prev], c), k) - px.position[c];
-                    d[3 + c] = tapPlane(taps, b.plane(b.surface[prev], 3 + c), k) - px.normal[c];
+                    d[c] = tapPlane(taps, pl.prevSurface[c], k) - px.position[c];
+                    d[3 + c] = tapPlane(taps, pl.prevSurface[3 + c], k) - px.normal[c];
                 }
                 // dot(d, d) in Vec3's order, so the decisions match the reference bit for bit.
                 const f8 dp = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
@@ -118,7 +116,7 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, long i, int n, int64_t
         const f8 total = weightedTaps<4>(
             taps, fp.weight, ok,
             [&](int k, f8* v) {
-                for (int c = 0; c < 4; ++c) v[c] = tapPlane(taps, b.plane(b.noisy[prev], c), k);
+                for (int c = 0; c < 4; ++c) v[c] = tapPlane(taps, pl.prevNoisy[c], k);
             },
             old);
         const f8 safe = total > 0.0f ? total : splat8(1.0f);
@@ -131,18 +129,20 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, long i, int n, int64_t
         length = blended ? nextHistoryLength8(samples) : length;
         lost += countLanes((accept == 0) & firstLanes(n));
     }
-    for (int c = 0; c < 3; ++c) storeFirst(b.plane(b.noisy[cur], c) + i, color[c], n);
-    storeFirst(b.plane(b.noisy[cur], 3) + i, length, n);
-    storeFirst(b.plane(b.previousPixel, 0) + i, ppx, n);
-    storeFirst(b.plane(b.previousPixel, 1) + i, ppy, n);
-    storeBytes(b.acceptMask.data() + i, accept, n);
+    for (int c = 0; c < 3; ++c) storeFirst(pl.noisy[c] + i, color[c], n);
+    storeFirst(pl.noisy[3] + i, length, n);
+    storeFirst(pl.previousPixel[0] + i, ppx, n);
+    storeFirst(pl.previousPixel[1] + i, ppy, n);
+    storeBytes(pl.accept + i, accept, n);
 }
 
 BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64_t& bad,
                                      int64_t& lost) {
     const int w = a.t.width;
+    const FramePlanes pl(a.b, a.t.cur);
     for (long y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += 8) accumulateGroup(a, y * w + x, std::min(8, w - x), bad, lost);
+        for (int x = 0; x < w; x += 8)
+            accumulateGroup(a, pl, y * w + x, std::min(8, w - x), bad, lost);
 }
 
 } // namespace

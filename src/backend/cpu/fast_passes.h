@@ -47,6 +47,36 @@ struct Buffers {
     }
 };
 
+/// One frame's planes as raw pointers, taken once per task. Row kernels read them from this
+/// local copy: a pointer inside a std::vector would be reloaded after every byte store (the
+/// accept mask), since a byte store may alias anything.
+struct FramePlanes {
+    const float* prevSurface[6];
+    float* surface[6];
+    const float* prevNoisy[4];
+    float* noisy[4];
+    const float* prevAccumulated[3];
+    float* accumulated[3];
+    float* previousPixel[2];
+    float* fitted[3];
+    uint8_t* accept;
+
+    FramePlanes(Buffers& b, int cur) {
+        for (int c = 0; c < 6; ++c)
+            prevSurface[c] = b.plane(b.surface[1 - cur], c),
+            surface[c] = b.plane(b.surface[cur], c);
+        for (int c = 0; c < 4; ++c)
+            prevNoisy[c] = b.plane(b.noisy[1 - cur], c), noisy[c] = b.plane(b.noisy[cur], c);
+        for (int c = 0; c < 3; ++c) {
+            prevAccumulated[c] = b.plane(b.accumulatedFitted[1 - cur], c);
+            accumulated[c] = b.plane(b.accumulatedFitted[cur], c);
+            fitted[c] = b.plane(b.fitted, c);
+        }
+        for (int c = 0; c < 2; ++c) previousPixel[c] = b.plane(b.previousPixel, c);
+        accept = b.acceptMask.data();
+    }
+};
+
 /// What the row kernels of phase I and the resolve pass read.
 struct FrameArgs {
     const Settings& s;

@@ -54,8 +54,7 @@ BMFR_SIMD_INLINE Footprint8 footprint8(simd::f8 px, simd::f8 py) {
 struct Taps8 {
     bool coherent = false;
     bool split = false; ///< coherent with two values of d: lanes in `upper` read one further
-    long base = 0;      ///< pixel of tap 0 for lanes with the smaller d, minus the lane
-    long offset[4];     ///< tap k of lane l is at base + l + offset[k] (+ 1 in `upper`)
+    long at[4] = {};    ///< tap k of lane l is at at[k] + l (+ 1 in `upper`), when coherent
     simd::i8 upper;     ///< lanes with the larger d
     simd::i8 index[4];  ///< clamped tap pixels (not coherent)
     simd::i8 inside[4]; ///< taps in the image
@@ -65,7 +64,6 @@ BMFR_SIMD_INLINE Taps8 taps8(const Footprint8& f, int width, int height, simd::i
     using namespace simd;
     Taps8 t;
     const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7}, big = i8{} + (1 << 30);
-    t.offset[0] = 0, t.offset[1] = 1, t.offset[2] = width, t.offset[3] = long(width) + 1;
     const i8 d = f.x0 - lane;
     const int dLo = hminLanes(active ? d : big), dHi = -hminLanes(active ? -d : big);
     const int yLo = hminLanes(active ? f.y0 : big), yHi = -hminLanes(active ? -f.y0 : big);
@@ -74,7 +72,8 @@ BMFR_SIMD_INLINE Taps8 taps8(const Footprint8& f, int width, int height, simd::i
         t.coherent = true;
         t.split = dHi != dLo;
         t.upper = d == dHi;
-        t.base = long(yLo) * width + dLo;
+        const long base = long(yLo) * width + dLo;
+        t.at[0] = base, t.at[1] = base + 1, t.at[2] = base + width, t.at[3] = base + width + 1;
         for (int k = 0; k < 4; ++k) t.inside[k] = active;
         return t;
     }
@@ -92,7 +91,7 @@ BMFR_SIMD_INLINE Taps8 taps8(const Footprint8& f, int width, int height, simd::i
 BMFR_SIMD_INLINE simd::f8 tapPlane(const Taps8& t, const float* plane, int k) {
     using namespace simd;
     if (!t.coherent) return gather8(plane, t.index[k]);
-    const float* p = plane + t.base + t.offset[k];
+    const float* p = plane + t.at[k];
     return t.split ? (t.upper ? load8(p + 1) : load8(p)) : load8(p);
 }
 
@@ -130,7 +129,7 @@ BMFR_SIMD_INLINE simd::f8 weightedTaps(const Taps8& t, const simd::f8 weight[4],
 /// Tap k of the eight lanes from packed xyz records (3 floats per pixel).
 BMFR_SIMD_INLINE void tapXyz(const Taps8& t, const float* records, int k, simd::f8 out[3]) {
     if (t.coherent) {
-        const float* p = records + 3 * (t.base + t.offset[k]);
+        const float* p = records + 3 * t.at[k];
         simd::deinterleave3(p, out[0], out[1], out[2]);
         if (!t.split) return;
         simd::f8 next[3];

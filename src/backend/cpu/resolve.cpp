@@ -16,18 +16,16 @@ BMFR_SIMD_INLINE f8 secondBlendWeight8(f8 length, float minAlpha) {
 
 /// Phase III of pixels [i, i + n) into the resolved row at x: second accumulation with phase
 /// I's taps, re-modulation, emission. The history is stored only when `owned`.
-BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, long i, int x, int n, bool owned, float* row,
-                                  size_t pitch) {
+BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes& pl, long i, int x, int n,
+                                  bool owned, float* row, size_t pitch) {
     const Settings& s = a.s;
     const BmfrTimeline& t = a.t;
-    Buffers& b = a.b;
-    const int cur = t.cur, prev = 1 - t.cur;
     f8 c[3];
-    for (int ch = 0; ch < 3; ++ch) c[ch] = load8(b.plane(b.fitted, ch) + i);
-    const i8 accept = loadBytes(b.acceptMask.data() + i, n);
+    for (int ch = 0; ch < 3; ++ch) c[ch] = load8(pl.fitted[ch] + i);
+    const i8 accept = loadBytes(pl.accept + i, n);
     if (t.hasHistory && s.stages.secondAccumulation && anyLane(accept != 0)) {
-        const Footprint8 fp = footprint8(load8(b.plane(b.previousPixel, 0) + i),
-                                         load8(b.plane(b.previousPixel, 1) + i));
+        const Footprint8 fp =
+            footprint8(load8(pl.previousPixel[0] + i), load8(pl.previousPixel[1] + i));
         const Taps8 taps = taps8(fp, t.width, t.height, accept != 0);
         // Accepted taps are inside the image.
         const i8 use[4] = {(accept & 1) != 0, (accept & 2) != 0, (accept & 4) != 0,
@@ -36,19 +34,16 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, long i, int x, int n, bool
         const f8 total = weightedTaps<3>(
             taps, fp.weight, use,
             [&](int k, f8* v) {
-                for (int ch = 0; ch < 3; ++ch)
-                    v[ch] = tapPlane(taps, b.plane(b.accumulatedFitted[prev], ch), k);
+                for (int ch = 0; ch < 3; ++ch) v[ch] = tapPlane(taps, pl.prevAccumulated[ch], k);
             },
             old);
         const i8 some = total > 0.0f;
         const f8 safe = some ? total : splat8(1.0f);
-        const f8 blend =
-            secondBlendWeight8(load8(b.plane(b.noisy[cur], 3) + i), s.secondBlendAlpha);
+        const f8 blend = secondBlendWeight8(load8(pl.noisy[3] + i), s.secondBlendAlpha);
         for (int ch = 0; ch < 3; ++ch) c[ch] = some ? lerp8(old[ch] / safe, c[ch], blend) : c[ch];
     }
     if (owned)
-        for (int ch = 0; ch < 3; ++ch)
-            storeFirst(b.plane(b.accumulatedFitted[cur], ch) + i, c[ch], n);
+        for (int ch = 0; ch < 3; ++ch) storeFirst(pl.accumulated[ch] + i, c[ch], n);
     if (s.stages.demodulate || s.colorIsDemodulated) {
         f8 albedo[3];
         loadXyz8(a.in.albedo.data + 3 * i, n, albedo);
@@ -70,11 +65,12 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, long i, int x, int n, bool
 
 /// Phase III of image row y into a resolved row. The halo rows a neighbouring task owns are
 /// recomputed, not shared (owned = false).
-BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, long y, bool owned, float* row) {
+BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, const FramePlanes& pl, long y, bool owned,
+                                float* row) {
     const int w = a.t.width;
     const size_t pitch = ResolvedRows::pitch(w);
     for (int x = 0; x < w; x += 8)
-        phase3Group(a, y * w + x, x, std::min(8, w - x), owned, row, pitch);
+        phase3Group(a, pl, y * w + x, x, std::min(8, w - x), owned, row, pitch);
     finishResolvedRow(row, pitch, w);
 }
 
@@ -84,20 +80,19 @@ BMFR_SIMD_CLONES void resolveRows(const FrameArgs& a, long y0, long y1, float* r
     const int w = a.t.width, h = a.t.height;
     const size_t pitch = ResolvedRows::pitch(w);
     const bool taa = a.s.stages.taa && a.t.hasHistory;
-    const Buffers& b = a.b;
-    const float* history = b.output[1 - a.t.cur].data();
+    const FramePlanes pl(a.b, a.t.cur);
+    const float* history = a.b.output[1 - a.t.cur].data();
     float* out = a.b.output[a.t.cur].data();
     auto row = [&](long y) { return ring + size_t(y % 3) * ResolvedRows::rowFloats(w); };
-    if (taa && y0 > 0) phase3Row(a, y0 - 1, false, row(y0 - 1));
-    phase3Row(a, y0, true, row(y0));
+    if (taa && y0 > 0) phase3Row(a, pl, y0 - 1, false, row(y0 - 1));
+    phase3Row(a, pl, y0, true, row(y0));
     for (long y = y0; y < y1; ++y) {
-        if (y + 1 < h && (taa || y + 1 < y1)) phase3Row(a, y + 1, y + 1 < y1, row(y + 1));
+        if (y + 1 < h && (taa || y + 1 < y1)) phase3Row(a, pl, y + 1, y + 1 < y1, row(y + 1));
         const float* mid = row(y);
         const float* up = y > 0 ? row(y - 1) : mid;
         const float* down = y + 1 < h ? row(y + 1) : mid;
-        taaRow(up, mid, down, pitch, b.plane(b.previousPixel, 0) + y * w,
-               b.plane(b.previousPixel, 1) + y * w, history, out + 3 * y * w, w, h,
-               a.s.taaBlendAlpha, taa);
+        taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w, pl.previousPixel[1] + y * w,
+               history, out + 3 * y * w, w, h, a.s.taaBlendAlpha, taa);
     }
 }
 
