@@ -29,6 +29,7 @@ class FastPasses final : public BmfrPasses {
             sc.work.assign((M + 3) * size_t(qrColumnStride(int(W))), 0.0f);
             sc.soa.assign((9 + 16) * W, 0.0f);
             sc.imageIndex.assign(W, -1);
+            sc.ones.assign(size_t(s.blockSize) + 8, 1.0f);
             sc.rows.assign(3 * ResolvedRows::rowFloats(w), 0.0f);
         }
     }

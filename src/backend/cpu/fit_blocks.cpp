@@ -188,13 +188,13 @@ BMFR_SIMD_INLINE void sourceColumn(const float* from, long pitch, int B, bool sq
     square ? emit(std::true_type{}) : emit(std::false_type{});
 }
 
-/// Any other column: the constant, or a power other than 1 and 2, pixel by pixel.
+/// Any other column, a power other than 1 and 2, pixel by pixel.
 BMFR_SIMD_INLINE void otherColumn(const Feature& f, const float* from, long pitch, int B,
                                   const float* noise, float* clean, float* noised) {
     float mn = HUGE_VALF, mx = -HUGE_VALF;
     for (int ly = 0; ly < B; ++ly)
         for (int lx = 0; lx < B; ++lx) {
-            const float v = from ? applyExponent(from[ly * pitch + lx], f.exponent) : 1.0f;
+            const float v = applyExponent(from[ly * pitch + lx], f.exponent);
             clean[ly * B + lx] = v, mn = std::min(mn, v), mx = std::max(mx, v);
         }
     const ColumnScale cs(f.scaled, mn, mx);
@@ -219,18 +219,22 @@ BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch&
         float* clean = sc.clean.data() + long(f) * W;
         float* noised = sc.work.data() + long(f) * zs;
         const float* nz = noise + long(f) * W;
-        const float* from = nullptr;
-        long pitch = B;
-        if (feat.source == FeatureSource::Extra)
-            from = sc.soa.data() + (9 + long(feat.extraIndex)) * W;
-        else if (feat.source != FeatureSource::One)
-            from = r.source[int(feat.source) - int(FeatureSource::NormalX)], pitch = r.pitch;
-        if (!from || (feat.exponent != 1.0f && feat.exponent != 2.0f)) {
+        if (feat.source == FeatureSource::One) {
+            // A row of ones read for every block row (pitch 0).
+            sourceColumn(sc.ones.data(), 0, B, false, feat.scaled, {1.0f, 1.0f, 1.0f}, nz, clean,
+                         noised);
+            continue;
+        }
+        const bool extra = feat.source == FeatureSource::Extra;
+        const float* from = extra ? sc.soa.data() + (9 + long(feat.extraIndex)) * W
+                                  : r.source[int(feat.source) - int(FeatureSource::NormalX)];
+        const long pitch = extra ? B : r.pitch;
+        if (feat.exponent != 1.0f && feat.exponent != 2.0f) {
             otherColumn(feat, from, pitch, B, nz, clean, noised);
             continue;
         }
         SourceRange range;
-        if (feat.source == FeatureSource::Extra) {
+        if (extra) {
             range = sourceRange(from, pitch, B);
         } else {
             const int src = int(feat.source) - int(FeatureSource::NormalX);
