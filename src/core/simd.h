@@ -137,13 +137,19 @@ BMFR_SIMD_INLINE void storeBytes(uint8_t* p, i8 v, int n) {
     typedef uint8_t u8x32 __attribute__((vector_size(32)));
     const u8x32 low =
         __builtin_shuffle(reinterpret_cast<const u8x32&>(v), u8x32{0, 4, 8, 12, 16, 20, 24, 28});
-    std::memcpy(p, &low, n == 8 ? 8 : size_t(n));
+    if (n == 8) // the common case as one fixed-size store, not a variable-length copy
+        std::memcpy(p, &low, 8);
+    else
+        std::memcpy(p, &low, size_t(n));
 }
 /// n (1 to 8) bytes as the first n lanes; lanes n to 7 read as 0.
 BMFR_SIMD_INLINE i8 loadBytes(const uint8_t* p, int n) {
     typedef uint32_t u8 __attribute__((vector_size(32)));
     uint32_t w[2] = {};
-    std::memcpy(w, p, n == 8 ? 8 : size_t(n));
+    if (n == 8) // the common case as one fixed-size load, not a variable-length copy
+        std::memcpy(w, p, 8);
+    else
+        std::memcpy(w, p, size_t(n));
     const u8 r =
         u8{w[0], w[0], w[0], w[0], w[1], w[1], w[1], w[1]} >> u8{0, 8, 16, 24, 0, 8, 16, 24};
     return i8(r & 255u);
