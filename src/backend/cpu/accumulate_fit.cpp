@@ -12,6 +12,7 @@ using Clock = std::chrono::steady_clock;
 /// Image rows [first, last) that block row `by` owns.
 struct RowSpan {
     int first, last;
+    bool empty() const { return first >= last; }
 };
 RowSpan ownedRows(const BlockGrid& g, int by) {
     const int oy = g.originY(by);
@@ -25,7 +26,7 @@ void markEarlyRows(const BlockGrid& g, std::vector<uint8_t>& early) {
     std::fill(early.begin(), early.end(), uint8_t{0});
     for (int by = 0; by < g.blocksY; ++by) {
         const RowSpan own = ownedRows(g, by);
-        if (own.first >= own.last) continue;
+        if (own.empty()) continue;
         const int oy = g.originY(by);
         for (int uy = oy; uy < oy + g.blockSize; ++uy) {
             const int y = mirrorIndex(uy, g.height);
@@ -58,12 +59,12 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
     const BlockGrid g = makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex);
     const bool fitting = ctx.settings.stages.fitting;
     const auto start = Clock::now();
-    std::atomic<int64_t> nonFinite{0}, discarded{0}, firstNs{0}, secondNs{0};
-    auto tally = [&](const InputCounters& c, Clock::time_point t0, Clock::time_point t1,
-                     Clock::time_point t2) {
+    std::atomic<int64_t> nonFinite{0}, discarded{0}, accumulateNs{0}, fitNs{0};
+    auto ns = [](Clock::time_point t0, Clock::time_point t1) {
+        return std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
+    };
+    auto count = [&](const InputCounters& c) {
         nonFinite += c.nonFinite, discarded += c.discarded;
-        firstNs += std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
-        secondNs += std::chrono::duration_cast<std::chrono::nanoseconds>(t2 - t1).count();
     };
 
     if (fitting) {
@@ -72,7 +73,8 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
             InputCounters c;
             const auto t0 = Clock::now();
             accumulateRuns(a, b.earlyRow, true, int(y0), int(y1), c);
-            tally(c, t0, Clock::now(), Clock::now());
+            accumulateNs += ns(t0, Clock::now());
+            count(c);
         });
     } else {
         std::fill(b.earlyRow.begin(), b.earlyRow.end(), uint8_t{0});
@@ -81,7 +83,7 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
         Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
         for (long by = by0; by < by1; ++by) {
             const RowSpan own = ownedRows(g, int(by));
-            if (own.first >= own.last) continue;
+            if (own.empty()) continue;
             InputCounters c;
             const auto t0 = Clock::now();
             accumulateRuns(a, b.earlyRow, false, own.first, own.last, c);
@@ -90,19 +92,20 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
                 fitBlockRow(ctx, b, g, int(by), sc);
             } else {
                 const size_t from = size_t(own.first) * size_t(t.width);
-                const size_t count = size_t(own.last - own.first) * size_t(t.width);
+                const size_t pixels = size_t(own.last - own.first) * size_t(t.width);
                 for (int ch = 0; ch < 3; ++ch)
-                    std::copy_n(b.plane(b.noisy[t.cur], ch) + from, count,
+                    std::copy_n(b.plane(b.noisy[t.cur], ch) + from, pixels,
                                 b.plane(b.fitted, ch) + from);
             }
-            tally(c, t0, t1, Clock::now());
+            accumulateNs += ns(t0, t1), fitNs += ns(t1, Clock::now());
+            count(c);
         }
     });
 
     const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    const double first = double(firstNs.load()), second = double(secondNs.load());
-    const double share = first + second > 0.0 ? first / (first + second) : 1.0;
-    split.firstMs = wall * share, split.secondMs = wall - split.firstMs;
+    const double acc = double(accumulateNs.load()), fit = double(fitNs.load());
+    split.accumulateMs = acc + fit > 0.0 ? wall * acc / (acc + fit) : wall;
+    split.fitMs = wall - split.accumulateMs;
     return {nonFinite.load(), discarded.load()};
 }
 

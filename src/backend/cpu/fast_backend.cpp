@@ -46,8 +46,8 @@ class FastPasses final : public BmfrPasses {
         auto t1 = Clock::now();
         resolve(ctx, b_);
         auto t2 = Clock::now();
-        times.add("accumulate", split.firstMs);
-        times.add("fit", split.secondMs);
+        times.add("accumulate", split.accumulateMs);
+        times.add("fit", split.fitMs);
         times.add("resolve", ms(t1, t2));
         return counters;
     }

@@ -1,6 +1,6 @@
-// The fast CPU implementation of BMFR's passes. Buffers are laid out for 16- and 32-byte loads
-// (one load per pixel record), the fitter streams one block at a time through per-thread
-// scratch, and phase III runs fused with TAA row by row.
+// The fast CPU implementation of BMFR's passes. Per-pixel buffers are planes (eight pixels per
+// load), phase I and the fit run one row of blocks at a time, and phase III runs fused with TAA
+// row by row.
 #pragma once
 #include "core/image.h"
 #include "filters/bmfr/block_grid.h"
@@ -86,10 +86,10 @@ struct FrameArgs {
     Buffers& b;
 };
 
-/// Wall time of a pass that interleaves two stages, split between them in proportion to the
-/// time the workers spent in each.
+/// Wall time of the pass that interleaves phase I and the fit, split between them in
+/// proportion to the time the workers spent in each.
 struct StageSplit {
-    double firstMs = 0.0, secondMs = 0.0;
+    double accumulateMs = 0.0, fitMs = 0.0;
 };
 
 /// Phase I and phase II, block row by block row: each task runs phase I over the image rows a

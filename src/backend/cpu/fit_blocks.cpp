@@ -15,6 +15,18 @@ struct Phase2 {
     const BmfrPassContext& ctx;
     Buffers& b;
     BlockGrid grid;
+    /// The fitter's sources: normal xyz, position xyz, phase I colour.
+    const float* planes[9];
+
+    Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g)
+        : ctx(c), b(buffers), grid(g) {
+        const int cur = c.timeline.cur;
+        for (int ch = 0; ch < 3; ++ch) {
+            planes[ch] = b.plane(b.surface[cur], 3 + ch);
+            planes[3 + ch] = b.plane(b.surface[cur], ch);
+            planes[6 + ch] = b.plane(b.noisy[cur], ch);
+        }
+    }
 };
 
 /// Where each source's block rows start and how far apart they are (floats). Inside the image
@@ -57,12 +69,7 @@ BMFR_SIMD_INLINE void copyRun(float* dst, const float* src, int n) {
 BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B;
-    const Buffers& b = a.b;
-    const int cur = a.ctx.timeline.cur;
-    const float* plane[9] = {
-        b.plane(b.surface[cur], 3), b.plane(b.surface[cur], 4), b.plane(b.surface[cur], 5),
-        b.plane(b.surface[cur], 0), b.plane(b.surface[cur], 1), b.plane(b.surface[cur], 2),
-        b.plane(b.noisy[cur], 0),   b.plane(b.noisy[cur], 1),   b.plane(b.noisy[cur], 2)};
+    const float* const* plane = a.planes;
     BlockRows r;
     r.inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     gatherExtras(a, ox, oy, r.inside, sc);
@@ -108,14 +115,9 @@ BMFR_SIMD_INLINE void prefetchBlock(const Phase2& a, int bx, int by) {
     const int B = g.blockSize, ox = std::max(0, g.originX(bx)), oy = std::max(0, g.originY(by));
     const int x1 = std::min(g.width, g.originX(bx) + B), y1 = std::min(g.height, g.originY(by) + B);
     if (ox >= x1 || oy >= y1) return;
-    const Buffers& b = a.b;
-    const int cur = a.ctx.timeline.cur;
-    const float* planes[9];
-    for (int c = 0; c < 6; ++c) planes[c] = b.plane(b.surface[cur], c);
-    for (int c = 0; c < 3; ++c) planes[6 + c] = b.plane(b.noisy[cur], c);
     const bool narrow = x1 - ox <= 32; // three lines cover a run of up to 32 floats
     for (int y = oy; y < y1; ++y)
-        for (const float* p : planes) {
+        for (const float* p : a.planes) {
             const float* row = p + long(y) * g.width;
             if (narrow) {
                 __builtin_prefetch(row + ox), __builtin_prefetch(row + ox + 16);
