@@ -1,6 +1,6 @@
 // Temporal weights on a static sequence: exact cumulative average first, then EMA.
 #include "test_scenes.h"
-#include <bmfr/denoiser.h>
+#include <bmfr/bmfr.h>
 #include <cmath>
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@ TEST(Accumulation, CumulativeAverageThenExponentialInBothPhases) {
     const int w = 40, h = 36;
     const Mat4 cam = test::cameraAt({0, 1, 3}, w, h);
     Settings s;
-    s.stages.taa = false;
+    s.taa = false;
     s.threads = 2;
     Denoiser d(s);
     d.setDebugOutputs(true);

@@ -1,7 +1,7 @@
 // After the first frame, denoising allocates nothing (all buffers are reused).
 #include "synth/procedural_scene.h"
 #include <atomic>
-#include <bmfr/denoiser.h>
+#include <bmfr/bmfr.h>
 #include <cstdlib>
 #include <gtest/gtest.h>
 #include <new>

@@ -180,7 +180,7 @@ TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
     Result r = run("denoise " + in.string() + " -o " + out.string() +
                    " --filter svgf --sample-fraction 0.5 --no-png");
     ASSERT_EQ(r.code, 0) << r.output;
-    EXPECT_NE(r.output.find("bmfr denoise (svgf)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("bmfr denoise (svgf, cpu backend)"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("atrous"), std::string::npos) << r.output;
     EXPECT_TRUE(fs::exists(out / "denoised_0002.exr"));
     Result bad = run("denoise " + in.string() + " -o " + out.string() + " --filter nlm");

@@ -3,7 +3,7 @@
 #include "core/image.h"
 #include "metrics/basic_metrics.h"
 #include "synth/procedural_scene.h"
-#include <bmfr/denoiser.h>
+#include <bmfr/bmfr.h>
 #include <bmfr/error.h>
 #include <cmath>
 #include <cstring>
@@ -144,8 +144,11 @@ TEST(EndToEnd, BadInputIsRejectedWithAReason) {
     in.color.width = in.color.height = 0;
     expectError(in, "zero size");
     in = f.input();
-    in.position.channels = 4;
+    in.position.channels = 2;
     expectError(in, "channels");
+    in = f.input();
+    in.albedo.rowStride = 3 * 32 - 1;
+    expectError(in, "row stride");
     in = f.input();
     in.viewProjection.m[1][2] = NAN;
     expectError(in, "matrix");
@@ -161,6 +164,26 @@ TEST(EndToEnd, BadInputIsRejectedWithAReason) {
     bad.blockSize = 5;
     EXPECT_THROW(Denoiser{bad}, Error);
     EXPECT_THROW(parseFeatures("1,q.x"), Error);
+}
+
+TEST(EndToEnd, OutputIsWrittenIntoACallersRgbaView) {
+    FrameData f = renderFrame(20, 10);
+    for (const std::string& name : filterNames()) {
+        auto filter = makeFilter(name);
+        const long stride = 20 * 4 + 3;
+        std::vector<float> rgba(size_t(stride) * 10, -1.0f);
+        const MutableImageView out{rgba.data(), 20, 10, 4, stride};
+        const ImageView packed = filter->denoise(f.input(), out);
+        for (int y = 0; y < 10; ++y)
+            for (int x = 0; x < 20; ++x) {
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ(rgba[size_t(y * stride + 4 * x + c)], packed.data[(y * 20 + x) * 3 + c])
+                        << name;
+                ASSERT_EQ(rgba[size_t(y * stride + 4 * x + 3)], -1.0f) << name << ": alpha kept";
+            }
+        EXPECT_THROW(filter->denoise(f.input(), MutableImageView{rgba.data(), 19, 10, 4, stride}),
+                     Error);
+    }
 }
 
 TEST(EndToEnd, ExtraFeatureBuffersAreUsed) {

@@ -1,8 +1,8 @@
 // The fitting core, reference and fast, against an independent double-precision
 // least-squares solve (Eigen), and the two against each other.
-#include "backend/cpu/fast_passes.h"
+#include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "core/hash.h"
-#include "filters/bmfr/householder_fit.h"
+#include "filters/bmfr/householder_qr.h"
 #include <Eigen/Dense>
 #include <cmath>
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // The path tracer against analytic answers: white furnace, Lambertian plane under a distant
 // light, unbiasedness of the 1-spp estimator, and feature buffers of a known camera and plane.
-#include "core/reprojection.h"
+#include "temporal/reprojection.h"
 #include "render/frame_renderer.h"
 #include <cmath>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Reprojection against hand-computed pinhole projection; disocclusion rejection.
-#include "core/reprojection.h"
+#include "temporal/reprojection.h"
 #include "test_scenes.h"
-#include <bmfr/denoiser.h>
+#include <bmfr/bmfr.h>
 #include <cmath>
 #include <gtest/gtest.h>
 

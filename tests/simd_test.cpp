@@ -1,5 +1,5 @@
 // The eight-wide helpers of the fast passes against plain index arithmetic.
-#include "core/simd.h"
+#include "backend/cpu/simd.h"
 #include <gtest/gtest.h>
 
 using namespace bmfr::simd;

@@ -1,6 +1,7 @@
 // SVGF: the a-trous filter keeps constants and edges, the variance estimate converges, and the
 // whole filter denoises, also with fewer than 1 spp.
-#include "backend/cpu/svgf_passes.h"
+#include "core/image.h"
+#include "filters/svgf/svgf_kernels.h"
 #include "core/hash.h"
 #include "metrics/basic_metrics.h"
 #include "synth/procedural_scene.h"
@@ -24,10 +25,13 @@ struct Planes {
 };
 
 ImageF runAtrous(const Planes& p, const SvgfSettings& s, int levels) {
-    ThreadPool pool(2);
     ImageF a = p.colorVar, b(p.colorVar.width, p.colorVar.height, 4);
+    const int w = a.width, h = a.height;
     for (int k = 0; k < levels; ++k) {
-        cpu::svgfAtrous(pool, s, a, b, p.normal, p.depth, p.gradient, p.length, 1 << k);
+        const AtrousLevel level{a.data(), b.data(), p.normal.data(), p.depth.data(),
+                                p.gradient.data(), p.length.data(), w, h, 1 << k};
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) svgfAtrousPixel(level, s, x, y);
         std::swap(a, b);
     }
     return a;
@@ -151,9 +155,15 @@ TEST(Svgf, SettingsAndFactoryErrors) {
     SvgfSettings bad;
     bad.kernelRadius = 3;
     EXPECT_THROW(SvgfDenoiser{bad}, Error);
-    EXPECT_THROW(makeFilter("nlm", Settings{}, SvgfSettings{}), Error);
-    EXPECT_STREQ(makeFilter("svgf", Settings{}, SvgfSettings{})->name(), "svgf");
-    EXPECT_STREQ(makeFilter("bmfr", Settings{}, SvgfSettings{})->name(), "bmfr");
+    EXPECT_THROW(makeFilter("nlm"), Error);
+    EXPECT_STREQ(makeFilter("svgf")->name(), "svgf");
+    EXPECT_STREQ(makeFilter("bmfr")->name(), "bmfr");
+    // Settings by key, range-checked by the filter's table; a key of another filter is an error.
+    EXPECT_NO_THROW(makeFilter("svgf", {{"iterations", "3"}, {"backend", "reference"}}));
+    EXPECT_THROW(makeFilter("svgf", {{"iterations", "9"}}), Error);
+    EXPECT_THROW(makeFilter("svgf", {{"blockSize", "16"}}), Error);
+    EXPECT_THROW(makeFilter("bmfr", {{"blockSize", "sixteen"}}), Error);
+    EXPECT_THROW(makeFilter("bmfr", {{"backend", "cuda"}}), Error);
 }
 
 } // namespace

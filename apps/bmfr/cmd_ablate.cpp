@@ -1,5 +1,6 @@
 #include "commands.h"
 #include "eval/ablation.h"
+#include "filters/bmfr/bmfr_settings_table.h"
 #include "io/sequence.h"
 #include <fmt/core.h>
 #include <fstream>
@@ -11,7 +12,7 @@ void addAblateCommand(CLI::App& app, int& exitCode) {
     struct Job {
         std::string input, output, frames;
         bool quiet = false;
-        SettingsOptions options;
+        FilterOptions options;
     };
     auto job = std::make_shared<Job>();
     CLI::App* cmd = app.add_subcommand(
@@ -21,12 +22,17 @@ void addAblateCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("-o,--output", job->output, "output folder")->required();
     cmd->add_option("--frames", job->frames, "frame range A:B (A..B-1)");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
-    job->options.addTo(*cmd);
+    job->options.addTo(*cmd, {"bmfr"});
     cmd->callback([job, &exitCode] {
         auto reader = SequenceReader::open(job->input);
         const SequenceInfo& info = reader->info();
-        Settings base = job->options.resolve(info.positionLimitSquared, info.normalLimitSquared,
-                                             info.colorIsDemodulated);
+        BmfrSettings base;
+        applySettings(bmfrSettingsTable(), base,
+                      job->options.resolve("bmfr", {info.positionLimitSquared,
+                                                    info.normalLimitSquared,
+                                                    info.colorIsDemodulated}),
+                      "bmfr");
+        validate(base);
         int n = 0;
         runAblation(job->input, job->output, job->frames, base, [&](const std::string& name) {
             if (!job->quiet)

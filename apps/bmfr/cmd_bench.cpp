@@ -3,9 +3,7 @@
 #include "stream_floor.h"
 #include "synth/procedural_scene.h"
 #include <algorithm>
-#include <bmfr/denoiser.h>
-#include <bmfr/error.h>
-#include <bmfr/svgf.h>
+#include <bmfr/bmfr.h>
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -17,8 +15,8 @@ namespace {
 struct BenchJob {
     std::vector<std::string> sizes{"1280x720", "1920x1080", "3840x2160"};
     int warmup = 5, frames = 30, threads = 0;
-    bool json = false, reference = true;
-    std::string filter = "bmfr";
+    bool json = false, baseline = true;
+    std::string filter = "bmfr", backend = "cpu", baselineBackend = "reference";
 };
 
 /// Distinct input frames cycled through: up to 8, fewer for large images (memory).
@@ -34,21 +32,16 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h) {
     ProceduralScene scene(so);
     std::vector<FrameData> frames(static_cast<size_t>(distinct));
     for (int i = 0; i < distinct; ++i) scene.render(i, frames[size_t(i)]);
-    Settings s;
-    s.threads = job.threads;
-    SvgfSettings sv;
-    sv.threads = job.threads;
-    std::unique_ptr<Filter> d = makeFilter(job.filter, s, sv);
-    // The reference passes run on the same frames, interleaved frame by frame with the fast
-    // ones, so both see the same machine load.
+    const std::string threads = std::to_string(job.threads);
+    std::unique_ptr<Filter> d =
+        makeFilter(job.filter, {{"threads", threads}, {"backend", job.backend}});
+    // The baseline backend runs on the same frames, interleaved frame by frame with the
+    // measured one, so both see the same machine load.
     std::unique_ptr<Filter> ref;
-    if (job.reference && job.filter == "bmfr") {
-        Settings rs = s;
-        rs.implementation = Implementation::Reference;
-        ref = makeFilter("bmfr", rs, sv);
-    }
+    if (job.baseline)
+        ref = makeFilter(job.filter, {{"threads", threads}, {"backend", job.baselineBackend}});
     // The memory baselines, measured in this run on buffers freed before the passes start.
-    const bool floors = job.filter == "bmfr";
+    const bool floors = job.filter == "bmfr" && job.backend == "cpu";
     const double floor = floors ? streamFloorMs(w, h, job.threads, 5, fastPassTraffic()) : 0.0;
     const double single = floors ? streamFloorMs(w, h, job.threads, 5, singlePassTraffic()) : 0.0;
     StageLog log, refLog;
@@ -68,10 +61,11 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h) {
         {"total_ms", log.totalMedian()}, {"stages", log.medians()}, {"line", log.line()}};
     if (floors) r["stream_floor_ms"] = floor, r["single_pass_floor_ms"] = single;
     if (ref) {
-        r["reference_total_ms"] = refLog.totalMedian();
-        r["reference_stages"] = refLog.medians();
+        r["baseline_backend"] = job.baselineBackend;
+        r["baseline_total_ms"] = refLog.totalMedian();
+        r["baseline_stages"] = refLog.medians();
         r["speedup"] = refLog.totalMedian() / log.totalMedian();
-        r["reference_line"] = refLog.line();
+        r["baseline_line"] = refLog.line();
     }
     return r;
 }
@@ -89,9 +83,14 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--frames", job->frames, "timed frames")->default_val(30);
     cmd->add_option("--threads", job->threads, "worker threads, 0 = all cores")->default_val(0);
     cmd->add_flag("--json", job->json, "print one JSON object");
-    cmd->add_flag("!--no-reference", job->reference,
-                  "skip the reference passes (BMFR's speed-up baseline)");
-    cmd->add_option("--filter", job->filter, "bmfr or svgf")->default_val("bmfr");
+    cmd->add_flag("!--no-baseline", job->baseline,
+                  "skip the baseline backend run interleaved with the measured one");
+    cmd->add_option("--baseline-backend", job->baselineBackend,
+                    "the backend the speed-up is measured against")
+        ->default_val("reference");
+    cmd->add_option("--backend", job->backend, "the backend measured: reference, cpu or cuda")
+        ->default_val("cpu");
+    cmd->add_option("--filter", job->filter, "the filter measured")->default_val("bmfr");
     cmd->callback([job, &exitCode] {
         nlohmann::json all;
         for (const std::string& size : job->sizes) {
@@ -102,14 +101,15 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 throw Error("--sizes: '" + size + "' is not WxH");
             nlohmann::json r = benchOne(*job, w, h);
             if (!job->json) {
-                fmt::print("{:>10} {}: {} ms   (median of {} frames)\n", size, job->filter,
-                           r["line"].get<std::string>(), job->frames);
-                if (r.contains("reference_line"))
-                    fmt::print("{:>10} reference: {} ms   -> fast is {:.1f}x faster\n", "",
-                               r["reference_line"].get<std::string>(), r["speedup"].get<double>());
+                fmt::print("{:>10} {} on {}: {} ms   (median of {} frames)\n", size, job->filter,
+                           job->backend, r["line"].get<std::string>(), job->frames);
+                if (r.contains("baseline_line"))
+                    fmt::print("{:>10} {} backend: {} ms   -> {} is {:.1f}x faster\n", "",
+                               job->baselineBackend, r["baseline_line"].get<std::string>(),
+                               job->backend, r["speedup"].get<double>());
                 if (r.contains("stream_floor_ms"))
                     fmt::print("{:>10} memory floor: streaming the same bytes takes {:.2f} ms -> "
-                               "fast is {:.1f}x that\n",
+                               "measured is {:.1f}x that\n",
                                "", r["stream_floor_ms"].get<double>(),
                                r["total_ms"].get<double>() / r["stream_floor_ms"].get<double>());
                 if (r.contains("single_pass_floor_ms"))
@@ -119,7 +119,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 std::fflush(stdout);
             }
             r.erase("line");
-            r.erase("reference_line");
+            r.erase("baseline_line");
             all[size] = r;
         }
         if (job->json) fmt::print("{}\n", all.dump());

@@ -10,12 +10,11 @@
 #include "progress.h"
 #include "stage_log.h"
 #include <algorithm>
-#include <bmfr/denoiser.h>
-#include <bmfr/error.h>
-#include <bmfr/svgf.h>
+#include <bmfr/bmfr.h>
 #include <chrono>
 #include <filesystem>
 #include <fmt/core.h>
+#include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -23,62 +22,6 @@
 namespace bmfr::app {
 
 namespace fs = std::filesystem;
-
-void SettingsOptions::addTo(CLI::App& cmd) {
-    Settings& s = settings;
-    cmd.add_option("--block-size", s.blockSize, "regression block edge, pixels [8, 64]")
-        ->default_val(32);
-    cmd.add_option("--features", features,
-                   "feature list, e.g. 1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,p.y^2,p.z^2,extra0");
-    cmd.add_option("--noise", s.noiseAmplitude, "regularisation noise half-width [0, 1]")
-        ->default_val(0.01);
-    cmd.add_option("--alpha1", s.firstBlendAlpha, "phase I minimum new-frame weight (0, 1]")
-        ->default_val(0.2);
-    cmd.add_option("--alpha2", s.secondBlendAlpha, "phase III minimum new-frame weight (0, 1]")
-        ->default_val(0.1);
-    cmd.add_option("--taa-alpha", s.taaBlendAlpha, "TAA new-frame weight (0, 1]")->default_val(0.2);
-    cmd.add_option("--position-limit", positionLimitSquared,
-                   "discard when squared world distance >= this (scene units^2); default: the "
-                   "sequence's value, else 0.01");
-    cmd.add_option("--normal-limit", normalLimitSquared,
-                   "discard when squared normal distance >= this (0, 4]; default: the "
-                   "sequence's value, else 1.0");
-    cmd.add_option("--seed", s.seed, "regularisation noise seed")->default_val(0);
-    cmd.add_option("--threads", s.threads, "worker threads, 0 = all cores")->default_val(0);
-    cmd.add_flag_function(
-        "--reference", [&s](int64_t) { s.implementation = Implementation::Reference; },
-        "run the straightforward reference passes instead of the fast ones (same output within "
-        "rounding, about 2x slower)");
-    cmd.add_option("--disable", disabled,
-                   "stages to switch off: demodulate, accumulation, fitting, "
-                   "second-accumulation, taa")
-        ->delimiter(',');
-}
-
-Settings SettingsOptions::resolve(std::optional<float> seqPos, std::optional<float> seqNormal,
-                                  bool colorIsDemodulated) const {
-    Settings s = settings;
-    if (!features.empty()) s.features = parseFeatures(features);
-    s.positionLimitSquared = positionLimitSquared.value_or(seqPos.value_or(0.01f));
-    s.normalLimitSquared = normalLimitSquared.value_or(seqNormal.value_or(1.0f));
-    s.colorIsDemodulated = colorIsDemodulated;
-    for (const std::string& d : disabled) {
-        if (d == "demodulate")
-            s.stages.demodulate = false;
-        else if (d == "accumulation")
-            s.stages.firstAccumulation = false;
-        else if (d == "fitting")
-            s.stages.fitting = false;
-        else if (d == "second-accumulation")
-            s.stages.secondAccumulation = false;
-        else if (d == "taa")
-            s.stages.taa = false;
-        else
-            throw Error("--disable: unknown stage '" + d + "'");
-    }
-    validate(s);
-    return s;
-}
 
 namespace {
 
@@ -93,26 +36,28 @@ ImageF copyOf(const ImageView& v) {
 int runDenoise(const DenoiseJob& job) {
     auto reader = SequenceReader::open(job.input);
     const SequenceInfo& info = reader->info();
-    Settings settings = job.options.resolve(info.positionLimitSquared, info.normalLimitSquared,
-                                            info.colorIsDemodulated);
-    for (const Feature& f : settings.features)
-        if (f.source == FeatureSource::Extra && f.extraIndex >= int(info.extraNames.size()))
-            throw Error(fmt::format("feature extra{} requested, {} has {} extra buffers",
-                                    f.extraIndex, job.input, info.extraNames.size()));
+    const SettingValues values = job.options.resolve(
+        job.filter, {info.positionLimitSquared, info.normalLimitSquared, info.colorIsDemodulated});
+    std::unique_ptr<Filter> filter = makeFilter(job.filter, values);
+    auto* bmfrFilter = dynamic_cast<BmfrDenoiser*>(filter.get());
+    if (bmfrFilter)
+        for (const Feature& f : bmfrFilter->settings().features)
+            if (f.source == FeatureSource::Extra && f.extraIndex >= int(info.extraNames.size()))
+                throw Error(fmt::format("feature extra{} requested, {} has {} extra buffers",
+                                        f.extraIndex, job.input, info.extraNames.size()));
+    const std::string features =
+        bmfrFilter ? formatFeatures(bmfrFilter->settings().features) : std::string();
+    const int threads = std::stoi(settingValue(values, "threads", "0"));
     auto [first, last] = parseFrameRange(job.frames, info.frameCount);
     fs::create_directories(job.output);
     if (job.debug) fs::create_directories(fs::path(job.output) / "debug");
 
-    SvgfSettings svgf = job.svgf;
-    static_cast<TemporalSettings&>(svgf) = settings; // one set of shared options for both
-    svgf.taa = settings.stages.taa;
-    std::unique_ptr<Filter> filter = makeFilter(job.filter, settings, svgf);
-    auto* bmfrFilter = dynamic_cast<Denoiser*>(filter.get());
-    if (bmfrFilter) bmfrFilter->setDebugOutputs(job.debug);
+    filter->setDebugOutputs(job.debug);
     if (!job.quiet)
-        fmt::print("bmfr denoise ({}): {} ({} layout, {}x{}, frames {}:{}){}\n", job.filter,
-                   job.input, info.layout, info.width, info.height, first, last,
-                   bmfrFilter ? ", features " + formatFeatures(settings.features) : std::string());
+        fmt::print("bmfr denoise ({}, {} backend): {} ({} layout, {}x{}, frames {}:{}){}\n",
+                   job.filter, settingValue(values, "backend", "cpu"), job.input, info.layout,
+                   info.width, info.height, first, last,
+                   bmfrFilter ? ", features " + features : std::string());
 
     Progress progress("denoise", last - first, job.quiet);
     if (!(job.sampleFraction > 0.0f && job.sampleFraction <= 1.0f))
@@ -156,8 +101,8 @@ int runDenoise(const DenoiseJob& job) {
         if (job.png)
             writePngToneMapped((fs::path(job.output) / ("denoised_" + stem + ".png")).string(),
                                out);
-        if (job.debug && bmfrFilter) {
-            DebugBuffers d = bmfrFilter->debug();
+        if (job.debug) {
+            DebugBuffers d = filter->debug();
             const fs::path dd = fs::path(job.output) / "debug";
             writeExr((dd / ("accumulated_" + stem + ".exr")).string(), copyOf(d.accumulatedNoisy));
             writeExr((dd / ("fitted_" + stem + ".exr")).string(), copyOf(d.fitted));
@@ -202,8 +147,10 @@ int runDenoise(const DenoiseJob& job) {
     report["input"] = job.input;
     report["frames"] = last - first;
     report["resolution"] = {info.width, info.height};
-    report["features"] = formatFeatures(settings.features);
+    if (bmfrFilter) report["features"] = features;
     report["filter"] = job.filter;
+    report["backend"] = settingValue(values, "backend", "cpu");
+    for (const auto& [key, value] : values) report["settings"][key] = value;
     report["median_ms"] = stages.medians();
     report["median_ms"]["total"] = stages.totalMedian();
     if (info.hasReference) {
@@ -244,7 +191,7 @@ int runDenoise(const DenoiseJob& job) {
             "  {:<10} {:>8.4f} {:>8.2f} {:>7.4f} {:>7} {:>8.4f} {:>13.4f}\n"
             "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13.4f}\n",
             "", "RMSE", "PSNR dB", "SSIM", "FLIP", "relMSE", "temporal err", "noisy", nm.rmse, "",
-            "", "", "", nm.temporal, "bmfr", m.rmse, m.psnr, m.ssim,
+            "", "", "", nm.temporal, job.filter, m.rmse, m.psnr, m.ssim,
             std::isfinite(m.flip) ? fmt::format("{:.4f}", m.flip) : "-", m.relmse, m.temporal,
             "reference", "", "", "", "", "", refTemporal);
     }
@@ -253,7 +200,7 @@ int runDenoise(const DenoiseJob& job) {
     if (!job.quiet) {
         fmt::print("\n{} frames, {}x{}, {} threads. Median ms per frame:\n", last - first,
                    info.width, info.height,
-                   settings.threads ? settings.threads : int(std::thread::hardware_concurrency()));
+                   threads ? threads : int(std::thread::hardware_concurrency()));
         fmt::print("  {}   (read {:.1f}, write {:.1f})\n", stages.line(), median(tRead),
                    median(tWrite));
         fmt::print("{}", summary);
@@ -275,21 +222,12 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
                   "also write accumulated colour, fitted frame, history length, discard mask");
     cmd->add_flag("!--no-png", job->png, "skip the tone-mapped PNGs");
     cmd->add_flag("!--no-flip", job->flip, "skip FLIP when scoring (the slowest metric)");
-    cmd->add_option("--filter", job->filter, "bmfr or svgf")->default_val("bmfr");
-    cmd->add_option("--svgf-kernel-radius", job->svgf.kernelRadius,
-                    "SVGF: 2 = 5x5 (Schied), 1 = 3x3 (progressive)")
-        ->default_val(2);
-    cmd->add_flag("--svgf-reverse-levels", job->svgf.reverseLevels,
-                  "SVGF: coarse-to-fine levels (progressive)");
-    cmd->add_option("--svgf-iterations", job->svgf.iterations, "SVGF: a-trous levels [1, 8]")
-        ->default_val(5);
-    cmd->add_option("--svgf-spatial-variance-frames", job->svgf.spatialVarianceFrames,
-                    "SVGF: 7x7 variance estimate below this history length; 0 = off")
-        ->default_val(4);
+    cmd->add_option("--filter", job->filter, "the filter: " + fmt::format("{}", fmt::join(filterNames(), ", ")))
+        ->default_val("bmfr");
     cmd->add_option("--sample-fraction", job->sampleFraction,
                     "simulate fewer than 1 spp: keep this fraction of pixels per frame (0, 1]")
         ->default_val(1.0);
-    job->options.addTo(*cmd);
+    job->options.addTo(*cmd, filterNames());
     cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });
 }
 

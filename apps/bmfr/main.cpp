@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     bmfr::app::addBenchCommand(app, exitCode);
     bmfr::app::addSynthCommand(app, exitCode);
     bmfr::app::addTonemapCommand(app, exitCode);
+    bmfr::app::addSettingsCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

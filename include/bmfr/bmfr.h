@@ -1,9 +1,10 @@
-// bmfr: real-time reconstruction of 1-spp path-traced frame sequences (BMFR, Koskela et al. 2019).
+// bmfr: real-time reconstruction of 1-spp path-traced frame sequences. One header for the whole
+// public API: frames, the filter interface and registry, and every filter.
 #pragma once
-#include <bmfr/denoiser.h>
 #include <bmfr/error.h>
 #include <bmfr/features.h>
 #include <bmfr/filter.h>
+#include <bmfr/filters/bmfr.h>
+#include <bmfr/filters/svgf.h>
 #include <bmfr/frame.h>
-#include <bmfr/settings.h>
-#include <bmfr/svgf.h>
+#include <bmfr/temporal_settings.h>

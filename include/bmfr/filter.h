@@ -1,29 +1,58 @@
-// The interface every reconstruction filter offers (BMFR, SVGF): same inputs, same output.
+// The interface every reconstruction filter offers (BMFR, SVGF, ...): the same inputs, the same
+// output, the same debug views; and the registry that makes a filter from its name.
 #pragma once
 #include <bmfr/frame.h>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace bmfr {
+
+/// What a filter saw and decided in the last frame, filled when requested
+/// (Filter::setDebugOutputs). Views stay valid until the next denoise call.
+struct DebugBuffers {
+    ImageView accumulatedNoisy; ///< temporally accumulated demodulated colour, 3 channels
+    ImageView fitted;           ///< the spatial filter's output before the last temporal step
+    ImageView historyLength;    ///< samples in the colour history (0..255), 1 channel
+    ImageView discardMask;      ///< accepted bilinear taps (bit i = tap i), as 0..15, 1 channel
+};
 
 /// A temporal denoiser: owns its history; one instance per sequence; not thread-safe.
 class Filter {
   public:
     virtual ~Filter() = default;
-    /// Denoises one frame; returns linear HDR RGB valid until the next call. Throws bmfr::Error
-    /// for missing or mismatched buffers and broken matrices.
+    /// Denoises one frame; returns linear HDR RGB (3 channels, packed) valid until the next
+    /// call. Throws bmfr::Error for missing or mismatched buffers and broken matrices.
     virtual ImageView denoise(const FrameInput& frame) = 0;
+    /// The same, with the result also written into `out` (same size; 3 or 4 channels, any
+    /// row stride; a fourth channel is left as it was).
+    ImageView denoise(const FrameInput& frame, const MutableImageView& out);
     /// Drops the history (as FrameInput::reset).
     virtual void reset() = 0;
     virtual const FrameStats& lastStats() const = 0;
     virtual const char* name() const = 0;
+    /// Keeps the debug buffers of each frame (off by default: they cost a copy per frame).
+    virtual void setDebugOutputs(bool enabled) = 0;
+    /// Views into the debug buffers of the last frame (empty views when disabled).
+    virtual DebugBuffers debug() const = 0;
 };
 
-struct Settings;
-struct SvgfSettings;
+/// Settings as text, by the key of the filter's settings table: {{"blockSize", "16"}}.
+using SettingValues = std::vector<std::pair<std::string, std::string>>;
 
-/// "bmfr" or "svgf". Throws bmfr::Error for other names or invalid settings.
-std::unique_ptr<Filter> makeFilter(const std::string& name, const Settings& bmfr,
-                                   const SvgfSettings& svgf);
+/// One row of a filter's settings table.
+struct SettingDoc {
+    std::string key, flag, unit, range, defaultValue, help;
+    bool shared = false; ///< one of the settings every filter has (TemporalSettings)
+};
+
+/// Makes the filter `name` ("bmfr", "svgf") with its defaults overridden by `values`. Throws
+/// bmfr::Error for an unknown filter, an unknown key or a value out of range.
+std::unique_ptr<Filter> makeFilter(const std::string& name, const SettingValues& values = {});
+/// The registered filters' names, in registry order.
+std::vector<std::string> filterNames();
+/// The settings table of filter `name`: the shared settings first.
+std::vector<SettingDoc> filterSettings(const std::string& name);
 
 } // namespace bmfr

@@ -5,12 +5,30 @@
 
 namespace bmfr {
 
-/// Read-only view of an interleaved float image: width x height x channels, rows top to bottom.
+/// Read-only view of an interleaved float image, rows top to bottom: pixel (x, y), channel c is
+/// data[y * rowStride + x * channels + c]. Colour buffers take 3 or 4 channels (RGBA, as engines
+/// hand them over; the fourth is ignored).
 struct ImageView {
     const float* data = nullptr;
     int width = 0;
     int height = 0;
     int channels = 3;
+    /// Floats between the starts of two rows; 0 = packed (width * channels).
+    long rowStride = 0;
+    long stride() const { return rowStride ? rowStride : long(width) * channels; }
+    /// True when the pixels are packed RGB: what the filters read without a copy.
+    bool packedRgb() const { return channels == 3 && stride() == long(width) * 3; }
+};
+
+/// A caller's image that a filter writes its output into (same layout rules as ImageView; with
+/// 4 channels the fourth is left as it was).
+struct MutableImageView {
+    float* data = nullptr;
+    int width = 0;
+    int height = 0;
+    int channels = 3;
+    long rowStride = 0; ///< floats between rows; 0 = packed
+    long stride() const { return rowStride ? rowStride : long(width) * channels; }
 };
 
 /// A 4x4 matrix, row-major, acting on column vectors: clip = m * [x y z 1]^T.
@@ -21,18 +39,18 @@ struct Mat4 {
 
 /// One frame of input. All images share one size; colour is linear RGB radiance.
 struct FrameInput {
-    ImageView color;    ///< noisy 1-spp colour, 3 channels (demodulated if Settings says so)
-    ImageView albedo;   ///< first-hit albedo, 3 channels, [0, 1]
-    ImageView normal;   ///< first-hit shading normal, world space, unit length, 3 channels
-    ImageView position; ///< first-hit world position, scene units, 3 channels
-    /// Optional noise-free radiance emitted at the first hit (visible lights, sky), 3 channels.
+    ImageView color;    ///< noisy 1-spp colour, 3 or 4 channels (demodulated if settings say so)
+    ImageView albedo;   ///< first-hit albedo, 3 or 4 channels, [0, 1]
+    ImageView normal;   ///< first-hit shading normal, world space, unit length, 3 or 4 channels
+    ImageView position; ///< first-hit world position, scene units, 3 or 4 channels
+    /// Optional noise-free radiance emitted at the first hit (visible lights, sky), 3 or 4 channels.
     /// When given it is taken out before filtering and added back before TAA, so emitters keep
     /// sharp edges and do not bleed into their blocks. Leave data null when unavailable.
     ImageView emission;
     /// Optional 1-channel mask, > 0.5 where this frame has a sample (fewer than 1 spp). SVGF
     /// keeps the history of unsampled pixels; BMFR ignores the mask. Leave data null for 1 spp.
     ImageView sampleMask;
-    std::vector<ImageView> extras; ///< optional 1-channel feature buffers (Feature::Extra)
+    std::vector<ImageView> extras; ///< optional 1-channel feature buffers (BMFR's Feature::Extra)
     Mat4 viewProjection;           ///< this frame's world-to-clip matrix
     /// Sub-pixel offset of this frame's primary rays from the pixel centre, pixels, [-0.5, 0.5].
     float jitter[2] = {0.0f, 0.0f};
@@ -46,9 +64,15 @@ struct StageTimes {
     double ms[kMaxStages] = {};
     int count = 0;
     double total = 0;
-    void clear() { count = 0, total = 0; }
+    void clear() {
+        count = 0;
+        total = 0;
+    }
     void add(const char* stage, double value) {
-        if (count < kMaxStages) name[count] = stage, ms[count++] = value;
+        if (count < kMaxStages) {
+            name[count] = stage;
+            ms[count++] = value;
+        }
         total += value;
     }
 };

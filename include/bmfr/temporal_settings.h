@@ -1,28 +1,35 @@
-// The settings every temporal filter shares (BMFR and SVGF): the reprojection discard test,
-// TAA, demodulation and threads. Each filter's settings struct derives from it.
+// The settings every temporal filter shares (BMFR, SVGF and those to come): the backend, the
+// reprojection discard test, TAA, demodulation and threads. Each filter's settings derive from it.
+// Ranges and defaults are stated once, in the settings table (src/temporal/temporal_settings.cpp),
+// which validation, the command line and the README's table are made from.
 #pragma once
 
 namespace bmfr {
 
-struct TemporalSettings {
-    /// A history tap is discarded when |p_prev - p|^2 >= this; scene units squared; > 0;
-    /// default 0.01 (the authors' dataset value).
-    float positionLimitSquared = 0.01f;
-    /// A history tap is discarded when |n_prev - n|^2 >= this; unitless; (0, 4]; default 1.0
-    /// (about 60 degrees).
-    float normalLimitSquared = 1.0f;
-    /// Weight of the current frame in TAA; (0, 1]; default 0.2.
-    float taaBlendAlpha = 0.2f;
-    /// Albedo channels below this are treated as this when demodulating; [1e-6, 1]; 0.001.
-    float albedoEpsilon = 0.001f;
-    /// The colour input is already divided by albedo (the original BMFR dataset is).
-    bool colorIsDemodulated = false;
-    /// Worker threads; 0 = all cores; [0, 1024].
-    int threads = 0;
+/// Where a filter's passes run. Every backend gives the reference backend's output within the
+/// conformance suite's tolerance, with identical discard decisions and history lengths.
+enum class Backend {
+    Reference, ///< one readable scalar pass per stage: the specification
+    Cpu,       ///< threads and SIMD, passes fused (default)
+    Cuda       ///< NVIDIA GPUs; not built yet: choosing it is an error
 };
 
-/// Throws bmfr::Error naming the first shared setting out of its range; `filter` prefixes the
-/// message ("setting" for BMFR, "SVGF setting").
-void validate(const TemporalSettings& settings, const char* filter);
+struct TemporalSettings {
+    Backend backend = Backend::Cpu;         ///< where the passes run
+    float positionLimitSquared = 0.01f;     ///< history discard: squared world distance, units^2
+    float normalLimitSquared = 1.0f;        ///< history discard: squared normal distance
+    float taaBlendAlpha = 0.2f;             ///< TAA weight of the current frame
+    bool taa = true;                        ///< temporal anti-aliasing on the output
+    float albedoEpsilon = 0.001f;           ///< albedo floor when (de)modulating
+    bool colorIsDemodulated = false;        ///< the colour input is already divided by albedo
+    int threads = 0;                        ///< worker threads, 0 = all cores
+};
+
+/// Throws bmfr::Error naming the first shared setting out of its range.
+void validate(const TemporalSettings& settings);
+
+/// "reference", "cpu" or "cuda"; parseBackend throws bmfr::Error for other names.
+const char* backendName(Backend backend);
+Backend parseBackend(const char* name);
 
 } // namespace bmfr

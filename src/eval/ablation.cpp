@@ -1,4 +1,5 @@
 #include "eval/ablation.h"
+#include "core/settings_table.h"
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
 #include "eval/plot.h"
@@ -79,16 +80,18 @@ AblationResult runAblation(const std::string& input, const std::string& output,
 
     struct Stage {
         const char* name;
-        bool StageSwitches::*flag;
+        bool& (*flag)(BmfrSettings&);
     };
     r.stages.push_back(run(base, "full BMFR"));
-    for (Stage st : {Stage{"without demodulation", &StageSwitches::demodulate},
-                     Stage{"without accumulation (phase I)", &StageSwitches::firstAccumulation},
-                     Stage{"without fitting (phase II)", &StageSwitches::fitting},
-                     Stage{"without second accumulation", &StageSwitches::secondAccumulation},
-                     Stage{"without TAA", &StageSwitches::taa}}) {
+    for (Stage st : {Stage{"without demodulation", BMFR_FIELD(BmfrSettings, stages.demodulate)},
+                     Stage{"without accumulation (phase I)",
+                           BMFR_FIELD(BmfrSettings, stages.firstAccumulation)},
+                     Stage{"without fitting (phase II)", BMFR_FIELD(BmfrSettings, stages.fitting)},
+                     Stage{"without second accumulation",
+                           BMFR_FIELD(BmfrSettings, stages.secondAccumulation)},
+                     Stage{"without TAA", BMFR_FIELD(BmfrSettings, taa)}}) {
         Settings s = base;
-        s.stages.*(st.flag) = false;
+        st.flag(s) = false;
         r.stages.push_back(run(s, st.name));
     }
 

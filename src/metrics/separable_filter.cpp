@@ -1,5 +1,5 @@
 #include "metrics/separable_filter.h"
-#include "filters/bmfr/block_grid.h"
+#include "core/border.h"
 #include <tbb/parallel_for.h>
 
 namespace bmfr {

@@ -1,5 +1,5 @@
 #include "render/frame_renderer.h"
-#include "core/reprojection.h"
+#include "temporal/reprojection.h"
 #include <chrono>
 #include <tbb/parallel_for.h>
 

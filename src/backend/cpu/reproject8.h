@@ -2,8 +2,8 @@
 // I, phase III and TAA. The same math and roundings as core/reprojection.h.
 #pragma once
 #include "core/mat4.h"
-#include "core/reprojection.h"
-#include "core/simd.h"
+#include "temporal/reprojection.h"
+#include "backend/cpu/simd.h"
 
 namespace bmfr::cpu {
 

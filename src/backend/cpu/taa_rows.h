@@ -1,7 +1,7 @@
 // The row kernel of TAA, shared by BMFR's fused resolve pass and the standalone TAA pass.
 #pragma once
 #include "backend/cpu/reproject8.h"
-#include "core/simd.h"
+#include "backend/cpu/simd.h"
 #include <cstddef>
 
 namespace bmfr::cpu {

@@ -1,18 +1,9 @@
 // The displaced grid of regression blocks: which image pixels form block (bx, by) this frame.
 #pragma once
-#include "core/host_device.h"
-#include <bmfr/settings.h>
+#include "core/border.h"
+#include <bmfr/filters/bmfr.h>
 
 namespace bmfr {
-
-/// Reflects an index into [0, n) with edge duplication (3 2 1 0 | 0 1 2 3 | 3 2 1 0), for any
-/// distance outside (images smaller than a block included).
-BMFR_HD int mirrorIndex(int i, int n) {
-    int period = 2 * n;
-    int m = i % period;
-    if (m < 0) m += period;
-    return m < n ? m : period - 1 - m;
-}
 
 /// Block grid of one frame. Block (bx, by) covers image pixels
 /// [bx*B - B/2 + ox, +B) x [by*B - B/2 + oy, +B); pixels outside the image are mirrored in.

@@ -1,16 +1,14 @@
-// Evaluation and per-block scaling of BMFR feature columns.
+// Evaluation and per-block scaling of BMFR feature columns (paper eq. 8 and the authors' block
+// scaling).
 #pragma once
 #include "core/vec.h"
-#include <algorithm>
 #include <bmfr/features.h>
-#include <cmath>
-#include <vector>
 
 namespace bmfr {
 
 /// v^e for e other than 1 and 2. Non-integer powers of negative values are undefined: the sign
 /// is kept (odd extension).
-inline float applyExponent(float v, float e) {
+BMFR_HD float applyExponent(float v, float e) {
     float a = std::pow(std::fabs(v), e);
     return v < 0 ? -a : a;
 }
@@ -30,40 +28,32 @@ struct BlockSources {
 
 /// Fills the M unscaled feature columns (W values each, column f at out + f * W) from the
 /// block's sources. The switch runs once per column, not per pixel.
-inline void buildFeatureColumns(const std::vector<Feature>& features, const BlockSources& src,
-                                int W, float* out) {
-    for (size_t f = 0; f < features.size(); ++f) {
+BMFR_HD void buildFeatureColumns(const Feature* features, int M, const BlockSources& src, int W,
+                                 float* out) {
+    for (int f = 0; f < M; ++f) {
         const Feature& feat = features[f];
         float* col = out + long(f) * W;
         const float* from = nullptr;
         switch (feat.source) {
         case FeatureSource::One:
-            std::fill(col, col + W, 1.0f);
+            for (int k = 0; k < W; ++k) col[k] = 1.0f;
             continue;
         case FeatureSource::NormalX:
-            from = src.normal[0];
-            break;
         case FeatureSource::NormalY:
-            from = src.normal[1];
-            break;
         case FeatureSource::NormalZ:
-            from = src.normal[2];
+            from = src.normal[int(feat.source) - int(FeatureSource::NormalX)];
             break;
         case FeatureSource::PositionX:
-            from = src.position[0];
-            break;
         case FeatureSource::PositionY:
-            from = src.position[1];
-            break;
         case FeatureSource::PositionZ:
-            from = src.position[2];
+            from = src.position[int(feat.source) - int(FeatureSource::PositionX)];
             break;
         case FeatureSource::Extra:
-            from = src.extras + size_t(feat.extraIndex) * size_t(W);
+            from = src.extras + long(feat.extraIndex) * W;
             break;
         }
         if (feat.exponent == 1.0f)
-            std::copy(from, from + W, col);
+            for (int k = 0; k < W; ++k) col[k] = from[k];
         else if (feat.exponent == 2.0f)
             for (int k = 0; k < W; ++k) col[k] = from[k] * from[k];
         else

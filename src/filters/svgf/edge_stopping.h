@@ -32,11 +32,6 @@ BMFR_HD float luminanceDenominator(float variance, float sigmaL) {
     return sigmaL * std::sqrt(std::fmax(variance, 0.0f)) + 1e-10f;
 }
 
-/// Luminance weight: exp(-|l0 - l1| / (sigma_l sqrt(variance) + eps)).
-BMFR_HD float luminanceWeight(float l0, float l1, float variance, float sigmaL) {
-    return std::exp(-std::fabs(l0 - l1) / (sigmaL * std::sqrt(std::fmax(variance, 0.0f)) + 1e-10f));
-}
-
 /// 1-D taps of the a-trous kernel: B3 spline (radius 2) or its 3x3 reduction (radius 1).
 BMFR_HD float atrousTap(int radius, int offset) {
     const int a = offset < 0 ? -offset : offset;

@@ -1,0 +1,54 @@
+// `bmfr settings`: every filter's settings table, as text or as the README's Markdown.
+#include "commands.h"
+#include <fmt/core.h>
+
+namespace bmfr::app {
+
+namespace {
+
+std::string markdown() {
+    std::string out = "| filter | key | flag | unit | range | default | what it does |\n"
+                      "|---|---|---|---|---|---|---|\n";
+    bool sharedDone = false;
+    for (const std::string& f : filterNames()) {
+        for (const SettingDoc& d : filterSettings(f)) {
+            if (d.shared && sharedDone) continue; // the same rows in every table
+            out += fmt::format("| {} | `{}` | `--{}` | {} | {} | {} | {} |\n",
+                               d.shared ? "all" : f, d.key, d.flag, d.unit, d.range,
+                               d.defaultValue, d.help);
+        }
+        sharedDone = true;
+    }
+    return out;
+}
+
+} // namespace
+
+void addSettingsCommand(CLI::App& app, int& exitCode) {
+    struct Job {
+        std::string filter;
+        bool markdown = false;
+    };
+    auto job = std::make_shared<Job>();
+    CLI::App* cmd = app.add_subcommand(
+        "settings", "every setting of a filter: key, flag, unit, range, default and help");
+    cmd->add_option("filter", job->filter, "one filter (default: all)");
+    cmd->add_flag("--markdown", job->markdown, "the README's table");
+    cmd->callback([job, &exitCode] {
+        if (job->markdown) {
+            fmt::print("{}", markdown());
+        } else {
+            std::vector<std::string> names = filterNames();
+            if (!job->filter.empty()) names = {job->filter};
+            for (const std::string& f : names) {
+                fmt::print("{}:\n", f);
+                for (const SettingDoc& d : filterSettings(f))
+                    fmt::print("  {:<24} --{:<30} {:<14} {:<18} default {:<10} {}\n", d.key,
+                               d.flag, d.unit, d.range, d.defaultValue, d.help);
+            }
+        }
+        exitCode = 0;
+    });
+}
+
+} // namespace bmfr::app

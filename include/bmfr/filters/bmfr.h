@@ -1,0 +1,68 @@
+// BMFR, Blockwise Multi-Order Feature Regression (Koskela et al., ACM TOG 2019): its settings
+// and its denoiser. Ranges, units and defaults: `bmfr settings bmfr` or the README's table.
+#pragma once
+#include <bmfr/features.h>
+#include <bmfr/filter.h>
+#include <bmfr/temporal_settings.h>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace bmfr {
+
+/// Stage switches, for ablations. A disabled stage passes its input through unchanged; TAA is
+/// the shared TemporalSettings::taa.
+struct StageSwitches {
+    bool demodulate = true;         ///< divide colour by albedo before filtering, re-multiply after
+    bool firstAccumulation = true;  ///< phase I: temporal accumulation of the noisy colour
+    bool fitting = true;            ///< phase II: blockwise feature regression
+    bool secondAccumulation = true; ///< phase III: temporal accumulation of the fitted colour
+};
+
+/// BMFR settings; defaults are the paper's and the authors' code.
+struct BmfrSettings : TemporalSettings {
+    int blockSize = 32;                          ///< edge of the square regression block
+    std::vector<Feature> features = defaultFeatures(); ///< columns of T; the constant 1 first
+    float noiseAmplitude = 0.01f;  ///< half-width of the regularisation noise on feature columns
+    float firstBlendAlpha = 0.2f;  ///< phase I minimum new-frame weight (CMA, then EMA)
+    float secondBlendAlpha = 0.1f; ///< phase III minimum new-frame weight
+    uint32_t seed = 0;             ///< regularisation noise seed
+    StageSwitches stages{};
+};
+
+/// Throws bmfr::Error naming the first setting out of its range.
+void validate(const BmfrSettings& settings);
+
+/// The authors' 16 block-grid offsets in pixels, used in order, one per frame.
+inline constexpr int kBlockOffsets[16][2] = {
+    {-14, -14}, {4, -6},   {-8, 14}, {8, 0},   {-10, -8}, {2, 12},   {12, -12}, {-10, 0},
+    {12, 14},   {-8, -16}, {6, 6},   {-2, -2}, {6, -14},  {-16, 12}, {14, -4},  {-6, 4}};
+
+/// Temporal BMFR reconstruction. Not thread-safe; one instance per sequence.
+class BmfrDenoiser final : public Filter {
+  public:
+    /// Throws bmfr::Error when a setting is out of range or the backend is not available.
+    explicit BmfrDenoiser(const BmfrSettings& settings = {});
+    ~BmfrDenoiser() override;
+    BmfrDenoiser(BmfrDenoiser&&) noexcept;
+    BmfrDenoiser& operator=(BmfrDenoiser&&) noexcept;
+
+    using Filter::denoise;
+    ImageView denoise(const FrameInput& frame) override;
+    void reset() override;
+    void setDebugOutputs(bool enabled) override;
+    DebugBuffers debug() const override;
+    const FrameStats& lastStats() const override;
+    const char* name() const override { return "bmfr"; }
+    const BmfrSettings& settings() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Earlier names, kept for a while.
+using Settings = BmfrSettings;
+using Denoiser = BmfrDenoiser;
+
+} // namespace bmfr

@@ -1,0 +1,13 @@
+// The backends' passes by filter: the one place that maps a Backend to its implementation.
+#pragma once
+#include "filters/bmfr/bmfr_passes.h"
+#include "filters/svgf/svgf_passes.h"
+#include <memory>
+
+namespace bmfr {
+
+/// Throws bmfr::Error when `backend` is not built into this library.
+std::unique_ptr<BmfrPasses> makeBmfrPasses(Backend backend);
+std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend backend);
+
+} // namespace bmfr

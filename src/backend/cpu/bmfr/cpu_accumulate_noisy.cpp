@@ -1,0 +1,154 @@
+#include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
+#include "backend/cpu/reproject8.h"
+#include "backend/cpu/simd.h"
+#include <cmath>
+
+namespace bmfr::cpu {
+
+using namespace simd;
+
+namespace {
+
+/// Lanes whose value is finite (x - x is NaN for NaN and Inf).
+BMFR_SIMD_INLINE i8 finite8(f8 v) {
+    return (v - v) == 0.0f;
+}
+
+/// Non-finite lanes replaced by 0 and counted (staged tails read as 0, which is finite).
+BMFR_SIMD_INLINE void finiteOrZero8(f8 v[3], int64_t& bad) {
+    for (int c = 0; c < 3; ++c) {
+        const i8 ok = finite8(v[c]);
+        bad += countLanes(~ok);
+        v[c] = ok ? v[c] : f8{};
+    }
+}
+
+/// The eight pixels' inputs as readPixel (temporal/pixel_input.h) reads them.
+struct Inputs8 {
+    f8 position[3], normal[3], color[3];
+};
+
+BMFR_SIMD_INLINE Inputs8 readInputs(const FrameArgs& a, long i, int n, int64_t& bad) {
+    const InputPlanes& in = a.in;
+    const BmfrSettings& s = a.s;
+    Inputs8 px;
+    f8 albedo[3], e[3] = {};
+    loadXyz8(in.normal + 3 * i, n, px.normal);
+    loadXyz8(in.position + 3 * i, n, px.position);
+    loadXyz8(in.albedo + 3 * i, n, albedo);
+    loadXyz8(in.color + 3 * i, n, px.color);
+    if (in.emission) loadXyz8(in.emission + 3 * i, n, e);
+    // One test for all channels, on their sum: a NaN or an infinity in any makes the sum
+    // non-finite. So can an overflow of finite values, which only sends the group through the
+    // exact per-channel test.
+    f8 sum = (e[0] + e[1]) + e[2];
+    for (int c = 0; c < 3; ++c) sum += (px.normal[c] + px.position[c]) + (albedo[c] + px.color[c]);
+    if (__builtin_expect(!allLanes(finite8(sum)), 0)) {
+        finiteOrZero8(px.normal, bad), finiteOrZero8(px.position, bad);
+        finiteOrZero8(albedo, bad), finiteOrZero8(px.color, bad), finiteOrZero8(e, bad);
+    }
+    const f8 eps = splat8(s.albedoEpsilon);
+    f8 g[3];
+    for (int c = 0; c < 3; ++c) g[c] = albedo[c] > eps ? albedo[c] : eps;
+    if (in.emission) {
+        for (int c = 0; c < 3; ++c) {
+            if (s.colorIsDemodulated) e[c] = e[c] / g[c];
+            px.color[c] = max8(px.color[c] - e[c], f8{});
+        }
+    }
+    for (int k = 0; k < in.extraCount; ++k) {
+        const f8 v = loadFirst(in.extras[k] + i, n);
+        bad += countLanes(~finite8(v));
+    }
+    if (s.stages.demodulate && !s.colorIsDemodulated)
+        for (int c = 0; c < 3; ++c) px.color[c] = px.color[c] / g[c];
+    return px;
+}
+
+/// firstBlendWeight and nextHistoryLength (temporal/blend_weights.h) for eight lanes.
+BMFR_SIMD_INLINE f8 firstBlendWeight8(f8 samples, float minAlpha) {
+    const f8 w = 1.0f / (samples + 1.0f);
+    return w > minAlpha ? w : splat8(minAlpha);
+}
+BMFR_SIMD_INLINE f8 nextHistoryLength8(f8 samples) {
+    // Round half to even through the 1.5 * 2^23 trick (exact for 0 <= v < 2^22, and larger
+    // values saturate below), as lrintf in the default rounding mode.
+    const f8 rounded = (samples + 12582912.0f) - 12582912.0f;
+    return samples > 254.0f ? splat8(255.0f) : rounded + 1.0f;
+}
+
+/// Phase I of pixels [i, i + n) of one row, n <= 8: accumulateNoisyPixel
+/// (filters/bmfr/accumulation_kernels.h) eight pixels at a time.
+BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl, long i, int n,
+                                      int64_t& bad, int64_t& lost) {
+    const BmfrSettings& s = a.s;
+    const TemporalHistory& t = a.t;
+    const Inputs8 px = readInputs(a, i, n, bad);
+    for (int c = 0; c < 3; ++c) {
+        storeFirst(pl.surface[c] + i, px.position[c], n);
+        storeFirst(pl.surface[3 + c] + i, px.normal[c], n);
+    }
+    f8 color[3] = {px.color[0], px.color[1], px.color[2]};
+    f8 length = splat8(1.0f), ppx = splat8(-1e6f), ppy = splat8(-1e6f);
+    i8 accept{};
+    if (t.hasHistory()) {
+        const i8 valid = project8(px.position, t.previous.viewProjection, t.previous.jitter, t.width,
+                                  t.height, ppx, ppy);
+        const Footprint8 fp = footprint8(ppx, ppy);
+        const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
+        const f8 limP = splat8(s.positionLimitSquared), limN = splat8(s.normalLimitSquared);
+        i8 ok[4];
+        forTaps(taps, [&] [[gnu::always_inline]] () {
+            for (int k = 0; k < 4; ++k) {
+                f8 d[6];
+                for (int c = 0; c < 3; ++c) {
+                    d[c] = tapPlane(taps, pl.prevSurface[c], k) - px.position[c];
+                    d[3 + c] = tapPlane(taps, pl.prevSurface[3 + c], k) - px.normal[c];
+                }
+                // dot(d, d) in Vec3's order, so the decisions match the reference bit for bit.
+                const f8 dp = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
+                const f8 dn = (d[3] * d[3] + d[4] * d[4]) + d[5] * d[5];
+                ok[k] = taps.inside[k] & (dp < limP) & (dn < limN);
+                accept |= ok[k] & (1 << k);
+            }
+        });
+        f8 old[4]; // colour and history length
+        const f8 total = weightedTaps<4>(
+            taps, fp.weight, ok,
+            [&](int k, f8* v) {
+                for (int c = 0; c < 4; ++c) v[c] = tapPlane(taps, pl.prevNoisy[c], k);
+            },
+            old);
+        const f8 safe = total > 0.0f ? total : splat8(1.0f);
+        const f8 samples = old[3] / safe;
+        const f8 blend = firstBlendWeight8(samples, s.firstBlendAlpha);
+        const i8 blended = (total > 0.0f) & (blend < 1.0f);
+        if (s.stages.firstAccumulation)
+            for (int c = 0; c < 3; ++c)
+                color[c] = blended ? lerp8(old[c] / safe, color[c], blend) : color[c];
+        length = blended ? nextHistoryLength8(samples) : length;
+        lost += countLanes((accept == 0) & firstLanes(n));
+    }
+    for (int c = 0; c < 3; ++c) storeFirst(pl.noisy[c] + i, color[c], n);
+    storeFirst(pl.noisy[3] + i, length, n);
+    storeFirst(pl.previousPixel[0] + i, ppx, n);
+    storeFirst(pl.previousPixel[1] + i, ppy, n);
+    storeBytes(pl.accept + i, accept, n);
+}
+
+BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64_t& bad,
+                                     int64_t& lost) {
+    const int w = a.t.width;
+    const FramePlanes pl(a.b, a.t.cur);
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < w; x += 8)
+            accumulateGroup(a, pl, y * w + x, std::min(8, w - x), bad, lost);
+}
+
+} // namespace
+
+void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, InputCounters& counters) {
+    accumulateRows(a, y0, y1, counters.nonFinite, counters.discarded);
+}
+
+} // namespace bmfr::cpu

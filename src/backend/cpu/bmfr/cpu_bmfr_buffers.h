@@ -1,0 +1,127 @@
+// The CPU backend's BMFR: its buffers and passes. Per-pixel buffers are planes (eight pixels per
+// load), phase I and the fit run one row of blocks at a time, and phase III runs fused with TAA
+// row by row.
+#pragma once
+#include "core/image.h"
+#include "filters/bmfr/block_grid.h"
+#include "filters/bmfr/bmfr_passes.h"
+#include <vector>
+
+namespace bmfr::cpu {
+
+/// Per-thread scratch of the fitter (one block) and of the fused resolve pass (three rows).
+struct Scratch {
+    std::vector<float> clean; ///< M scaled feature columns, noise-free (used for the sum)
+    std::vector<float> work;  ///< M noised columns + 3 colour columns, overwritten by QR
+    std::vector<float> soa;   ///< (9 + 16) x W: a border block's normal, position, colour; extras
+    std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
+    std::vector<float> ones;     ///< one block row of 1 (+8 of padding): the constant feature
+    std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
+};
+
+/// Per-pixel buffers are planes, one float per pixel and channel (structure of arrays), so
+/// eight neighbouring pixels are one load. Planes are `stride` floats apart; the stride leaves
+/// at least 8 floats after the last pixel, so an 8-float load at any pixel stays inside.
+struct Buffers {
+    int width = 0, height = 0;
+    size_t stride = 0;
+
+    // History, [slot].
+    std::vector<float> surface[2]; ///< 6 planes: position xyz, normal xyz (sanitised)
+    std::vector<float> noisy[2];   ///< 4 planes: phase I colour (demodulated), history length
+    std::vector<float> accumulatedFitted[2]; ///< 3 planes: phase III colour
+    std::vector<float> output[2]; ///< 3 floats per pixel (the public image), +24 of padding
+
+    // This frame only.
+    std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame
+    std::vector<uint8_t> acceptMask;  ///< accepted bilinear taps, bit i = tap i (+8 padding)
+    std::vector<float> fitted;        ///< 3 planes: phase II colour
+    std::vector<uint8_t>
+        earlyRow; ///< rows phase I runs before the block rows (see accumulateAndFit)
+
+    std::vector<Scratch> scratch; ///< one per worker thread
+    ImageF debugNoisy, debugFitted, debugLength, debugAccept;
+
+    float* plane(std::vector<float>& v, int channel) { return v.data() + size_t(channel) * stride; }
+    const float* plane(const std::vector<float>& v, int channel) const {
+        return v.data() + size_t(channel) * stride;
+    }
+};
+
+/// One frame's planes as raw pointers, taken once per task. Row kernels read them from this
+/// local copy: a pointer inside a std::vector would be reloaded after every byte store (the
+/// accept mask), since a byte store may alias anything.
+struct FramePlanes {
+    const float* prevSurface[6];
+    float* surface[6];
+    const float* prevNoisy[4];
+    float* noisy[4];
+    const float* prevAccumulated[3];
+    float* accumulated[3];
+    float* previousPixel[2];
+    float* fitted[3];
+    uint8_t* accept;
+
+    FramePlanes(Buffers& b, int cur) {
+        for (int c = 0; c < 6; ++c)
+            prevSurface[c] = b.plane(b.surface[1 - cur], c),
+            surface[c] = b.plane(b.surface[cur], c);
+        for (int c = 0; c < 4; ++c)
+            prevNoisy[c] = b.plane(b.noisy[1 - cur], c), noisy[c] = b.plane(b.noisy[cur], c);
+        for (int c = 0; c < 3; ++c) {
+            prevAccumulated[c] = b.plane(b.accumulatedFitted[1 - cur], c);
+            accumulated[c] = b.plane(b.accumulatedFitted[cur], c);
+            fitted[c] = b.plane(b.fitted, c);
+        }
+        for (int c = 0; c < 2; ++c) previousPixel[c] = b.plane(b.previousPixel, c);
+        accept = b.acceptMask.data();
+    }
+};
+
+/// What the row kernels of phase I and the resolve pass read.
+struct FrameArgs {
+    const BmfrSettings& s;
+    const InputPlanes& in;
+    const TemporalHistory& t;
+    Buffers& b;
+};
+
+/// Wall time of the pass that interleaves phase I and the fit, split between them in
+/// proportion to the time the workers spent in each.
+struct StageSplit {
+    double accumulateMs = 0.0, fitMs = 0.0;
+};
+
+/// Phase I and phase II, block row by block row: each task runs phase I over the image rows a
+/// row of blocks owns, then fits those blocks while the rows are still in cache. Tasks on
+/// different cores drift apart, so one core's memory-bound phase I overlaps the other's
+/// arithmetic-bound fit. Rows that a block reads through mirroring at the top and bottom edges
+/// but does not own are done first.
+InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSplit& split);
+
+/// Phase I of image rows [y0, y1): sanitise and store features, demodulate, reproject, test
+/// taps, accumulate colour. Counts are added to `counters`.
+void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, InputCounters& counters);
+/// Phase II of block row `by`: per block gather, scale, regularise, Householder QR, back
+/// substitution, weighted sum. Reads only the rows the blocks cover, mirrored at the edges.
+void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
+                 Scratch& sc);
+/// Phase III and TAA in one pass over rows: second accumulation, re-modulation, emission, TAA.
+void resolve(const BmfrPassContext& ctx, Buffers& b);
+
+/// Householder QR of the M + 3 columns (each `rows` long, `stride` floats apart) and back
+/// substitution, as bmfr::solveHouseholder (filters/bmfr/householder_qr.h). Each step's column updates and the next step's dot
+/// products share one sweep over four columns at a time. Returns the number of dependent
+/// columns (coefficient 0). A stride that is not a multiple of 1024 floats avoids 4K aliasing
+/// between a column's stores and the next column's loads.
+int solveHouseholderFast(float* columns, int featureCount, int rows, long stride, float* coeffs);
+/// The same with contiguous columns (stride = rows).
+int solveHouseholderFast(float* columns, int featureCount, int rows, float* coeffs);
+
+/// Floats between the fitter's QR columns for blocks of `rows` pixels: one cache line more than
+/// the column, so columns do not alias in 4 KiB pages.
+inline long qrColumnStride(int rows) {
+    return (long(rows) + 7) / 8 * 8 + 16;
+}
+
+} // namespace bmfr::cpu

@@ -1,0 +1,93 @@
+// The CPU backend's BMFR: planes, phase I interleaved with the fit block row by block row, and
+// phase III fused with TAA (see cpu_bmfr_buffers.h).
+#include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
+#include "backend/cpu/taa_rows.h"
+#include "core/stopwatch.h"
+
+namespace bmfr::cpu {
+
+namespace {
+
+class CpuBmfrPasses final : public BmfrPasses {
+  public:
+    void allocate(int w, int h, const BmfrSettings& s, int threads) override {
+        const size_t n = size_t(w) * size_t(h);
+        b_.width = w, b_.height = h;
+        b_.stride = (n + 7) / 8 * 8 + 8; // an 8-float load at any pixel stays in its plane
+        for (int k = 0; k < 2; ++k) {
+            b_.surface[k].assign(6 * b_.stride, 0.0f);
+            b_.noisy[k].assign(4 * b_.stride, 0.0f);
+            b_.accumulatedFitted[k].assign(3 * b_.stride, 0.0f);
+            b_.output[k].assign(3 * n + 24, 0.0f);
+        }
+        b_.previousPixel.assign(2 * b_.stride, 0.0f);
+        b_.acceptMask.assign(n + 8, 0);
+        b_.fitted.assign(3 * b_.stride, 0.0f);
+        b_.earlyRow.assign(size_t(h), 0);
+        const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
+        b_.scratch.resize(size_t(threads));
+        for (Scratch& sc : b_.scratch) {
+            sc.clean.assign(M * W, 0.0f);
+            sc.work.assign((M + 3) * size_t(qrColumnStride(int(W))), 0.0f);
+            sc.soa.assign((9 + 16) * W, 0.0f);
+            sc.imageIndex.assign(W, -1);
+            sc.ones.assign(size_t(s.blockSize) + 8, 1.0f);
+            sc.rows.assign(3 * ResolvedRows::rowFloats(w), 0.0f);
+        }
+    }
+
+    InputCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
+        // Phase I and the fit run interleaved; their wall time is split by the workers' time in
+        // each (StageSplit).
+        StageSplit split;
+        InputCounters counters = accumulateAndFit(ctx, b_, split);
+        Stopwatch clock;
+        resolve(ctx, b_);
+        times.add("accumulate", split.accumulateMs);
+        times.add("fit", split.fitMs);
+        times.add("resolve", clock.lap());
+        return counters;
+    }
+
+    ImageView output(int slot) const override {
+        return ImageView{b_.output[slot].data(), b_.width, b_.height, 3};
+    }
+
+    void captureDebug(const BmfrTimeline& timeline) override {
+        const TemporalHistory& t = timeline.history;
+        // Sized on first use only: at 4K they would hold 265 MB nobody asked for.
+        if (b_.debugNoisy.width != t.width || b_.debugNoisy.height != t.height) {
+            b_.debugNoisy.resize(t.width, t.height, 3);
+            b_.debugFitted.resize(t.width, t.height, 3);
+            b_.debugLength.resize(t.width, t.height, 1);
+            b_.debugAccept.resize(t.width, t.height, 1);
+        }
+        const long n = long(t.width) * t.height;
+        for (long i = 0; i < n; ++i) {
+            for (int c = 0; c < 3; ++c) {
+                b_.debugNoisy.data()[3 * i + c] = b_.plane(b_.noisy[t.cur], c)[i];
+                b_.debugFitted.data()[3 * i + c] = b_.plane(b_.fitted, c)[i];
+            }
+            b_.debugLength.data()[i] = b_.plane(b_.noisy[t.cur], 3)[i];
+            b_.debugAccept.data()[i] = b_.acceptMask[size_t(i)];
+        }
+    }
+
+    DebugBuffers debug(const BmfrTimeline&) const override {
+        return {view(b_.debugNoisy), view(b_.debugFitted), view(b_.debugLength),
+                view(b_.debugAccept)};
+    }
+
+  private:
+    Buffers b_;
+};
+
+} // namespace
+
+} // namespace bmfr::cpu
+
+namespace bmfr::cpu {
+std::unique_ptr<BmfrPasses> makeBmfrPasses() {
+    return std::make_unique<CpuBmfrPasses>();
+}
+} // namespace bmfr::cpu

@@ -1,0 +1,322 @@
+#include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
+#include "backend/cpu/simd.h"
+#include "filters/bmfr/block_grid.h"
+#include "filters/bmfr/feature_columns.h"
+#include <algorithm>
+#include <type_traits>
+
+namespace bmfr::cpu {
+
+using namespace simd;
+
+namespace {
+
+struct Phase2 {
+    const BmfrPassContext& ctx;
+    Buffers& b;
+    BlockGrid grid;
+    /// The fitter's sources: normal xyz, position xyz, phase I colour.
+    const float* planes[9];
+
+    Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g)
+        : ctx(c), b(buffers), grid(g) {
+        const int cur = c.timeline.history.cur;
+        for (int ch = 0; ch < 3; ++ch) {
+            planes[ch] = b.plane(b.surface[cur], 3 + ch);
+            planes[3 + ch] = b.plane(b.surface[cur], ch);
+            planes[6 + ch] = b.plane(b.noisy[cur], ch);
+        }
+    }
+};
+
+/// Where each source's block rows start and how far apart they are (floats). Inside the image
+/// they are the planes themselves; at the border, the mirrored copy in scratch.
+struct BlockRows {
+    const float* source[6]; ///< normal xyz, position xyz
+    const float* colour[3];
+    long pitch = 0;
+    bool inside = false; ///< the block lies in the image; imageIndex is not filled
+};
+
+/// Gathers the extra buffers some feature uses (non-finite values read as 0).
+BMFR_SIMD_INLINE void gatherExtras(const Phase2& a, int ox, int oy, bool inside, Scratch& sc) {
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize, W = B * B;
+    for (const Feature& f : a.ctx.settings.features) {
+        if (f.source != FeatureSource::Extra) continue;
+        const float* src = a.ctx.input.extras[f.extraIndex];
+        float* dst = sc.soa.data() + (9 + size_t(f.extraIndex)) * size_t(W);
+        for (int ly = 0; ly < B; ++ly) {
+            const int iy = inside ? oy + ly : mirrorIndex(oy + ly, g.height);
+            for (int lx = 0; lx < B; ++lx) {
+                const int ix = inside ? ox + lx : mirrorIndex(ox + lx, g.width);
+                const float v = src[long(iy) * g.width + ix];
+                dst[ly * B + lx] = std::isfinite(v) ? v : 0.0f;
+            }
+        }
+    }
+}
+
+/// Copies n floats, eight at a time while they last.
+BMFR_SIMD_INLINE void copyRun(float* dst, const float* src, int n) {
+    int k = 0;
+    for (; k + 8 <= n; k += 8) store8(dst + k, load8(src + k));
+    for (; k < n; ++k) dst[k] = src[k];
+}
+
+/// The rows of block (ox, oy). A block inside the image reads the planes in place; a border
+/// block is copied into scratch with the image mirrored in, and marks the pixels it owns.
+BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& sc) {
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize, W = B * B;
+    const float* const* plane = a.planes;
+    BlockRows r;
+    r.inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
+    gatherExtras(a, ox, oy, r.inside, sc);
+    if (r.inside) {
+        const long first = long(oy) * g.width + ox;
+        for (int ch = 0; ch < 6; ++ch) r.source[ch] = plane[ch] + first;
+        for (int ch = 0; ch < 3; ++ch) r.colour[ch] = plane[6 + ch] + first;
+        r.pitch = g.width;
+        return r;
+    }
+    float* copy[9];
+    for (int ch = 0; ch < 9; ++ch) copy[ch] = sc.soa.data() + long(ch) * W;
+    // Columns [xa, xb) of the block are in the image; the rest mirror in.
+    const int xa = std::clamp(-ox, 0, B), xb = std::clamp(g.width - ox, xa, B);
+    for (int ly = 0; ly < B; ++ly) {
+        const int uy = oy + ly, iy = mirrorIndex(uy, g.height);
+        const bool rowInside = uy >= 0 && uy < g.height;
+        const long row = long(iy) * g.width;
+        const int k = ly * B;
+        for (int ch = 0; ch < 9; ++ch)
+            copyRun(copy[ch] + k + xa, plane[ch] + row + ox + xa, xb - xa);
+        for (int lx = 0; lx < B; ++lx) {
+            const bool in = lx >= xa && lx < xb;
+            if (!in) {
+                const long idx = row + mirrorIndex(ox + lx, g.width);
+                for (int ch = 0; ch < 9; ++ch) copy[ch][k + lx] = plane[ch][idx];
+            }
+            sc.imageIndex[size_t(k + lx)] = rowInside && in ? int(row + ox + lx) : -1;
+        }
+    }
+    for (int ch = 0; ch < 6; ++ch) r.source[ch] = copy[ch];
+    for (int ch = 0; ch < 3; ++ch) r.colour[ch] = copy[6 + ch];
+    r.pitch = B;
+    return r;
+}
+
+/// Asks for a block's rows of the surface and colour planes ahead of its gather. They are short
+/// runs (one block row each) in nine planes, which the hardware prefetchers do not follow; the
+/// fit of the block before hides the wait.
+BMFR_SIMD_INLINE void prefetchBlock(const Phase2& a, int bx, int by) {
+    const BlockGrid& g = a.grid;
+    if (bx >= g.blocksX || by >= g.blocksY) return;
+    const int B = g.blockSize, ox = std::max(0, g.originX(bx)), oy = std::max(0, g.originY(by));
+    const int x1 = std::min(g.width, g.originX(bx) + B), y1 = std::min(g.height, g.originY(by) + B);
+    if (ox >= x1 || oy >= y1) return;
+    const bool narrow = x1 - ox <= 32; // three lines cover a run of up to 32 floats
+    for (int y = oy; y < y1; ++y)
+        for (const float* p : a.planes) {
+            const float* row = p + long(y) * g.width;
+            if (narrow) {
+                __builtin_prefetch(row + ox), __builtin_prefetch(row + ox + 16);
+            } else {
+                for (int x = ox; x < x1; x += 16) __builtin_prefetch(row + x);
+            }
+            __builtin_prefetch(row + x1 - 1);
+        }
+}
+
+/// Calls fn(offset in the source, offset in the block, lanes) for each run of up to eight pixels
+/// of each block row. 32-pixel rows (the default) unroll.
+template <class Fn> BMFR_SIMD_INLINE void forRowRuns(int B, long pitch, Fn&& fn) {
+    if (B == 32) {
+        for (int ly = 0; ly < 32; ++ly)
+            for (int lx = 0; lx < 32; lx += 8) fn(ly * pitch + lx, ly * 32 + lx, 8);
+        return;
+    }
+    for (int ly = 0; ly < B; ++ly)
+        for (int lx = 0; lx < B; lx += 8) fn(ly * pitch + lx, ly * B + lx, std::min(8, B - lx));
+}
+
+/// One source's smallest and largest value and smallest magnitude over the block.
+struct SourceRange {
+    float lo, hi, minAbs;
+};
+
+BMFR_SIMD_INLINE SourceRange sourceRange(const float* from, long pitch, int B) {
+    const f8 inf = splat8(HUGE_VALF);
+    f8 lo = inf, hi = -inf, mag = inf;
+    forRowRuns(B, pitch, [&](long s, int, int n) {
+        const f8 v = loadFirst(from + s, n);
+        const i8 in = firstLanes(n);
+        lo = min8(lo, in ? v : inf), hi = max8(hi, in ? v : -inf);
+        mag = min8(mag, in ? (v < 0.0f ? -v : v) : inf);
+    });
+    return {hmin8(lo), hmax8(hi), hmin8(mag)};
+}
+
+/// The block scaling of a column, as scaleFeature: v -> (v - lo) * scale, with lo = 0 and
+/// scale = 1 when unscaled, and one reciprocal per column instead of a division per pixel.
+struct ColumnScale {
+    float lo = 0.0f, scale = 1.0f;
+    ColumnScale(bool scaled, float mn, float mx) {
+        if (!scaled) return;
+        const float range = mx - mn;
+        lo = mn, scale = range > 1.0f ? 1.0f / range : 1.0f;
+    }
+};
+
+/// A column that is a source or its square, in one pass: read, square, scale, store the clean
+/// value and the regularised one. The range comes from the source's, since v * v rounds
+/// monotonically in |v|: the same min and max as squaring first.
+BMFR_SIMD_INLINE void sourceColumn(const float* from, long pitch, int B, bool square, bool scaled,
+                                   const SourceRange& r, const float* noise, float* clean,
+                                   float* noised) {
+    const float big = std::max(-r.lo, r.hi);
+    const ColumnScale cs = square ? ColumnScale(scaled, r.minAbs * r.minAbs, big * big)
+                                  : ColumnScale(scaled, r.lo, r.hi);
+    const f8 lo = splat8(cs.lo), scale = splat8(cs.scale);
+    auto emit = [&](auto squared) {
+        forRowRuns(B, pitch, [&](long s, int k, int n) {
+            f8 v = loadFirst(from + s, n);
+            if constexpr (squared) v = v * v;
+            v = (v - lo) * scale;
+            storeFirst(clean + k, v, n);
+            storeFirst(noised + k, v + loadFirst(noise + k, n), n);
+        });
+    };
+    square ? emit(std::true_type{}) : emit(std::false_type{});
+}
+
+/// Any other column, a power other than 1 and 2, pixel by pixel.
+BMFR_SIMD_INLINE void otherColumn(const Feature& f, const float* from, long pitch, int B,
+                                  const float* noise, float* clean, float* noised) {
+    float mn = HUGE_VALF, mx = -HUGE_VALF;
+    for (int ly = 0; ly < B; ++ly)
+        for (int lx = 0; lx < B; ++lx) {
+            const float v = applyExponent(from[ly * pitch + lx], f.exponent);
+            clean[ly * B + lx] = v, mn = std::min(mn, v), mx = std::max(mx, v);
+        }
+    const ColumnScale cs(f.scaled, mn, mx);
+    for (int k = 0; k < B * B; ++k) {
+        clean[k] = (clean[k] - cs.lo) * cs.scale;
+        noised[k] = clean[k] + noise[k];
+    }
+}
+
+/// The M feature columns, scaled (clean) and regularised (the QR's copy), and the colour
+/// columns after them in the QR's copy.
+BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch& sc) {
+    const std::vector<Feature>& features = a.ctx.settings.features;
+    const int B = a.grid.blockSize, W = B * B, M = int(features.size());
+    const long zs = qrColumnStride(W);
+    const float* noise = a.ctx.timeline.noise.data();
+    // Ranges of the six surface sources, computed when a column first needs them.
+    SourceRange ranges[6];
+    bool known[6] = {};
+    for (int f = 0; f < M; ++f) {
+        const Feature& feat = features[size_t(f)];
+        float* clean = sc.clean.data() + long(f) * W;
+        float* noised = sc.work.data() + long(f) * zs;
+        const float* nz = noise + long(f) * W;
+        if (feat.source == FeatureSource::One) {
+            // A row of ones read for every block row (pitch 0).
+            sourceColumn(sc.ones.data(), 0, B, false, feat.scaled, {1.0f, 1.0f, 1.0f}, nz, clean,
+                         noised);
+            continue;
+        }
+        const bool extra = feat.source == FeatureSource::Extra;
+        const float* from = extra ? sc.soa.data() + (9 + long(feat.extraIndex)) * W
+                                  : r.source[int(feat.source) - int(FeatureSource::NormalX)];
+        const long pitch = extra ? B : r.pitch;
+        if (feat.exponent != 1.0f && feat.exponent != 2.0f) {
+            otherColumn(feat, from, pitch, B, nz, clean, noised);
+            continue;
+        }
+        SourceRange range;
+        if (extra) {
+            range = sourceRange(from, pitch, B);
+        } else {
+            const int src = int(feat.source) - int(FeatureSource::NormalX);
+            if (!known[src]) ranges[src] = sourceRange(from, pitch, B), known[src] = true;
+            range = ranges[src];
+        }
+        sourceColumn(from, pitch, B, feat.exponent == 2.0f, feat.scaled, range, nz, clean, noised);
+    }
+    for (int ch = 0; ch < 3; ++ch) {
+        float* z = sc.work.data() + long(M + ch) * zs;
+        for (int ly = 0; ly < B; ++ly) copyRun(z + ly * B, r.colour[ch] + ly * r.pitch, B);
+    }
+}
+
+BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
+    const BmfrSettings& s = a.ctx.settings;
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize, W = B * B, M = int(s.features.size());
+    const int ox = g.originX(bx), oy = g.originY(by);
+    // Blocks that own no pixel (entirely outside the image after the offset) are skipped.
+    if (ox + B <= 0 || oy + B <= 0 || ox >= g.width || oy >= g.height) return;
+    const BlockRows rows = blockRows(a, ox, oy, sc);
+    buildColumns(a, rows, sc);
+    prefetchBlock(a, bx + 1, by); // the next block of this row (none after the last)
+
+    float coeffs[kMaxFeatures * 3];
+    solveHouseholderFast(sc.work.data(), M, W, qrColumnStride(W), coeffs);
+
+    // Weighted sum of the noise-free features, 8 pixels at a time, straight to owned pixels.
+    float* fitted[3] = {a.b.plane(a.b.fitted, 0), a.b.plane(a.b.fitted, 1),
+                        a.b.plane(a.b.fitted, 2)};
+    const float* clean = sc.clean.data();
+    const long first = long(oy) * g.width + ox;
+    auto scatter = [&](int k, int n, f8 sum[3]) {
+        for (int c = 0; c < 3; ++c) sum[c] = max8(f8{}, sum[c]);
+        if (rows.inside && n == 8 && k % B + 8 <= B) {
+            // Eight pixels of one block row, which is a run of an image row.
+            const long idx = first + long(k / B) * g.width + k % B;
+            for (int c = 0; c < 3; ++c) store8(fitted[c] + idx, sum[c]);
+            return;
+        }
+        for (int l = 0; l < n; ++l) {
+            const long idx = rows.inside ? first + long((k + l) / B) * g.width + (k + l) % B
+                                         : long(sc.imageIndex[size_t(k + l)]);
+            if (idx < 0) continue;
+            for (int c = 0; c < 3; ++c) fitted[c][idx] = sum[c][l];
+        }
+    };
+    int k = 0;
+    for (; k + 16 <= W; k += 16) {
+        // Two groups at a time, so each coefficient is broadcast once for sixteen pixels.
+        f8 sum0[3] = {}, sum1[3] = {};
+        for (int f = 0; f < M; ++f) {
+            const f8 col0 = load8(clean + long(f) * W + k),
+                     col1 = load8(clean + long(f) * W + k + 8);
+            for (int c = 0; c < 3; ++c) {
+                // Scalar times vector: one broadcast (see splat8).
+                const float w = coeffs[f * 3 + c];
+                sum0[c] += w * col0, sum1[c] += w * col1;
+            }
+        }
+        scatter(k, 8, sum0), scatter(k + 8, 8, sum1);
+    }
+    for (; k < W; k += 8) {
+        f8 sum[3] = {};
+        const int n = std::min(8, W - k);
+        for (int f = 0; f < M; ++f)
+            for (int l = 0; l < n; ++l)
+                for (int c = 0; c < 3; ++c)
+                    sum[c][l] += coeffs[f * 3 + c] * clean[long(f) * W + k + l];
+        scatter(k, n, sum);
+    }
+}
+
+} // namespace
+
+void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
+                 Scratch& sc) {
+    const Phase2 a{ctx, b, grid};
+    for (int bx = 0; bx < grid.blocksX; ++bx) fitBlock(a, bx, by, sc);
+}
+
+} // namespace bmfr::cpu

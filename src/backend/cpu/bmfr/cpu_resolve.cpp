@@ -1,0 +1,98 @@
+#include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
+#include "backend/cpu/reproject8.h"
+#include "backend/cpu/modulation8.h"
+#include "backend/cpu/taa_rows.h"
+
+namespace bmfr::cpu {
+
+using namespace simd;
+
+namespace {
+
+/// secondBlendWeight (temporal/blend_weights.h) for eight history lengths.
+BMFR_SIMD_INLINE f8 secondBlendWeight8(f8 length, float minAlpha) {
+    const f8 w = 1.0f / (length > 0.0f ? length : splat8(1.0f));
+    return w > minAlpha ? w : splat8(minAlpha);
+}
+
+/// Phase III of pixels [i, i + n) into the resolved row at x: accumulateFittedPixel
+/// (filters/bmfr/accumulation_kernels.h) eight pixels at a time. The history is stored only when
+/// `owned`.
+BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes& pl, long i, int x, int n,
+                                  bool owned, float* row, size_t pitch) {
+    const BmfrSettings& s = a.s;
+    const TemporalHistory& t = a.t;
+    f8 c[3];
+    for (int ch = 0; ch < 3; ++ch) c[ch] = load8(pl.fitted[ch] + i);
+    const i8 accept = loadBytes(pl.accept + i, n);
+    if (t.hasHistory() && s.stages.secondAccumulation && anyLane(accept != 0)) {
+        const Footprint8 fp =
+            footprint8(load8(pl.previousPixel[0] + i), load8(pl.previousPixel[1] + i));
+        const Taps8 taps = taps8(fp, t.width, t.height, accept != 0);
+        // Accepted taps are inside the image.
+        const i8 use[4] = {(accept & 1) != 0, (accept & 2) != 0, (accept & 4) != 0,
+                           (accept & 8) != 0};
+        f8 old[3];
+        const f8 total = weightedTaps<3>(
+            taps, fp.weight, use,
+            [&](int k, f8* v) {
+                for (int ch = 0; ch < 3; ++ch) v[ch] = tapPlane(taps, pl.prevAccumulated[ch], k);
+            },
+            old);
+        const i8 some = total > 0.0f;
+        const f8 safe = some ? total : splat8(1.0f);
+        const f8 blend = secondBlendWeight8(load8(pl.noisy[3] + i), s.secondBlendAlpha);
+        for (int ch = 0; ch < 3; ++ch) c[ch] = some ? lerp8(old[ch] / safe, c[ch], blend) : c[ch];
+    }
+    if (owned)
+        for (int ch = 0; ch < 3; ++ch) storeFirst(pl.accumulated[ch] + i, c[ch], n);
+    remodulate8(c, a.in, i, n, s.stages.demodulate || s.colorIsDemodulated, s.albedoEpsilon);
+    storeResolved8(row, pitch, x, c);
+}
+
+/// Phase III of image row y into a resolved row. The halo rows a neighbouring task owns are
+/// recomputed, not shared (owned = false).
+BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, const FramePlanes& pl, long y, bool owned,
+                                float* row) {
+    const int w = a.t.width;
+    const size_t pitch = ResolvedRows::pitch(w);
+    for (int x = 0; x < w; x += 8)
+        phase3Group(a, pl, y * w + x, x, std::min(8, w - x), owned, row, pitch);
+    finishResolvedRow(row, pitch, w);
+}
+
+constexpr int kRowsPerTask = 32;
+
+BMFR_SIMD_CLONES void resolveRows(const FrameArgs& a, long y0, long y1, float* ring) {
+    const int w = a.t.width, h = a.t.height;
+    const size_t pitch = ResolvedRows::pitch(w);
+    const bool taa = a.s.taa && a.t.hasHistory();
+    const FramePlanes pl(a.b, a.t.cur);
+    const float* history = a.b.output[1 - a.t.cur].data();
+    float* out = a.b.output[a.t.cur].data();
+    auto row = [&](long y) { return ring + size_t(y % 3) * ResolvedRows::rowFloats(w); };
+    if (taa && y0 > 0) phase3Row(a, pl, y0 - 1, false, row(y0 - 1));
+    phase3Row(a, pl, y0, true, row(y0));
+    for (long y = y0; y < y1; ++y) {
+        if (y + 1 < h && (taa || y + 1 < y1)) phase3Row(a, pl, y + 1, y + 1 < y1, row(y + 1));
+        const float* mid = row(y);
+        const float* up = y > 0 ? row(y - 1) : mid;
+        const float* down = y + 1 < h ? row(y + 1) : mid;
+        taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w, pl.previousPixel[1] + y * w,
+               history, out + 3 * y * w, w, h, a.s.taaBlendAlpha, taa);
+    }
+}
+
+} // namespace
+
+void resolve(const BmfrPassContext& ctx, Buffers& b) {
+    const FrameArgs a{ctx.settings, ctx.input, ctx.timeline.history, b};
+    const long h = ctx.timeline.history.height, tasks = (h + kRowsPerTask - 1) / kRowsPerTask;
+    ctx.pool.parallelFor(tasks, 1, [&](long k0, long k1) {
+        float* ring = b.scratch[size_t(ThreadPool::currentThreadIndex())].rows.data();
+        for (long k = k0; k < k1; ++k)
+            resolveRows(a, k * kRowsPerTask, std::min(h, (k + 1) * kRowsPerTask), ring);
+    });
+}
+
+} // namespace bmfr::cpu

@@ -1,0 +1,185 @@
+// The reference backend's BMFR: one plain parallel loop per stage over the filter's kernels
+// (filters/bmfr/accumulation_kernels.h, fitting_kernel.h) and the shared TAA. The
+// specification every other backend is held to.
+#include "backend/reference/reference_taa.h"
+#include "core/image.h"
+#include "core/stopwatch.h"
+#include "filters/bmfr/accumulation_kernels.h"
+#include "filters/bmfr/bmfr_passes.h"
+#include "filters/bmfr/fitting_kernel.h"
+#include <atomic>
+#include <cstring>
+
+namespace bmfr::reference {
+
+namespace {
+
+/// Per-thread scratch of the block fitter: one block's columns, contiguous.
+struct FitScratch {
+    std::vector<float> clean, work, sum, sources;
+    std::vector<int> imageIndex;
+    BlockFitScratch view() {
+        return {clean.data(), work.data(), sum.data(), sources.data(), imageIndex.data()};
+    }
+};
+
+/// Plain interleaved images.
+struct Buffers {
+    // History, [slot].
+    ImageF normal[2], position[2]; ///< sanitised features (discard tests)
+    ImageF accumulatedNoisy[2];    ///< phase I output, demodulated
+    ImageU8 historyLength[2];      ///< phase I sample count, 1..255
+    ImageF accumulatedFitted[2];   ///< phase III accumulation, demodulated
+    ImageF output[2];              ///< final (TAA) output, linear
+    // This frame only.
+    ImageF previousPixel;  ///< 2 channels: continuous pixel in the previous frame
+    ImageU8 acceptMask;    ///< accepted bilinear taps, bit i = tap i
+    ImageF fitted;         ///< phase II output, demodulated
+    ImageF remodulated;    ///< phase III output before TAA
+    ImageF ycocg;          ///< TAA scratch
+    ImageF historyLengthF; ///< debug copy of the history length as float
+    ImageF acceptMaskF;    ///< debug copy of the accept mask as float
+    std::vector<FitScratch> scratch; ///< one per worker thread
+};
+
+InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
+    const BmfrSettings& s = ctx.settings;
+    const TemporalHistory& t = ctx.timeline.history;
+    const int cur = t.cur, prev = 1 - t.cur;
+    NoisyAccumulation a;
+    a.in = ctx.input;
+    a.modes = {s.colorIsDemodulated, s.stages.demodulate, s.albedoEpsilon};
+    a.previous = t.previous;
+    a.limits = {s.positionLimitSquared, s.normalLimitSquared};
+    a.minAlpha = s.firstBlendAlpha, a.accumulate = s.stages.firstAccumulation;
+    a.width = t.width, a.height = t.height;
+    a.normal = b.normal[cur].data(), a.position = b.position[cur].data();
+    a.prevNormal = b.normal[prev].data(), a.prevPosition = b.position[prev].data();
+    a.prevNoisy = b.accumulatedNoisy[prev].data(), a.prevLength = b.historyLength[prev].data();
+    a.noisy = b.accumulatedNoisy[cur].data(), a.length = b.historyLength[cur].data();
+    a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
+    std::atomic<int64_t> nonFinite{0}, discarded{0};
+    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
+        int64_t bad = 0, lost = 0;
+        for (long i = y0 * t.width; i < y1 * t.width; ++i) lost += accumulateNoisyPixel(a, i, bad);
+        nonFinite += bad;
+        discarded += lost;
+    });
+    return {nonFinite.load(), discarded.load()};
+}
+
+void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
+    const TemporalHistory& t = ctx.timeline.history;
+    const BmfrSettings& s = ctx.settings;
+    if (!s.stages.fitting) {
+        std::memcpy(b.fitted.data(), b.accumulatedNoisy[t.cur].data(),
+                    b.fitted.pixels.size() * sizeof(float));
+        return;
+    }
+    BlockFit a;
+    a.grid = makeBlockGrid(t.width, t.height, s.blockSize, t.frameIndex);
+    a.features = s.features.data(), a.featureCount = int(s.features.size());
+    a.noise = ctx.timeline.noise.data();
+    a.normal = b.normal[t.cur].data(), a.position = b.position[t.cur].data();
+    a.color = b.accumulatedNoisy[t.cur].data();
+    a.in = ctx.input;
+    a.fitted = b.fitted.data();
+    const BlockGrid& g = a.grid;
+    ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
+        const BlockFitScratch sc = b.scratch[size_t(ThreadPool::currentThreadIndex())].view();
+        for (long k = b0; k < b1; ++k)
+            fitBlock(a, int(k % g.blocksX), int(k / g.blocksX), sc, solveHouseholder);
+    });
+}
+
+void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
+    const BmfrSettings& s = ctx.settings;
+    const TemporalHistory& t = ctx.timeline.history;
+    FittedAccumulation a;
+    a.in = ctx.input;
+    a.accumulate = t.hasHistory() && s.stages.secondAccumulation;
+    a.remodulate = s.stages.demodulate || s.colorIsDemodulated;
+    a.albedoEpsilon = s.albedoEpsilon, a.minAlpha = s.secondBlendAlpha, a.width = t.width;
+    a.fitted = b.fitted.data(), a.prevAccumulated = b.accumulatedFitted[1 - t.cur].data();
+    a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
+    a.length = b.historyLength[t.cur].data(), a.accumulated = b.accumulatedFitted[t.cur].data();
+    float* out = b.remodulated.data();
+    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
+        for (long i = y0 * t.width; i < y1 * t.width; ++i)
+            store3(out, i, accumulateFittedPixel(a, i));
+    });
+}
+
+class ReferenceBmfrPasses final : public BmfrPasses {
+  public:
+    void allocate(int w, int h, const BmfrSettings& s, int threads) override {
+        Buffers& b = b_;
+        for (int k = 0; k < 2; ++k) {
+            b.normal[k].resize(w, h, 3);
+            b.position[k].resize(w, h, 3);
+            b.accumulatedNoisy[k].resize(w, h, 3);
+            b.historyLength[k].resize(w, h, 1);
+            b.accumulatedFitted[k].resize(w, h, 3);
+            b.output[k].resize(w, h, 3);
+        }
+        b.previousPixel.resize(w, h, 2);
+        b.acceptMask.resize(w, h, 1);
+        b.fitted.resize(w, h, 3);
+        b.remodulated.resize(w, h, 3);
+        b.ycocg.resize(w, h, 3);
+        b.historyLengthF.resize(w, h, 1);
+        b.acceptMaskF.resize(w, h, 1);
+        const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
+        b.scratch.resize(size_t(threads));
+        for (FitScratch& sc : b.scratch) {
+            sc.clean.assign(M * W, 0.0f);
+            sc.work.assign((M + 3) * W, 0.0f);
+            sc.sum.assign(3 * W, 0.0f);
+            sc.sources.assign((6 + 16) * W, 0.0f);
+            sc.imageIndex.assign(W, -1);
+        }
+    }
+
+    InputCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
+        const TemporalHistory& t = ctx.timeline.history;
+        Buffers& b = b_;
+        Stopwatch clock;
+        const InputCounters counters = accumulateNoisy(ctx, b);
+        times.add("accumulate", clock.lap());
+        fitBlocks(ctx, b);
+        times.add("fit", clock.lap());
+        accumulateFitted(ctx, b);
+        times.add("accumulate_fitted", clock.lap());
+        const TaaInputs taa{b.remodulated.data(), nullptr, b.output[1 - t.cur].data(),
+                            b.previousPixel.data(), t.width, t.height, ctx.settings.taaBlendAlpha};
+        taaPass(ctx.pool, taa, b.ycocg.data(), b.output[t.cur].data(),
+                ctx.settings.taa && t.hasHistory());
+        times.add("taa", clock.lap());
+        return counters;
+    }
+
+    ImageView output(int slot) const override { return view(b_.output[slot]); }
+
+    void captureDebug(const BmfrTimeline& t) override {
+        for (long i = 0; i < b_.historyLengthF.pixelCount(); ++i) {
+            b_.historyLengthF.data()[i] = b_.historyLength[t.history.cur].data()[i];
+            b_.acceptMaskF.data()[i] = b_.acceptMask.data()[i];
+        }
+    }
+
+    DebugBuffers debug(const BmfrTimeline& t) const override {
+        return {view(b_.accumulatedNoisy[t.history.cur]), view(b_.fitted), view(b_.historyLengthF),
+                view(b_.acceptMaskF)};
+    }
+
+  private:
+    Buffers b_;
+};
+
+} // namespace
+
+std::unique_ptr<BmfrPasses> makeBmfrPasses() {
+    return std::make_unique<ReferenceBmfrPasses>();
+}
+
+} // namespace bmfr::reference

@@ -1,0 +1,88 @@
+// SVGF's reference passes: plain parallel loops over the filter's kernels, then the shared TAA.
+#include "backend/reference/reference_taa.h"
+#include "backend/reference/svgf/reference_svgf_stages.h"
+#include "core/stopwatch.h"
+#include "temporal/modulation.h"
+#include <atomic>
+
+namespace bmfr::reference {
+
+int64_t svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times) {
+    const SvgfSettings& s = ctx.settings;
+    const TemporalHistory& h = ctx.history;
+    const int w = h.width, cur = h.cur;
+    const SvgfFrame f = b.frame(ctx);
+    Stopwatch clock;
+    std::atomic<int64_t> nonFinite{0};
+    ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {
+        int64_t bad = 0;
+        for (long i = y0 * w; i < y1 * w; ++i) svgfAccumulatePixel(f, i, bad);
+        nonFinite += bad;
+    });
+    ctx.pool.forEachPixel(w, h.height, 4, [&](int x, int y) { svgfDepthGradientPixel(f, x, y); });
+    times.add("accumulate", clock.lap());
+    ctx.pool.forEachPixel(w, h.height, 4, [&](int x, int y) {
+        svgfVariancePixel(f, s, x, y, b.filtered[0].data(), b.variance.data());
+    });
+    times.add("variance", clock.lap());
+    AtrousLevel level{nullptr, nullptr, f.normal, f.depth, f.depthGradient, f.length, w, h.height};
+    int src = 0;
+    for (int k = 0; k < s.iterations; ++k) {
+        const int index = s.reverseLevels ? s.iterations - 1 - k : k;
+        level.in = b.filtered[src].data(), level.out = b.filtered[1 - src].data();
+        level.step = 1 << index;
+        ctx.pool.forEachPixel(w, h.height, 4,
+                              [&](int x, int y) { svgfAtrousPixel(level, s, x, y); });
+        src = 1 - src;
+        if (index == 0) // the step-1 level becomes the next frame's colour history
+            for (long i = 0; i < b.integrated.pixelCount(); ++i)
+                store3(b.color[cur].data(), i, load3Stride4(b.filtered[src].data(), i));
+    }
+    b.outputLevel = src;
+    const float* last = b.filtered[src].data();
+    ctx.pool.parallelFor(h.height, 8, [&](long y0, long y1) {
+        for (long i = y0 * w; i < y1 * w; ++i)
+            store3(b.remodulated.data(), i,
+                   remodulatePixel(load3Stride4(last, i), ctx.input, i, true, s.albedoEpsilon));
+    });
+    times.add("atrous", clock.lap());
+    return nonFinite.load();
+}
+
+namespace {
+
+class ReferenceSvgfPasses final : public SvgfPasses {
+  public:
+    void allocate(int w, int h) override {
+        b_.allocate(w, h);
+        ycocg_.resize(w, h, 3);
+    }
+    int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
+        const int64_t bad = svgfStagesBeforeTaa(ctx, b_, times);
+        const TemporalHistory& h = ctx.history;
+        Stopwatch clock;
+        const TaaInputs taa{b_.remodulated.data(), nullptr, b_.output[1 - h.cur].data(),
+                            b_.previousPixel.data(), h.width, h.height,
+                            ctx.settings.taaBlendAlpha};
+        taaPass(ctx.pool, taa, ycocg_.data(), b_.output[h.cur].data(),
+                ctx.settings.taa && h.hasHistory());
+        times.add("taa", clock.lap());
+        return bad;
+    }
+    ImageView output(int slot) const override { return view(b_.output[slot]); }
+    ImageView variance() const override { return view(b_.variance); }
+    void captureDebug(int cur) override { b_.captureDebug(cur); }
+    DebugBuffers debug(int cur) const override { return b_.debug(cur); }
+
+  private:
+    SvgfBuffers b_;
+    ImageF ycocg_;
+};
+
+} // namespace
+
+std::unique_ptr<SvgfPasses> makeSvgfPasses() {
+    return std::make_unique<ReferenceSvgfPasses>();
+}
+
+} // namespace bmfr::reference

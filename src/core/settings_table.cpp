@@ -1,0 +1,48 @@
+#include "core/settings_table.h"
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace bmfr::detail {
+
+double parseNumber(const std::string& key, const std::string& text, bool integer) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(v))
+        throw Error("setting " + key + ": '" + text + "' is not a number");
+    if (integer && v != std::floor(v))
+        throw Error("setting " + key + ": '" + text + "' is not a whole number");
+    if (integer && std::fabs(v) > 4e9) throw Error("setting " + key + ": '" + text + "' is too large");
+    return v;
+}
+
+bool parseBool(const std::string& key, const std::string& text) {
+    if (text == "true" || text == "1" || text == "on" || text == "yes") return true;
+    if (text == "false" || text == "0" || text == "off" || text == "no") return false;
+    throw Error("setting " + key + ": '" + text + "' is not true or false");
+}
+
+std::string formatNumber(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+std::string formatRange(const SettingRange& r, bool integer) {
+    auto num = [&](double v) {
+        if (v >= 1e29) return std::string("inf");
+        return integer ? std::to_string(long(v)) : formatNumber(v);
+    };
+    return std::string(r.loOpen ? "(" : "[") + num(r.lo) + ", " + num(r.hi) +
+           (r.hiOpen || r.hi >= 1e29 ? ")" : "]");
+}
+
+void checkInRange(const char* filter, const char* key, double v, const SettingRange& r) {
+    const bool ok = std::isfinite(v) && (r.loOpen ? v > r.lo : v >= r.lo) &&
+                    (r.hiOpen ? v < r.hi : v <= r.hi);
+    if (!ok)
+        throw Error(std::string(filter) + " " + key + " = " + formatNumber(v) + " is outside " +
+                    formatRange(r, false));
+}
+
+} // namespace bmfr::detail

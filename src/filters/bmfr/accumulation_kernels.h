@@ -1,0 +1,104 @@
+// BMFR's two temporal accumulations, one pixel at a time (paper section 4.1 and 4.3): phase I
+// reprojects and accumulates the noisy colour and records its decisions; phase III reuses them
+// for the fitted colour. BMFR_HD: the reference backend loops over these; the CPU backend's
+// eight-wide versions (backend/cpu/bmfr/) mirror them.
+#pragma once
+#include "temporal/blend_weights.h"
+#include "temporal/history.h"
+#include "temporal/modulation.h"
+#include "temporal/pixel_input.h"
+#include "temporal/reprojection.h"
+
+namespace bmfr {
+
+/// Phase I's buffers for one frame: packed images of the backend's (3 floats per pixel unless
+/// said), `prev*` from the previous frame's slot.
+struct NoisyAccumulation {
+    InputPlanes in;
+    InputModes modes;
+    PreviousFrame previous;
+    DiscardLimits limits;
+    float minAlpha = 0.2f;   ///< BmfrSettings::firstBlendAlpha
+    bool accumulate = true;  ///< StageSwitches::firstAccumulation
+    int width = 0, height = 0;
+    float* normal = nullptr; ///< sanitised features, for the next frame's discard test
+    float* position = nullptr;
+    const float* prevNormal = nullptr;
+    const float* prevPosition = nullptr;
+    const float* prevNoisy = nullptr;
+    const uint8_t* prevLength = nullptr;
+    float* noisy = nullptr;         ///< accumulated demodulated colour
+    uint8_t* length = nullptr;      ///< history length, 1..255
+    float* previousPixel = nullptr; ///< 2 floats: continuous pixel in the previous frame
+    uint8_t* accept = nullptr;      ///< accepted taps, bit i = tap i
+};
+
+/// Phase I of pixel i. Returns true when the pixel had a history and lost all of it.
+BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& bad) {
+    const PixelInput px = readPixel(a.in, i, a.modes, bad);
+    const Vec3 n = px.normal, p = px.position;
+    Vec3 c = px.color;
+    store3(a.normal, i, n);
+    store3(a.position, i, p);
+
+    Vec2 pp{-1e6f, -1e6f}; // out of every image: TAA and phase III skip it
+    uint8_t accept = 0;
+    float samples = 0.0f, blend = 1.0f;
+    Vec3 old{};
+    const PreviousFrame& prev = a.previous;
+    if (prev.valid && projectToPixel(prev.viewProjection, p, prev.jitter, a.width, a.height, pp)) {
+        const BilinearFootprint fp = bilinearFootprint(pp);
+        accept = acceptTaps(fp, p, n, a.prevPosition, a.prevNormal, a.width, a.height, a.limits);
+        const float total = gatherAccepted(fp, accept, a.width, [&](long j, float wt) {
+            old += wt * load3(a.prevNoisy, j);
+            samples += wt * float(a.prevLength[j]);
+        });
+        if (total > 0.0f) {
+            old = old / total;
+            samples /= total;
+            blend = firstBlendWeight(samples, a.minAlpha);
+        }
+    }
+    a.length[i] = blend < 1.0f ? nextHistoryLength(samples) : 1;
+    if (a.accumulate && blend < 1.0f) c = lerp(old, c, blend);
+    store3(a.noisy, i, c);
+    a.previousPixel[2 * i] = pp.x;
+    a.previousPixel[2 * i + 1] = pp.y;
+    a.accept[i] = accept;
+    return prev.valid && accept == 0;
+}
+
+/// Phase III's buffers for one frame.
+struct FittedAccumulation {
+    InputPlanes in;
+    bool accumulate = true; ///< a history exists and StageSwitches::secondAccumulation
+    bool remodulate = true; ///< demodulated on input (by us or by the renderer)
+    float albedoEpsilon = 0.001f;
+    float minAlpha = 0.1f; ///< BmfrSettings::secondBlendAlpha
+    int width = 0;
+    const float* fitted = nullptr;
+    const float* prevAccumulated = nullptr;
+    const float* previousPixel = nullptr; ///< phase I's
+    const uint8_t* accept = nullptr;      ///< phase I's
+    const uint8_t* length = nullptr;      ///< phase I's
+    float* accumulated = nullptr;         ///< the next frame's history (demodulated)
+};
+
+/// Phase III of pixel i, with phase I's reprojection and discard decisions (no second test).
+/// Stores the history and returns the re-modulated colour with the emission added, for TAA.
+BMFR_HD Vec3 accumulateFittedPixel(const FittedAccumulation& a, long i) {
+    Vec3 c = load3(a.fitted, i);
+    const uint8_t accept = a.accept[i];
+    if (a.accumulate && accept) {
+        const Vec2 pp{a.previousPixel[2 * i], a.previousPixel[2 * i + 1]};
+        Vec3 old{};
+        const float total =
+            gatherAccepted(bilinearFootprint(pp), accept, a.width,
+                           [&](long j, float wt) { old += wt * load3(a.prevAccumulated, j); });
+        if (total > 0.0f) c = lerp(old / total, c, secondBlendWeight(a.length[i], a.minAlpha));
+    }
+    store3(a.accumulated, i, c);
+    return remodulatePixel(c, a.in, i, a.remodulate, a.albedoEpsilon);
+}
+
+} // namespace bmfr

@@ -1,0 +1,102 @@
+#include "backend/backend_registry.h"
+#include "core/hash.h"
+#include "core/settings_table.h"
+#include "filters/bmfr/bmfr_passes.h"
+#include "filters/bmfr/bmfr_settings_table.h"
+#include "filters/filter_entry.h"
+#include "temporal/frame_checks.h"
+#include "temporal/input_staging.h"
+#include <bmfr/error.h>
+
+namespace bmfr {
+
+struct BmfrDenoiser::Impl {
+    BmfrSettings settings;
+    std::unique_ptr<BmfrPasses> passes;
+    ThreadPool pool;
+    BmfrTimeline timeline;
+    InputStaging staging;
+    FrameStats stats;
+    bool debug = false;
+
+    explicit Impl(const BmfrSettings& s)
+        : settings(s), passes(makeBmfrPasses(s.backend)), pool(s.threads) {}
+
+    void fillNoise();
+    int extrasNeeded() const {
+        int n = 0;
+        for (const Feature& f : settings.features)
+            if (f.source == FeatureSource::Extra && f.extraIndex + 1 > n) n = f.extraIndex + 1;
+        return n;
+    }
+};
+
+void BmfrDenoiser::Impl::fillNoise() {
+    const int W = settings.blockSize * settings.blockSize, M = int(settings.features.size());
+    const float eps = settings.noiseAmplitude;
+    const uint32_t frame = uint32_t(timeline.history.frameIndex);
+    timeline.noise.resize(size_t(M) * W);
+    for (int f = 0; f < M; ++f) {
+        const bool constant = settings.features[size_t(f)].source == FeatureSource::One;
+        for (int k = 0; k < W; ++k) {
+            float u = unitFloat(hashKeys(settings.seed, frame, uint32_t(f), uint32_t(k)));
+            timeline.noise[size_t(f) * W + k] = constant ? 0.0f : eps * (2.0f * u - 1.0f);
+        }
+    }
+}
+
+BmfrDenoiser::BmfrDenoiser(const BmfrSettings& settings) {
+    validate(settings);
+    impl_ = std::make_unique<Impl>(settings);
+}
+BmfrDenoiser::~BmfrDenoiser() = default;
+BmfrDenoiser::BmfrDenoiser(BmfrDenoiser&&) noexcept = default;
+BmfrDenoiser& BmfrDenoiser::operator=(BmfrDenoiser&&) noexcept = default;
+
+void BmfrDenoiser::reset() {
+    impl_->timeline.history.reset();
+}
+void BmfrDenoiser::setDebugOutputs(bool enabled) {
+    impl_->debug = enabled;
+}
+const FrameStats& BmfrDenoiser::lastStats() const {
+    return impl_->stats;
+}
+const BmfrSettings& BmfrDenoiser::settings() const {
+    return impl_->settings;
+}
+
+ImageView BmfrDenoiser::denoise(const FrameInput& frame) {
+    Impl& m = *impl_;
+    checkFrameInput(frame, m.extrasNeeded());
+    TemporalHistory& h = m.timeline.history;
+    if (h.begin(frame)) m.passes->allocate(h.width, h.height, m.settings, m.pool.threadCount());
+    m.fillNoise();
+
+    m.stats.times.clear();
+    const BmfrPassContext ctx{m.settings, m.staging.stage(frame), m.timeline, m.pool};
+    const InputCounters counters = m.passes->run(ctx, m.stats.times);
+    if (m.debug) m.passes->captureDebug(m.timeline);
+    m.stats.nonFiniteInputs = counters.nonFinite;
+    m.stats.discardedPixels = counters.discarded;
+    const int slot = h.cur;
+    h.end(frame);
+    return m.passes->output(slot);
+}
+
+DebugBuffers BmfrDenoiser::debug() const {
+    if (!impl_->debug || impl_->timeline.history.width == 0) return {};
+    return impl_->passes->debug(impl_->timeline);
+}
+
+FilterEntry bmfrFilterEntry() {
+    return {"bmfr", "BMFR (Koskela et al. 2019)",
+            [](const SettingValues& values) -> std::unique_ptr<Filter> {
+                BmfrSettings s;
+                applySettings(bmfrSettingsTable(), s, values, "bmfr");
+                return std::make_unique<BmfrDenoiser>(s);
+            },
+            [] { return documentSettings(bmfrSettingsTable(), bmfrSharedSettingCount()); }};
+}
+
+} // namespace bmfr

@@ -1,0 +1,63 @@
+#include "filters/bmfr/bmfr_settings_table.h"
+#include "temporal/temporal_settings_table.h"
+
+namespace bmfr {
+
+namespace {
+
+using S = BmfrSettings;
+
+SettingsTable<S> makeTable() {
+    SettingsTable<S> t = temporalSettingsTable<S>();
+    const SettingsTable<S> own = {
+        {"blockSize", "block-size", "pixels", {8, 64}, "edge of the square regression block (even)",
+         BMFR_FIELD(S, blockSize)},
+        {"features", "features", "", {}, "columns of the regression matrix, constant 1 first",
+         TextField<S>{+[](const S& s) { return formatFeatures(s.features); },
+                      +[](S& s, const std::string& v) { s.features = parseFeatures(v); }}},
+        {"noiseAmplitude", "noise", "", {0, 1},
+         "half-width of the uniform regularisation noise on every non-constant feature column",
+         BMFR_FIELD(S, noiseAmplitude)},
+        {"firstBlendAlpha", "alpha1", "", {0, 1, true},
+         "phase I minimum new-frame weight (cumulative average until 1/(n+1) drops below it)",
+         BMFR_FIELD(S, firstBlendAlpha)},
+        {"secondBlendAlpha", "alpha2", "", {0, 1, true},
+         "phase III minimum new-frame weight, max(1/n, alpha2)", BMFR_FIELD(S, secondBlendAlpha)},
+        {"seed", "seed", "", {0, 4294967295.0}, "regularisation noise seed", BMFR_FIELD(S, seed)},
+        {"demodulate", "demodulate", "", {}, "divide colour by albedo before filtering",
+         BMFR_FIELD(S, stages.demodulate)},
+        {"firstAccumulation", "accumulation", "", {}, "phase I: accumulate the noisy colour",
+         BMFR_FIELD(S, stages.firstAccumulation)},
+        {"fitting", "fitting", "", {}, "phase II: blockwise feature regression",
+         BMFR_FIELD(S, stages.fitting)},
+        {"secondAccumulation", "second-accumulation", "", {},
+         "phase III: accumulate the fitted colour", BMFR_FIELD(S, stages.secondAccumulation)},
+    };
+    t.insert(t.end(), own.begin(), own.end());
+    return t;
+}
+
+} // namespace
+
+const SettingsTable<BmfrSettings>& bmfrSettingsTable() {
+    static const SettingsTable<BmfrSettings> table = makeTable();
+    return table;
+}
+
+int bmfrSharedSettingCount() {
+    return int(temporalSettingsTable<BmfrSettings>().size());
+}
+
+void validate(const BmfrSettings& s) {
+    checkSettings(bmfrSettingsTable(), s, "setting");
+    if (s.blockSize % 2 != 0) throw Error("setting blockSize must be even");
+    if (s.features.empty() || s.features.front().source != FeatureSource::One)
+        throw Error("setting features: the first feature must be the constant 1");
+    if (int(s.features.size()) > kMaxFeatures)
+        throw Error("setting features: " + std::to_string(s.features.size()) +
+                    " features, at most " + std::to_string(kMaxFeatures));
+    if (int(s.features.size()) + 3 > s.blockSize * s.blockSize)
+        throw Error("setting features: more features than pixels in a block");
+}
+
+} // namespace bmfr

@@ -1,0 +1,12 @@
+// BMFR's settings table: the shared rows, then BMFR's own. The one place their ranges live.
+#pragma once
+#include "core/settings_table.h"
+#include <bmfr/filters/bmfr.h>
+
+namespace bmfr {
+
+const SettingsTable<BmfrSettings>& bmfrSettingsTable();
+/// How many of the table's first rows are the shared TemporalSettings.
+int bmfrSharedSettingCount();
+
+} // namespace bmfr

@@ -1,0 +1,114 @@
+// The BMFR fitting kernel (paper section 4.2), one block at a time: gather the block's features
+// and phase I colour, scale each feature column to the block, add the regularisation noise,
+// solve the least squares by Householder QR, and write the weighted sum of the noise-free
+// features to the pixels the block owns. BMFR_HD over raw arrays; the CPU backend's fitter
+// (backend/cpu/bmfr/cpu_fit_blocks.cpp) is the same maths streamed from planes.
+#pragma once
+#include "core/border.h"
+#include "filters/bmfr/block_grid.h"
+#include "filters/bmfr/feature_columns.h"
+#include "filters/bmfr/householder_qr.h"
+#include "temporal/pixel_input.h"
+
+namespace bmfr {
+
+/// One frame's fit: its sources and output are packed images (3 floats per pixel).
+struct BlockFit {
+    BlockGrid grid;
+    const Feature* features = nullptr;
+    int featureCount = 0;
+    const float* noise = nullptr; ///< featureCount x blockPixels regularisation noise
+    const float* normal = nullptr;
+    const float* position = nullptr;
+    const float* color = nullptr; ///< phase I output
+    InputPlanes in;               ///< for the extra feature buffers
+    float* fitted = nullptr;      ///< the block writes the pixels it owns
+};
+
+/// One worker's scratch for a block of W pixels and M features.
+struct BlockFitScratch {
+    float* clean;    ///< M x W scaled feature columns, noise-free (for the weighted sum)
+    float* work;     ///< (M + 3) x W noised columns then colour, overwritten by the QR
+    float* sum;      ///< 3 x W weighted sums
+    float* sources;  ///< (6 + 16) x W gathered normal, position and extras
+    int* imageIndex; ///< W: image pixel of each block pixel, -1 when not owned
+};
+
+/// Gathers block (bx, by) as structure-of-arrays, mirroring the image in at the border, and
+/// marks the pixels it owns.
+BMFR_HD void gatherBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& sc) {
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize, W = B * B, M = a.featureCount;
+    float* n[3] = {sc.sources, sc.sources + W, sc.sources + 2 * W};
+    float* p[3] = {sc.sources + 3 * W, sc.sources + 4 * W, sc.sources + 5 * W};
+    float* z[3] = {sc.work + long(M) * W, sc.work + long(M + 1) * W, sc.work + long(M + 2) * W};
+    const int ox = g.originX(bx), oy = g.originY(by);
+    const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
+    for (int ly = 0; ly < B; ++ly) {
+        const int uy = oy + ly, iy = inside ? uy : mirrorIndex(uy, g.height);
+        const bool rowInside = uy >= 0 && uy < g.height;
+        for (int lx = 0; lx < B; ++lx) {
+            const int ux = ox + lx, ix = inside ? ux : mirrorIndex(ux, g.width);
+            const int k = ly * B + lx;
+            const long idx = long(iy) * g.width + ix;
+            for (int c = 0; c < 3; ++c) {
+                n[c][k] = a.normal[3 * idx + c];
+                p[c][k] = a.position[3 * idx + c];
+                z[c][k] = a.color[3 * idx + c];
+            }
+            for (int e = 0; e < a.in.extraCount; ++e) {
+                const float v = a.in.extras[e][idx];
+                sc.sources[(6 + e) * long(W) + k] = std::isfinite(v) ? v : 0.0f;
+            }
+            sc.imageIndex[k] = rowInside && ux >= 0 && ux < g.width ? int(idx) : -1;
+        }
+    }
+    buildFeatureColumns(a.features, M, {{n[0], n[1], n[2]}, {p[0], p[1], p[2]}, sc.sources + 6 * W},
+                        W, sc.clean);
+}
+
+/// Fits block (bx, by). `solve(columns, M, rows, coeffs)` is a Householder solver with
+/// solveHouseholder's contract (the backend picks its build of it).
+template <typename Solve>
+BMFR_HD void fitBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& sc, Solve&& solve) {
+    const int W = a.grid.blockSize * a.grid.blockSize, M = a.featureCount;
+    gatherBlock(a, bx, by, sc);
+    for (int f = 0; f < M; ++f) {
+        float* col = sc.clean + long(f) * W;
+        if (a.features[f].scaled) {
+            float mn = col[0], mx = col[0];
+            for (int k = 1; k < W; ++k) {
+                mn = col[k] < mn ? col[k] : mn;
+                mx = mx < col[k] ? col[k] : mx;
+            }
+            for (int k = 0; k < W; ++k) col[k] = scaleFeature(col[k], mn, mx);
+        }
+        float* dst = sc.work + long(f) * W;
+        const float* nz = a.noise + long(f) * W;
+        for (int k = 0; k < W; ++k) dst[k] = col[k] + nz[k];
+    }
+
+    float coeffs[kMaxFeatures * 3];
+    solve(sc.work, M, W, coeffs);
+
+    // Weighted sum with the noise-free features; only owned pixels are written.
+    for (int k = 0; k < 3 * W; ++k) sc.sum[k] = 0.0f;
+    for (int f = 0; f < M; ++f) {
+        const float* col = sc.clean + long(f) * W;
+        for (int c = 0; c < 3; ++c) {
+            const float w = coeffs[f * 3 + c];
+            float* out = sc.sum + long(c) * W;
+            for (int k = 0; k < W; ++k) out[k] += w * col[k];
+        }
+    }
+    for (int k = 0; k < W; ++k) {
+        const int idx = sc.imageIndex[k];
+        if (idx < 0) continue;
+        for (int c = 0; c < 3; ++c) {
+            const float v = sc.sum[long(c) * W + k];
+            a.fitted[3L * idx + c] = v > 0.0f ? v : 0.0f;
+        }
+    }
+}
+
+} // namespace bmfr

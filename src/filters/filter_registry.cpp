@@ -1,0 +1,49 @@
+// The filters by name. A new filter adds one line to kFilters (and its entry to filter_entry.h).
+#include "filters/filter_entry.h"
+#include "temporal/input_staging.h"
+#include <bmfr/error.h>
+
+namespace bmfr {
+
+namespace {
+
+const std::vector<FilterEntry>& filters() {
+    static const std::vector<FilterEntry> kFilters = {
+        bmfrFilterEntry(),
+        svgfFilterEntry(),
+    };
+    return kFilters;
+}
+
+const FilterEntry& find(const std::string& name) {
+    std::string known;
+    for (const FilterEntry& f : filters()) {
+        if (name == f.name) return f;
+        known += (known.empty() ? "" : ", ") + std::string(f.name);
+    }
+    throw Error("unknown filter '" + name + "' (expected " + known + ")");
+}
+
+} // namespace
+
+std::unique_ptr<Filter> makeFilter(const std::string& name, const SettingValues& values) {
+    return find(name).make(values);
+}
+
+std::vector<std::string> filterNames() {
+    std::vector<std::string> names;
+    for (const FilterEntry& f : filters()) names.push_back(f.name);
+    return names;
+}
+
+std::vector<SettingDoc> filterSettings(const std::string& name) {
+    return find(name).settings();
+}
+
+ImageView Filter::denoise(const FrameInput& frame, const MutableImageView& out) {
+    const ImageView result = denoise(frame);
+    writeOutput(result, out);
+    return result;
+}
+
+} // namespace bmfr

@@ -1,0 +1,12 @@
+// SVGF's settings table: the shared rows, then SVGF's own. The one place their ranges live.
+#pragma once
+#include "core/settings_table.h"
+#include <bmfr/filters/svgf.h>
+
+namespace bmfr {
+
+const SettingsTable<SvgfSettings>& svgfSettingsTable();
+/// How many of the table's first rows are the shared TemporalSettings.
+int svgfSharedSettingCount();
+
+} // namespace bmfr

@@ -1,0 +1,54 @@
+#include "temporal/frame_checks.h"
+#include "core/mat4.h"
+#include <bmfr/error.h>
+#include <cmath>
+#include <string>
+
+namespace bmfr {
+
+namespace {
+
+/// `rgb`: 3 or 4 channels (RGB or RGBA); otherwise exactly one.
+void checkImage(const ImageView& v, const std::string& name, bool rgb, int w, int h) {
+    if (!v.data) throw Error("input buffer '" + name + "' is missing");
+    if (v.width <= 0 || v.height <= 0)
+        throw Error("input buffer '" + name + "' has zero size (" + std::to_string(v.width) + "x" +
+                    std::to_string(v.height) + ")");
+    if (rgb ? v.channels != 3 && v.channels != 4 : v.channels != 1)
+        throw Error("input buffer '" + name + "' has " + std::to_string(v.channels) +
+                    " channels, expected " + (rgb ? "3 or 4" : "1"));
+    if (v.width != w || v.height != h)
+        throw Error("input buffer '" + name + "' is " + std::to_string(v.width) + "x" +
+                    std::to_string(v.height) + ", colour is " + std::to_string(w) + "x" +
+                    std::to_string(h));
+    if (v.rowStride != 0 && v.rowStride < long(v.width) * v.channels)
+        throw Error("input buffer '" + name + "' has a row stride of " +
+                    std::to_string(v.rowStride) + " floats, less than a row (" +
+                    std::to_string(long(v.width) * v.channels) + ")");
+}
+
+} // namespace
+
+void checkFrameInput(const FrameInput& f, int extrasNeeded) {
+    const int w = f.color.width, h = f.color.height;
+    checkImage(f.color, "color", true, w, h);
+    checkImage(f.albedo, "albedo", true, w, h);
+    checkImage(f.normal, "normal", true, w, h);
+    checkImage(f.position, "position", true, w, h);
+    if (f.emission.data) checkImage(f.emission, "emission", true, w, h);
+    if (f.extras.size() > 16) throw Error("at most 16 extra buffers");
+    for (size_t e = 0; e < f.extras.size(); ++e)
+        checkImage(f.extras[e], "extra" + std::to_string(e), false, w, h);
+    if (extrasNeeded > int(f.extras.size()))
+        throw Error("feature extra" + std::to_string(extrasNeeded - 1) + " needs " +
+                    std::to_string(extrasNeeded) + " extra buffers, the frame has " +
+                    std::to_string(f.extras.size()));
+    if (f.sampleMask.data) checkImage(f.sampleMask, "sampleMask", false, w, h);
+    if (!isUsableCameraMatrix(f.viewProjection))
+        throw Error("view-projection matrix is not finite or not invertible");
+    for (float j : f.jitter)
+        if (!std::isfinite(j) || std::fabs(j) > 1.0f)
+            throw Error("sub-pixel jitter " + std::to_string(j) + " is outside [-1, 1] pixels");
+}
+
+} // namespace bmfr

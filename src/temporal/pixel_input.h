@@ -1,0 +1,78 @@
+// How every filter reads one pixel of its input: NaN/Inf replaced and counted, the noise-free
+// emission taken out, the colour demodulated. Per pixel and BMFR_HD, over packed planes.
+#pragma once
+#include "core/vec.h"
+#include <cstdint>
+
+namespace bmfr {
+
+/// A frame's input buffers as packed arrays (3 floats per pixel; extras 1), on host or device.
+/// temporal/input_staging.h makes them from a FrameInput of any stride and channel count.
+struct InputPlanes {
+    static constexpr int kMaxExtras = 16;
+    const float* color = nullptr;
+    const float* albedo = nullptr;
+    const float* normal = nullptr;
+    const float* position = nullptr;
+    const float* emission = nullptr;   ///< null when the frame has none
+    const float* sampleMask = nullptr; ///< null at 1 spp
+    const float* extras[kMaxExtras] = {};
+    int extraCount = 0;
+    int width = 0, height = 0;
+};
+
+/// How the colour is to be read.
+struct InputModes {
+    bool colorIsDemodulated = false; ///< the input already is colour / albedo
+    bool demodulate = true;          ///< divide by the guarded albedo (unless it already is)
+    float albedoEpsilon = 0.001f;
+};
+
+BMFR_HD float finiteOrZero(float a, int64_t& replaced) {
+    if (std::isfinite(a)) return a;
+    ++replaced;
+    return 0.0f;
+}
+
+BMFR_HD Vec3 finiteOrZero(Vec3 v, int64_t& replaced) {
+    if (std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) return v;
+    return {finiteOrZero(v.x, replaced), finiteOrZero(v.y, replaced), finiteOrZero(v.z, replaced)};
+}
+
+/// Albedo as used for (de)modulation: finite and at least eps per channel.
+BMFR_HD float guardAlbedo(float v, float eps) {
+    return std::isfinite(v) && v > eps ? v : eps;
+}
+BMFR_HD Vec3 guardAlbedo(Vec3 a, float eps) {
+    return {guardAlbedo(a.x, eps), guardAlbedo(a.y, eps), guardAlbedo(a.z, eps)};
+}
+
+/// One pixel's inputs as every filter reads them.
+struct PixelInput {
+    Vec3 normal, position, color, albedo;
+};
+
+/// Reads pixel i: NaN/Inf replaced by 0 and counted in `bad` (extras included); the noise-free
+/// emission taken out of the colour (demodulated too when the colour is); and, with
+/// modes.demodulate, the colour divided by the guarded albedo unless it already is.
+BMFR_HD PixelInput readPixel(const InputPlanes& in, long i, const InputModes& modes,
+                             int64_t& bad) {
+    PixelInput px;
+    px.normal = finiteOrZero(load3(in.normal, i), bad);
+    px.position = finiteOrZero(load3(in.position, i), bad);
+    px.albedo = finiteOrZero(load3(in.albedo, i), bad);
+    Vec3 c = finiteOrZero(load3(in.color, i), bad);
+    const Vec3 g = guardAlbedo(px.albedo, modes.albedoEpsilon);
+    if (in.emission) {
+        Vec3 e = finiteOrZero(load3(in.emission, i), bad);
+        if (modes.colorIsDemodulated) e = {e.x / g.x, e.y / g.y, e.z / g.z};
+        c = vmax(c - e, Vec3{0, 0, 0});
+    }
+    for (int k = 0; k < in.extraCount; ++k)
+        if (!std::isfinite(in.extras[k][i])) ++bad;
+    if (modes.demodulate && !modes.colorIsDemodulated) c = {c.x / g.x, c.y / g.y, c.z / g.z};
+    px.color = c;
+    return px;
+}
+
+} // namespace bmfr

@@ -1,0 +1,66 @@
+// Temporal anti-aliasing of a filter's output (Karis 2014, the BMFR authors' variant): the
+// history sampled bilinearly where the surface was last frame, clamped to the current
+// neighbourhood in YCoCg, blended with the current frame. Per pixel and BMFR_HD; the CPU
+// backend's eight-wide version (backend/cpu/taa_rows.h) mirrors taaPixel.
+#pragma once
+#include "core/color.h"
+#include "temporal/reprojection.h"
+
+namespace bmfr {
+
+/// One frame's TAA inputs: packed images of 3 floats per pixel, and the previous pixel of each
+/// pixel (2 floats) from the filter's reprojection.
+struct TaaInputs {
+    const float* current = nullptr; ///< this frame's colour before TAA
+    const float* ycocg = nullptr;   ///< rgbToYCoCg of `current`, precomputed once per pixel
+    const float* history = nullptr; ///< the previous frame's TAA output
+    const float* previousPixel = nullptr;
+    int width = 0, height = 0;
+    float alpha = 0.2f; ///< weight of the current frame
+};
+
+/// Clamp box of pixel (x, y): the mean of the 3x3 box and the 5-tap cross bounds, in YCoCg.
+BMFR_HD void taaClampBox(const TaaInputs& a, int x, int y, Vec3& lo, Vec3& hi) {
+    const float inf = INFINITY;
+    Vec3 boxLo{inf, inf, inf}, boxHi{-inf, -inf, -inf}, crossLo = boxLo, crossHi = boxHi;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int sx = x + dx, sy = y + dy;
+            if (sx < 0 || sy < 0 || sx >= a.width || sy >= a.height) continue;
+            const Vec3 v = load3(a.ycocg, long(sy) * a.width + sx);
+            boxLo = vmin(boxLo, v);
+            boxHi = vmax(boxHi, v);
+            if (dx == 0 || dy == 0) {
+                crossLo = vmin(crossLo, v);
+                crossHi = vmax(crossHi, v);
+            }
+        }
+    lo = 0.5f * (boxLo + crossLo);
+    hi = 0.5f * (boxHi + crossHi);
+}
+
+/// TAA output of pixel (x, y). A pixel whose footprint lies wholly outside the image (no
+/// history) keeps its current colour.
+BMFR_HD Vec3 taaPixel(const TaaInputs& a, int x, int y) {
+    const long i = long(y) * a.width + x;
+    const Vec3 c = load3(a.current, i);
+    const Vec2 pp{a.previousPixel[2 * i], a.previousPixel[2 * i + 1]};
+    const BilinearFootprint fp = bilinearFootprint(pp);
+    if (fp.x0 < -1 || fp.y0 < -1 || fp.x0 >= a.width || fp.y0 >= a.height) return c;
+    Vec3 lo, hi;
+    taaClampBox(a, x, y, lo, hi);
+    // Bilinear history, renormalised at the image border.
+    Vec3 old{};
+    float total = 0.0f;
+    for (int t = 0; t < 4; ++t) {
+        const int tx = tapX(fp, t), ty = tapY(fp, t);
+        if (tx < 0 || ty < 0 || tx >= a.width || ty >= a.height) continue;
+        old += fp.weight[t] * load3(a.history, long(ty) * a.width + tx);
+        total += fp.weight[t];
+    }
+    if (total > 0.0f) old = old / total;
+    const Vec3 clamped = yCoCgToRgb(clamp(rgbToYCoCg(old), lo, hi));
+    return lerp(clamped, c, a.alpha);
+}
+
+} // namespace bmfr

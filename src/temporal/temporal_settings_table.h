@@ -1,0 +1,38 @@
+// The shared settings' rows of every filter's settings table (TemporalSettings): each filter's
+// table starts with these.
+#pragma once
+#include "core/settings_table.h"
+#include <bmfr/temporal_settings.h>
+
+namespace bmfr {
+
+template <class S> TextField<S> backendField() {
+    return {+[](const S& s) { return std::string(backendName(s.backend)); },
+            +[](S& s, const std::string& v) { s.backend = parseBackend(v.c_str()); }};
+}
+
+template <class S> SettingsTable<S> temporalSettingsTable() {
+    return {
+        {"backend", "backend", "", {}, "where the passes run: reference, cpu or cuda",
+         backendField<S>()},
+        {"positionLimitSquared", "position-limit", "scene units^2", {0, 1e30, true},
+         "discard a history tap when its squared world distance is at least this",
+         BMFR_FIELD(S, positionLimitSquared)},
+        {"normalLimitSquared", "normal-limit", "", {0, 4, true},
+         "discard a history tap when its squared normal distance is at least this",
+         BMFR_FIELD(S, normalLimitSquared)},
+        {"taaBlendAlpha", "taa-alpha", "", {0, 1, true}, "TAA weight of the current frame",
+         BMFR_FIELD(S, taaBlendAlpha)},
+        {"taa", "taa", "", {}, "temporal anti-aliasing of the output", BMFR_FIELD(S, taa)},
+        {"albedoEpsilon", "albedo-epsilon", "", {1e-6, 1},
+         "albedo channels below this count as this when (de)modulating",
+         BMFR_FIELD(S, albedoEpsilon)},
+        {"colorIsDemodulated", "color-is-demodulated", "", {},
+         "the colour input is already divided by albedo (the original BMFR dataset is)",
+         BMFR_FIELD(S, colorIsDemodulated)},
+        {"threads", "threads", "threads", {0, 1024}, "worker threads, 0 = all cores",
+         BMFR_FIELD(S, threads)},
+    };
+}
+
+} // namespace bmfr

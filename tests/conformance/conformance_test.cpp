@@ -1,0 +1,238 @@
+// The conformance suite: every backend against the reference backend, for every filter, on the
+// same frames. Outputs must agree within the stated tolerance; discard masks, history lengths
+// and the non-finite and discarded counts must be identical. A new backend joins with one line
+// in kBackends, a new filter with one entry in kFilters.
+#include "core/image.h"
+#include "render/frame_renderer.h"
+#include "render/lights.h"
+#include "render/ray_accel.h"
+#include "render/scene.h"
+#include "synth/procedural_scene.h"
+#include <bmfr/bmfr.h>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <gtest/gtest.h>
+
+namespace bmfr {
+namespace {
+
+/// The backends held to the reference backend.
+const char* const kBackends[] = {"cpu"};
+
+/// Each filter with the configurations beyond the common ones (defaults and every switch).
+struct FilterCase {
+    const char* name;
+    std::vector<std::pair<std::string, SettingValues>> configurations;
+};
+const FilterCase kFilters[] = {
+    {"bmfr",
+     {{"block size 8", {{"blockSize", "8"}}},
+      {"block size 20", {{"blockSize", "20"}}},
+      {"block size 64", {{"blockSize", "64"}}},
+      {"no regularisation: rank-deficient blocks", {{"noiseAmplitude", "0"}}},
+      {"an extra feature", {{"features", "1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,p.y^2,p.z^2,extra0"}}},
+      {"block size 14, exponents 3, 0.5 and 2 on an extra",
+       {{"blockSize", "14"}, {"features", "1,n.x,n.y,n.z,p.x,p.y^3,p.z^0.5,p.x^2,extra0^2"}}}}},
+    {"svgf",
+     {{"progressive variant",
+       {{"kernelRadius", "1"}, {"reverseLevels", "true"}, {"spatialVarianceFrames", "0"}}},
+      {"one level", {{"iterations", "1"}}}}},
+};
+
+// The stated tolerance: |backend - reference| <= kAbs + kRel * |reference| per channel, and the
+// mean difference below kMean. Backends run the same algorithm; they may differ by summation
+// order in the QR, fused multiply-adds outside the decision code, and one reciprocal per scaled
+// column.
+constexpr double kAbs = 1e-4, kRel = 1e-3, kMean = 1e-5;
+
+struct Difference {
+    double worstExcess = 0; ///< max of |d| - (kAbs + kRel |ref|); <= 0 passes
+    double mean = 0, maxAbs = 0;
+};
+
+Difference compareViews(const ImageView& a, const ImageView& ref) {
+    Difference d;
+    const long n = long(ref.width) * ref.height * 3;
+    for (long i = 0; i < n; ++i) {
+        const double r = ref.data[i], e = std::fabs(double(a.data[i]) - r);
+        d.worstExcess = std::max(d.worstExcess, e - (kAbs + kRel * std::fabs(r)));
+        d.maxAbs = std::max(d.maxAbs, e);
+        d.mean += e;
+    }
+    d.mean /= double(n);
+    return d;
+}
+
+using FrameSource = std::function<FrameInput(int)>;
+
+SettingValues with(SettingValues v, const std::string& key, const std::string& value) {
+    v.push_back({key, value});
+    return v;
+}
+
+/// Runs `frames` frames through `backend` and the reference backend and compares them.
+/// `tested` may hand the backend under test a different layout of the same pixels.
+void expectConformance(const std::string& filter, const std::string& backend,
+                       const SettingValues& values, int frames, const FrameSource& frame,
+                       const std::string& what, const FrameSource& tested = nullptr) {
+    auto a = makeFilter(filter, with(values, "backend", backend));
+    auto ref = makeFilter(filter, with(values, "backend", "reference"));
+    a->setDebugOutputs(true);
+    ref->setDebugOutputs(true);
+    const std::string label = filter + " on " + backend + ", " + what;
+    for (int i = 0; i < frames; ++i) {
+        const FrameInput in = frame(i);
+        const ImageView out = a->denoise(tested ? tested(i) : in), expected = ref->denoise(in);
+        ASSERT_EQ(a->lastStats().nonFiniteInputs, ref->lastStats().nonFiniteInputs) << label;
+        ASSERT_EQ(a->lastStats().discardedPixels, ref->lastStats().discardedPixels) << label;
+        const Difference d = compareViews(out, expected);
+        EXPECT_LE(d.worstExcess, 0.0) << label << ", frame " << i << ": max |diff| " << d.maxAbs;
+        EXPECT_LE(d.mean, kMean) << label << ", frame " << i;
+        const DebugBuffers da = a->debug(), db = ref->debug();
+        ASSERT_TRUE(da.discardMask.data && db.discardMask.data) << label;
+        for (long p = 0; p < long(in.color.width) * in.color.height; ++p) {
+            ASSERT_EQ(da.discardMask.data[p], db.discardMask.data[p]) << label << ", pixel " << p;
+            ASSERT_EQ(da.historyLength.data[p], db.historyLength.data[p]) << label;
+        }
+    }
+}
+
+struct ProceduralFrames {
+    std::vector<FrameData> frames;
+    ProceduralFrames(int w, int h, int n, bool poison) {
+        ProceduralSceneOptions o;
+        o.width = w, o.height = h, o.frames = n;
+        ProceduralScene scene(o);
+        frames.resize(size_t(n));
+        for (int i = 0; i < n; ++i) {
+            scene.render(i, frames[size_t(i)]);
+            if (poison && i % 3 == 1) {
+                frames[size_t(i)].color.pixels[5] = NAN;
+                frames[size_t(i)].normal.pixels[3 * 17 + 1] = INFINITY;
+                frames[size_t(i)].position.pixels.back() = -INFINITY;
+            }
+        }
+    }
+    FrameSource source() const {
+        return [this](int i) { return frames[size_t(i)].input(); };
+    }
+};
+
+/// The same pixels as RGBA with padded rows, the layout engines hand over.
+struct PaddedRgba {
+    std::vector<ImageF> images; // color, albedo, normal, position per frame
+    std::vector<FrameInput> inputs;
+    explicit PaddedRgba(const ProceduralFrames& p) {
+        for (const FrameData& f : p.frames) {
+            FrameInput in = f.input();
+            for (ImageView* v : {&in.color, &in.albedo, &in.normal, &in.position}) {
+                const long stride = long(v->width) * 4 + 5;
+                ImageF img(int(stride), v->height, 1);
+                for (int y = 0; y < v->height; ++y)
+                    for (int x = 0; x < v->width; ++x) {
+                        for (int c = 0; c < 3; ++c)
+                            img.data()[y * stride + 4 * x + c] = v->data[(y * v->width + x) * 3 + c];
+                        img.data()[y * stride + 4 * x + 3] = 7.0f; // alpha: must be ignored
+                    }
+                images.push_back(std::move(img));
+                *v = ImageView{images.back().data(), v->width, v->height, 4, stride};
+            }
+            inputs.push_back(in);
+        }
+        // The vector of images moved while it grew: point the views at their final homes.
+        for (size_t k = 0; k < inputs.size(); ++k) {
+            ImageView* views[] = {&inputs[k].color, &inputs[k].albedo, &inputs[k].normal,
+                                  &inputs[k].position};
+            for (int v = 0; v < 4; ++v) views[v]->data = images[4 * k + size_t(v)].data();
+        }
+    }
+    FrameSource source() const {
+        return [this](int i) { return inputs[size_t(i)]; };
+    }
+};
+
+struct Conformance : testing::TestWithParam<std::tuple<const char*, const FilterCase*>> {
+    std::string backend() const { return std::get<0>(GetParam()); }
+    const FilterCase& filter() const { return *std::get<1>(GetParam()); }
+};
+
+TEST_P(Conformance, ProceduralFramesOfOddSizeWithNonFiniteInput) {
+    const ProceduralFrames p(203, 117, 12, true);
+    expectConformance(filter().name, backend(), {}, 12, p.source(), "203x117 with NaN/Inf");
+}
+
+TEST_P(Conformance, ImagesSmallerThanABlock) {
+    for (auto [w, h] : {std::pair{9, 70}, {70, 9}, {5, 3}, {1, 1}}) {
+        const ProceduralFrames p(w, h, 6, false);
+        expectConformance(filter().name, backend(), {}, 6, p.source(),
+                          std::to_string(w) + "x" + std::to_string(h));
+    }
+}
+
+TEST_P(Conformance, EverySwitchAndConfiguration) {
+    const ProceduralFrames p(96, 72, 6, false);
+    // Every switch of the filter's settings table, flipped from its default.
+    for (const SettingDoc& d : filterSettings(filter().name)) {
+        if (d.range != "true, false") continue;
+        const std::string flipped = d.defaultValue == "true" ? "false" : "true";
+        expectConformance(filter().name, backend(), {{d.key, flipped}}, 6, p.source(),
+                          d.key + " = " + flipped);
+    }
+    for (const auto& [what, values] : filter().configurations)
+        expectConformance(filter().name, backend(), values, 6, p.source(), what);
+}
+
+TEST_P(Conformance, RgbaInputWithRowPaddingGivesThePackedResult) {
+    const ProceduralFrames p(61, 37, 5, false);
+    const PaddedRgba padded(p);
+    expectConformance(filter().name, backend(), {}, 5, p.source(), "RGBA with padded rows",
+                      padded.source());
+}
+
+TEST_P(Conformance, PathTracedFrames) {
+    using namespace render;
+    Scene box = builtinCornellBox();
+    RayAccel accel(box);
+    LightSet lights(box, {}, {});
+    const int w = 77, h = 61, n = 8;
+    FrameRenderer r(box, accel, w, h, 1, 11);
+    std::vector<FrameData> frames(n);
+    CameraPose previous;
+    for (int i = 0; i < n; ++i) {
+        CameraPose pose;
+        pose.position = {0.05f * float(i), 1.0f, 3.4f}, pose.target = {0, 1, 0};
+        pose.fovY = 0.69f;
+        FrameRenderStats stats;
+        ASSERT_TRUE(
+            r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)], stats, nullptr));
+        previous = pose;
+    }
+    expectConformance(filter().name, backend(), {}, n,
+                      [&](int i) { return frames[size_t(i)].input(); },
+                      "path-traced Cornell box, 77x61");
+}
+
+std::vector<const FilterCase*> filterCases() {
+    std::vector<const FilterCase*> v;
+    for (const FilterCase& f : kFilters) v.push_back(&f);
+    return v;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllBackendsAndFilters, Conformance,
+    testing::Combine(testing::ValuesIn(kBackends), testing::ValuesIn(filterCases())),
+    [](const testing::TestParamInfo<Conformance::ParamType>& p) {
+        return std::string(std::get<0>(p.param)) + "_" + std::get<1>(p.param)->name;
+    });
+
+TEST(Conformance, EveryRegisteredFilterIsInTheSuite) {
+    for (const std::string& name : filterNames()) {
+        bool found = false;
+        for (const FilterCase& f : kFilters) found = found || name == f.name;
+        EXPECT_TRUE(found) << name << " is registered but not in kFilters";
+    }
+}
+
+} // namespace
+} // namespace bmfr
