@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <gtest/gtest.h>
 #include <string>
 #include <sys/wait.h>
@@ -188,6 +189,48 @@ TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
     EXPECT_NE(bad.output.find("unknown filter 'nlm'"), std::string::npos) << bad.output;
     fs::remove_all(in);
     fs::remove_all(out);
+}
+
+TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
+    fs::path in = scratch("set_in"), out = scratch("set_out");
+    ASSERT_EQ(run("synth " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);
+    const std::string base = "denoise " + in.string() + " -o " + out.string() + " -q --no-png ";
+    EXPECT_EQ(run(base + "--set blockSize=16 --backend reference --disable fitting").code, 0);
+    EXPECT_EQ(run(base + "--filter svgf --svgf-iterations 3 --svgf-reverse-levels").code, 0);
+    struct Bad {
+        const char* args;
+        const char* message;
+    };
+    for (const Bad& b : {Bad{"--backend cuda", "backend 'cuda' is not available"},
+                         Bad{"--backend gpu", "unknown backend 'gpu'"},
+                         Bad{"--svgf-iterations 3", "--svgf-iterations is not a setting of the bmfr"},
+                         Bad{"--set nope=1", "'nope' is not a setting of the bmfr filter"},
+                         Bad{"--set blockSize", "expected key=value"},
+                         Bad{"--block-size 65", "blockSize = 65 is outside [8, 64]"},
+                         Bad{"--block-size 1e", "'1e' is not a number"},
+                         Bad{"--taa maybe", "'maybe' is not true or false"},
+                         Bad{"--disable fitting --filter svgf", "unknown stage 'fitting'"}}) {
+        Result r = run(base + b.args);
+        EXPECT_EQ(r.code, 1) << b.args;
+        EXPECT_NE(r.output.find(b.message), std::string::npos) << b.args << ": " << r.output;
+    }
+    fs::remove_all(in);
+    fs::remove_all(out);
+}
+
+TEST(Cli, ReadmeSettingsTableIsTheGeneratedOne) {
+    Result r = run("settings --markdown");
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::ifstream readme(std::string(BMFR_SOURCE_DIR) + "/README.md");
+    std::stringstream ss;
+    ss << readme.rdbuf();
+    const std::string text = ss.str(), begin = "<!-- settings-table:begin", end = "<!-- settings-table:end";
+    const size_t a = text.find(begin), b = text.find(end);
+    ASSERT_NE(a, std::string::npos);
+    ASSERT_NE(b, std::string::npos);
+    const size_t first = text.find('\n', a) + 1;
+    EXPECT_EQ(text.substr(first, b - first), r.output)
+        << "README.md's settings table is stale: paste `bmfr settings --markdown` between the markers";
 }
 
 } // namespace

@@ -11,7 +11,7 @@
 #include "stage_log.h"
 #include <algorithm>
 #include <bmfr/bmfr.h>
-#include <chrono>
+#include "core/stopwatch.h"
 #include <filesystem>
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -71,15 +71,11 @@ int runDenoise(const DenoiseJob& job) {
     FrameData frame;
     ImageF previousOut, previousRef, previousNoisy;
     std::vector<double> referenceTemporal;
-    using Clock = std::chrono::steady_clock;
-    auto since = [](Clock::time_point t) {
-        return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-    };
 
     for (int i = first; i < last; ++i) {
-        auto t0 = Clock::now();
+        Stopwatch clock;
         reader->load(i, frame);
-        tRead.push_back(since(t0));
+        tRead.push_back(clock.lap());
         FrameInput in = frame.input();
         if (job.sampleFraction < 1.0f) {
             // Fewer than 1 spp, simulated: a fixed pseudo-random subset of pixels per frame.
@@ -95,7 +91,7 @@ int runDenoise(const DenoiseJob& job) {
         stages.add(st.times);
         if (st.nonFiniteInputs) nonFinite += st.nonFiniteInputs, badFrames.push_back(i);
 
-        auto t1 = Clock::now();
+        clock.lap();
         const std::string stem = fmt::format("{:04d}", i);
         writeExr((fs::path(job.output) / ("denoised_" + stem + ".exr")).string(), out);
         if (job.png)
@@ -113,7 +109,7 @@ int runDenoise(const DenoiseJob& job) {
             writePngToneMapped((dd / ("discard_mask_" + stem + ".png")).string(),
                                copyOf(d.discardMask), 1.0f / 15.0f);
         }
-        tWrite.push_back(since(t1));
+        tWrite.push_back(clock.lap());
 
         if (info.hasReference) {
             ImageF noisy = frame.color;

@@ -6,6 +6,13 @@ namespace bmfr::app {
 
 namespace {
 
+/// A table cell: '|' would end it.
+std::string escape(const std::string& s) {
+    std::string r;
+    for (char c : s) r += c == '|' ? std::string("\\|") : std::string(1, c);
+    return r;
+}
+
 std::string markdown() {
     std::string out = "| filter | key | flag | unit | range | default | what it does |\n"
                       "|---|---|---|---|---|---|---|\n";
@@ -15,7 +22,7 @@ std::string markdown() {
             if (d.shared && sharedDone) continue; // the same rows in every table
             out += fmt::format("| {} | `{}` | `--{}` | {} | {} | {} | {} |\n",
                                d.shared ? "all" : f, d.key, d.flag, d.unit, d.range,
-                               d.defaultValue, d.help);
+                               escape(d.defaultValue), escape(d.help));
         }
         sharedDone = true;
     }

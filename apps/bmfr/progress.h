@@ -1,6 +1,7 @@
-// Terminal progress bar with rate and ETA; silent when quiet or when stderr is not a terminal.
+// Progress of a long job: a bar with rate and ETA on a terminal, a line every 10% (and at most
+// every 5 s) otherwise; silent when quiet.
 #pragma once
-#include <chrono>
+#include "core/stopwatch.h"
 #include <string>
 
 namespace bmfr::app {
@@ -14,8 +15,10 @@ class Progress {
   private:
     std::string label_;
     int total_;
-    bool enabled_;
-    std::chrono::steady_clock::time_point start_;
+    bool quiet_, terminal_;
+    Stopwatch clock_;
+    double lastLineMs_ = -1e9;
+    int lastLineDone_ = 0;
 };
 
 } // namespace bmfr::app

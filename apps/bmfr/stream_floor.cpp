@@ -1,7 +1,7 @@
 #include "stream_floor.h"
 #include "core/parallel.h"
 #include <algorithm>
-#include <chrono>
+#include "core/stopwatch.h"
 #include <vector>
 
 namespace bmfr::app {
@@ -47,7 +47,7 @@ double streamFloorMs(int width, int height, int threads, int repeats,
     });
     std::vector<double> times;
     for (int r = 0; r < repeats; ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
+        Stopwatch clock;
         for (const PassTraffic& pass : passes)
             pool.parallelFor(height, 8, [&](long y0, long y1) {
                 const long end = y1 * width;
@@ -69,9 +69,7 @@ double streamFloorMs(int width, int height, int threads, int repeats,
                     for (int p = 0; p < pass.writes; ++p) out[size_t(p)][size_t(i)] = sum;
                 }
             });
-        times.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count());
+        times.push_back(clock.elapsed());
     }
     std::nth_element(times.begin(), times.begin() + long(times.size()) / 2, times.end());
     return times[times.size() / 2];

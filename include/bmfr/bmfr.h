@@ -4,7 +4,7 @@
 #include <bmfr/error.h>
 #include <bmfr/features.h>
 #include <bmfr/filter.h>
-#include <bmfr/filters/bmfr.h>
-#include <bmfr/filters/svgf.h>
+#include <bmfr/filters/bmfr_filter.h>
+#include <bmfr/filters/svgf_filter.h>
 #include <bmfr/frame.h>
 #include <bmfr/temporal_settings.h>

@@ -1,3 +1,3 @@
-// Kept for earlier code: the BMFR filter now lives in <bmfr/filters/bmfr.h>.
+// Kept for earlier code: the BMFR filter now lives in <bmfr/filters/bmfr_filter.h>.
 #pragma once
-#include <bmfr/filters/bmfr.h>
+#include <bmfr/filters/bmfr_filter.h>

@@ -1,3 +1,3 @@
-// Kept for earlier code: SVGF now lives in <bmfr/filters/svgf.h>.
+// Kept for earlier code: SVGF now lives in <bmfr/filters/svgf_filter.h>.
 #pragma once
-#include <bmfr/filters/svgf.h>
+#include <bmfr/filters/svgf_filter.h>

@@ -1,6 +1,6 @@
 #include "render/frame_renderer.h"
 #include "temporal/reprojection.h"
-#include <chrono>
+#include "core/stopwatch.h"
 #include <tbb/parallel_for.h>
 
 namespace bmfr::render {
@@ -48,7 +48,6 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                            bool hasPrevious, const LightSet& lights, bool jitterOn,
                            int referenceSpp, FrameData& out, FrameRenderStats& stats,
                            const std::atomic<bool>* cancel) const {
-    using Clock = std::chrono::steady_clock;
     const int w = width_, h = height_;
     out.viewProjection = viewProjectionOf(pose);
     frameJitter(index, jitterOn, out.jitter);
@@ -69,7 +68,7 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     const Vec3 forward = normalize(pose.target - pose.position);
     std::atomic<uint64_t> rays{0};
     std::atomic<bool> stopped{false};
-    auto t0 = Clock::now();
+    Stopwatch clock;
     double referenceSeconds = 0;
 
     auto rowLoop = [&](bool reference) {
@@ -123,11 +122,10 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
         });
     };
     rowLoop(false);
-    stats.inputSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    stats.inputSeconds = clock.lap() / 1000.0;
     if (referenceSpp > 0 && !stopped) {
-        auto t1 = Clock::now();
         rowLoop(true);
-        referenceSeconds = std::chrono::duration<double>(Clock::now() - t1).count();
+        referenceSeconds = clock.lap() / 1000.0;
     }
     stats.referenceSeconds = referenceSeconds;
     stats.rays = rays;

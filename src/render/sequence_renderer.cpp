@@ -1,7 +1,7 @@
 #include "render/sequence_renderer.h"
 #include "render/frame_renderer.h"
 #include <bmfr/error.h>
-#include <chrono>
+#include "core/stopwatch.h"
 
 namespace bmfr::render {
 
@@ -9,9 +9,8 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
                                     const std::atomic<bool>* cancel,
                                     const std::function<void(int, int)>& progress,
                                     const std::function<void(const std::string&)>& warn) {
-    using Clock = std::chrono::steady_clock;
     SequenceRenderReport report;
-    auto t0 = Clock::now();
+    Stopwatch clock;
     Scene scene = loadScene(d.mesh);
     for (const std::string& w : scene.warnings) warn(w);
     if (d.roughnessOverride >= 0)
@@ -41,7 +40,7 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     }
     const CameraPath path(keys);
     RayAccel accel(scene);
-    report.loadSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    report.loadSeconds = clock.elapsed() / 1000.0;
     FrameRenderer renderer(scene, accel, d.width, d.height, d.bounces, d.seed);
 
     // Matrices of all frames up front (the original layout's header lists them all); the

@@ -16,16 +16,19 @@ template <class S> SettingsTable<S> temporalSettingsTable() {
         {"backend", "backend", "", {}, "where the passes run: reference, cpu or cuda",
          backendField<S>()},
         {"positionLimitSquared", "position-limit", "scene units^2", {0, 1e30, true},
-         "discard a history tap when its squared world distance is at least this",
+         "discard a history tap when its squared world distance is at least this (a "
+         "sequence's own value, when it has one, replaces the default)",
          BMFR_FIELD(S, positionLimitSquared)},
         {"normalLimitSquared", "normal-limit", "", {0, 4, true},
-         "discard a history tap when its squared normal distance is at least this",
+         "discard a history tap when its squared normal distance is at least this (1 is "
+         "about 60 degrees; a sequence's own value replaces the default)",
          BMFR_FIELD(S, normalLimitSquared)},
         {"taaBlendAlpha", "taa-alpha", "", {0, 1, true}, "TAA weight of the current frame",
          BMFR_FIELD(S, taaBlendAlpha)},
         {"taa", "taa", "", {}, "temporal anti-aliasing of the output", BMFR_FIELD(S, taa)},
         {"albedoEpsilon", "albedo-epsilon", "", {1e-6, 1},
-         "albedo channels below this count as this when (de)modulating",
+         "demodulation divides by max(albedo, eps) and re-modulation multiplies by the "
+         "same",
          BMFR_FIELD(S, albedoEpsilon)},
         {"colorIsDemodulated", "color-is-demodulated", "", {},
          "the colour input is already divided by albedo (the original BMFR dataset is)",

@@ -1,7 +1,7 @@
 // The displaced grid of regression blocks: which image pixels form block (bx, by) this frame.
 #pragma once
 #include "core/border.h"
-#include <bmfr/filters/bmfr.h>
+#include <bmfr/filters/bmfr_filter.h>
 
 namespace bmfr {
 

@@ -4,7 +4,7 @@
 #include "core/parallel.h"
 #include "temporal/history.h"
 #include "temporal/pixel_input.h"
-#include <bmfr/filters/bmfr.h>
+#include <bmfr/filters/bmfr_filter.h>
 #include <cstdint>
 #include <memory>
 #include <vector>

@@ -12,18 +12,21 @@ SettingsTable<S> makeTable() {
     const SettingsTable<S> own = {
         {"blockSize", "block-size", "pixels", {8, 64}, "edge of the square regression block (even)",
          BMFR_FIELD(S, blockSize)},
-        {"features", "features", "", {}, "columns of the regression matrix, constant 1 first",
+        {"features", "features", "", {}, "columns of T (paper eq. 8): 1, n.x, n.y, n.z, p.x, p.y, p.z, extraK "
+         "(FrameInput::extras[K]), each optionally ^E; the constant 1 first, at most 24",
          TextField<S>{+[](const S& s) { return formatFeatures(s.features); },
                       +[](S& s, const std::string& v) { s.features = parseFeatures(v); }}},
         {"noiseAmplitude", "noise", "", {0, 1},
-         "half-width of the uniform regularisation noise on every non-constant feature column",
+         "half-width of the uniform regularisation noise added to every non-constant "
+         "scaled feature column, never to colour",
          BMFR_FIELD(S, noiseAmplitude)},
         {"firstBlendAlpha", "alpha1", "", {0, 1, true},
          "phase I minimum new-frame weight (cumulative average until 1/(n+1) drops below it)",
          BMFR_FIELD(S, firstBlendAlpha)},
         {"secondBlendAlpha", "alpha2", "", {0, 1, true},
          "phase III minimum new-frame weight, max(1/n, alpha2)", BMFR_FIELD(S, secondBlendAlpha)},
-        {"seed", "seed", "", {0, 4294967295.0}, "regularisation noise seed", BMFR_FIELD(S, seed)},
+        {"seed", "seed", "", {0, 4294967295.0}, "regularisation noise seed; the same seed and input give the same bits at any "
+         "thread count", BMFR_FIELD(S, seed)},
         {"demodulate", "demodulate", "", {}, "divide colour by albedo before filtering",
          BMFR_FIELD(S, stages.demodulate)},
         {"firstAccumulation", "accumulation", "", {}, "phase I: accumulate the noisy colour",

@@ -8,7 +8,7 @@
 #include "temporal/history.h"
 #include "temporal/pixel_input.h"
 #include "temporal/reprojection.h"
-#include <bmfr/filters/svgf.h>
+#include <bmfr/filters/svgf_filter.h>
 
 namespace bmfr {
 

@@ -4,7 +4,7 @@
 #include "core/parallel.h"
 #include "filters/svgf/svgf_kernels.h"
 #include "temporal/history.h"
-#include <bmfr/filters/svgf.h>
+#include <bmfr/filters/svgf_filter.h>
 #include <memory>
 
 namespace bmfr {

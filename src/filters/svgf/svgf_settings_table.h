@@ -1,7 +1,7 @@
 // SVGF's settings table: the shared rows, then SVGF's own. The one place their ranges live.
 #pragma once
 #include "core/settings_table.h"
-#include <bmfr/filters/svgf.h>
+#include <bmfr/filters/svgf_filter.h>
 
 namespace bmfr {
 
