@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <gtest/gtest.h>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 
@@ -201,15 +201,16 @@ TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
         const char* args;
         const char* message;
     };
-    for (const Bad& b : {Bad{"--backend cuda", "backend 'cuda' is not available"},
-                         Bad{"--backend gpu", "unknown backend 'gpu'"},
-                         Bad{"--svgf-iterations 3", "--svgf-iterations is not a setting of the bmfr"},
-                         Bad{"--set nope=1", "'nope' is not a setting of the bmfr filter"},
-                         Bad{"--set blockSize", "expected key=value"},
-                         Bad{"--block-size 65", "blockSize = 65 is outside [8, 64]"},
-                         Bad{"--block-size 1e", "'1e' is not a number"},
-                         Bad{"--taa maybe", "'maybe' is not true or false"},
-                         Bad{"--disable fitting --filter svgf", "unknown stage 'fitting'"}}) {
+    for (const Bad& b :
+         {Bad{"--backend cuda", "backend 'cuda' is not available"},
+          Bad{"--backend gpu", "unknown backend 'gpu'"},
+          Bad{"--svgf-iterations 3", "--svgf-iterations is not a setting of the bmfr"},
+          Bad{"--set nope=1", "'nope' is not a setting of the bmfr filter"},
+          Bad{"--set blockSize", "expected key=value"},
+          Bad{"--block-size 65", "blockSize = 65 is outside [8, 64]"},
+          Bad{"--block-size 1e", "'1e' is not a number"},
+          Bad{"--taa maybe", "'maybe' is not true or false"},
+          Bad{"--disable fitting --filter svgf", "unknown stage 'fitting'"}}) {
         Result r = run(base + b.args);
         EXPECT_EQ(r.code, 1) << b.args;
         EXPECT_NE(r.output.find(b.message), std::string::npos) << b.args << ": " << r.output;
@@ -224,13 +225,15 @@ TEST(Cli, ReadmeSettingsTableIsTheGeneratedOne) {
     std::ifstream readme(std::string(BMFR_SOURCE_DIR) + "/README.md");
     std::stringstream ss;
     ss << readme.rdbuf();
-    const std::string text = ss.str(), begin = "<!-- settings-table:begin", end = "<!-- settings-table:end";
+    const std::string text = ss.str(), begin = "<!-- settings-table:begin",
+                      end = "<!-- settings-table:end";
     const size_t a = text.find(begin), b = text.find(end);
     ASSERT_NE(a, std::string::npos);
     ASSERT_NE(b, std::string::npos);
     const size_t first = text.find('\n', a) + 1;
     EXPECT_EQ(text.substr(first, b - first), r.output)
-        << "README.md's settings table is stale: paste `bmfr settings --markdown` between the markers";
+        << "README.md's settings table is stale: paste `bmfr settings --markdown` between the "
+           "markers";
 }
 
 } // namespace

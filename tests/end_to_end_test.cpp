@@ -177,7 +177,8 @@ TEST(EndToEnd, OutputIsWrittenIntoACallersRgbaView) {
         for (int y = 0; y < 10; ++y)
             for (int x = 0; x < 20; ++x) {
                 for (int c = 0; c < 3; ++c)
-                    ASSERT_EQ(rgba[size_t(y * stride + 4 * x + c)], packed.data[(y * 20 + x) * 3 + c])
+                    ASSERT_EQ(rgba[size_t(y * stride + 4 * x + c)],
+                              packed.data[(y * 20 + x) * 3 + c])
                         << name;
                 ASSERT_EQ(rgba[size_t(y * stride + 4 * x + 3)], -1.0f) << name << ": alpha kept";
             }

@@ -1,7 +1,7 @@
 // The path tracer against analytic answers: white furnace, Lambertian plane under a distant
 // light, unbiasedness of the 1-spp estimator, and feature buffers of a known camera and plane.
-#include "temporal/reprojection.h"
 #include "render/frame_renderer.h"
+#include "temporal/reprojection.h"
 #include <cmath>
 #include <gtest/gtest.h>
 

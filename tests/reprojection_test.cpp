@@ -16,7 +16,7 @@ TEST(Reprojection, KnownCameraMotionMapsToExpectedPreviousPixel) {
     Mat4 vp;
     vp.m[0][0] = float(f / aspect), vp.m[0][3] = float(-f / aspect * ex);
     vp.m[1][1] = float(-f), vp.m[1][3] = float(f * ey);
-    vp.m[2][2] = float((far + n) / (n - far)),
+    vp.m[2][2] = float((far + n) / (n - far));
     vp.m[2][3] = float(-(far + n) / (n - far) * ez + 2 * far * n / (n - far));
     vp.m[3][2] = -1.0f, vp.m[3][3] = float(ez);
     vp.m[3][0] = vp.m[3][1] = 0;

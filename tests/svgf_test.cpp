@@ -1,8 +1,8 @@
 // SVGF: the a-trous filter keeps constants and edges, the variance estimate converges, and the
 // whole filter denoises, also with fewer than 1 spp.
+#include "core/hash.h"
 #include "core/image.h"
 #include "filters/svgf/svgf_kernels.h"
-#include "core/hash.h"
 #include "metrics/basic_metrics.h"
 #include "synth/procedural_scene.h"
 #include "test_scenes.h"
@@ -28,8 +28,9 @@ ImageF runAtrous(const Planes& p, const SvgfSettings& s, int levels) {
     ImageF a = p.colorVar, b(p.colorVar.width, p.colorVar.height, 4);
     const int w = a.width, h = a.height;
     for (int k = 0; k < levels; ++k) {
-        const AtrousLevel level{a.data(), b.data(), p.normal.data(), p.depth.data(),
-                                p.gradient.data(), p.length.data(), w, h, 1 << k};
+        const AtrousLevel level{
+            a.data(), b.data(), p.normal.data(), p.depth.data(), p.gradient.data(), p.length.data(),
+            w,        h,        1 << k};
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) svgfAtrousPixel(level, s, x, y);
         std::swap(a, b);

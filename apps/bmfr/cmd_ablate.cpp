@@ -27,11 +27,11 @@ void addAblateCommand(CLI::App& app, int& exitCode) {
         auto reader = SequenceReader::open(job->input);
         const SequenceInfo& info = reader->info();
         BmfrSettings base;
-        applySettings(bmfrSettingsTable(), base,
-                      job->options.resolve("bmfr", {info.positionLimitSquared,
-                                                    info.normalLimitSquared,
-                                                    info.colorIsDemodulated}),
-                      "bmfr");
+        applySettings(
+            bmfrSettingsTable(), base,
+            job->options.resolve("bmfr", {info.positionLimitSquared, info.normalLimitSquared,
+                                          info.colorIsDemodulated}),
+            "bmfr");
         validate(base);
         int n = 0;
         runAblation(job->input, job->output, job->frames, base, [&](const std::string& name) {

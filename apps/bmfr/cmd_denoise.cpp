@@ -1,6 +1,7 @@
 #include "commands.h"
 #include "core/hash.h"
 #include "core/image.h"
+#include "core/stopwatch.h"
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
 #include "io/exr.h"
@@ -11,7 +12,6 @@
 #include "stage_log.h"
 #include <algorithm>
 #include <bmfr/bmfr.h>
-#include "core/stopwatch.h"
 #include <filesystem>
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -218,7 +218,8 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
                   "also write accumulated colour, fitted frame, history length, discard mask");
     cmd->add_flag("!--no-png", job->png, "skip the tone-mapped PNGs");
     cmd->add_flag("!--no-flip", job->flip, "skip FLIP when scoring (the slowest metric)");
-    cmd->add_option("--filter", job->filter, "the filter: " + fmt::format("{}", fmt::join(filterNames(), ", ")))
+    cmd->add_option("--filter", job->filter,
+                    "the filter: " + fmt::format("{}", fmt::join(filterNames(), ", ")))
         ->default_val("bmfr");
     cmd->add_option("--sample-fraction", job->sampleFraction,
                     "simulate fewer than 1 spp: keep this fraction of pixels per frame (0, 1]")

@@ -20,9 +20,9 @@ std::string markdown() {
     for (const std::string& f : filterNames()) {
         for (const SettingDoc& d : filterSettings(f)) {
             if (d.shared && sharedDone) continue; // the same rows in every table
-            out += fmt::format("| {} | `{}` | `--{}` | {} | {} | {} | {} |\n",
-                               d.shared ? "all" : f, d.key, d.flag, d.unit, d.range,
-                               escape(d.defaultValue), escape(d.help));
+            out +=
+                fmt::format("| {} | `{}` | `--{}` | {} | {} | {} | {} |\n", d.shared ? "all" : f,
+                            d.key, d.flag, d.unit, d.range, escape(d.defaultValue), escape(d.help));
         }
         sharedDone = true;
     }
@@ -50,8 +50,8 @@ void addSettingsCommand(CLI::App& app, int& exitCode) {
             for (const std::string& f : names) {
                 fmt::print("{}:\n", f);
                 for (const SettingDoc& d : filterSettings(f))
-                    fmt::print("  {:<24} --{:<30} {:<14} {:<18} default {:<10} {}\n", d.key,
-                               d.flag, d.unit, d.range, d.defaultValue, d.help);
+                    fmt::print("  {:<24} --{:<30} {:<14} {:<18} default {:<10} {}\n", d.key, d.flag,
+                               d.unit, d.range, d.defaultValue, d.help);
             }
         }
         exitCode = 0;

@@ -1,8 +1,8 @@
 // Subcommands of the bmfr tool and the denoise job they share.
 #pragma once
 #include "eval/comparison.h"
-#include <CLI/CLI.hpp>
 #include "filter_options.h"
+#include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
 

@@ -27,8 +27,7 @@ void FilterOptions::addTo(CLI::App& cmd, const std::vector<std::string>& filters
     for (const std::string& f : filters)
         for (const SettingDoc& d : filterSettings(f)) {
             if (!added.insert(d.flag).second) continue;
-            const std::string help =
-                (d.shared ? std::string() : "[" + f + "] ") + describe(d);
+            const std::string help = (d.shared ? std::string() : "[" + f + "] ") + describe(d);
             CLI::Option* o = cmd.add_option("--" + d.flag, flags[d.flag], help);
             if (d.range == "true, false") // a bare --flag means true
                 o->expected(0, 1)->default_str("true")->type_name("[BOOL]");
@@ -47,8 +46,10 @@ SettingValues FilterOptions::resolve(const std::string& name, const SequenceDefa
     const std::vector<SettingDoc> docs = filterSettings(name);
     SettingValues v;
     auto number = [](float x) { return std::to_string(x); };
-    if (seq.positionLimitSquared) v.push_back({"positionLimitSquared", number(*seq.positionLimitSquared)});
-    if (seq.normalLimitSquared) v.push_back({"normalLimitSquared", number(*seq.normalLimitSquared)});
+    if (seq.positionLimitSquared)
+        v.push_back({"positionLimitSquared", number(*seq.positionLimitSquared)});
+    if (seq.normalLimitSquared)
+        v.push_back({"normalLimitSquared", number(*seq.normalLimitSquared)});
     if (seq.colorIsDemodulated) v.push_back({"colorIsDemodulated", "true"});
     for (const auto& [flag, text] : flags) {
         if (text.empty()) continue; // not given
@@ -58,7 +59,8 @@ SettingValues FilterOptions::resolve(const std::string& name, const SequenceDefa
     }
     for (const std::string& s : sets) {
         const size_t eq = s.find('=');
-        if (eq == std::string::npos || eq == 0) throw Error("--set '" + s + "': expected key=value");
+        if (eq == std::string::npos || eq == 0)
+            throw Error("--set '" + s + "': expected key=value");
         const SettingDoc* d = findDoc(docs, s.substr(0, eq));
         if (!d)
             throw Error("--set: '" + s.substr(0, eq) + "' is not a setting of the " + name +

@@ -23,9 +23,9 @@ struct FilterOptions {
     /// Throws bmfr::Error for a flag or key that `name` does not have.
     SettingValues resolve(const std::string& name, const SequenceDefaults& sequence) const;
 
-    std::map<std::string, std::string> flags;  ///< flag -> text, as given
-    std::vector<std::string> sets;             ///< "key=value"
-    std::vector<std::string> disabled;         ///< switch flags to turn off
+    std::map<std::string, std::string> flags; ///< flag -> text, as given
+    std::vector<std::string> sets;            ///< "key=value"
+    std::vector<std::string> disabled;        ///< switch flags to turn off
 };
 
 /// The value of `key` in `values` (the last one given), or `fallback`.

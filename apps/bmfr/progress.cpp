@@ -14,15 +14,15 @@ void Progress::step(int done) {
     if (terminal_) {
         const int width = 30, filled = done * width / total_;
         std::fprintf(stderr, "\r%s [%.*s%*s] %d/%d  %.1f/s  ETA %.0fs ", label_.c_str(), filled,
-                     "##############################", width - filled, "", done, total_, rate,
-                     eta);
+                     "##############################", width - filled, "", done, total_, rate, eta);
         std::fflush(stderr);
         return;
     }
     // Logs and batch jobs: a line per tenth of the work, no more than one per 5 s.
     const bool tenth = (done - lastLineDone_) * 10 >= total_;
     if (done < total_ && (!tenth || ms - lastLineMs_ < 5000.0)) return;
-    std::fprintf(stderr, "%s: %d/%d (%.1f/s, ETA %.0fs)\n", label_.c_str(), done, total_, rate, eta);
+    std::fprintf(stderr, "%s: %d/%d (%.1f/s, ETA %.0fs)\n", label_.c_str(), done, total_, rate,
+                 eta);
     lastLineMs_ = ms;
     lastLineDone_ = done;
 }

@@ -1,7 +1,7 @@
 #include "stream_floor.h"
 #include "core/parallel.h"
-#include <algorithm>
 #include "core/stopwatch.h"
+#include <algorithm>
 #include <vector>
 
 namespace bmfr::app {

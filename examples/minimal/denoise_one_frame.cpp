@@ -7,11 +7,12 @@
 
 int main() {
     const int w = 64, h = 32;
-    std::vector<float> color(w * h * 3), albedo(w * h * 3, 0.5f), normal(w * h * 3), position(w * h * 3);
+    std::vector<float> color(w * h * 3), albedo(w * h * 3, 0.5f), normal(w * h * 3),
+        position(w * h * 3);
     for (int i = 0; i < w * h; ++i) {
         color[3 * i] = color[3 * i + 1] = color[3 * i + 2] = float((i * 7919) % 13) / 13.0f;
-        normal[3 * i + 2] = 1.0f;                   // the wall faces the camera
-        position[3 * i] = float(i % w) / w - 0.5f;  // x in [-0.5, 0.5), y likewise, z = -2
+        normal[3 * i + 2] = 1.0f;                  // the wall faces the camera
+        position[3 * i] = float(i % w) / w - 0.5f; // x in [-0.5, 0.5), y likewise, z = -2
         position[3 * i + 1] = float(i / w) / h - 0.5f;
         position[3 * i + 2] = -2.0f;
     }

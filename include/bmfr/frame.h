@@ -43,9 +43,9 @@ struct FrameInput {
     ImageView albedo;   ///< first-hit albedo, 3 or 4 channels, [0, 1]
     ImageView normal;   ///< first-hit shading normal, world space, unit length, 3 or 4 channels
     ImageView position; ///< first-hit world position, scene units, 3 or 4 channels
-    /// Optional noise-free radiance emitted at the first hit (visible lights, sky), 3 or 4 channels.
-    /// When given it is taken out before filtering and added back before TAA, so emitters keep
-    /// sharp edges and do not bleed into their blocks. Leave data null when unavailable.
+    /// Optional noise-free radiance emitted at the first hit (visible lights, sky), 3 or 4
+    /// channels. When given it is taken out before filtering and added back before TAA, so emitters
+    /// keep sharp edges and do not bleed into their blocks. Leave data null when unavailable.
     ImageView emission;
     /// Optional 1-channel mask, > 0.5 where this frame has a sample (fewer than 1 spp). SVGF
     /// keeps the history of unsampled pixels; BMFR ignores the mask. Leave data null for 1 spp.

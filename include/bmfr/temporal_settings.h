@@ -15,14 +15,14 @@ enum class Backend {
 };
 
 struct TemporalSettings {
-    Backend backend = Backend::Cpu;         ///< where the passes run
-    float positionLimitSquared = 0.01f;     ///< history discard: squared world distance, units^2
-    float normalLimitSquared = 1.0f;        ///< history discard: squared normal distance
-    float taaBlendAlpha = 0.2f;             ///< TAA weight of the current frame
-    bool taa = true;                        ///< temporal anti-aliasing on the output
-    float albedoEpsilon = 0.001f;           ///< albedo floor when (de)modulating
-    bool colorIsDemodulated = false;        ///< the colour input is already divided by albedo
-    int threads = 0;                        ///< worker threads, 0 = all cores
+    Backend backend = Backend::Cpu;     ///< where the passes run
+    float positionLimitSquared = 0.01f; ///< history discard: squared world distance, units^2
+    float normalLimitSquared = 1.0f;    ///< history discard: squared normal distance
+    float taaBlendAlpha = 0.2f;         ///< TAA weight of the current frame
+    bool taa = true;                    ///< temporal anti-aliasing on the output
+    float albedoEpsilon = 0.001f;       ///< albedo floor when (de)modulating
+    bool colorIsDemodulated = false;    ///< the colour input is already divided by albedo
+    int threads = 0;                    ///< worker threads, 0 = all cores
 };
 
 /// Throws bmfr::Error naming the first shared setting out of its range.

@@ -24,7 +24,8 @@ class ThreadPool {
     }
 
     /// body(x, y) for every pixel of a width x height image, rows in chunks of `grainRows`.
-    template <typename Body> void forEachPixel(int width, int height, long grainRows, const Body& body) {
+    template <typename Body>
+    void forEachPixel(int width, int height, long grainRows, const Body& body) {
         parallelFor(height, grainRows, [&](long y0, long y1) {
             for (long y = y0; y < y1; ++y)
                 for (int x = 0; x < width; ++x) body(x, int(y));

@@ -12,7 +12,8 @@ double parseNumber(const std::string& key, const std::string& text, bool integer
         throw Error("setting " + key + ": '" + text + "' is not a number");
     if (integer && v != std::floor(v))
         throw Error("setting " + key + ": '" + text + "' is not a whole number");
-    if (integer && std::fabs(v) > 4e9) throw Error("setting " + key + ": '" + text + "' is too large");
+    if (integer && std::fabs(v) > 4e9)
+        throw Error("setting " + key + ": '" + text + "' is too large");
     return v;
 }
 
@@ -38,8 +39,8 @@ std::string formatRange(const SettingRange& r, bool integer) {
 }
 
 void checkInRange(const char* filter, const char* key, double v, const SettingRange& r) {
-    const bool ok = std::isfinite(v) && (r.loOpen ? v > r.lo : v >= r.lo) &&
-                    (r.hiOpen ? v < r.hi : v <= r.hi);
+    const bool ok =
+        std::isfinite(v) && (r.loOpen ? v > r.lo : v >= r.lo) && (r.hiOpen ? v < r.hi : v <= r.hi);
     if (!ok)
         throw Error(std::string(filter) + " " + key + " = " + formatNumber(v) + " is outside " +
                     formatRange(r, false));

@@ -118,7 +118,8 @@ template <class S> void assignSetting(const Setting<S>& e, S& s, const std::stri
 }
 
 /// The entry whose key or flag is `name`, or null.
-template <class S> const Setting<S>* findSetting(const SettingsTable<S>& t, const std::string& name) {
+template <class S>
+const Setting<S>* findSetting(const SettingsTable<S>& t, const std::string& name) {
     for (const Setting<S>& e : t)
         if (name == e.key || name == e.flag) return &e;
     return nullptr;
@@ -126,7 +127,8 @@ template <class S> const Setting<S>* findSetting(const SettingsTable<S>& t, cons
 
 /// Applies key=value pairs in order. Throws bmfr::Error for a key the table lacks.
 template <class S>
-void applySettings(const SettingsTable<S>& t, S& s, const SettingValues& values, const char* filter) {
+void applySettings(const SettingsTable<S>& t, S& s, const SettingValues& values,
+                   const char* filter) {
     for (const auto& [key, value] : values) {
         const Setting<S>* e = findSetting(t, key);
         if (!e) throw Error("'" + key + "' is not a setting of the " + filter + " filter");

@@ -83,13 +83,13 @@ AblationResult runAblation(const std::string& input, const std::string& output,
         bool& (*flag)(BmfrSettings&);
     };
     r.stages.push_back(run(base, "full BMFR"));
-    for (Stage st : {Stage{"without demodulation", BMFR_FIELD(BmfrSettings, stages.demodulate)},
-                     Stage{"without accumulation (phase I)",
-                           BMFR_FIELD(BmfrSettings, stages.firstAccumulation)},
-                     Stage{"without fitting (phase II)", BMFR_FIELD(BmfrSettings, stages.fitting)},
-                     Stage{"without second accumulation",
-                           BMFR_FIELD(BmfrSettings, stages.secondAccumulation)},
-                     Stage{"without TAA", BMFR_FIELD(BmfrSettings, taa)}}) {
+    for (Stage st :
+         {Stage{"without demodulation", BMFR_FIELD(BmfrSettings, stages.demodulate)},
+          Stage{"without accumulation (phase I)",
+                BMFR_FIELD(BmfrSettings, stages.firstAccumulation)},
+          Stage{"without fitting (phase II)", BMFR_FIELD(BmfrSettings, stages.fitting)},
+          Stage{"without second accumulation", BMFR_FIELD(BmfrSettings, stages.secondAccumulation)},
+          Stage{"without TAA", BMFR_FIELD(BmfrSettings, taa)}}) {
         Settings s = base;
         st.flag(s) = false;
         r.stages.push_back(run(s, st.name));

@@ -141,9 +141,10 @@ ImageF flipMap(const ImageF& ref, const ImageF& test, double ppd) {
     const double cmax =
         std::pow(hyab(xyzToHuntLab(rgbToXyz(0, 1, 0)), xyzToHuntLab(rgbToXyz(0, 0, 1))), qc);
     Plane edges[2], points[2];
-    for (int k = 0; k < 2; ++k)
-        edges[k] = features(lum[k], w, h, ppd, true),
+    for (int k = 0; k < 2; ++k) {
+        edges[k] = features(lum[k], w, h, ppd, true);
         points[k] = features(lum[k], w, h, ppd, false);
+    }
 
     ImageF map(w, h, 1);
     for (size_t i = 0; i < n; ++i) {

@@ -37,7 +37,7 @@ ImageF ssimMap(const ImageF& a, const ImageF& b, double range) {
     for (int c = 0; c < ch; ++c) {
         std::vector<double> x(n), y(n), xx(n), yy(n), xy(n);
         for (size_t i = 0; i < n; ++i) {
-            x[i] = a.pixels[i * size_t(ch) + size_t(c)],
+            x[i] = a.pixels[i * size_t(ch) + size_t(c)];
             y[i] = b.pixels[i * size_t(ch) + size_t(c)];
             xx[i] = x[i] * x[i], yy[i] = y[i] * y[i], xy[i] = x[i] * y[i];
         }

@@ -1,6 +1,6 @@
 #include "render/frame_renderer.h"
-#include "temporal/reprojection.h"
 #include "core/stopwatch.h"
+#include "temporal/reprojection.h"
 #include <tbb/parallel_for.h>
 
 namespace bmfr::render {

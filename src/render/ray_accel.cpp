@@ -70,8 +70,9 @@ RayAccel::RayAccel(const Scene& scene) : impl_(std::make_unique<Impl>()) {
         for (size_t k = 0; k < tris.size(); ++k)
             for (int j = 0; j < 3; ++j) {
                 Vec3 p = scene.positions[3 * size_t(tris[k]) + size_t(j)];
-                v[9 * k + 3 * size_t(j)] = p.x, v[9 * k + 3 * size_t(j) + 1] = p.y,
-                              v[9 * k + 3 * size_t(j) + 2] = p.z;
+                v[9 * k + 3 * size_t(j)] = p.x;
+                v[9 * k + 3 * size_t(j) + 1] = p.y;
+                v[9 * k + 3 * size_t(j) + 2] = p.z;
                 ix[3 * k + size_t(j)] = unsigned(3 * k + size_t(j));
             }
         const unsigned id = unsigned(m.geometryTriangles.size());

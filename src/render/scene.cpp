@@ -52,7 +52,10 @@ Scene builtinCornellBox() {
     Scene s;
     auto mat = [&](const char* name, Vec3 albedo, Vec3 emission = {}) {
         Material m;
-        m.name = name, m.baseColor = albedo, m.roughness = 1.0f, m.specular = 0.0f,
+        m.name = name;
+        m.baseColor = albedo;
+        m.roughness = 1.0f;
+        m.specular = 0.0f;
         m.emission = emission;
         s.materials.push_back(m);
         return int(s.materials.size() - 1);

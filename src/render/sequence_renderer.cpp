@@ -1,7 +1,7 @@
 #include "render/sequence_renderer.h"
+#include "core/stopwatch.h"
 #include "render/frame_renderer.h"
 #include <bmfr/error.h>
-#include "core/stopwatch.h"
 
 namespace bmfr::render {
 

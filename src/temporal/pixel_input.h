@@ -55,8 +55,7 @@ struct PixelInput {
 /// Reads pixel i: NaN/Inf replaced by 0 and counted in `bad` (extras included); the noise-free
 /// emission taken out of the colour (demodulated too when the colour is); and, with
 /// modes.demodulate, the colour divided by the guarded albedo unless it already is.
-BMFR_HD PixelInput readPixel(const InputPlanes& in, long i, const InputModes& modes,
-                             int64_t& bad) {
+BMFR_HD PixelInput readPixel(const InputPlanes& in, long i, const InputModes& modes, int64_t& bad) {
     PixelInput px;
     px.normal = finiteOrZero(load3(in.normal, i), bad);
     px.position = finiteOrZero(load3(in.position, i), bad);

@@ -132,7 +132,8 @@ struct PaddedRgba {
                 for (int y = 0; y < v->height; ++y)
                     for (int x = 0; x < v->width; ++x) {
                         for (int c = 0; c < 3; ++c)
-                            img.data()[y * stride + 4 * x + c] = v->data[(y * v->width + x) * 3 + c];
+                            img.data()[y * stride + 4 * x + c] =
+                                v->data[(y * v->width + x) * 3 + c];
                         img.data()[y * stride + 4 * x + 3] = 7.0f; // alpha: must be ignored
                     }
                 images.push_back(std::move(img));
@@ -208,9 +209,9 @@ TEST_P(Conformance, PathTracedFrames) {
             r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)], stats, nullptr));
         previous = pose;
     }
-    expectConformance(filter().name, backend(), {}, n,
-                      [&](int i) { return frames[size_t(i)].input(); },
-                      "path-traced Cornell box, 77x61");
+    expectConformance(
+        filter().name, backend(), {}, n, [&](int i) { return frames[size_t(i)].input(); },
+        "path-traced Cornell box, 77x61");
 }
 
 std::vector<const FilterCase*> filterCases() {
@@ -219,12 +220,13 @@ std::vector<const FilterCase*> filterCases() {
     return v;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllBackendsAndFilters, Conformance,
-    testing::Combine(testing::ValuesIn(kBackends), testing::ValuesIn(filterCases())),
-    [](const testing::TestParamInfo<Conformance::ParamType>& p) {
-        return std::string(std::get<0>(p.param)) + "_" + std::get<1>(p.param)->name;
-    });
+INSTANTIATE_TEST_SUITE_P(AllBackendsAndFilters, Conformance,
+                         testing::Combine(testing::ValuesIn(kBackends),
+                                          testing::ValuesIn(filterCases())),
+                         [](const testing::TestParamInfo<Conformance::ParamType>& p) {
+                             return std::string(std::get<0>(p.param)) + "_" +
+                                    std::get<1>(p.param)->name;
+                         });
 
 TEST(Conformance, EveryRegisteredFilterIsInTheSuite) {
     for (const std::string& name : filterNames()) {

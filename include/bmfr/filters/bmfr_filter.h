@@ -21,7 +21,7 @@ struct StageSwitches {
 
 /// BMFR settings; defaults are the paper's and the authors' code.
 struct BmfrSettings : TemporalSettings {
-    int blockSize = 32;                          ///< edge of the square regression block
+    int blockSize = 32;                                ///< edge of the square regression block
     std::vector<Feature> features = defaultFeatures(); ///< columns of T; the constant 1 first
     float noiseAmplitude = 0.01f;  ///< half-width of the regularisation noise on feature columns
     float firstBlendAlpha = 0.2f;  ///< phase I minimum new-frame weight (CMA, then EMA)

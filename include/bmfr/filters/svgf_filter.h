@@ -9,10 +9,10 @@ namespace bmfr {
 
 /// SVGF settings; defaults are Schied et al. 2017's.
 struct SvgfSettings : TemporalSettings {
-    float colorAlpha = 0.2f;       ///< colour accumulation minimum new-frame weight
-    float momentsAlpha = 0.2f;     ///< luminance moments minimum new-frame weight
-    int iterations = 5;            ///< a-trous levels (steps 1, 2, 4, ... pixels)
-    int kernelRadius = 2;          ///< 2 = 5x5 B3 spline (Schied), 1 = 3x3 (progressive)
+    float colorAlpha = 0.2f;   ///< colour accumulation minimum new-frame weight
+    float momentsAlpha = 0.2f; ///< luminance moments minimum new-frame weight
+    int iterations = 5;        ///< a-trous levels (steps 1, 2, 4, ... pixels)
+    int kernelRadius = 2;      ///< 2 = 5x5 B3 spline (Schied), 1 = 3x3 (progressive)
     /// Coarse-to-fine level order (progressive). The level fed back as the next frame's colour
     /// history is always the step-1 level.
     bool reverseLevels = false;

@@ -1,9 +1,9 @@
 // Reprojection and bilinear taps of eight pixels at once (SIMD across pixels), shared by phase
 // I, phase III and TAA. The same math and roundings as core/reprojection.h.
 #pragma once
+#include "backend/cpu/simd.h"
 #include "core/mat4.h"
 #include "temporal/reprojection.h"
-#include "backend/cpu/simd.h"
 
 namespace bmfr::cpu {
 

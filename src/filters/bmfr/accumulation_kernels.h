@@ -18,8 +18,8 @@ struct NoisyAccumulation {
     InputModes modes;
     PreviousFrame previous;
     DiscardLimits limits;
-    float minAlpha = 0.2f;   ///< BmfrSettings::firstBlendAlpha
-    bool accumulate = true;  ///< StageSwitches::firstAccumulation
+    float minAlpha = 0.2f;  ///< BmfrSettings::firstBlendAlpha
+    bool accumulate = true; ///< StageSwitches::firstAccumulation
     int width = 0, height = 0;
     float* normal = nullptr; ///< sanitised features, for the next frame's discard test
     float* position = nullptr;

@@ -32,8 +32,8 @@ struct SvgfBuffers {
     ImageF filtered[2];   ///< a-trous ping-pong: RGB colour + variance
     ImageF previousPixel; ///< 2 channels, shared with TAA
     ImageU8 accept;
-    ImageF remodulated; ///< before TAA
-    int outputLevel = 0; ///< which of filtered[] holds the last level
+    ImageF remodulated;                         ///< before TAA
+    int outputLevel = 0;                        ///< which of filtered[] holds the last level
     ImageF historyLengthF, acceptF, finalLevel; ///< debug copies, sized on first use
 
     void allocate(int w, int h);

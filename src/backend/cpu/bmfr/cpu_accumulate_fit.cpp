@@ -1,7 +1,7 @@
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
+#include "core/stopwatch.h"
 #include <algorithm>
 #include <atomic>
-#include "core/stopwatch.h"
 
 namespace bmfr::cpu {
 

@@ -92,8 +92,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl,
     f8 length = splat8(1.0f), ppx = splat8(-1e6f), ppy = splat8(-1e6f);
     i8 accept{};
     if (t.hasHistory()) {
-        const i8 valid = project8(px.position, t.previous.viewProjection, t.previous.jitter, t.width,
-                                  t.height, ppx, ppy);
+        const i8 valid = project8(px.position, t.previous.viewProjection, t.previous.jitter,
+                                  t.width, t.height, ppx, ppy);
         const Footprint8 fp = footprint8(ppx, ppy);
         const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
         const f8 limP = splat8(s.positionLimitSquared), limN = splat8(s.normalLimitSquared);

@@ -63,11 +63,14 @@ struct FramePlanes {
     uint8_t* accept;
 
     FramePlanes(Buffers& b, int cur) {
-        for (int c = 0; c < 6; ++c)
-            prevSurface[c] = b.plane(b.surface[1 - cur], c),
+        for (int c = 0; c < 6; ++c) {
+            prevSurface[c] = b.plane(b.surface[1 - cur], c);
             surface[c] = b.plane(b.surface[cur], c);
-        for (int c = 0; c < 4; ++c)
-            prevNoisy[c] = b.plane(b.noisy[1 - cur], c), noisy[c] = b.plane(b.noisy[cur], c);
+        }
+        for (int c = 0; c < 4; ++c) {
+            prevNoisy[c] = b.plane(b.noisy[1 - cur], c);
+            noisy[c] = b.plane(b.noisy[cur], c);
+        }
         for (int c = 0; c < 3; ++c) {
             prevAccumulated[c] = b.plane(b.accumulatedFitted[1 - cur], c);
             accumulated[c] = b.plane(b.accumulatedFitted[cur], c);
@@ -110,10 +113,10 @@ void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, 
 void resolve(const BmfrPassContext& ctx, Buffers& b);
 
 /// Householder QR of the M + 3 columns (each `rows` long, `stride` floats apart) and back
-/// substitution, as bmfr::solveHouseholder (filters/bmfr/householder_qr.h). Each step's column updates and the next step's dot
-/// products share one sweep over four columns at a time. Returns the number of dependent
-/// columns (coefficient 0). A stride that is not a multiple of 1024 floats avoids 4K aliasing
-/// between a column's stores and the next column's loads.
+/// substitution, as bmfr::solveHouseholder (filters/bmfr/householder_qr.h). Each step's column
+/// updates and the next step's dot products share one sweep over four columns at a time. Returns
+/// the number of dependent columns (coefficient 0). A stride that is not a multiple of 1024 floats
+/// avoids 4K aliasing between a column's stores and the next column's loads.
 int solveHouseholderFast(float* columns, int featureCount, int rows, long stride, float* coeffs);
 /// The same with contiguous columns (stride = rows).
 int solveHouseholderFast(float* columns, int featureCount, int rows, float* coeffs);

@@ -1,6 +1,6 @@
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
-#include "backend/cpu/reproject8.h"
 #include "backend/cpu/modulation8.h"
+#include "backend/cpu/reproject8.h"
 #include "backend/cpu/taa_rows.h"
 
 namespace bmfr::cpu {

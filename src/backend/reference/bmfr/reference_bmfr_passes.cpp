@@ -32,13 +32,13 @@ struct Buffers {
     ImageF accumulatedFitted[2];   ///< phase III accumulation, demodulated
     ImageF output[2];              ///< final (TAA) output, linear
     // This frame only.
-    ImageF previousPixel;  ///< 2 channels: continuous pixel in the previous frame
-    ImageU8 acceptMask;    ///< accepted bilinear taps, bit i = tap i
-    ImageF fitted;         ///< phase II output, demodulated
-    ImageF remodulated;    ///< phase III output before TAA
-    ImageF ycocg;          ///< TAA scratch
-    ImageF historyLengthF; ///< debug copy of the history length as float
-    ImageF acceptMaskF;    ///< debug copy of the accept mask as float
+    ImageF previousPixel;            ///< 2 channels: continuous pixel in the previous frame
+    ImageU8 acceptMask;              ///< accepted bilinear taps, bit i = tap i
+    ImageF fitted;                   ///< phase II output, demodulated
+    ImageF remodulated;              ///< phase III output before TAA
+    ImageF ycocg;                    ///< TAA scratch
+    ImageF historyLengthF;           ///< debug copy of the history length as float
+    ImageF acceptMaskF;              ///< debug copy of the accept mask as float
     std::vector<FitScratch> scratch; ///< one per worker thread
 };
 
@@ -150,8 +150,9 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         times.add("fit", clock.lap());
         accumulateFitted(ctx, b);
         times.add("accumulate_fitted", clock.lap());
-        const TaaInputs taa{b.remodulated.data(), nullptr, b.output[1 - t.cur].data(),
-                            b.previousPixel.data(), t.width, t.height, ctx.settings.taaBlendAlpha};
+        const TaaInputs taa{b.remodulated.data(),      nullptr, b.output[1 - t.cur].data(),
+                            b.previousPixel.data(),    t.width, t.height,
+                            ctx.settings.taaBlendAlpha};
         taaPass(ctx.pool, taa, b.ycocg.data(), b.output[t.cur].data(),
                 ctx.settings.taa && t.hasHistory());
         times.add("taa", clock.lap());

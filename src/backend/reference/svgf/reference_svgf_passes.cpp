@@ -61,8 +61,8 @@ class ReferenceSvgfPasses final : public SvgfPasses {
         const int64_t bad = svgfStagesBeforeTaa(ctx, b_, times);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
-        const TaaInputs taa{b_.remodulated.data(), nullptr, b_.output[1 - h.cur].data(),
-                            b_.previousPixel.data(), h.width, h.height,
+        const TaaInputs taa{b_.remodulated.data(),     nullptr, b_.output[1 - h.cur].data(),
+                            b_.previousPixel.data(),   h.width, h.height,
                             ctx.settings.taaBlendAlpha};
         taaPass(ctx.pool, taa, ycocg_.data(), b_.output[h.cur].data(),
                 ctx.settings.taa && h.hasHistory());
