@@ -11,55 +11,44 @@ template <class S> TextField<S> backendField() {
             +[](S& s, const std::string& v) { s.backend = parseBackend(v.c_str()); }};
 }
 
+// clang-format off
 template <class S> SettingsTable<S> temporalSettingsTable() {
     return {
-        {"backend",
-         "backend",
-         "",
-         {},
-         "where the passes run: reference, cpu or cuda",
+        {"backend", "backend", "", {}, "where the passes run: reference, cpu or cuda",
          backendField<S>()},
-        {"positionLimitSquared",
-         "position-limit",
-         "scene units^2",
-         {0, 1e30, true},
-         "discard a history tap when its squared world distance is at least this (a "
-         "sequence's own value, when it has one, replaces the default)",
+        {"positionLimitSquared", "position-limit", "scene units^2", {0, 1e30, true},
+         "discard a history tap when its squared world distance is at least this (a sequence's "
+         "own value, when it has one, replaces the default)",
          BMFR_FIELD(S, positionLimitSquared)},
-        {"normalLimitSquared",
-         "normal-limit",
-         "",
-         {0, 4, true},
-         "discard a history tap when its squared normal distance is at least this (1 is "
-         "about 60 degrees; a sequence's own value replaces the default)",
+        {"normalLimitSquared", "normal-limit", "", {0, 4, true},
+         "discard a history tap when its squared normal distance is at least this (1 is about "
+         "60 degrees; a sequence's own value replaces the default)",
          BMFR_FIELD(S, normalLimitSquared)},
-        {"taaBlendAlpha",
-         "taa-alpha",
-         "",
-         {0, 1, true},
-         "TAA weight of the current frame",
+        {"taaBlendAlpha", "taa-alpha", "", {0, 1, true}, "TAA weight of the current frame",
          BMFR_FIELD(S, taaBlendAlpha)},
         {"taa", "taa", "", {}, "temporal anti-aliasing of the output", BMFR_FIELD(S, taa)},
-        {"albedoEpsilon",
-         "albedo-epsilon",
-         "",
-         {1e-6, 1},
-         "demodulation divides by max(albedo, eps) and re-modulation multiplies by the "
-         "same",
+        {"albedoEpsilon", "albedo-epsilon", "", {1e-6, 1},
+         "demodulation divides by max(albedo, eps) and re-modulation multiplies by the same",
          BMFR_FIELD(S, albedoEpsilon)},
-        {"colorIsDemodulated",
-         "color-is-demodulated",
-         "",
-         {},
+        {"colorIsDemodulated", "color-is-demodulated", "", {},
          "the colour input is already divided by albedo (the original BMFR dataset is)",
          BMFR_FIELD(S, colorIsDemodulated)},
-        {"threads",
-         "threads",
-         "threads",
-         {0, 1024},
-         "worker threads, 0 = all cores",
+        {"threads", "threads", "threads", {0, 1024}, "worker threads, 0 = all cores",
          BMFR_FIELD(S, threads)},
     };
+}
+// clang-format on
+
+/// The shared rows followed by a filter's own.
+template <class S> SettingsTable<S> withTemporalSettings(const SettingsTable<S>& own) {
+    SettingsTable<S> t = temporalSettingsTable<S>();
+    t.insert(t.end(), own.begin(), own.end());
+    return t;
+}
+
+/// How many rows of every filter's table are the shared ones.
+inline int temporalSettingCount() {
+    return int(temporalSettingsTable<TemporalSettings>().size());
 }
 
 } // namespace bmfr

@@ -90,13 +90,7 @@ DebugBuffers BmfrDenoiser::debug() const {
 }
 
 FilterEntry bmfrFilterEntry() {
-    return {"bmfr", "BMFR (Koskela et al. 2019)",
-            [](const SettingValues& values) -> std::unique_ptr<Filter> {
-                BmfrSettings s;
-                applySettings(bmfrSettingsTable(), s, values, "bmfr");
-                return std::make_unique<BmfrDenoiser>(s);
-            },
-            [] { return documentSettings(bmfrSettingsTable(), bmfrSharedSettingCount()); }};
+    return tableFilterEntry<BmfrDenoiser>("bmfr", "BMFR (Koskela et al. 2019)", bmfrSettingsTable);
 }
 
 } // namespace bmfr

@@ -7,87 +7,50 @@ namespace {
 
 using S = BmfrSettings;
 
-SettingsTable<S> makeTable() {
-    SettingsTable<S> t = temporalSettingsTable<S>();
-    const SettingsTable<S> own = {
-        {"blockSize",
-         "block-size",
-         "pixels",
-         {8, 64},
-         "edge of the square regression block (even)",
+TextField<S> featuresField() {
+    return {+[](const S& s) { return formatFeatures(s.features); },
+            +[](S& s, const std::string& v) { s.features = parseFeatures(v); }};
+}
+
+// clang-format off
+SettingsTable<S> ownSettings() {
+    return {
+        {"blockSize", "block-size", "pixels", {8, 64}, "edge of the square regression block (even)",
          BMFR_FIELD(S, blockSize)},
-        {"features",
-         "features",
-         "",
-         {},
+        {"features", "features", "", {},
          "columns of T (paper eq. 8): 1, n.x, n.y, n.z, p.x, p.y, p.z, extraK "
          "(FrameInput::extras[K]), each optionally ^E; the constant 1 first, at most 24",
-         TextField<S>{+[](const S& s) { return formatFeatures(s.features); },
-                      +[](S& s, const std::string& v) { s.features = parseFeatures(v); }}},
-        {"noiseAmplitude",
-         "noise",
-         "",
-         {0, 1},
-         "half-width of the uniform regularisation noise added to every non-constant "
-         "scaled feature column, never to colour",
+         featuresField()},
+        {"noiseAmplitude", "noise", "", {0, 1},
+         "half-width of the uniform regularisation noise added to every non-constant scaled "
+         "feature column, never to colour",
          BMFR_FIELD(S, noiseAmplitude)},
-        {"firstBlendAlpha",
-         "alpha1",
-         "",
-         {0, 1, true},
+        {"firstBlendAlpha", "alpha1", "", {0, 1, true},
          "phase I minimum new-frame weight (cumulative average until 1/(n+1) drops below it)",
          BMFR_FIELD(S, firstBlendAlpha)},
-        {"secondBlendAlpha",
-         "alpha2",
-         "",
-         {0, 1, true},
-         "phase III minimum new-frame weight, max(1/n, alpha2)",
-         BMFR_FIELD(S, secondBlendAlpha)},
-        {"seed",
-         "seed",
-         "",
-         {0, 4294967295.0},
-         "regularisation noise seed; the same seed and input give the same bits at any "
-         "thread count",
+        {"secondBlendAlpha", "alpha2", "", {0, 1, true},
+         "phase III minimum new-frame weight, max(1/n, alpha2)", BMFR_FIELD(S, secondBlendAlpha)},
+        {"seed", "seed", "", {0, 4294967295.0},
+         "regularisation noise seed; the same seed and input give the same bits at any thread "
+         "count",
          BMFR_FIELD(S, seed)},
-        {"demodulate",
-         "demodulate",
-         "",
-         {},
-         "divide colour by albedo before filtering",
+        {"demodulate", "demodulate", "", {}, "divide colour by albedo before filtering",
          BMFR_FIELD(S, stages.demodulate)},
-        {"firstAccumulation",
-         "accumulation",
-         "",
-         {},
-         "phase I: accumulate the noisy colour",
+        {"firstAccumulation", "accumulation", "", {}, "phase I: accumulate the noisy colour",
          BMFR_FIELD(S, stages.firstAccumulation)},
-        {"fitting",
-         "fitting",
-         "",
-         {},
-         "phase II: blockwise feature regression",
+        {"fitting", "fitting", "", {}, "phase II: blockwise feature regression",
          BMFR_FIELD(S, stages.fitting)},
-        {"secondAccumulation",
-         "second-accumulation",
-         "",
-         {},
-         "phase III: accumulate the fitted colour",
-         BMFR_FIELD(S, stages.secondAccumulation)},
+        {"secondAccumulation", "second-accumulation", "", {},
+         "phase III: accumulate the fitted colour", BMFR_FIELD(S, stages.secondAccumulation)},
     };
-    t.insert(t.end(), own.begin(), own.end());
-    return t;
 }
+// clang-format on
 
 } // namespace
 
 const SettingsTable<BmfrSettings>& bmfrSettingsTable() {
-    static const SettingsTable<BmfrSettings> table = makeTable();
+    static const SettingsTable<BmfrSettings> table = withTemporalSettings(ownSettings());
     return table;
-}
-
-int bmfrSharedSettingCount() {
-    return int(temporalSettingsTable<BmfrSettings>().size());
 }
 
 void validate(const BmfrSettings& s) {

@@ -6,7 +6,5 @@
 namespace bmfr {
 
 const SettingsTable<BmfrSettings>& bmfrSettingsTable();
-/// How many of the table's first rows are the shared TemporalSettings.
-int bmfrSharedSettingCount();
 
 } // namespace bmfr

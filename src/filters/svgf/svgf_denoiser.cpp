@@ -57,13 +57,7 @@ ImageView SvgfDenoiser::denoise(const FrameInput& frame) {
 }
 
 FilterEntry svgfFilterEntry() {
-    return {"svgf", "SVGF (Schied et al. 2017)",
-            [](const SettingValues& values) -> std::unique_ptr<Filter> {
-                SvgfSettings s;
-                applySettings(svgfSettingsTable(), s, values, "svgf");
-                return std::make_unique<SvgfDenoiser>(s);
-            },
-            [] { return documentSettings(svgfSettingsTable(), svgfSharedSettingCount()); }};
+    return tableFilterEntry<SvgfDenoiser>("svgf", "SVGF (Schied et al. 2017)", svgfSettingsTable);
 }
 
 } // namespace bmfr

@@ -57,4 +57,16 @@ class SvgfPasses {
     virtual DebugBuffers debug(int cur) const = 0;
 };
 
+/// The part of a host backend's SVGF passes that only reads SvgfBuffers.
+class HostSvgfPasses : public SvgfPasses {
+  public:
+    ImageView output(int slot) const override { return view(buffers.output[slot]); }
+    ImageView variance() const override { return view(buffers.variance); }
+    void captureDebug(int cur) override { buffers.captureDebug(cur); }
+    DebugBuffers debug(int cur) const override { return buffers.debug(cur); }
+
+  protected:
+    SvgfBuffers buffers;
+};
+
 } // namespace bmfr

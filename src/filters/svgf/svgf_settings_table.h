@@ -6,7 +6,5 @@
 namespace bmfr {
 
 const SettingsTable<SvgfSettings>& svgfSettingsTable();
-/// How many of the table's first rows are the shared TemporalSettings.
-int svgfSharedSettingCount();
 
 } // namespace bmfr

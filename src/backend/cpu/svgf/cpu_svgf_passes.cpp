@@ -8,30 +8,25 @@ namespace bmfr::cpu {
 
 namespace {
 
-class CpuSvgfPasses final : public SvgfPasses {
+class CpuSvgfPasses final : public HostSvgfPasses {
   public:
     void allocate(int w, int h) override {
-        b_.allocate(w, h);
+        buffers.allocate(w, h);
         taaScratch_.assign(taaScratchFloats(w, h), 0.0f);
     }
     int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
-        const int64_t bad = reference::svgfStagesBeforeTaa(ctx, b_, times);
+        const int64_t bad = reference::svgfStagesBeforeTaa(ctx, buffers, times);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
-        temporalAntiAliasing(ctx.pool, b_.remodulated.data(), b_.output[1 - h.cur].data(),
-                             b_.previousPixel.data(), taaScratch_.data(), b_.output[h.cur].data(),
-                             h.width, h.height, ctx.settings.taaBlendAlpha,
-                             ctx.settings.taa && h.hasHistory());
+        temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
+                             buffers.previousPixel.data(), taaScratch_.data(),
+                             buffers.output[h.cur].data(), h.width, h.height,
+                             ctx.settings.taaBlendAlpha, ctx.settings.taa && h.hasHistory());
         times.add("taa", clock.lap());
         return bad;
     }
-    ImageView output(int slot) const override { return view(b_.output[slot]); }
-    ImageView variance() const override { return view(b_.variance); }
-    void captureDebug(int cur) override { b_.captureDebug(cur); }
-    DebugBuffers debug(int cur) const override { return b_.debug(cur); }
 
   private:
-    SvgfBuffers b_;
     std::vector<float> taaScratch_;
 };
 

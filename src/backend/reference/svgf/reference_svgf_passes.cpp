@@ -51,31 +51,26 @@ int64_t svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTim
 
 namespace {
 
-class ReferenceSvgfPasses final : public SvgfPasses {
+class ReferenceSvgfPasses final : public HostSvgfPasses {
   public:
     void allocate(int w, int h) override {
-        b_.allocate(w, h);
+        buffers.allocate(w, h);
         ycocg_.resize(w, h, 3);
     }
     int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
-        const int64_t bad = svgfStagesBeforeTaa(ctx, b_, times);
+        const int64_t bad = svgfStagesBeforeTaa(ctx, buffers, times);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
-        const TaaInputs taa{b_.remodulated.data(),     nullptr, b_.output[1 - h.cur].data(),
-                            b_.previousPixel.data(),   h.width, h.height,
+        const TaaInputs taa{buffers.remodulated.data(),   nullptr, buffers.output[1 - h.cur].data(),
+                            buffers.previousPixel.data(), h.width, h.height,
                             ctx.settings.taaBlendAlpha};
-        taaPass(ctx.pool, taa, ycocg_.data(), b_.output[h.cur].data(),
+        taaPass(ctx.pool, taa, ycocg_.data(), buffers.output[h.cur].data(),
                 ctx.settings.taa && h.hasHistory());
         times.add("taa", clock.lap());
         return bad;
     }
-    ImageView output(int slot) const override { return view(b_.output[slot]); }
-    ImageView variance() const override { return view(b_.variance); }
-    void captureDebug(int cur) override { b_.captureDebug(cur); }
-    DebugBuffers debug(int cur) const override { return b_.debug(cur); }
 
   private:
-    SvgfBuffers b_;
     ImageF ycocg_;
 };
 
