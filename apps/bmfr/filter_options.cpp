@@ -1,5 +1,6 @@
 #include "filter_options.h"
 #include <bmfr/error.h>
+#include <fmt/format.h>
 #include <set>
 
 namespace bmfr::app {
@@ -45,7 +46,7 @@ void FilterOptions::addTo(CLI::App& cmd, const std::vector<std::string>& filters
 SettingValues FilterOptions::resolve(const std::string& name, const SequenceDefaults& seq) const {
     const std::vector<SettingDoc> docs = filterSettings(name);
     SettingValues v;
-    auto number = [](float x) { return std::to_string(x); };
+    auto number = [](float x) { return fmt::format("{}", x); }; // shortest exact form
     if (seq.positionLimitSquared)
         v.push_back({"positionLimitSquared", number(*seq.positionLimitSquared)});
     if (seq.normalLimitSquared)
