@@ -4,6 +4,7 @@
 #include "core/stopwatch.h"
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
+#include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/png.h"
 #include "io/sequence.h"
@@ -17,6 +18,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 namespace bmfr::app {
@@ -150,7 +152,7 @@ int runDenoise(const DenoiseJob& job) {
     report["median_ms"] = stages.medians();
     report["median_ms"]["total"] = stages.totalMedian();
     if (info.hasReference) {
-        std::ofstream csv(fs::path(job.output) / "scores.csv");
+        std::ostringstream csv;
         csv << "frame,rmse,psnr_db,ssim,flip,relmse,temporal_error,noisy_rmse,reference_temporal_"
                "error\n";
         auto f6 = [](double v) {
@@ -161,6 +163,7 @@ int runDenoise(const DenoiseJob& job) {
                 << f6(scores[k].ssim) << "," << f6(scores[k].flip) << "," << f6(scores[k].relmse)
                 << "," << f6(scores[k].temporal) << "," << f6(noisyScores[k].rmse) << ","
                 << f6(referenceTemporal[k]) << "\n";
+        writeFileAtomically((fs::path(job.output) / "scores.csv").string(), csv.str());
         const FrameScores m = meanScores(scores), nm = meanScores(noisyScores);
         double refTemporal = 0;
         int n = 0;
@@ -191,7 +194,7 @@ int runDenoise(const DenoiseJob& job) {
             std::isfinite(m.flip) ? fmt::format("{:.4f}", m.flip) : "-", m.relmse, m.temporal,
             "reference", "", "", "", "", "", refTemporal);
     }
-    std::ofstream(fs::path(job.output) / "report.json") << report.dump(2) << "\n";
+    writeFileAtomically((fs::path(job.output) / "report.json").string(), report.dump(2) + "\n");
 
     if (!job.quiet) {
         fmt::print("\n{} frames, {}x{}, {} threads. Median ms per frame:\n", last - first,

@@ -10,9 +10,16 @@ namespace bmfr::app {
 namespace {
 
 std::array<int, 4> parseCrop(const std::string& s) {
-    std::array<int, 4> c{};
-    if (std::sscanf(s.c_str(), "%d,%d,%d,%d", &c[0], &c[1], &c[2], &c[3]) != 4)
+    std::array<long, 4> v{};
+    char tail = 0;
+    if (std::sscanf(s.c_str(), "%ld,%ld,%ld,%ld%c", &v[0], &v[1], &v[2], &v[3], &tail) != 4)
         throw Error("--crop expects x,y,w,h, got '" + s + "'");
+    std::array<int, 4> c{};
+    for (int k = 0; k < 4; ++k) {
+        if (v[size_t(k)] < 0 || v[size_t(k)] > 65536)
+            throw Error("--crop " + s + ": each of x,y,w,h must be in [0, 65536]");
+        c[size_t(k)] = int(v[size_t(k)]);
+    }
     return c;
 }
 
@@ -72,6 +79,9 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                                     : MethodSource{m.substr(0, eq), m.substr(eq + 1)});
         }
         for (const std::string& c : job->crops) o.crops.push_back(parseCrop(c));
+        if (o.zoom < 1 || o.zoom > 16) throw Error("--zoom must be in [1, 16]");
+        if (o.autoCrops < 0 || o.autoCrops > 16) throw Error("--crops must be in [0, 16]");
+        if (o.cropSize < 4 || o.cropSize > 1024) throw Error("--crop-size must be in [4, 1024]");
         o.flip = !job->noFlip;
         exitCode = runEval(o, job->quiet);
     });

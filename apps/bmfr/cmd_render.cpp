@@ -20,7 +20,7 @@ struct RenderJob {
                         layout = "manifest";
     std::optional<int> width, height, frames, referenceSpp, bounces;
     std::optional<uint32_t> seed;
-    bool noReference = false, quiet = false, list = false;
+    bool noReference = false, quiet = false, list = false, overwrite = false;
 };
 
 } // namespace
@@ -41,10 +41,7 @@ int runRender(const RenderJob& job) {
     if (job.noReference) d.referenceSpp = 0;
     if (job.bounces) d.bounces = *job.bounces;
     if (job.seed) d.seed = *job.seed;
-    if (d.width < 1 || d.height < 1 || d.frames < 1 || d.referenceSpp < 0 || d.bounces < 0 ||
-        d.bounces > 64)
-        throw Error(
-            "render: width, height, frames must be >= 1, reference spp >= 0, bounces in [0, 64]");
+    render::validate(d);
 
     gInterrupted = false;
     auto previous = std::signal(SIGINT, onInterrupt);
@@ -54,7 +51,7 @@ int runRender(const RenderJob& job) {
                    d.name, d.mesh, d.width, d.height, d.frames, d.bounces, d.referenceSpp,
                    job.output, job.layout);
     Progress progress("render", d.frames, job.quiet);
-    render::SequenceRenderOptions o{job.output, job.layout, job.quiet};
+    render::SequenceRenderOptions o{job.output, job.layout, job.quiet, job.overwrite};
     render::SequenceRenderReport r = render::renderSequence(
         d, o, &gInterrupted, [&](int done, int) { progress.step(done); },
         [&](const std::string& w) { fmt::print(stderr, "bmfr: warning: {}\n", w); });
@@ -93,6 +90,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--reference-spp", job->referenceSpp,
                     "reference samples per pixel (default 4096)");
     cmd->add_flag("--no-reference", job->noReference, "skip the reference");
+    cmd->add_flag("--overwrite", job->overwrite,
+                  "replace a folder holding another scene's sequence (or one bmfr did not "
+                  "render) instead of refusing it");
     cmd->add_option("--bounces", job->bounces,
                     "BSDF-sampled secondary rays per path (default 1, as the paper)");
     cmd->add_option("--seed", job->seed, "random seed");

@@ -1,6 +1,9 @@
 #include "commands.h"
 #include "io/exr.h"
 #include "io/png.h"
+#include <bmfr/error.h>
+#include <cmath>
+#include <filesystem>
 
 namespace bmfr::app {
 
@@ -16,6 +19,12 @@ void addTonemapCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("output", job->output, "PNG file")->required();
     cmd->add_option("--exposure", job->exposure, "linear scale applied first")->default_val(1.0);
     cmd->callback([job, &exitCode] {
+        std::error_code ec;
+        if (job->output == job->input || std::filesystem::equivalent(job->input, job->output, ec))
+            throw Error("tonemap: the output " + job->output +
+                        " is the input; refusing to overwrite it");
+        if (!(std::isfinite(job->exposure) && job->exposure > 0.0f))
+            throw Error("tonemap: --exposure must be a positive number");
         writePngToneMapped(job->output, readExr(job->input, 3), job->exposure);
         exitCode = 0;
     });

@@ -3,6 +3,7 @@
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
 #include "eval/plot.h"
+#include "io/atomic_file.h"
 #include "io/sequence.h"
 #include <bmfr/denoiser.h>
 #include <bmfr/error.h>
@@ -10,6 +11,7 @@
 #include <fmt/core.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace bmfr {
 
@@ -140,21 +142,22 @@ AblationResult runAblation(const std::string& input, const std::string& output,
     for (size_t k = 0; k < r.greedy.size(); ++k)
         md += fmt::format("| {} | {} | {:.4f} | {:.4f} | `{}` |\n", k, r.greedy[k].name,
                           r.greedy[k].rmse, r.greedy[k].ssim, r.greedy[k].features);
-    std::ofstream(fs::path(output) / "ablation.md") << md;
-    std::ofstream csv(fs::path(output) / "ablation.csv");
+    writeFileAtomically((fs::path(output) / "ablation.md").string(), md);
+    std::ostringstream csv;
     csv << "study,configuration,features,rmse,ssim\n";
     for (const AblationRow& a : r.stages)
         csv << fmt::format("stages,{},\"{}\",{:.6f},{:.6f}\n", a.name, a.features, a.rmse, a.ssim);
     for (const AblationRow& a : r.greedyTrials)
         csv << fmt::format("greedy-trial,{},\"{}\",{:.6f},{:.6f}\n", a.name, a.features, a.rmse,
                            a.ssim);
+    writeFileAtomically((fs::path(output) / "ablation.csv").string(), csv.str());
     nlohmann::json j;
     for (const AblationRow& a : r.stages)
         j["stages"].push_back({{"name", a.name}, {"rmse", a.rmse}, {"ssim", a.ssim}});
     for (const AblationRow& a : r.greedy)
         j["greedy"].push_back(
             {{"added", a.name}, {"features", a.features}, {"rmse", a.rmse}, {"ssim", a.ssim}});
-    std::ofstream(fs::path(output) / "ablation.json") << j.dump(2) << "\n";
+    writeFileAtomically((fs::path(output) / "ablation.json").string(), j.dump(2) + "\n");
     Series rmse{"RMSE", {}}, ssimSeries{"SSIM", {}};
     for (const AblationRow& a : r.greedy)
         rmse.values.push_back(a.rmse), ssimSeries.values.push_back(a.ssim);

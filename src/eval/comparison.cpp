@@ -1,6 +1,7 @@
 #include "eval/comparison.h"
 #include "core/color.h"
 #include "eval/plot.h"
+#include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/sequence.h"
 #include "metrics/basic_metrics.h"
@@ -14,6 +15,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace bmfr {
 
@@ -28,12 +30,40 @@ std::pair<int, int> parseFrameRange(const std::string& spec, int count) {
         if (s.empty()) return dflt;
         if (s.find_first_not_of("0123456789") != std::string::npos)
             throw Error("frame range: '" + s + "' is not a frame number");
-        return std::stoi(s);
+        if (s.size() > 9 || std::stol(s) > count)
+            throw Error(fmt::format("frame range {}: the sequence has frames 0:{}", spec, count));
+        return int(std::stol(s));
     };
     int a = num(spec.substr(0, colon), 0), b = num(spec.substr(colon + 1), count);
     if (a >= b || b > count)
         throw Error(fmt::format("frame range {}: the sequence has frames 0:{}", spec, count));
     return {a, b};
+}
+
+std::string escapeHtml(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        case '\'':
+            out += "&#39;";
+            break;
+        default:
+            out += c;
+        }
+    }
+    return out;
 }
 
 namespace {
@@ -186,9 +216,9 @@ ComparisonResult runComparison(const ComparisonOptions& o,
 
     // Tables.
     const std::string md = markdownTable(r);
-    std::ofstream(fs::path(o.output) / "table.md") << md;
+    writeFileAtomically((fs::path(o.output) / "table.md").string(), md);
     {
-        std::ofstream csv(fs::path(o.output) / "table.csv");
+        std::ostringstream csv;
         csv << "method";
         for (const MetricInfo& m : metricList()) csv << "," << m.key;
         csv << "\n";
@@ -199,7 +229,8 @@ ComparisonResult runComparison(const ComparisonOptions& o,
             csv << "\n";
         }
         csv << "reference,,,,,," << fmtValue(r.referenceTemporalMean) << "\n";
-        std::ofstream pf(fs::path(o.output) / "per_frame.csv");
+        writeFileAtomically((fs::path(o.output) / "table.csv").string(), csv.str());
+        std::ostringstream pf;
         pf << "method,frame";
         for (const MetricInfo& m : metricList()) pf << "," << m.key;
         pf << "\n";
@@ -210,6 +241,7 @@ ComparisonResult runComparison(const ComparisonOptions& o,
                     pf << "," << fmtValue(metricValue(r.perFrame[i][k], m.key));
                 pf << "\n";
             }
+        writeFileAtomically((fs::path(o.output) / "per_frame.csv").string(), pf.str());
     }
     nlohmann::json j;
     j["reference"] = o.reference;
@@ -231,7 +263,7 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         }
         j["methods"][r.names[i]] = mj;
     }
-    std::ofstream(fs::path(o.output) / "table.json") << j.dump(2) << "\n";
+    writeFileAtomically((fs::path(o.output) / "table.json").string(), j.dump(2) + "\n");
 
     // Plots.
     std::vector<std::pair<std::string, Raster>> plots;
@@ -284,8 +316,9 @@ ComparisonResult runComparison(const ComparisonOptions& o,
     }
     for (size_t k = 0; k < crops.size(); ++k) {
         const auto& c = crops[k];
-        if (c[2] <= 0 || c[3] <= 0 || c[0] < 0 || c[1] < 0 || c[0] + c[2] > shownRef.width ||
-            c[1] + c[3] > shownRef.height)
+        if (c[2] <= 0 || c[3] <= 0 || c[0] < 0 || c[1] < 0 || c[0] >= shownRef.width ||
+            c[1] >= shownRef.height || c[2] > shownRef.width - c[0] ||
+            c[3] > shownRef.height - c[1])
             throw Error(fmt::format("eval: crop {},{},{},{} is outside the {}x{} frame", c[0], c[1],
                                     c[2], c[3], shownRef.width, shownRef.height));
         const int cols = int(shown.size()) + 1, cw = c[2] * o.zoom, ch = c[3] * o.zoom;
@@ -316,7 +349,7 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         "10px;text-align:right}td:first-child{text-align:left}"
         "img{max-width:100%;image-rendering:pixelated}</style></head><body>";
     html += fmt::format("<h1>bmfr eval</h1><p>Reference: {}; frames {}:{}; shown frame {}.</p>",
-                        o.reference, r.first, r.last, show);
+                        escapeHtml(o.reference), r.first, r.last, show);
     html += "<p>RMSE, PSNR, SSIM, FLIP and temporal error are computed on tone-mapped frames, "
             "clamp(x<sup>1/2.2</sup>, 0, 1), as the BMFR paper scores; relMSE on linear radiance. "
             "Best value per column in bold.</p><table><tr><th>method</th>";
@@ -324,7 +357,7 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         html += fmt::format("<th>{} {}</th>", m.label, m.lowerIsBetter ? "&darr;" : "&uarr;");
     html += "</tr>";
     for (size_t i = 0; i < r.names.size(); ++i) {
-        html += "<tr><td>" + r.names[i] + "</td>";
+        html += "<tr><td>" + escapeHtml(r.names[i]) + "</td>";
         for (const MetricInfo& m : metricList()) {
             const double v = metricValue(r.means[i], m.key);
             const bool best = isBest(r, i, m);
@@ -337,15 +370,15 @@ ComparisonResult runComparison(const ComparisonOptions& o,
                         fmtValue(r.referenceTemporalMean));
     html += "<h2>Per frame</h2>";
     for (const auto& [title, img] : plots)
-        html += "<p><img alt=\"" + title + "\" src=\"data:image/png;base64," +
+        html += "<p><img alt=\"" + escapeHtml(title) + "\" src=\"data:image/png;base64," +
                 base64(encodePng(img)) + "\"></p>";
     html += "<h2>Pictures</h2>";
     for (const auto& [title, img] : pictures)
-        html += "<h3>" + title + "</h3><p><img src=\"data:image/png;base64," +
+        html += "<h3>" + escapeHtml(title) + "</h3><p><img src=\"data:image/png;base64," +
                 base64(encodePng(img)) + "\"></p>";
     html += "</body></html>\n";
     r.reportPath = (fs::path(o.output) / "report.html").string();
-    std::ofstream(r.reportPath) << html;
+    writeFileAtomically(r.reportPath, html);
     return r;
 }
 

@@ -48,5 +48,7 @@ std::string markdownTable(const ComparisonResult& r);
 
 /// "A:B", "A:" or ":B" against a frame count. Throws bmfr::Error.
 std::pair<int, int> parseFrameRange(const std::string& spec, int count);
+/// Text made safe for HTML element content and attribute values.
+std::string escapeHtml(const std::string& text);
 
 } // namespace bmfr

@@ -1,5 +1,6 @@
 #include "eval/raster.h"
 #include "core/color.h"
+#include "io/atomic_file.h"
 #include <algorithm>
 #include <bmfr/error.h>
 #include <cmath>
@@ -93,13 +94,8 @@ std::vector<unsigned char> encodePng(const Raster& r) {
 }
 
 void writePng(const std::string& path, const Raster& r) {
-    std::vector<unsigned char> bytes = encodePng(r);
-    {
-        std::ofstream f(path + ".part", std::ios::binary);
-        f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        if (!f) throw Error("cannot write " + path);
-    }
-    std::filesystem::rename(path + ".part", path);
+    const std::vector<unsigned char> bytes = encodePng(r);
+    writeFileAtomically(path, bytes.data(), bytes.size());
 }
 
 std::string base64(const std::vector<unsigned char>& in) {

@@ -1,5 +1,6 @@
 // The original BMFR dataset layout (Koskela et al. 2019 supplementary data).
 #include "core/mat4.h"
+#include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/sequence.h"
 #include <bmfr/error.h>
@@ -97,8 +98,16 @@ std::vector<long> extents(const std::string& s, size_t after) {
     while (true) {
         i = s.find_first_not_of(" \t", i);
         if (i == std::string::npos || s[i] != '[') break;
-        size_t close = s.find(']', i);
-        dims.push_back(std::atol(s.substr(i + 1, close - i - 1).c_str()));
+        const size_t close = s.find(']', i);
+        if (close == std::string::npos)
+            throw Error("an array extent opens '[' and never closes it");
+        const std::string text = s.substr(i + 1, close - i - 1);
+        char* end = nullptr;
+        const long v = std::strtol(text.c_str(), &end, 10);
+        if (text.find_first_not_of(" \t") != std::string::npos &&
+            (*end != '\0' || v < 0 || v > 100000000))
+            throw Error("array extent '[" + text + "]' is not a count");
+        dims.push_back(v);
         i = close + 1;
     }
     return dims;
@@ -121,6 +130,24 @@ class BmfrLayoutReader : public SequenceReader {
         int n = 0;
         while (fs::exists(path("color", n))) ++n;
         if (n == 0) throw Error(dir + ": no color0.exr");
+        // A gap would end the sequence silently: every colorN.exr must follow without one.
+        for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+            const std::string name = e.path().filename().string();
+            if (name.size() < 10 || name.rfind("color", 0) != 0 ||
+                name.substr(name.size() - 4) != ".exr")
+                continue;
+            const std::string digits = name.substr(5, name.size() - 9);
+            if (digits.empty() || digits.size() > 7 ||
+                digits.find_first_not_of("0123456789") != std::string::npos)
+                continue;
+            const int k = std::stoi(digits);
+            if (k > n)
+                throw Error(dir + ": color" + std::to_string(n) + ".exr is missing, yet " + name +
+                            " exists");
+        }
+        for (int k = 0; k < n; ++k)
+            for (const char* stem : {"albedo", "shading_normal", "world_position"})
+                if (!fs::exists(path(stem, k))) throw Error("missing file: " + path(stem, k));
         if (size_t(n) > camera_.matrices.size())
             throw Error(camPath.string() + ": " + std::to_string(camera_.matrices.size()) +
                         " camera matrices for " + std::to_string(n) + " frames");
@@ -168,7 +195,12 @@ BmfrCameraFile parseBmfrCameraFile(const std::string& raw, const std::string& so
     BmfrCameraFile out;
     size_t at = findIdentifier(s, "camera_matrices");
     if (at == std::string::npos) throw Error(source + ": no camera_matrices array");
-    std::vector<long> dims = extents(s, at);
+    std::vector<long> dims;
+    try {
+        dims = extents(s, at);
+    } catch (const Error& e) {
+        throw Error(source + ": camera_matrices: " + e.what());
+    }
     std::vector<float> m = initializerNumbers(s, at, "camera_matrices", source);
     if (m.empty() || m.size() % 16 != 0)
         throw Error(source + ": camera_matrices has " + std::to_string(m.size()) +
@@ -232,9 +264,11 @@ BmfrLayoutWriter::BmfrLayoutWriter(const std::string& directory, const std::vect
         h << "  {" << j[0] + 0.5f << "f, " << 0.5f - j[1] << "f},\n";
     }
     h << "};\n";
-    const fs::path header = fs::path(directory) / "camera_matrices.h";
-    { std::ofstream(header.string() + ".part") << h.str(); }
-    fs::rename(header.string() + ".part", header);
+    header_ = h.str();
+}
+
+void BmfrLayoutWriter::finish() {
+    writeFileAtomically((fs::path(dir_) / "camera_matrices.h").string(), header_);
 }
 
 namespace {
@@ -266,6 +300,7 @@ void writeBmfrLayout(const std::string& directory, const std::vector<FrameData>&
         matrices.push_back(f.viewProjection), jitters.push_back({f.jitter[0], f.jitter[1]});
     BmfrLayoutWriter w(directory, matrices, jitters, positionLimitSquared, normalLimitSquared);
     for (size_t i = 0; i < frames.size(); ++i) w.addFrame(int(i), frames[i]);
+    w.finish();
 }
 
 } // namespace bmfr

@@ -1,4 +1,5 @@
 #include "io/exr.h"
+#include "io/atomic_file.h"
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -12,14 +13,40 @@
 
 namespace bmfr {
 
+namespace {
+constexpr long kMaxExrSide = 65536;
+constexpr long kMaxExrPixels = 1L << 28; ///< 16384 x 16384
+constexpr long kMaxRatio = 4096;         ///< deflate reaches about 1032:1; RLE and PIZ less
+} // namespace
+
 ImageF readExr(const std::string& path, int channels) {
-    if (!std::filesystem::exists(path)) throw Error("missing file: " + path);
+    if (channels < 1 || channels > 3)
+        throw Error("readExr: " + std::to_string(channels) + " channels asked of " + path);
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error("missing file: " + path);
+    const auto fileBytes = std::filesystem::file_size(path, ec);
+    if (ec) throw Error("unreadable EXR " + path + ": " + ec.message());
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
         const long w = long(dw.max.x) - dw.min.x + 1, h = long(dw.max.y) - dw.min.y + 1;
         if (w <= 0 || h <= 0) throw Error(path + ": zero-size image");
-        if (w > 65536 || h > 65536) throw Error(path + ": image too large");
+        // Checked before anything is allocated: the claimed size against a cap and against what
+        // the file could hold (no EXR compression packs more than kMaxRatio to one), and every
+        // chunk present.
+        if (w > kMaxExrSide || h > kMaxExrSide || w * h > kMaxExrPixels)
+            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
+                        " pixels, more than the " + std::to_string(kMaxExrPixels) + "-pixel limit");
+        double bytesPerPixel = 0;
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+            bytesPerPixel += it.channel().type == Imf::HALF ? 2.0 : 4.0;
+        const double raw = double(w) * double(h) * bytesPerPixel;
+        if (raw > double(kMaxRatio) * double(fileBytes))
+            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
+                        " pixels, but the file holds only " + std::to_string(fileBytes) +
+                        " bytes: truncated or corrupt");
+        if (!file.isComplete())
+            throw Error(path + ": truncated or incomplete EXR (pixel data missing)");
         std::vector<std::string> names;
         for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
             names.emplace_back(it.name());
@@ -37,8 +64,8 @@ ImageF readExr(const std::string& path, int channels) {
             pick = {"Y"};
         else if (channels == 1 && has("R"))
             pick = {"R"};
-        else if (names.size() == 1)
-            pick.assign(size_t(channels), names[0]);
+        else if (channels == 1 && names.size() == 1)
+            pick = {names[0]};
         else {
             std::string list;
             for (auto& s : names) list += (list.empty() ? "" : ",") + s;
@@ -90,7 +117,7 @@ void writeExr(const std::string& path, const ImageF& image) {
     static const char* kNames[3][3] = {{"Y"}, {"R", "G"}, {"R", "G", "B"}};
     const int ch = image.channels;
     if (ch < 1 || ch > 3) throw Error("cannot write a " + std::to_string(ch) + "-channel EXR");
-    const std::string tmp = path + ".part";
+    const std::string tmp = temporaryPathFor(path);
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
@@ -110,7 +137,7 @@ void writeExr(const std::string& path, const ImageF& image) {
         std::filesystem::remove(tmp);
         throw Error("cannot write EXR " + path + ": " + e.what());
     }
-    std::filesystem::rename(tmp, path);
+    commitTemporary(tmp, path);
 }
 
 } // namespace bmfr

@@ -1,6 +1,8 @@
 // This project's sequence layout: sequence.json naming per-frame EXR files.
 #include "core/mat4.h"
+#include "io/atomic_file.h"
 #include "io/exr.h"
+#include "io/json_fields.h"
 #include "io/sequence.h"
 #include <bmfr/error.h>
 #include <cstdio>
@@ -26,8 +28,10 @@ class ManifestReader : public SequenceReader {
             manifest_ = json::parse(in);
             if (manifest_.value("format", "") != "bmfr-sequence")
                 throw Error(mp.string() + ": \"format\" is not \"bmfr-sequence\"");
-            info_.width = manifest_.at("width").get<int>();
-            info_.height = manifest_.at("height").get<int>();
+            if (!manifest_.contains("width") || !manifest_.contains("height"))
+                throw Error(mp.string() + ": needs \"width\" and \"height\"");
+            info_.width = int(integerField(manifest_, "width", 0, 65536, 0, mp.string()));
+            info_.height = int(integerField(manifest_, "height", 0, 65536, 0, mp.string()));
             if (info_.width <= 0 || info_.height <= 0)
                 throw Error(mp.string() + ": zero-size frames (" + std::to_string(info_.width) +
                             "x" + std::to_string(info_.height) + ")");
@@ -41,6 +45,15 @@ class ManifestReader : public SequenceReader {
             info_.frameCount = int(manifest_.at("frames").size());
             if (info_.frameCount == 0) throw Error(mp.string() + ": no frames");
             info_.hasReference = manifest_["frames"][0].contains("reference");
+            // Scoring needs every frame's reference or none: a mix is an error, not a silent
+            // loss of the scores.
+            for (size_t k = 0; k < manifest_["frames"].size(); ++k)
+                if (manifest_["frames"][k].contains("reference") != info_.hasReference)
+                    throw Error(mp.string() + ": frame " + std::to_string(k) +
+                                (info_.hasReference ? " has no" : " has a") +
+                                " \"reference\" but frame 0 " +
+                                (info_.hasReference ? "has one" : "has none") +
+                                "; give every frame a reference or none");
         } catch (const json::exception& e) {
             throw Error(mp.string() + ": " + e.what());
         }
@@ -107,11 +120,11 @@ std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory)
     return std::make_unique<ManifestReader>(directory);
 }
 
-ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo& info)
+ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo& info, bool resume)
     : dir_(directory), info_(info) {
     fs::create_directories(directory);
     const fs::path existing = fs::path(directory) / "sequence.json";
-    if (!fs::exists(existing)) return;
+    if (!resume || !fs::exists(existing)) return;
     try {
         std::ifstream in(existing);
         json doc = json::parse(in);
@@ -186,8 +199,7 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
     for (const std::string& s : frameJson_)
         if (!s.empty()) doc["frames"].push_back(json::parse(s));
     const fs::path path = fs::path(dir_) / "sequence.json";
-    { std::ofstream(path.string() + ".part") << doc.dump(1) << "\n"; }
-    fs::rename(path.string() + ".part", path);
+    writeFileAtomically(path.string(), doc.dump(1) + "\n");
 }
 
 } // namespace bmfr

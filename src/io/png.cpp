@@ -1,7 +1,7 @@
 #include "io/png.h"
 #include "core/color.h"
+#include "io/atomic_file.h"
 #include <bmfr/error.h>
-#include <filesystem>
 #include <stb/stb_image_write.h>
 #include <vector>
 
@@ -15,10 +15,14 @@ void writePngToneMapped(const std::string& path, const ImageF& image, float scal
             float v = image.data()[i * image.channels + c] * scale;
             bytes[size_t(i) * ch + c] = (unsigned char)(gammaEncode(v) * 255.0f + 0.5f);
         }
-    const std::string tmp = path + ".part";
-    if (!stbi_write_png(tmp.c_str(), image.width, image.height, ch, bytes.data(), image.width * ch))
-        throw Error("cannot write PNG " + path);
-    std::filesystem::rename(tmp, path);
+    std::string png;
+    auto sink = [](void* ctx, void* data, int size) {
+        static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), size_t(size));
+    };
+    if (!stbi_write_png_to_func(sink, &png, image.width, image.height, ch, bytes.data(),
+                                image.width * ch))
+        throw Error("cannot encode PNG " + path);
+    writeFileAtomically(path, png);
 }
 
 } // namespace bmfr

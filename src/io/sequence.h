@@ -62,8 +62,8 @@ std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory)
 /// stopped writer leaves a readable prefix).
 class ManifestWriter {
   public:
-    /// Keeps the frames of an existing sequence.json of the same size (resuming a render).
-    ManifestWriter(const std::string& directory, const SequenceInfo& info);
+    /// With `resume`, keeps the frames of an existing sequence.json of the same size.
+    ManifestWriter(const std::string& directory, const SequenceInfo& info, bool resume = true);
     void addFrame(int index, const FrameData& frame);
     /// True when frame `index` is recorded and all its files exist.
     bool hasFrame(int index) const;
@@ -76,19 +76,22 @@ class ManifestWriter {
 
 /// Writes the original BMFR dataset layout (colour demodulated by albedo, as that dataset is):
 /// color{N}.exr, albedo{N}.exr, shading_normal{N}.exr, world_position{N}.exr,
-/// reference{N}.exr and camera_matrices.h (written first, for all frames).
+/// reference{N}.exr and camera_matrices.h (written by finish(), after the frames).
 class BmfrLayoutWriter {
   public:
-    /// matrices/jitters of every frame of the sequence (the header needs them all).
+    /// matrices/jitters of every frame of the sequence (the header lists them all).
     BmfrLayoutWriter(const std::string& directory, const std::vector<Mat4>& matrices,
                      const std::vector<std::array<float, 2>>& jitters, float positionLimitSquared,
                      float normalLimitSquared);
     void addFrame(int index, const FrameData& frame);
     /// True when the frame's last-written file exists (writes are atomic).
     bool hasFrame(int index) const;
+    /// Writes camera_matrices.h (atomically). Call once the frames are on disk.
+    void finish();
 
   private:
     std::string dir_;
+    std::string header_;
 };
 
 /// All frames at once (BmfrLayoutWriter underneath).

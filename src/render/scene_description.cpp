@@ -1,5 +1,7 @@
 #include "render/scene_description.h"
+#include "io/json_fields.h"
 #include <bmfr/error.h>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -89,29 +91,45 @@ std::vector<std::string> presetNames() {
 
 SceneDescription parseSceneDescription(const json& j, const std::string& baseDir) {
     SceneDescription d;
+    const std::string where = "scene description";
     try {
+        requireKnownKeys(j,
+                         {"mesh", "width", "height", "frames", "reference_spp", "bounces", "seed",
+                          "jitter", "roughness_override", "sky", "sun", "lights", "camera"},
+                         where);
         d.mesh = j.at("mesh").get<std::string>();
         if (d.mesh.rfind("builtin:", 0) != 0 && fs::path(d.mesh).is_relative())
             d.mesh = (fs::path(baseDir) / d.mesh).lexically_normal().string();
-        d.roughnessOverride = j.value("roughness_override", -1.0f);
-        d.width = j.value("width", d.width);
-        d.height = j.value("height", d.height);
-        d.frames = j.value("frames", d.frames);
-        d.referenceSpp = j.value("reference_spp", d.referenceSpp);
-        d.bounces = j.value("bounces", d.bounces);
-        d.seed = j.value("seed", d.seed);
+        d.roughnessOverride = float(numberField(j, "roughness_override", -1, 1, -1, where));
+        d.width = int(integerField(j, "width", 1, kMaxSceneSide, d.width, where));
+        d.height = int(integerField(j, "height", 1, kMaxSceneSide, d.height, where));
+        d.frames = int(integerField(j, "frames", 1, kMaxSceneFrames, d.frames, where));
+        d.referenceSpp = int(integerField(j, "reference_spp", 0, 1 << 20, d.referenceSpp, where));
+        d.bounces = int(integerField(j, "bounces", 0, 64, d.bounces, where));
+        d.seed = uint32_t(integerField(j, "seed", 0, 4294967295LL, d.seed, where));
         d.jitter = j.value("jitter", d.jitter);
-        if (j.contains("sky")) d.environment.sky = vec3(j["sky"].at("radiance"), "sky.radiance");
+        if (j.contains("sky")) {
+            requireKnownKeys(j["sky"], {"radiance"}, "scene description 'sky'");
+            d.environment.sky = vec3(j["sky"].at("radiance"), "sky.radiance");
+        }
         if (j.contains("sun")) {
             const json& s = j["sun"];
-            d.environment.sun.direction = normalize(vec3(s.at("direction"), "sun.direction"));
+            requireKnownKeys(s, {"direction", "angular_diameter_deg", "irradiance"},
+                             "scene description 'sun'");
+            const Vec3 direction = vec3(s.at("direction"), "sun.direction");
+            if (!(length(direction) > 1e-6f))
+                throw Error("scene description: sun.direction must not be zero");
+            d.environment.sun.direction = normalize(direction);
             d.environment.sun.angularDiameter =
-                s.value("angular_diameter_deg", 0.53f) * 3.14159265f / 180.0f;
+                float(numberField(s, "angular_diameter_deg", 1e-6, 90, 0.53,
+                                  "scene description "
+                                  "'sun'")) *
+                3.14159265f / 180.0f;
             d.environment.sun.irradiance = vec3(s.at("irradiance"), "sun.irradiance");
-            if (!(d.environment.sun.angularDiameter > 0))
-                throw Error("scene description: sun.angular_diameter_deg must be > 0");
         }
         for (const json& l : j.value("lights", json::array())) {
+            requireKnownKeys(l, {"type", "centre", "u", "v", "radiance", "path"},
+                             "scene description light");
             if (l.value("type", "") != "quad")
                 throw Error("scene description: light type must be \"quad\"");
             QuadLightSpec q;
@@ -119,25 +137,38 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
             q.edgeU = vec3(l.at("u"), "light u");
             q.edgeV = vec3(l.at("v"), "light v");
             q.radiance = vec3(l.at("radiance"), "light radiance");
+            if (!(length(cross(q.edgeU, q.edgeV)) > 1e-12f))
+                throw Error("scene description: a quad light has zero area (u x v = 0)");
             if (std::fabs(dot(q.edgeU, q.edgeV)) > 1e-4f * length(q.edgeU) * length(q.edgeV))
                 throw Error("scene description: quad light edges u and v must be perpendicular");
-            for (const json& k : l.value("path", json::array()))
-                q.path.emplace_back(k.at("frame").get<float>(),
+            for (const json& k : l.value("path", json::array())) {
+                requireKnownKeys(k, {"frame", "centre"}, "scene description light path");
+                q.path.emplace_back(float(numberField(k, "frame", -1e9, 1e9, 0, "light path")),
                                     vec3(k.at("centre"), "light path centre"));
+            }
             std::sort(q.path.begin(), q.path.end(),
                       [](auto& a, auto& b) { return a.first < b.first; });
             d.quadLights.push_back(q);
         }
         const json& cam = j.at("camera");
+        requireKnownKeys(cam, {"keyframes", "gltf_camera"}, "scene description 'camera'");
         if (cam.contains("gltf_camera")) {
             d.gltfCamera = cam["gltf_camera"].get<std::string>();
         } else {
             for (const json& k : cam.at("keyframes")) {
+                requireKnownKeys(k, {"frame", "position", "target", "up", "fov_deg"},
+                                 "scene description camera keyframe");
                 CameraKey key;
-                key.frame = k.value("frame", 0.0f);
+                key.frame = float(numberField(k, "frame", -1e9, 1e9, 0, "camera keyframe"));
                 key.pose.position = vec3(k.at("position"), "camera position");
                 key.pose.target = vec3(k.at("target"), "camera target");
-                key.pose.fovY = k.value("fov_deg", 45.0f) * 3.14159265f / 180.0f;
+                if (k.contains("up")) key.pose.up = vec3(k["up"], "camera up");
+                key.pose.fovY = float(numberField(k, "fov_deg", 0.01, 179, 45, "camera keyframe")) *
+                                3.14159265f / 180.0f;
+                const std::string problem = cameraPoseProblem(key.pose);
+                if (!problem.empty())
+                    throw Error("scene description: the camera keyframe at frame " +
+                                std::to_string(key.frame) + " " + problem);
                 d.cameraKeys.push_back(key);
             }
             if (d.cameraKeys.empty()) throw Error("scene description: camera.keyframes is empty");
@@ -145,14 +176,32 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
     } catch (const json::exception& e) {
         throw Error(std::string("scene description: ") + e.what());
     }
-    if (d.width < 1 || d.height < 1 || d.width > 16384 || d.height > 16384)
+    validate(d);
+    return d;
+}
+
+void validate(const SceneDescription& d) {
+    if (d.width < 1 || d.height < 1 || d.width > kMaxSceneSide || d.height > kMaxSceneSide)
         throw Error("scene description: resolution " + std::to_string(d.width) + "x" +
-                    std::to_string(d.height) + " outside [1, 16384]");
-    if (d.frames < 1) throw Error("scene description: frames must be at least 1");
+                    std::to_string(d.height) + " outside [1, " + std::to_string(kMaxSceneSide) +
+                    "]");
+    if (d.frames < 1 || d.frames > kMaxSceneFrames)
+        throw Error("scene description: frames " + std::to_string(d.frames) + " outside [1, " +
+                    std::to_string(kMaxSceneFrames) + "]");
     if (d.referenceSpp < 0) throw Error("scene description: reference_spp must be >= 0");
     if (d.bounces < 0 || d.bounces > 64)
         throw Error("scene description: bounces must be in [0, 64]");
-    return d;
+}
+
+std::string cameraPoseProblem(const CameraPose& p) {
+    const Vec3 forward = p.target - p.position;
+    const float distance = length(forward);
+    if (!std::isfinite(distance) || !(distance > 1e-6f))
+        return "has its position equal to its target";
+    if (!(length(cross(forward / distance, normalize(p.up))) > 1e-4f))
+        return "looks along its up vector (give a different \"up\")";
+    if (!(p.fovY > 0.0f && p.fovY < 3.13f)) return "has a field of view outside (0, 179) degrees";
+    return {};
 }
 
 SceneDescription loadSceneDescription(const std::string& presetOrFile,

@@ -32,6 +32,15 @@ struct SceneDescription {
     std::string gltfCamera; ///< use this named camera of the mesh file (static)
 };
 
+inline constexpr int kMaxSceneSide = 16384;    ///< pixels per side
+inline constexpr int kMaxSceneFrames = 100000; ///< frames per sequence
+
+/// Throws bmfr::Error when a size, frame count, spp or bounce count is out of range (after
+/// command-line overrides too).
+void validate(const SceneDescription& d);
+/// Why a camera pose cannot be rendered ("has its position equal to its target"), or "".
+std::string cameraPoseProblem(const CameraPose& pose);
+
 /// Parses a description; relative mesh paths resolve against `baseDir`. Throws bmfr::Error.
 SceneDescription parseSceneDescription(const nlohmann::json& j, const std::string& baseDir);
 /// Loads a preset by name or a JSON file. `scenesDir` replaces {scenes} in preset mesh paths.

@@ -1,9 +1,84 @@
 #include "render/sequence_renderer.h"
+#include "core/mat4.h"
 #include "core/stopwatch.h"
+#include "io/atomic_file.h"
 #include "render/frame_renderer.h"
 #include <bmfr/error.h>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 namespace bmfr::render {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+void add(std::string& s, Vec3 v) {
+    s += fmt::format("{},{},{};", v.x, v.y, v.z);
+}
+
+/// Claims `dir` for this render, or refuses it. Returns false when the finished frames must be
+/// rendered again (a new or overwritten folder).
+bool claimFolder(const std::string& dir, const std::string& fingerprint, bool overwrite) {
+    const fs::path marker = fs::path(dir) / kRenderFingerprintFile;
+    std::error_code ec;
+    const bool empty = !fs::exists(dir, ec) || fs::is_empty(dir, ec);
+    if (fs::exists(marker, ec)) {
+        std::ifstream in(marker);
+        std::string found;
+        try {
+            found = nlohmann::json::parse(in).at("fingerprint").get<std::string>();
+        } catch (const std::exception&) {
+        }
+        if (found == fingerprint) return true;
+        if (!overwrite)
+            throw Error(dir + " holds a sequence of another scene, settings or layout (its " +
+                        kRenderFingerprintFile +
+                        " differs); refusing to mix them. Use another folder, or --overwrite to "
+                        "replace it");
+    } else if (!empty && !overwrite) {
+        throw Error(dir + " is not empty and was not rendered by bmfr render (no " +
+                    kRenderFingerprintFile +
+                    "); refusing to write into it. Use another folder, or --overwrite");
+    }
+    fs::create_directories(dir);
+    writeFileAtomically(marker.string(),
+                        nlohmann::json{{"fingerprint", fingerprint}}.dump(1) + "\n");
+    return false;
+}
+
+} // namespace
+
+std::string renderFingerprint(const SceneDescription& d, const std::string& layout) {
+    std::string s = layout + ";" + d.mesh + ";";
+    std::error_code ec;
+    if (d.mesh.rfind("builtin:", 0) != 0 && fs::exists(d.mesh, ec))
+        s += fmt::format("{};{};", fs::file_size(d.mesh, ec),
+                         fs::last_write_time(d.mesh, ec).time_since_epoch().count());
+    s += fmt::format("{}x{};{};{};{};{};{};", d.width, d.height, d.referenceSpp, d.bounces, d.seed,
+                     d.jitter, d.roughnessOverride);
+    add(s, d.environment.sky);
+    add(s, d.environment.sun.direction);
+    add(s, d.environment.sun.irradiance);
+    s += fmt::format("{};", d.environment.sun.angularDiameter);
+    for (const QuadLightSpec& q : d.quadLights) {
+        for (Vec3 v : {q.centre, q.edgeU, q.edgeV, q.radiance}) add(s, v);
+        for (const auto& [frame, centre] : q.path) {
+            s += fmt::format("{}:", frame);
+            add(s, centre);
+        }
+    }
+    for (const CameraKey& k : d.cameraKeys) {
+        s += fmt::format("{}:{}:", k.frame, k.pose.fovY);
+        for (Vec3 v : {k.pose.position, k.pose.target, k.pose.up}) add(s, v);
+    }
+    s += d.gltfCamera;
+    uint64_t h = 1469598103934665603ull; // FNV-1a
+    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+    return fmt::format("{:016x}", h);
+}
 
 SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRenderOptions& o,
                                     const std::atomic<bool>* cancel,
@@ -51,8 +126,19 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
         float j[2];
         frameJitter(i, d.jitter, j);
         jitters.push_back({j[0], j[1]});
-        matrices.push_back(renderer.viewProjectionOf(path.at(float(i))));
+        const CameraPose pose = path.at(float(i));
+        const std::string problem = cameraPoseProblem(pose);
+        if (!problem.empty())
+            throw Error("scene '" + d.name + "': the camera of frame " + std::to_string(i) + " " +
+                        problem);
+        matrices.push_back(renderer.viewProjectionOf(pose));
+        if (!isUsableCameraMatrix(matrices.back()))
+            throw Error("scene '" + d.name + "': the camera matrix of frame " + std::to_string(i) +
+                        " is not finite or not invertible");
     }
+    if (o.layout != "manifest" && o.layout != "bmfr")
+        throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
+    const bool resume = claimFolder(o.output, renderFingerprint(d, o.layout), o.overwrite);
     SequenceInfo info;
     info.width = d.width, info.height = d.height, info.frameCount = d.frames;
     info.hasReference = d.referenceSpp > 0;
@@ -62,15 +148,13 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     std::unique_ptr<ManifestWriter> manifest;
     std::unique_ptr<BmfrLayoutWriter> original;
     if (o.layout == "manifest")
-        manifest = std::make_unique<ManifestWriter>(o.output, info);
-    else if (o.layout == "bmfr")
-        original = std::make_unique<BmfrLayoutWriter>(o.output, matrices, jitters, 0.01f, 1.0f);
+        manifest = std::make_unique<ManifestWriter>(o.output, info, resume);
     else
-        throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
+        original = std::make_unique<BmfrLayoutWriter>(o.output, matrices, jitters, 0.01f, 1.0f);
 
     FrameData frame;
     for (int i = 0; i < d.frames; ++i) {
-        if (manifest ? manifest->hasFrame(i) : original->hasFrame(i)) {
+        if (resume && (manifest ? manifest->hasFrame(i) : original->hasFrame(i))) {
             ++report.skipped;
             progress(i + 1, d.frames);
             continue;
@@ -99,6 +183,8 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
             break;
         }
     }
+    if (original && report.rendered + report.skipped > 0)
+        original->finish(); // the header last, for the frames on disk
     return report;
 }
 

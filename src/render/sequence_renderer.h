@@ -7,10 +7,20 @@
 
 namespace bmfr::render {
 
+inline constexpr const char* kRenderFingerprintFile = ".bmfr-render.json";
+
+/// A digest of everything that decides a frame's pixels: scene, camera, lights, size, samples,
+/// seed, layout and the mesh file's size and time. The frame count is not part of it: a longer
+/// run of the same scene resumes.
+std::string renderFingerprint(const SceneDescription& desc, const std::string& layout);
+
 struct SequenceRenderOptions {
     std::string output;
     std::string layout = "manifest"; ///< "manifest" or "bmfr"
     bool quiet = false;
+    /// Replace a folder that holds another scene's or layout's sequence (or one bmfr did not
+    /// render) instead of refusing it; finished frames are rendered again.
+    bool overwrite = false;
 };
 
 struct SequenceRenderReport {
@@ -22,7 +32,10 @@ struct SequenceRenderReport {
 };
 
 /// Renders every frame not already on disk. `progress(done, total)` is called per frame.
-/// Stops cleanly (no partial files) when `cancel` becomes true.
+/// Stops cleanly (no partial files) when `cancel` becomes true. A folder is resumed only when
+/// its render fingerprint (kRenderFingerprintFile: the scene and settings, written with the
+/// first frame) matches; any other non-empty folder is refused unless options.overwrite.
+/// Metadata (sequence.json, camera_matrices.h) is written after the frames it describes.
 SequenceRenderReport renderSequence(const SceneDescription& desc,
                                     const SequenceRenderOptions& options,
                                     const std::atomic<bool>* cancel,

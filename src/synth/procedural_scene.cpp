@@ -133,7 +133,11 @@ ProceduralScene::ProceduralScene(const ProceduralSceneOptions& o) : opt_(o) {
     if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384)
         throw Error("procedural scene: size " + std::to_string(o.width) + "x" +
                     std::to_string(o.height) + " outside [1, 16384]");
-    if (o.frames < 1) throw Error("procedural scene: needs at least one frame");
+    if (o.frames < 1 || o.frames > 100000)
+        throw Error("procedural scene: frames " + std::to_string(o.frames) +
+                    " outside [1, 100000]");
+    if (!std::isfinite(o.cameraSpeed) || std::fabs(o.cameraSpeed) > 1000.0f)
+        throw Error("procedural scene: camera speed must be a finite number in [-1000, 1000]");
 }
 
 SequenceInfo ProceduralScene::info() const {

@@ -16,7 +16,7 @@ class TemporalHistory {
   public:
     int width = 0, height = 0;
     int cur = 0;         ///< history slot written this frame; 1 - cur holds the previous frame
-    long frameIndex = 0; ///< frames denoised since construction
+    long frameIndex = 0; ///< frames since construction or the last reset
     PreviousFrame previous;
 
     /// Starts a frame: a new size or a reset drops the history; the slots swap. Returns true
@@ -29,7 +29,7 @@ class TemporalHistory {
             previous.valid = false;
             cur = 0;
         }
-        if (frame.reset) previous.valid = false;
+        if (frame.reset) reset();
         cur = 1 - cur;
         return resized;
     }
@@ -41,7 +41,11 @@ class TemporalHistory {
         previous.jitter[1] = frame.jitter[1];
         ++frameIndex;
     }
-    void reset() { previous.valid = false; }
+    /// Drops the history and restarts the frame count, so what follows matches a new filter.
+    void reset() {
+        previous.valid = false;
+        frameIndex = 0;
+    }
     bool hasHistory() const { return previous.valid; }
 };
 
