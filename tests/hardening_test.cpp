@@ -1,0 +1,300 @@
+// Regression tests of the hardening findings (../shared/repro and the issue's list): each bad
+// input is a clear error, never a crash, a hang, a huge allocation or silent garbage, and no
+// write loses a user's data.
+#include "eval/comparison.h"
+#include "io/atomic_file.h"
+#include "io/exr.h"
+#include "io/sequence.h"
+#include "render/scene_description.h"
+#include "render/sequence_renderer.h"
+#include "synth/procedural_scene.h"
+#include <array>
+#include <bmfr/bmfr.h>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <gtest/gtest.h>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace bmfr {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path repro(const char* name) {
+    return fs::path(BMFR_SOURCE_DIR) / ".." / "shared" / "repro" / name;
+}
+#define REQUIRE_REPRO(name)                                                                        \
+    if (!fs::exists(repro(name))) GTEST_SKIP() << "no ../shared/repro/" << name
+
+fs::path freshDir(const std::string& name) {
+    fs::path p = fs::temp_directory_path() / ("bmfr_hard_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+#define EXPECT_ERROR(call, needle)                                                                 \
+    do {                                                                                           \
+        const std::string what_ = errorOf([&] { call; });                                          \
+        EXPECT_NE(what_.find(needle), std::string::npos) << what_;                                 \
+    } while (0)
+
+struct Result {
+    int code;
+    std::string output;
+};
+Result run(const std::string& args) {
+    FILE* p = popen((std::string(BMFR_CLI_PATH) + " " + args + " 2>&1").c_str(), "r");
+    std::string out;
+    std::array<char, 512> buf;
+    while (fgets(buf.data(), int(buf.size()), p)) out += buf.data();
+    const int status = pclose(p);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+render::SceneDescription tinyScene() {
+    render::SceneDescription d = render::loadSceneDescription("cornell-moving", ".");
+    d.width = 12, d.height = 8, d.frames = 2, d.referenceSpp = 2;
+    return d;
+}
+render::SequenceRenderReport renderInto(const render::SceneDescription& d, const fs::path& dir,
+                                        const std::string& layout, bool overwrite = false) {
+    return render::renderSequence(
+        d, {dir.string(), layout, true, overwrite}, nullptr, [](int, int) {},
+        [](const std::string&) {});
+}
+
+// 1. Data loss: a folder holding another dataset is refused, and nothing in it is touched.
+TEST(Hardening, RenderRefusesAFolderHoldingAnotherDataset) {
+    const fs::path dir = freshDir("dataset");
+    ProceduralSceneOptions o;
+    o.width = 12, o.height = 8, o.frames = 2;
+    ProceduralScene scene(o);
+    std::vector<FrameData> frames(2);
+    for (int i = 0; i < 2; ++i) scene.render(i, frames[size_t(i)]);
+    writeBmfrLayout(dir.string(), frames, 0.01f, 1.0f);
+    const std::string before = slurp(dir / "camera_matrices.h");
+    EXPECT_ERROR(renderInto(tinyScene(), dir, "bmfr"), "refusing to write into it");
+    EXPECT_EQ(slurp(dir / "camera_matrices.h"), before);
+    // With --overwrite the render replaces it, frames and matrices together.
+    EXPECT_EQ(renderInto(tinyScene(), dir, "bmfr", true).rendered, 2);
+    EXPECT_NE(slurp(dir / "camera_matrices.h"), before);
+    fs::remove_all(dir);
+}
+
+TEST(Hardening, RenderResumesOnlyTheSameSceneAndSettings) {
+    const fs::path dir = freshDir("fingerprint");
+    render::SceneDescription d = tinyScene();
+    EXPECT_EQ(renderInto(d, dir, "manifest").rendered, 2);
+    EXPECT_EQ(renderInto(d, dir, "manifest").skipped, 2);
+    d.frames = 3; // a longer run of the same scene resumes
+    EXPECT_EQ(renderInto(d, dir, "manifest").rendered, 1);
+    render::SceneDescription other = d;
+    other.seed = 99;
+    EXPECT_ERROR(renderInto(other, dir, "manifest"), "another scene, settings or layout");
+    EXPECT_ERROR(renderInto(d, dir, "bmfr"), "another scene, settings or layout");
+    fs::remove_all(dir);
+}
+
+TEST(Hardening, BmfrLayoutHeaderIsWrittenAfterItsFrames) {
+    const fs::path dir = freshDir("header_last");
+    std::atomic<bool> cancel{true}; // stopped before the first frame
+    render::renderSequence(
+        tinyScene(), {dir.string(), "bmfr", true}, &cancel, [](int, int) {},
+        [](const std::string&) {});
+    EXPECT_FALSE(fs::exists(dir / "camera_matrices.h"));
+    EXPECT_FALSE(fs::exists(dir / "color0.exr"));
+    fs::remove_all(dir);
+}
+
+// 2, 5. Scene descriptions: a zero sun, degenerate cameras, unknown keys, wrapped integers.
+TEST(Hardening, DegenerateScenesAreErrors) {
+    REQUIRE_REPRO("render-sun-zero-direction.json");
+    EXPECT_ERROR(render::loadSceneDescription(repro("render-sun-zero-direction.json"), "."),
+                 "sun.direction must not be zero");
+    EXPECT_ERROR(render::loadSceneDescription(repro("render-camera-look-down.json"), "."),
+                 "looks along its up vector");
+    EXPECT_ERROR(render::loadSceneDescription(repro("render-camera-pos-eq-target.json"), "."),
+                 "position equal to its target");
+    auto parse = [](const std::string& extra) {
+        return render::parseSceneDescription(
+            nlohmann::json::parse(R"({"mesh": "builtin:cornell", )" + extra +
+                                  R"("camera": {"keyframes": [{"position": [0, 1, 3],
+                                     "target": [0, 1, 0]}]}})"),
+            ".");
+    };
+    EXPECT_ERROR(parse(R"("widht": 64, )"), "unknown key 'widht' in scene description (did you "
+                                            "mean 'width'?)");
+    EXPECT_ERROR(parse(R"("width": 4294967312, )"), "width = 4294967312 is outside [1, 16384]");
+    EXPECT_ERROR(parse(R"("width": 12.5, )"), "width must be a whole number");
+    EXPECT_ERROR(parse(R"("frames": 2000000000, )"), "frames = 2000000000 is outside");
+    EXPECT_ERROR(parse(R"("lights": [{"type": "quad", "centre": [0, 1, 0], "u": [0, 0, 0],
+                          "v": [0, 0, 1], "radiance": [1, 1, 1]}], )"),
+                 "zero area");
+    EXPECT_ERROR(parse(R"("camera_typo": 1, )"), "unknown key 'camera_typo'");
+    render::SceneDescription d = tinyScene();
+    d.width = 20000; // as --width would set it
+    EXPECT_ERROR(render::validate(d), "outside [1, 16384]");
+}
+
+// 3. The camera header parser stops on text that opens '[' and never closes it.
+TEST(Hardening, CameraHeaderParserCannotHang) {
+    REQUIRE_REPRO("camera-hang-min.h");
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_ERROR(parseBmfrCameraFile(slurp(repro("camera-hang-min.h")), "camera_matrices.h"),
+                 "never closes it");
+    EXPECT_ERROR(parseBmfrCameraFile("float camera_matrices[-3][4][4] = {1};", "x"),
+                 "is not a count");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+}
+
+// 4. An EXR that claims far more pixels than it holds fails before allocating them.
+TEST(Hardening, ExrClaimingAHugeImageFailsFast) {
+    REQUIRE_REPRO("exr-claims-16384x16384-8KB.exr");
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_ERROR(readExr(repro("exr-claims-16384x16384-8KB.exr").string(), 3),
+                 "truncated or corrupt");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+}
+
+// 5. Manifests whose sizes overflow or wrap through int.
+TEST(Hardening, ManifestSizesAreCheckedIntegers) {
+    REQUIRE_REPRO("manifest-width-1e20.json");
+    for (const char* name : {"manifest-width-1e20.json", "manifest-width-wrap.json"}) {
+        const fs::path dir = freshDir("manifest");
+        fs::copy_file(repro(name), dir / "sequence.json");
+        EXPECT_ERROR(SequenceReader::open(dir.string()), "width");
+        fs::remove_all(dir);
+    }
+}
+
+TEST(Hardening, SynthRejectsANonFiniteCameraSpeed) {
+    ProceduralSceneOptions o;
+    o.cameraSpeed = NAN;
+    EXPECT_ERROR(ProceduralScene{o}, "camera speed");
+    Result r = run("synth /tmp/bmfr_never_written --camera-speed nan -q");
+    EXPECT_EQ(r.code, 1) << r.output;
+}
+
+// 6. Writes are checked: a failure names the path and the reason and leaves no partial file.
+TEST(Hardening, FailedWritesAreErrorsWithThePath) {
+    const fs::path dir = freshDir("writes");
+    std::ofstream(dir / "file") << "x";
+    const std::string bad = (dir / "file" / "report.json").string(); // a file as a folder
+    EXPECT_ERROR(writeFileAtomically(bad, std::string("{}")), "cannot write " + bad);
+    writeFileAtomically((dir / "ok.json").string(), std::string("{}"));
+    EXPECT_EQ(slurp(dir / "ok.json"), "{}");
+    EXPECT_FALSE(fs::exists(dir / "ok.json.part"));
+    ASSERT_EQ(run("synth " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code,
+              0);
+    Result r = run("denoise " + (dir / "in").string() + " -o " + (dir / "file").string() + " -q");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("bmfr: error"), std::string::npos) << r.output;
+    fs::remove_all(dir);
+}
+
+// 7. The smaller ones.
+TEST(Hardening, TonemapNeverOverwritesItsInput) {
+    const fs::path dir = freshDir("tonemap");
+    ImageF img(4, 3, 3);
+    writeExr((dir / "x.exr").string(), img);
+    const std::string before = slurp(dir / "x.exr");
+    Result r = run("tonemap " + (dir / "x.exr").string() + " " + (dir / "x.exr").string());
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.output.find("refusing to overwrite"), std::string::npos) << r.output;
+    EXPECT_EQ(slurp(dir / "x.exr"), before);
+    fs::remove_all(dir);
+}
+
+TEST(Hardening, IncompleteSequencesAreErrors) {
+    const fs::path dir = freshDir("gaps");
+    ProceduralSceneOptions o;
+    o.width = 12, o.height = 8, o.frames = 4;
+    ProceduralScene scene(o);
+    std::vector<FrameData> frames(4);
+    for (int i = 0; i < 4; ++i) scene.render(i, frames[size_t(i)]);
+    writeBmfrLayout((dir / "bmfr").string(), frames, 0.01f, 1.0f);
+    fs::remove(dir / "bmfr" / "color2.exr");
+    EXPECT_ERROR(SequenceReader::open((dir / "bmfr").string()),
+                 "color2.exr is missing, yet color3.exr exists");
+    // A manifest whose first frame lacks the reference the others have.
+    ManifestWriter w((dir / "manifest").string(), scene.info());
+    for (int i = 0; i < 2; ++i) {
+        FrameData f = frames[size_t(i)];
+        if (i == 0) f.reference = ImageF();
+        w.addFrame(i, f);
+    }
+    EXPECT_ERROR(SequenceReader::open((dir / "manifest").string()), "frame 1 has a \"reference\"");
+    fs::remove_all(dir);
+}
+
+TEST(Hardening, ExrChannelsAreNeverInventedOrEmpty) {
+    const fs::path dir = freshDir("channels");
+    ImageF one(5, 4, 1);
+    writeExr((dir / "y.exr").string(), one);
+    EXPECT_ERROR(readExr((dir / "y.exr").string(), 3), "expected R,G,B");
+    EXPECT_ERROR(readExr((dir / "y.exr").string(), 0), "0 channels");
+    EXPECT_EQ(readExr((dir / "y.exr").string(), 1).pixels.size(), 20u);
+    fs::remove_all(dir);
+}
+
+TEST(Hardening, CommandLineBoundsAreChecked) {
+    EXPECT_ERROR(parseFrameRange("0:99999999999", 10), "the sequence has frames 0:10");
+    const fs::path dir = freshDir("eval");
+    ASSERT_EQ(run("synth " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code,
+              0);
+    const std::string base = "eval -r " + (dir / "in").string() + " -m noisy -o " +
+                             (dir / "out").string() + " -q --no-flip ";
+    for (const char* bad : {"--crop 1,1,2147483647,1", "--crop 1,1,-2,1", "--zoom -2",
+                            "--zoom 2000", "--frames 0:99999999999"}) {
+        Result r = run(base + bad);
+        EXPECT_EQ(r.code, 1) << bad << ": " << r.output;
+        EXPECT_NE(r.output.find("bmfr: error"), std::string::npos) << bad << ": " << r.output;
+    }
+    fs::remove_all(dir);
+}
+
+TEST(Hardening, MethodNamesAreEscapedInTheReport) {
+    EXPECT_EQ(escapeHtml("<b>&\"x'"), "&lt;b&gt;&amp;&quot;x&#39;");
+}
+
+TEST(Hardening, ResetGivesTheOutputOfANewFilter) {
+    ProceduralSceneOptions o;
+    o.width = 40, o.height = 24, o.frames = 6;
+    ProceduralScene scene(o);
+    std::vector<FrameData> frames(6);
+    for (int i = 0; i < 6; ++i) scene.render(i, frames[size_t(i)]);
+    for (const std::string& name : filterNames()) {
+        auto used = makeFilter(name), fresh = makeFilter(name);
+        for (int i = 0; i < 3; ++i) used->denoise(frames[size_t(i)].input());
+        used->reset();
+        for (int i = 3; i < 6; ++i) {
+            const ImageView a = used->denoise(frames[size_t(i)].input());
+            const ImageView b = fresh->denoise(frames[size_t(i)].input());
+            ASSERT_EQ(std::memcmp(a.data, b.data, sizeof(float) * 3 * 40 * 24), 0)
+                << name << ", frame " << i;
+        }
+    }
+}
+
+} // namespace
+} // namespace bmfr
