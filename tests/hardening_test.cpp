@@ -16,6 +16,7 @@
 #include <fstream>
 #include <functional>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <sys/wait.h>
 
@@ -293,6 +294,19 @@ TEST(Hardening, ResetGivesTheOutputOfANewFilter) {
             ASSERT_EQ(std::memcmp(a.data, b.data, sizeof(float) * 3 * 40 * 24), 0)
                 << name << ", frame " << i;
         }
+    }
+}
+
+TEST(Hardening, SoakKeepsMemoryFlatAndOutputFinite) {
+    for (const std::string& name : filterNames()) {
+        Result r = run("soak --filter " + name + " --frames 2000 --size 32x24 --json");
+        ASSERT_EQ(r.code, 0) << r.output;
+        const nlohmann::json j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
+        EXPECT_EQ(j["non_finite_outputs"].get<long long>(), 0) << name;
+        // Nothing is allocated after the first frame: RSS may not grow past page-level noise.
+        EXPECT_LE(j["rss_end_bytes"].get<long long>() - j["rss_start_bytes"].get<long long>(),
+                  256 * 1024)
+            << name;
     }
 }
 

@@ -33,5 +33,6 @@ void addTonemapCommand(CLI::App& app, int& exitCode);
 void addEvalCommand(CLI::App& app, int& exitCode);
 void addAblateCommand(CLI::App& app, int& exitCode);
 void addSettingsCommand(CLI::App& app, int& exitCode);
+void addSoakCommand(CLI::App& app, int& exitCode);
 
 } // namespace bmfr::app

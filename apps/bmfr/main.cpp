@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     bmfr::app::addSynthCommand(app, exitCode);
     bmfr::app::addTonemapCommand(app, exitCode);
     bmfr::app::addSettingsCommand(app, exitCode);
+    bmfr::app::addSoakCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
