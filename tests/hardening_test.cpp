@@ -32,7 +32,8 @@ fs::path repro(const char* name) {
     if (!fs::exists(repro(name))) GTEST_SKIP() << "no ../shared/repro/" << name
 
 fs::path freshDir(const std::string& name) {
-    fs::path p = fs::temp_directory_path() / ("bmfr_hard_" + name + "_" + std::to_string(::getpid()));
+    fs::path p =
+        fs::temp_directory_path() / ("bmfr_hard_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
@@ -308,6 +309,19 @@ TEST(Hardening, SoakKeepsMemoryFlatAndOutputFinite) {
                   256 * 1024)
             << name;
     }
+}
+
+// Inputs the fuzzers found stay rejected cleanly (tests/fuzz/corpus/).
+TEST(Hardening, FuzzerFindingsAreRejectedCleanly) {
+    const fs::path dir = fs::path(BMFR_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "exr";
+    int n = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir)) {
+        const auto start = std::chrono::steady_clock::now();
+        EXPECT_NE(errorOf([&] { readExr(e.path().string(), 3); }), "(no error)") << e.path();
+        EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2)) << e.path();
+        ++n;
+    }
+    EXPECT_GT(n, 0);
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 #include "commands.h"
 #include "eval/comparison.h"
+#include "io/range_parsers.h"
 #include "progress.h"
 #include <bmfr/error.h>
 #include <fmt/core.h>
@@ -7,23 +8,6 @@
 
 namespace bmfr::app {
 
-namespace {
-
-std::array<int, 4> parseCrop(const std::string& s) {
-    std::array<long, 4> v{};
-    char tail = 0;
-    if (std::sscanf(s.c_str(), "%ld,%ld,%ld,%ld%c", &v[0], &v[1], &v[2], &v[3], &tail) != 4)
-        throw Error("--crop expects x,y,w,h, got '" + s + "'");
-    std::array<int, 4> c{};
-    for (int k = 0; k < 4; ++k) {
-        if (v[size_t(k)] < 0 || v[size_t(k)] > 65536)
-            throw Error("--crop " + s + ": each of x,y,w,h must be in [0, 65536]");
-        c[size_t(k)] = int(v[size_t(k)]);
-    }
-    return c;
-}
-
-} // namespace
 
 int runEval(const ComparisonOptions& o, bool quiet) {
     std::unique_ptr<Progress> bar; // the frame count is known once the reference is open

@@ -41,8 +41,8 @@ int runSoak(const SoakJob& job) {
     ProceduralScene scene(o);
     std::vector<FrameData> frames(16);
     for (int i = 0; i < 16; ++i) scene.render(i, frames[size_t(i)]);
-    auto filter = makeFilter(job.filter, {{"backend", job.backend},
-                                          {"threads", std::to_string(job.threads)}});
+    auto filter = makeFilter(job.filter,
+                             {{"backend", job.backend}, {"threads", std::to_string(job.threads)}});
     Progress progress("soak", job.frames, job.quiet || job.json);
     long long start = 0, peak = 0;
     long long nonFinite = 0;

@@ -1,4 +1,5 @@
 #include "eval/comparison.h"
+#include "io/range_parsers.h"
 #include "core/color.h"
 #include "eval/plot.h"
 #include "io/atomic_file.h"
@@ -20,25 +21,6 @@
 namespace bmfr {
 
 namespace fs = std::filesystem;
-
-std::pair<int, int> parseFrameRange(const std::string& spec, int count) {
-    if (spec.empty()) return {0, count};
-    size_t colon = spec.find(':');
-    if (colon == std::string::npos)
-        throw Error("frame range expects A:B, A: or :B, got '" + spec + "'");
-    auto num = [&](const std::string& s, int dflt) {
-        if (s.empty()) return dflt;
-        if (s.find_first_not_of("0123456789") != std::string::npos)
-            throw Error("frame range: '" + s + "' is not a frame number");
-        if (s.size() > 9 || std::stol(s) > count)
-            throw Error(fmt::format("frame range {}: the sequence has frames 0:{}", spec, count));
-        return int(std::stol(s));
-    };
-    int a = num(spec.substr(0, colon), 0), b = num(spec.substr(colon + 1), count);
-    if (a >= b || b > count)
-        throw Error(fmt::format("frame range {}: the sequence has frames 0:{}", spec, count));
-    return {a, b};
-}
 
 std::string escapeHtml(const std::string& s) {
     std::string out;

@@ -3,6 +3,7 @@
 // heat maps and one self-contained HTML report.
 #pragma once
 #include "eval/frame_scores.h"
+#include "io/range_parsers.h"
 #include <array>
 #include <functional>
 #include <string>
@@ -47,7 +48,6 @@ ComparisonResult runComparison(const ComparisonOptions& options,
 std::string markdownTable(const ComparisonResult& r);
 
 /// "A:B", "A:" or ":B" against a frame count. Throws bmfr::Error.
-std::pair<int, int> parseFrameRange(const std::string& spec, int count);
 /// Text made safe for HTML element content and attribute values.
 std::string escapeHtml(const std::string& text);
 

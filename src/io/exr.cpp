@@ -1,5 +1,6 @@
 #include "io/exr.h"
 #include "io/atomic_file.h"
+#include "io/exr_precheck.h"
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -13,11 +14,6 @@
 
 namespace bmfr {
 
-namespace {
-constexpr long kMaxExrSide = 65536;
-constexpr long kMaxExrPixels = 1L << 28; ///< 16384 x 16384
-constexpr long kMaxRatio = 4096;         ///< deflate reaches about 1032:1; RLE and PIZ less
-} // namespace
 
 ImageF readExr(const std::string& path, int channels) {
     if (channels < 1 || channels > 3)
@@ -26,25 +22,12 @@ ImageF readExr(const std::string& path, int channels) {
     if (!std::filesystem::exists(path, ec)) throw Error("missing file: " + path);
     const auto fileBytes = std::filesystem::file_size(path, ec);
     if (ec) throw Error("unreadable EXR " + path + ": " + ec.message());
+    precheckExr(path, fileBytes); // before OpenEXR sizes anything from the header
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
         const long w = long(dw.max.x) - dw.min.x + 1, h = long(dw.max.y) - dw.min.y + 1;
         if (w <= 0 || h <= 0) throw Error(path + ": zero-size image");
-        // Checked before anything is allocated: the claimed size against a cap and against what
-        // the file could hold (no EXR compression packs more than kMaxRatio to one), and every
-        // chunk present.
-        if (w > kMaxExrSide || h > kMaxExrSide || w * h > kMaxExrPixels)
-            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
-                        " pixels, more than the " + std::to_string(kMaxExrPixels) + "-pixel limit");
-        double bytesPerPixel = 0;
-        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
-            bytesPerPixel += it.channel().type == Imf::HALF ? 2.0 : 4.0;
-        const double raw = double(w) * double(h) * bytesPerPixel;
-        if (raw > double(kMaxRatio) * double(fileBytes))
-            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
-                        " pixels, but the file holds only " + std::to_string(fileBytes) +
-                        " bytes: truncated or corrupt");
         if (!file.isComplete())
             throw Error(path + ": truncated or incomplete EXR (pixel data missing)");
         std::vector<std::string> names;

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Builds the tests and the CLI with AddressSanitizer and UndefinedBehaviorSanitizer into
+# build-asan/ and runs the suites that cover the readers, the writers, both filters on every
+# backend and the command line (FILTER overrides the ctest regex; "." runs everything).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+filter=${1:-'Hardening|SequenceIo|EndToEnd|Conformance|Svgf|Accumulation|Reprojection|Cli|Householder'}
+flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" \
+    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > /dev/null
+cmake --build build-asan -j "$(nproc)" --target bmfr bmfr_tests > /dev/null
+cd build-asan
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --output-on-failure -j "$(nproc)" -R "$filter"

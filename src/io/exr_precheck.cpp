@@ -1,0 +1,140 @@
+#include "io/exr_precheck.h"
+#include <algorithm>
+#include <bmfr/error.h>
+#include <cstring>
+#include <fstream>
+#include <vector>
+
+namespace bmfr {
+
+namespace {
+
+struct Reader {
+    std::ifstream in;
+    const std::string& path;
+    uint64_t size;
+
+    uint64_t position() { return uint64_t(in.tellg()); }
+    [[noreturn]] void fail(const std::string& why) {
+        throw Error("unreadable EXR " + path + ": " + why);
+    }
+    std::string text(const char* what) {
+        std::string s;
+        for (char c; in.get(c);) {
+            if (c == '\0') return s;
+            if (s.size() >= 255) fail(std::string(what) + " longer than 255 bytes");
+            s += c;
+        }
+        fail(std::string("the file ends inside a ") + what);
+    }
+    template <typename T> T value(const char* what) {
+        T v{};
+        if (!in.read(reinterpret_cast<char*>(&v), sizeof v))
+            fail(std::string("the file ends in ") + what);
+        return v; // EXR is little-endian, as every machine bmfr builds for
+    }
+};
+
+/// Lines per scanline chunk for each compression (OpenEXR's table).
+int linesPerChunk(uint8_t compression) {
+    switch (compression) {
+    case 0: // none
+    case 1: // RLE
+    case 2: // ZIPS
+        return 1;
+    case 3: // ZIP
+    case 5: // PXR24
+        return 16;
+    case 4: // PIZ
+    case 6: // B44
+    case 7: // B44A
+    case 8: // DWAA
+        return 32;
+    case 9: // DWAB
+        return 256;
+    default:
+        return -1;
+    }
+}
+
+} // namespace
+
+void precheckExr(const std::string& path, uint64_t fileBytes) {
+    Reader r{std::ifstream(path, std::ios::binary), path, fileBytes};
+    if (!r.in) throw Error("unreadable EXR " + path);
+    const uint32_t magic = r.value<uint32_t>("the magic number");
+    if (magic != 20000630u) r.fail("not an OpenEXR file (bad magic number)");
+    const uint32_t version = r.value<uint32_t>("the version");
+    if (version & 0x800) r.fail("deep images are not supported");
+    const bool tiled = version & 0x200, multipart = version & 0x1000;
+    for (int part = 0;; ++part) {
+        long w = 0, h = 0, tileX = 0, tileY = 0;
+        int compression = -1;
+        double bytesPerPixel = 0;
+        bool any = false;
+        while (true) {
+            const std::string name = r.text("attribute name");
+            if (name.empty()) break;
+            any = true;
+            const std::string type = r.text("attribute type");
+            const int32_t n = r.value<int32_t>("an attribute size");
+            if (n < 0 || uint64_t(n) > r.size - r.position())
+                r.fail("attribute '" + name + "' claims " + std::to_string(n) +
+                       " bytes, the file has " + std::to_string(r.size - r.position()) + " left");
+            std::vector<char> v(static_cast<size_t>(n));
+            if (n && !r.in.read(v.data(), n)) r.fail("the file ends in attribute '" + name + "'");
+            auto i32 = [&](size_t at) {
+                int32_t x = 0;
+                if (at + 4 <= v.size()) std::memcpy(&x, v.data() + at, 4);
+                return x;
+            };
+            if (name == "dataWindow" && type == "box2i" && n == 16) {
+                w = long(i32(8)) - i32(0) + 1;
+                h = long(i32(12)) - i32(4) + 1;
+            } else if (name == "compression" && n == 1) {
+                compression = uint8_t(v[0]);
+            } else if (name == "tiles" && n >= 8) {
+                tileX = uint32_t(i32(0));
+                tileY = uint32_t(i32(4));
+            } else if (name == "channels" && type == "chlist") {
+                for (size_t at = 0; at < v.size() && v[at] != '\0';) {
+                    const size_t end = std::find(v.begin() + long(at), v.end(), '\0') - v.begin();
+                    if (end + 17 > v.size()) r.fail("malformed channel list");
+                    const int32_t pixelType = i32(end + 1);
+                    bytesPerPixel += pixelType == 1 ? 2.0 : 4.0; // HALF, else UINT or FLOAT
+                    at = end + 17;
+                }
+            }
+        }
+        if (!any) {
+            if (part == 0) r.fail("no header attributes");
+            break; // the empty header that ends a multi-part file
+        }
+        if (w <= 0 || h <= 0) r.fail("zero-size or missing data window");
+        if (w > kMaxExrSide || h > kMaxExrSide || w * h > kMaxExrPixels)
+            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
+                        " pixels, more than the " + std::to_string(kMaxExrPixels) + "-pixel limit");
+        // Every chunk has an 8-byte entry in the offset table, which lives in the file.
+        double chunks = 0;
+        if (tiled && tileX > 0 && tileY > 0)
+            chunks = double((w + tileX - 1) / tileX) * double((h + tileY - 1) / tileY);
+        else if (!tiled && linesPerChunk(uint8_t(compression)) > 0)
+            chunks = double((h + linesPerChunk(uint8_t(compression)) - 1) /
+                            linesPerChunk(uint8_t(compression)));
+        else
+            r.fail("unknown compression or tile size");
+        if (chunks * 8.0 > double(r.size))
+            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
+                        " pixels in " + std::to_string(long(chunks)) +
+                        " chunks, but the file holds only " + std::to_string(r.size) +
+                        " bytes: truncated or corrupt");
+        if (double(w) * double(h) * bytesPerPixel >
+            double(kMaxExrCompressionRatio) * double(r.size))
+            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
+                        " pixels, but the file holds only " + std::to_string(r.size) +
+                        " bytes: truncated or corrupt");
+        if (!multipart) break;
+    }
+}
+
+} // namespace bmfr
