@@ -189,6 +189,23 @@ TEST(Hardening, ManifestSizesAreCheckedIntegers) {
     }
 }
 
+TEST(Hardening, ManifestKeysAreChecked) {
+    const fs::path dir = freshDir("manifest_keys");
+    ProceduralSceneOptions o;
+    o.width = 8, o.height = 4, o.frames = 1;
+    ProceduralScene scene(o);
+    FrameData f;
+    scene.render(0, f);
+    ManifestWriter(dir.string(), scene.info()).addFrame(0, f);
+    std::string text = slurp(dir / "sequence.json");
+    text.replace(text.find("\"albedo\""), 8, "\"albedoo\"");
+    std::ofstream(dir / "sequence.json") << text;
+    EXPECT_ERROR(SequenceReader::open(dir.string()), "unknown key 'albedoo' in " +
+                                                         (dir / "sequence.json").string() +
+                                                         " frame 0 (did you mean 'albedo'?)");
+    fs::remove_all(dir);
+}
+
 TEST(Hardening, SynthRejectsANonFiniteCameraSpeed) {
     ProceduralSceneOptions o;
     o.cameraSpeed = NAN;

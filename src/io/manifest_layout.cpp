@@ -28,6 +28,15 @@ class ManifestReader : public SequenceReader {
             manifest_ = json::parse(in);
             if (manifest_.value("format", "") != "bmfr-sequence")
                 throw Error(mp.string() + ": \"format\" is not \"bmfr-sequence\"");
+            requireKnownKeys(manifest_,
+                             {"format", "version", "width", "height", "color_is_demodulated",
+                              "position_limit_squared", "normal_limit_squared", "extras", "frames"},
+                             mp.string());
+            for (size_t k = 0; k < manifest_.at("frames").size(); ++k)
+                requireKnownKeys(manifest_["frames"][k],
+                                 {"color", "albedo", "normal", "position", "reference", "emission",
+                                  "extras", "aovs", "view_projection", "jitter"},
+                                 mp.string() + " frame " + std::to_string(k));
             if (!manifest_.contains("width") || !manifest_.contains("height"))
                 throw Error(mp.string() + ": needs \"width\" and \"height\"");
             info_.width = int(integerField(manifest_, "width", 0, 65536, 0, mp.string()));
