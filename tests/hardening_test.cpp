@@ -73,6 +73,16 @@ std::string slurp(const fs::path& p) {
     return s.str();
 }
 
+/// The procedural scene's first `n` frames at w x h.
+std::vector<FrameData> proceduralFrames(int w, int h, int n) {
+    ProceduralSceneOptions o;
+    o.width = w, o.height = h, o.frames = n;
+    ProceduralScene scene(o);
+    std::vector<FrameData> frames(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) scene.render(i, frames[size_t(i)]);
+    return frames;
+}
+
 render::SceneDescription tinyScene() {
     render::SceneDescription d = render::loadSceneDescription("cornell-moving", ".");
     d.width = 12, d.height = 8, d.frames = 2, d.referenceSpp = 2;
@@ -88,12 +98,7 @@ render::SequenceRenderReport renderInto(const render::SceneDescription& d, const
 // 1. Data loss: a folder holding another dataset is refused, and nothing in it is touched.
 TEST(Hardening, RenderRefusesAFolderHoldingAnotherDataset) {
     const fs::path dir = freshDir("dataset");
-    ProceduralSceneOptions o;
-    o.width = 12, o.height = 8, o.frames = 2;
-    ProceduralScene scene(o);
-    std::vector<FrameData> frames(2);
-    for (int i = 0; i < 2; ++i) scene.render(i, frames[size_t(i)]);
-    writeBmfrLayout(dir.string(), frames, 0.01f, 1.0f);
+    writeBmfrLayout(dir.string(), proceduralFrames(12, 8, 2), 0.01f, 1.0f);
     const std::string before = slurp(dir / "camera_matrices.h");
     EXPECT_ERROR(renderInto(tinyScene(), dir, "bmfr"), "refusing to write into it");
     EXPECT_EQ(slurp(dir / "camera_matrices.h"), before);
@@ -193,10 +198,8 @@ TEST(Hardening, ManifestKeysAreChecked) {
     const fs::path dir = freshDir("manifest_keys");
     ProceduralSceneOptions o;
     o.width = 8, o.height = 4, o.frames = 1;
-    ProceduralScene scene(o);
-    FrameData f;
-    scene.render(0, f);
-    ManifestWriter(dir.string(), scene.info()).addFrame(0, f);
+    ManifestWriter(dir.string(), ProceduralScene(o).info())
+        .addFrame(0, proceduralFrames(8, 4, 1)[0]);
     std::string text = slurp(dir / "sequence.json");
     text.replace(text.find("\"albedo\""), 8, "\"albedoo\"");
     std::ofstream(dir / "sequence.json") << text;
@@ -248,9 +251,8 @@ TEST(Hardening, IncompleteSequencesAreErrors) {
     const fs::path dir = freshDir("gaps");
     ProceduralSceneOptions o;
     o.width = 12, o.height = 8, o.frames = 4;
-    ProceduralScene scene(o);
-    std::vector<FrameData> frames(4);
-    for (int i = 0; i < 4; ++i) scene.render(i, frames[size_t(i)]);
+    const ProceduralScene scene(o);
+    const std::vector<FrameData> frames = proceduralFrames(12, 8, 4);
     writeBmfrLayout((dir / "bmfr").string(), frames, 0.01f, 1.0f);
     fs::remove(dir / "bmfr" / "color2.exr");
     EXPECT_ERROR(SequenceReader::open((dir / "bmfr").string()),
@@ -297,11 +299,7 @@ TEST(Hardening, MethodNamesAreEscapedInTheReport) {
 }
 
 TEST(Hardening, ResetGivesTheOutputOfANewFilter) {
-    ProceduralSceneOptions o;
-    o.width = 40, o.height = 24, o.frames = 6;
-    ProceduralScene scene(o);
-    std::vector<FrameData> frames(6);
-    for (int i = 0; i < 6; ++i) scene.render(i, frames[size_t(i)]);
+    const std::vector<FrameData> frames = proceduralFrames(40, 24, 6);
     for (const std::string& name : filterNames()) {
         auto used = makeFilter(name), fresh = makeFilter(name);
         for (int i = 0; i < 3; ++i) used->denoise(frames[size_t(i)].input());
