@@ -41,6 +41,7 @@ std::vector<SettingDoc> filterSettings(const std::string& name) {
 }
 
 ImageView Filter::denoise(const FrameInput& frame, const MutableImageView& out) {
+    checkOutput(out, frame.color.width, frame.color.height); // before the history moves on
     const ImageView result = denoise(frame);
     writeOutput(result, out);
     return result;

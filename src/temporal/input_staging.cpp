@@ -33,17 +33,21 @@ const InputPlanes& InputStaging::stage(const FrameInput& f) {
     return p;
 }
 
-void writeOutput(const ImageView& in, const MutableImageView& out) {
+void checkOutput(const MutableImageView& out, int width, int height) {
     if (!out.data) throw Error("output buffer is missing");
-    if (out.width != in.width || out.height != in.height)
+    if (out.width != width || out.height != height)
         throw Error("output buffer is " + std::to_string(out.width) + "x" +
-                    std::to_string(out.height) + ", the frame is " + std::to_string(in.width) +
-                    "x" + std::to_string(in.height));
+                    std::to_string(out.height) + ", the frame is " + std::to_string(width) + "x" +
+                    std::to_string(height));
     if (out.channels != 3 && out.channels != 4)
         throw Error("output buffer has " + std::to_string(out.channels) +
                     " channels, expected 3 or 4");
     if (out.rowStride != 0 && out.rowStride < long(out.width) * out.channels)
         throw Error("output buffer's row stride is less than a row");
+}
+
+void writeOutput(const ImageView& in, const MutableImageView& out) {
+    checkOutput(out, in.width, in.height);
     const long stride = out.stride();
     for (int y = 0; y < in.height; ++y) {
         const float* src = in.data + long(y) * in.width * 3;

@@ -21,6 +21,8 @@ class InputStaging {
     std::vector<float> extras_[InputPlanes::kMaxExtras];
 };
 
+/// Throws bmfr::Error when the view is missing, of another size, or not 3 or 4 channels.
+void checkOutput(const MutableImageView& out, int width, int height);
 /// Writes a packed 3-channel image into a caller's view (3 or 4 channels, any row stride).
 /// Throws bmfr::Error when the view is missing or its size differs.
 void writeOutput(const ImageView& packedRgb, const MutableImageView& out);
