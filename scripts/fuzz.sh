@@ -3,7 +3,8 @@
 # (default 60) on seed corpora made by `bmfr synth` plus the committed regression inputs in
 # tests/fuzz/corpus/. A crash, a leak, a timeout or an allocation over 1 GiB is a finding: the
 # run stops, exits 1 and leaves the input in build-fuzz/findings/. Needs build/bmfr (for the
-# seeds). Usage: bash scripts/fuzz.sh [SECONDS] [HARNESS ...]
+# seeds). FUZZ_SEED fixes libFuzzer's seed (CI uses 1, so its run is a prefix of one checked
+# here; 0 = random). Usage: bash scripts/fuzz.sh [SECONDS] [HARNESS ...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -54,7 +55,7 @@ failed=0
 for h in "${harnesses[@]}"; do
     log=build-fuzz/fuzz_$h.log
     if ./build-fuzz/fuzz_$h "$corpus/$h" -max_total_time="$seconds" -timeout=10 \
-        -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 \
+        -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 -seed="${FUZZ_SEED:-0}" \
         -artifact_prefix=build-fuzz/findings/"$h"- > "$log" 2>&1; then
         runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
         echo "fuzz_$h: no findings in ${seconds} s, $runs executions ($((runs / seconds))/s)"

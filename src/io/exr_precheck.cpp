@@ -35,6 +35,38 @@ struct Reader {
     }
 };
 
+/// The size OpenEXR reads for a fixed-size attribute type whatever the header declares (0 for
+/// variable-size types): a declared size that differs would desynchronise its parse from ours.
+int fixedSize(const std::string& type) {
+    static const std::pair<const char*, int> kSizes[] = {{"box2i", 16},
+                                                         {"box2f", 16},
+                                                         {"v2i", 8},
+                                                         {"v2f", 8},
+                                                         {"v2d", 16},
+                                                         {"v3i", 12},
+                                                         {"v3f", 12},
+                                                         {"v3d", 24},
+                                                         {"int", 4},
+                                                         {"float", 4},
+                                                         {"double", 8},
+                                                         {"compression", 1},
+                                                         {"lineOrder", 1},
+                                                         {"envmap", 1},
+                                                         {"deepImageState", 1},
+                                                         {"chromaticities", 32},
+                                                         {"keycode", 28},
+                                                         {"timecode", 8},
+                                                         {"tiledesc", 9},
+                                                         {"rational", 8},
+                                                         {"m33f", 36},
+                                                         {"m44f", 64},
+                                                         {"m33d", 72},
+                                                         {"m44d", 128}};
+    for (const auto& [name, size] : kSizes)
+        if (type == name) return size;
+    return 0;
+}
+
 /// Lines per scanline chunk for each compression (OpenEXR's table).
 int linesPerChunk(uint8_t compression) {
     switch (compression) {
@@ -67,6 +99,7 @@ void precheckExr(const std::string& path, uint64_t fileBytes) {
     const uint32_t version = r.value<uint32_t>("the version");
     if (version & 0x800) r.fail("deep images are not supported");
     const bool tiled = version & 0x200, multipart = version & 0x1000;
+    const size_t maxName = version & 0x400 ? 255 : 31; // long names are a version flag
     for (int part = 0;; ++part) {
         long w = 0, h = 0, tileX = 0, tileY = 0;
         int compression = -1;
@@ -77,7 +110,14 @@ void precheckExr(const std::string& path, uint64_t fileBytes) {
             if (name.empty()) break;
             any = true;
             const std::string type = r.text("attribute type");
+            if (name.size() > maxName || type.size() > maxName)
+                r.fail("attribute name or type '" + name + "' longer than " +
+                       std::to_string(maxName) + " bytes");
             const int32_t n = r.value<int32_t>("an attribute size");
+            if (fixedSize(type) && n != fixedSize(type))
+                r.fail("attribute '" + name + "' of type " + type + " declares " +
+                       std::to_string(n) + " bytes, the type has " +
+                       std::to_string(fixedSize(type)));
             if (n < 0 || uint64_t(n) > r.size - r.position())
                 r.fail("attribute '" + name + "' claims " + std::to_string(n) +
                        " bytes, the file has " + std::to_string(r.size - r.position()) + " left");
@@ -96,14 +136,29 @@ void precheckExr(const std::string& path, uint64_t fileBytes) {
             } else if (name == "tiles" && n >= 8) {
                 tileX = uint32_t(i32(0));
                 tileY = uint32_t(i32(4));
-            } else if (name == "channels" && type == "chlist") {
-                for (size_t at = 0; at < v.size() && v[at] != '\0';) {
+            } else if (type == "preview") {
+                // Width and height, then 4 bytes per pixel: OpenEXR allocates what they say.
+                const double pixels = double(uint32_t(i32(0))) * double(uint32_t(i32(4)));
+                if (n < 8 || pixels * 4.0 + 8.0 != double(n))
+                    r.fail("preview attribute '" + name + "' does not match its size");
+            } else if (type == "stringvector") {
+                for (size_t at = 0; at < v.size();) {
+                    const int32_t len = i32(at);
+                    if (at + 4 > v.size() || len < 0 || size_t(len) > v.size() - at - 4)
+                        r.fail("malformed string vector '" + name + "'");
+                    at += 4 + size_t(len);
+                }
+            } else if (type == "chlist") {
+                if (v.empty() || v.back() != '\0') r.fail("malformed channel list");
+                size_t at = 0;
+                for (; at < v.size() && v[at] != '\0';) {
                     const size_t end = std::find(v.begin() + long(at), v.end(), '\0') - v.begin();
                     if (end + 17 > v.size()) r.fail("malformed channel list");
                     const int32_t pixelType = i32(end + 1);
-                    bytesPerPixel += pixelType == 1 ? 2.0 : 4.0; // HALF, else UINT or FLOAT
+                    if (name == "channels") bytesPerPixel += pixelType == 1 ? 2.0 : 4.0; // HALF: 2
                     at = end + 17;
                 }
+                if (at + 1 != v.size()) r.fail("malformed channel list");
             }
         }
         if (!any) {
