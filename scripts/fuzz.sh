@@ -19,8 +19,8 @@ cmake --build build-fuzz -j "$(nproc)" > /dev/null
 # Seed corpora from bmfr synth, in both layouts, and the repro files.
 seeds=build-fuzz/seeds
 if [ ! -d "$seeds" ]; then
-    ./build/bmfr synth "$seeds/manifest" --width 16 --height 8 --frames 2 -q
-    ./build/bmfr synth "$seeds/bmfr" --width 16 --height 8 --frames 2 --layout bmfr -q
+    ./build/bmfr synth -o "$seeds/manifest" --width 16 --height 8 --frames 2 -q
+    ./build/bmfr synth -o "$seeds/bmfr" --width 16 --height 8 --frames 2 --layout bmfr -q
 fi
 corpus=build-fuzz/corpus
 rm -rf "$corpus"

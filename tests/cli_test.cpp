@@ -1,5 +1,6 @@
 // The bmfr command line: a full run writes what it promises; bad input exits non-zero with a
 // message naming the problem.
+#include "cli_runner.h"
 #include "io/exr.h"
 #include <array>
 #include <cmath>
@@ -15,20 +16,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int code;
-    std::string output;
-};
-
-Result run(const std::string& args) {
-    std::string cmd = std::string(BMFR_CLI_PATH) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 512> buf;
-    while (fgets(buf.data(), int(buf.size()), p)) out += buf.data();
-    int status = pclose(p);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using Result = bmfr::testing::CliResult;
+Result run(const std::string& args) { return bmfr::testing::runCli(args); }
 
 fs::path scratch(const std::string& name) {
     fs::path p =
@@ -39,7 +28,7 @@ fs::path scratch(const std::string& name) {
 
 TEST(Cli, SynthThenDenoiseWritesImagesDebugBuffersAndScores) {
     fs::path in = scratch("in"), out = scratch("out");
-    ASSERT_EQ(run("synth " + in.string() + " --width 64 --height 48 --frames 4 -q").code, 0);
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 64 --height 48 --frames 4 -q").code, 0);
     Result r = run("denoise " + in.string() + " -o " + out.string() + " --debug --frames 1:4");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("Scores vs reference"), std::string::npos) << r.output;
@@ -60,7 +49,7 @@ TEST(Cli, SynthThenDenoiseWritesImagesDebugBuffersAndScores) {
 TEST(Cli, OriginalLayoutIsDetected) {
     fs::path in = scratch("orig"), out = scratch("orig_out");
     ASSERT_EQ(
-        run("synth " + in.string() + " --width 40 --height 30 --frames 3 --layout bmfr -q").code,
+        run("synth -o " + in.string() + " --width 40 --height 30 --frames 3 --layout bmfr -q").code,
         0);
     Result r = run("denoise " + in.string() + " -o " + out.string());
     ASSERT_EQ(r.code, 0) << r.output;
@@ -76,7 +65,7 @@ TEST(Cli, BadInputExitsNonZeroWithAReason) {
         << missing.output;
 
     fs::path in = scratch("bad"), out = scratch("bad_out");
-    ASSERT_EQ(run("synth " + in.string() + " --width 32 --height 32 --frames 2 -q").code, 0);
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 32 --height 32 --frames 2 -q").code, 0);
     std::ofstream(in / "normal_0001.exr") << "garbage";
     Result broken = run("denoise " + in.string() + " -o " + out.string() + " -q");
     EXPECT_EQ(broken.code, 1);
@@ -95,7 +84,7 @@ TEST(Cli, BadInputExitsNonZeroWithAReason) {
 
 TEST(Cli, NanInputsGiveOneWarningLine) {
     fs::path in = scratch("nan"), out = scratch("nan_out");
-    ASSERT_EQ(run("synth " + in.string() + " --width 32 --height 32 --frames 3 -q").code, 0);
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 32 --height 32 --frames 3 -q").code, 0);
     for (int frame : {1, 2}) {
         const std::string file = (in / ("color_000" + std::to_string(frame) + ".exr")).string();
         bmfr::ImageF color = bmfr::readExr(file, 3);
@@ -123,7 +112,7 @@ namespace {
 TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
     fs::path in = scratch("eval_in"), den = scratch("eval_den"), noTaa = scratch("eval_notaa"),
              out = scratch("eval_out");
-    ASSERT_EQ(run("synth " + in.string() + " --width 64 --height 48 --frames 4 -q").code, 0);
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 64 --height 48 --frames 4 -q").code, 0);
     ASSERT_EQ(run("denoise " + in.string() + " -o " + den.string() + " -q --no-png").code, 0);
     ASSERT_EQ(
         run("denoise " + in.string() + " -o " + noTaa.string() + " -q --no-png --disable taa").code,
@@ -159,7 +148,7 @@ TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
 
 TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
     fs::path in = scratch("ablate_in"), out = scratch("ablate_out");
-    ASSERT_EQ(run("synth " + in.string() + " --width 48 --height 32 --frames 3 -q").code, 0);
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 48 --height 32 --frames 3 -q").code, 0);
     Result r = run("ablate " + in.string() + " -o " + out.string());
     ASSERT_EQ(r.code, 0) << r.output;
     for (const char* s : {"without fitting (phase II)", "without TAA",
@@ -177,7 +166,7 @@ namespace {
 
 TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
     fs::path in = scratch("svgf_in"), out = scratch("svgf_out");
-    ASSERT_EQ(run("synth " + in.string() + " --width 64 --height 48 --frames 3 -q").code, 0);
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 64 --height 48 --frames 3 -q").code, 0);
     Result r = run("denoise " + in.string() + " -o " + out.string() +
                    " --filter svgf --sample-fraction 0.5 --no-png");
     ASSERT_EQ(r.code, 0) << r.output;
@@ -193,7 +182,7 @@ TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
 
 TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
     fs::path in = scratch("set_in"), out = scratch("set_out");
-    ASSERT_EQ(run("synth " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);
     const std::string base = "denoise " + in.string() + " -o " + out.string() + " -q --no-png ";
     EXPECT_EQ(run(base + "--set blockSize=16 --backend reference --disable fitting").code, 0);
     EXPECT_EQ(run(base + "--filter svgf --svgf-iterations 3 --svgf-reverse-levels").code, 0);
@@ -207,9 +196,10 @@ TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
           Bad{"--svgf-iterations 3", "--svgf-iterations is not a setting of the bmfr"},
           Bad{"--set nope=1", "'nope' is not a setting of the bmfr filter"},
           Bad{"--set blockSize", "expected key=value"},
-          Bad{"--block-size 65", "blockSize = 65 is outside [8, 64]"},
-          Bad{"--block-size 1e", "'1e' is not a number"},
-          Bad{"--taa maybe", "'maybe' is not true or false"},
+          Bad{"--block-size 65", "--block-size 65 is outside [8, 64]"},
+          Bad{"--set blockSize=7", "--block-size 7 is outside [8, 64]"},
+          Bad{"--block-size 1e", "--block-size 1e is not a number"},
+          Bad{"--taa maybe", "--taa maybe is not true or false"},
           Bad{"--disable fitting --filter svgf", "unknown stage 'fitting'"}}) {
         Result r = run(base + b.args);
         EXPECT_EQ(r.code, 1) << b.args;

@@ -1,6 +1,7 @@
 // Regression tests of the hardening findings (../shared/repro and the list): each bad
 // input is a clear error, never a crash, a hang, a huge allocation or silent garbage, and no
 // write loses a user's data.
+#include "cli_runner.h"
 #include "eval/comparison.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
@@ -53,18 +54,8 @@ std::string errorOf(const std::function<void()>& f) {
         EXPECT_NE(what_.find(needle), std::string::npos) << what_;                                 \
     } while (0)
 
-struct Result {
-    int code;
-    std::string output;
-};
-Result run(const std::string& args) {
-    FILE* p = popen((std::string(BMFR_CLI_PATH) + " " + args + " 2>&1").c_str(), "r");
-    std::string out;
-    std::array<char, 512> buf;
-    while (fgets(buf.data(), int(buf.size()), p)) out += buf.data();
-    const int status = pclose(p);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using Result = bmfr::testing::CliResult;
+Result run(const std::string& args) { return bmfr::testing::runCli(args); }
 
 std::string slurp(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -213,7 +204,7 @@ TEST(Hardening, SynthRejectsANonFiniteCameraSpeed) {
     ProceduralSceneOptions o;
     o.cameraSpeed = NAN;
     EXPECT_ERROR(ProceduralScene{o}, "camera speed");
-    Result r = run("synth /tmp/bmfr_never_written --camera-speed nan -q");
+    Result r = run("synth -o /tmp/bmfr_never_written --camera-speed nan -q");
     EXPECT_EQ(r.code, 1) << r.output;
 }
 
@@ -226,7 +217,7 @@ TEST(Hardening, FailedWritesAreErrorsWithThePath) {
     writeFileAtomically((dir / "ok.json").string(), std::string("{}"));
     EXPECT_EQ(slurp(dir / "ok.json"), "{}");
     EXPECT_FALSE(fs::exists(dir / "ok.json.part"));
-    ASSERT_EQ(run("synth " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code,
+    ASSERT_EQ(run("synth -o " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code,
               0);
     Result r = run("denoise " + (dir / "in").string() + " -o " + (dir / "file").string() + " -q");
     EXPECT_EQ(r.code, 1) << r.output;
@@ -240,7 +231,7 @@ TEST(Hardening, TonemapNeverOverwritesItsInput) {
     ImageF img(4, 3, 3);
     writeExr((dir / "x.exr").string(), img);
     const std::string before = slurp(dir / "x.exr");
-    Result r = run("tonemap " + (dir / "x.exr").string() + " " + (dir / "x.exr").string());
+    Result r = run("tonemap " + (dir / "x.exr").string() + " -o " + (dir / "x.exr").string());
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.output.find("refusing to overwrite"), std::string::npos) << r.output;
     EXPECT_EQ(slurp(dir / "x.exr"), before);
@@ -281,7 +272,7 @@ TEST(Hardening, ExrChannelsAreNeverInventedOrEmpty) {
 TEST(Hardening, CommandLineBoundsAreChecked) {
     EXPECT_ERROR(parseFrameRange("0:99999999999", 10), "the sequence has frames 0:10");
     const fs::path dir = freshDir("eval");
-    ASSERT_EQ(run("synth " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code,
+    ASSERT_EQ(run("synth -o " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code,
               0);
     const std::string base = "eval -r " + (dir / "in").string() + " -m noisy -o " +
                              (dir / "out").string() + " -q --no-flip ";

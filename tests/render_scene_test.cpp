@@ -94,14 +94,17 @@ TEST(RenderScene, UnsupportedGltfFeatureAndBadFilesAreClearErrors) {
 
 TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
     for (const std::string& name : presetNames()) {
-        SceneDescription d = loadSceneDescription(name, "/scenes");
+        SceneDescription d = loadSceneDescription(name, "/scenes", false);
         EXPECT_FALSE(d.cameraKeys.empty()) << name;
         EXPECT_EQ(d.referenceSpp, 4096) << name;
     }
     EXPECT_EQ(presetNames().size(), 5u);
-    EXPECT_FLOAT_EQ(loadSceneDescription("sponza-glossy", "/s").roughnessOverride, 0.1f);
-    EXPECT_EQ(loadSceneDescription("sponza-light", "/s").quadLights.size(), 1u);
+    EXPECT_FLOAT_EQ(loadSceneDescription("sponza-glossy", "/s", false).roughnessOverride, 0.1f);
+    EXPECT_EQ(loadSceneDescription("sponza-light", "/s", false).quadLights.size(), 1u);
     expectError([] { loadSceneDescription("no-such-preset", "."); }, "presets: cornell-moving");
+    // A Sponza preset whose mesh is not under --scenes says so, and names the flag.
+    expectError([] { loadSceneDescription("sponza-moving", "no/such/dir"); },
+                "with --scenes DIR (the relative 'no/such/dir' is read from");
 }
 
 TEST(RenderScene, SceneWithoutLightIsAnError) {

@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 #include <fstream>
 #include <sstream>
+#include <unistd.h>
 
 namespace bmfr::app {
 
@@ -34,15 +35,20 @@ void addAblateCommand(CLI::App& app, int& exitCode) {
             "bmfr");
         validate(base);
         int n = 0;
+        const bool terminal = isatty(2);
         runAblation(job->input, job->output, job->frames, base, [&](const std::string& name) {
-            if (!job->quiet)
+            if (job->quiet) return;
+            // A carriage return redraws a terminal's line; a log gets one line per configuration.
+            if (terminal)
                 fmt::print(stderr, "\rablate: configuration {} ({})          ", ++n, name);
+            else
+                fmt::print(stderr, "ablate: configuration {} ({})\n", ++n, name);
         });
         if (!job->quiet) {
             std::ifstream md(std::filesystem::path(job->output) / "ablation.md");
             std::stringstream ss;
             ss << md.rdbuf();
-            fmt::print(stderr, "\n");
+            if (terminal) fmt::print(stderr, "\n");
             fmt::print("{}\nwrote {}/ablation.md, .csv, .json and plot_greedy_*.png\n", ss.str(),
                        job->output);
         }

@@ -1,8 +1,10 @@
 #include "commands.h"
+#include "progress.h"
 #include "stage_log.h"
 #include "stream_floor.h"
 #include "synth/procedural_scene.h"
 #include <algorithm>
+#include <functional>
 #include <bmfr/bmfr.h>
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -15,7 +17,7 @@ namespace {
 struct BenchJob {
     std::vector<std::string> sizes{"1280x720", "1920x1080", "3840x2160"};
     int warmup = 5, frames = 30, threads = 0;
-    bool json = false, baseline = true;
+    bool json = false, baseline = true, quiet = false;
     std::string filter = "bmfr", backend = "cpu", baselineBackend = "reference";
 };
 
@@ -25,7 +27,7 @@ int distinctFrames(int w, int h) {
     return std::clamp(int(24e6 / pixels), 2, 8);
 }
 
-nlohmann::json benchOne(const BenchJob& job, int w, int h) {
+nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<void()>& frameDone) {
     const int distinct = distinctFrames(w, h);
     ProceduralSceneOptions so;
     so.width = w, so.height = h, so.frames = distinct;
@@ -56,6 +58,7 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h) {
             ref->denoise(in);
             if (i >= job.warmup) refLog.add(ref->lastStats().times);
         }
+        frameDone();
     }
     nlohmann::json r = {
         {"total_ms", log.totalMedian()}, {"stages", log.medians()}, {"line", log.line()}};
@@ -83,6 +86,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--frames", job->frames, "timed frames")->default_val(30);
     cmd->add_option("--threads", job->threads, "worker threads, 0 = all cores")->default_val(0);
     cmd->add_flag("--json", job->json, "print one JSON object");
+    cmd->add_flag("-q,--quiet", job->quiet, "no progress (the results are still printed)");
     cmd->add_flag("!--no-baseline", job->baseline,
                   "skip the baseline backend run interleaved with the measured one");
     cmd->add_option("--baseline-backend", job->baselineBackend,
@@ -93,14 +97,18 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--filter", job->filter, "the filter measured")->default_val("bmfr");
     cmd->callback([job, &exitCode] {
         nlohmann::json all;
+        Progress progress("bench", int(job->sizes.size()) * (job->warmup + job->frames),
+                          job->quiet);
+        int done = 0;
         for (const std::string& size : job->sizes) {
             int w = 0, h = 0;
             char x = 0;
             std::istringstream in(size);
             if (!(in >> w >> x >> h) || x != 'x' || w <= 0 || h <= 0)
                 throw Error("--sizes: '" + size + "' is not WxH");
-            nlohmann::json r = benchOne(*job, w, h);
+            nlohmann::json r = benchOne(*job, w, h, [&] { progress.step(++done); });
             if (!job->json) {
+                progress.pause();
                 fmt::print("{:>10} {} on {}: {} ms   (median of {} frames)\n", size, job->filter,
                            job->backend, r["line"].get<std::string>(), job->frames);
                 if (r.contains("baseline_line"))
@@ -122,6 +130,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
             r.erase("baseline_line");
             all[size] = r;
         }
+        progress.finish();
         if (job->json) fmt::print("{}\n", all.dump());
         exitCode = 0;
     });

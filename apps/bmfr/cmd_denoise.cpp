@@ -36,6 +36,10 @@ ImageF copyOf(const ImageView& v) {
 } // namespace
 
 int runDenoise(const DenoiseJob& job) {
+    std::error_code ec;
+    if (fs::exists(job.output, ec) && fs::equivalent(job.input, job.output, ec))
+        throw Error("-o " + job.output + " is the input folder " + job.input +
+                    "; refusing to write the results among the inputs (give another folder)");
     auto reader = SequenceReader::open(job.input);
     const SequenceInfo& info = reader->info();
     const SettingValues values = job.options.resolve(

@@ -9,14 +9,16 @@
 namespace bmfr::app {
 
 
-int runEval(const ComparisonOptions& o, bool quiet) {
+int runEval(const ComparisonOptions& o, bool quiet, bool json) {
     std::unique_ptr<Progress> bar; // the frame count is known once the reference is open
     ComparisonResult r = runComparison(o, [&](int done, int total) {
         if (!bar) bar = std::make_unique<Progress>("eval", total, quiet);
         bar->step(done);
     });
     if (bar) bar->finish();
-    if (!quiet) {
+    if (json) {
+        fmt::print("{}", r.scoresJson);
+    } else if (!quiet) {
         fmt::print("\nScores, mean over frames {}:{} (tone-mapped; relMSE linear):\n\n{}\n",
                    r.first, r.last, markdownTable(r));
         fmt::print("report: {}\n", r.reportPath);
@@ -28,7 +30,7 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
     struct Job {
         ComparisonOptions options;
         std::vector<std::string> methods, crops;
-        bool quiet = false, noFlip = false;
+        bool quiet = false, noFlip = false, json = false;
     };
     auto job = std::make_shared<Job>();
     CLI::App* cmd =
@@ -54,6 +56,8 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                     "frame for pictures and heat maps (default: last)");
     cmd->add_flag("--no-flip", job->noFlip, "skip FLIP (the slowest metric)");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
+    cmd->add_flag("--json", job->json,
+                  "print the scores as JSON on stdout (as table.json) instead of the table");
     cmd->callback([job, &exitCode] {
         ComparisonOptions o = job->options;
         for (const std::string& m : job->methods) {
@@ -67,7 +71,7 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
         if (o.autoCrops < 0 || o.autoCrops > 16) throw Error("--crops must be in [0, 16]");
         if (o.cropSize < 4 || o.cropSize > 1024) throw Error("--crop-size must be in [4, 1024]");
         o.flip = !job->noFlip;
-        exitCode = runEval(o, job->quiet);
+        exitCode = runEval(o, job->quiet, job->json);
     });
 }
 

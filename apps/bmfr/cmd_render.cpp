@@ -27,12 +27,32 @@ struct RenderJob {
 
 int runRender(const RenderJob& job);
 
+namespace {
+
+std::string durationText(double seconds) {
+    if (seconds < 90) return fmt::format("about {:.0f} s", seconds);
+    if (seconds < 5400) return fmt::format("about {:.0f} min", seconds / 60);
+    return fmt::format("about {:.0f} h", seconds / 3600);
+}
+
+} // namespace
+
 int runRender(const RenderJob& job) {
     if (job.list) {
-        for (const std::string& n : render::presetNames()) fmt::print("{}\n", n);
+        fmt::print("{:<16} {:>10} {:>7} {:>9}  {}\n", "preset", "size", "frames", "ref spp",
+                   "estimated time on 2 cores (scales with 1/cores)");
+        for (const std::string& n : render::presetNames()) {
+            const render::SceneDescription d = render::loadSceneDescription(n, job.scenesDir, false);
+            fmt::print("{:<16} {:>10} {:>7} {:>9}  {}\n", n,
+                       fmt::format("{}x{}", d.width, d.height), d.frames, d.referenceSpp,
+                       durationText(render::estimatedRenderSeconds(d)));
+        }
+        fmt::print("Cheaper: --width 320 --height 180 --frames 16 --reference-spp 256 "
+                   "(about 1/{:.0f} of the Sponza cost)\n",
+                   1280.0 * 720 * 60 * 4096 / (320.0 * 180 * 16 * 256));
         return 0;
     }
-    if (job.output.empty()) throw Error("render: an output directory is required");
+    if (job.output.empty()) throw CLI::RequiredError("--output (the sequence folder to write)");
     render::SceneDescription d = render::loadSceneDescription(job.scene, job.scenesDir);
     if (job.width) d.width = *job.width;
     if (job.height) d.height = *job.height;
@@ -50,6 +70,9 @@ int runRender(const RenderJob& job) {
                    "({} layout)\n",
                    d.name, d.mesh, d.width, d.height, d.frames, d.bounces, d.referenceSpp,
                    job.output, job.layout);
+    if (!job.quiet)
+        fmt::print("estimated {} on 2 cores of the CI's kind\n",
+                   durationText(render::estimatedRenderSeconds(d)));
     Progress progress("render", d.frames, job.quiet);
     render::SequenceRenderOptions o{job.output, job.layout, job.quiet, job.overwrite};
     render::SequenceRenderReport r = render::renderSequence(
@@ -79,7 +102,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     auto job = std::make_shared<RenderJob>();
     CLI::App* cmd =
         app.add_subcommand("render", "path trace a sequence: 1-spp input, features, reference");
-    cmd->add_option("output", job->output, "output directory");
+    cmd->add_option("-o,--output", job->output, "output directory (required unless --list-presets)");
     cmd->add_option("-s,--scene", job->scene, "preset name or scene description JSON")
         ->default_val("cornell-moving");
     cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")

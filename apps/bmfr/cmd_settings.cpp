@@ -34,13 +34,15 @@ std::string markdown() {
 void addSettingsCommand(CLI::App& app, int& exitCode) {
     struct Job {
         std::string filter;
-        bool markdown = false;
+        bool markdown = false, quiet = false;
     };
     auto job = std::make_shared<Job>();
     CLI::App* cmd = app.add_subcommand(
         "settings", "every setting of a filter: key, flag, unit, range, default and help");
     cmd->add_option("filter", job->filter, "one filter (default: all)");
     cmd->add_flag("--markdown", job->markdown, "the README's table");
+    cmd->add_flag("-q,--quiet", job->quiet,
+                  "accepted on every command; the table is this command's result");
     cmd->callback([job, &exitCode] {
         if (job->markdown) {
             fmt::print("{}", markdown());

@@ -46,7 +46,7 @@ void addSynthCommand(CLI::App& app, int& exitCode) {
     auto job = std::make_shared<SynthJob>();
     CLI::App* cmd = app.add_subcommand(
         "synth", "write the built-in procedural sequence (noisy input, features, exact truth)");
-    cmd->add_option("output", job->output, "output directory")->required();
+    cmd->add_option("-o,--output", job->output, "output directory")->required();
     cmd->add_option("--width", job->scene.width, "pixels")->default_val(640);
     cmd->add_option("--height", job->scene.height, "pixels")->default_val(360);
     cmd->add_option("--frames", job->scene.frames, "frame count")->default_val(30);

@@ -11,13 +11,15 @@ void addTonemapCommand(CLI::App& app, int& exitCode) {
     struct Job {
         std::string input, output;
         float exposure = 1.0f;
+        bool quiet = false;
     };
     auto job = std::make_shared<Job>();
     CLI::App* cmd = app.add_subcommand(
         "tonemap", "write an EXR as a viewable PNG: clamp((x * exposure)^(1/2.2), 0, 1)");
     cmd->add_option("input", job->input, "EXR file")->required();
-    cmd->add_option("output", job->output, "PNG file")->required();
+    cmd->add_option("-o,--output", job->output, "PNG file")->required();
     cmd->add_option("--exposure", job->exposure, "linear scale applied first")->default_val(1.0);
+    cmd->add_flag("-q,--quiet", job->quiet, "accepted on every command; tonemap prints nothing");
     cmd->callback([job, &exitCode] {
         std::error_code ec;
         if (job->output == job->input || std::filesystem::equivalent(job->input, job->output, ec))

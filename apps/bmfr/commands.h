@@ -21,8 +21,9 @@ struct DenoiseJob {
 /// references). Returns the process exit code.
 int runDenoise(const DenoiseJob& job);
 
-/// Runs `bmfr eval`; prints the table and the report path unless quiet.
-int runEval(const ComparisonOptions& options, bool quiet);
+/// Runs `bmfr eval`; prints the table and the report path unless quiet, or with `json` the
+/// scores as JSON on stdout.
+int runEval(const ComparisonOptions& options, bool quiet, bool json = false);
 
 void addDenoiseCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);

@@ -1,12 +1,26 @@
 // bmfr: denoise 1-spp path-traced sequences with BMFR; benchmark; demo on a built-in scene.
+// Exit codes: 0 success, 1 a runtime error, 2 a usage error, 130 interrupted.
 #include "commands.h"
-#include <bmfr/error.h>
+#include "git_commit.h"
+#include "usage.h"
+#include <bmfr/bmfr.h>
 #include <cstdio>
+#include <fmt/format.h>
+
+namespace {
+
+std::string versionText() {
+    return fmt::format("bmfr {} (commit {}; backends: {})", BMFR_VERSION, BMFR_GIT_COMMIT,
+                       fmt::join(bmfr::compiledBackends(), ", "));
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"bmfr: real-time reconstruction of 1-spp path-traced sequences "
-                 "(Blockwise Multi-Order Feature Regression, Koskela et al. 2019)"};
-    app.require_subcommand(1);
+                 "(Blockwise Multi-Order Feature Regression, Koskela et al. 2019)",
+                 "bmfr"};
+    app.set_version_flag("--version", versionText());
     int exitCode = 0;
     bmfr::app::addDemoCommand(app, exitCode);
     bmfr::app::addRenderCommand(app, exitCode);
@@ -18,12 +32,30 @@ int main(int argc, char** argv) {
     bmfr::app::addTonemapCommand(app, exitCode);
     bmfr::app::addSettingsCommand(app, exitCode);
     bmfr::app::addSoakCommand(app, exitCode);
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({}))
+        known = known || (argc > 1 && sub->get_name() == argv[1]);
+    if (argc > 1 && argv[1][0] != '-' && !known) {
+        std::fprintf(stderr, "bmfr: unknown command '%s'\nusage: bmfr COMMAND [options]\n%s",
+                     argv[1], bmfr::app::commandList(app).c_str());
+        return 2;
+    }
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+        if (app.get_subcommands().empty()) {
+            std::fprintf(stderr, "bmfr: a command is needed\n%s",
+                         bmfr::app::commandList(app).c_str());
+            return 2;
+        }
+    } catch (const CLI::CallForVersion&) {
+        std::printf("%s\n", versionText().c_str());
+        return 0;
+    } catch (const CLI::Success& e) { // --help
         return app.exit(e);
-    } catch (const bmfr::Error& e) {
-        std::fprintf(stderr, "bmfr: error: %s\n", e.what());
+    } catch (const CLI::ParseError& e) {
+        return bmfr::app::reportUsageError(app, e);
+    } catch (const bmfr::SettingError& e) {
+        std::fprintf(stderr, "bmfr: error: %s\n", bmfr::app::describeForCli(e).c_str());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bmfr: error: %s\n", e.what());

@@ -8,3 +8,4 @@
 #include <bmfr/filters/svgf_filter.h>
 #include <bmfr/frame.h>
 #include <bmfr/temporal_settings.h>
+#include <bmfr/version.h>

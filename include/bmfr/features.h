@@ -1,5 +1,6 @@
 // Feature buffers that BMFR regresses the noisy colour onto, one column of the block matrix each.
 #pragma once
+#include <bmfr/api.h>
 #include <string>
 #include <vector>
 
@@ -28,14 +29,14 @@ struct Feature {
 };
 
 /// The paper's feature set, eq. (8): [1, n.xyz, p.xyz, p.xyz^2].
-std::vector<Feature> defaultFeatures();
+BMFR_API std::vector<Feature> defaultFeatures();
 
 /// Parses a comma-separated list such as "1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,extra0".
 /// Tokens: 1, n.x|n.y|n.z, p.x|p.y|p.z, extraK; each may end in ^E. Throws bmfr::Error.
-std::vector<Feature> parseFeatures(const std::string& list);
+BMFR_API std::vector<Feature> parseFeatures(const std::string& list);
 
 /// Inverse of parseFeatures.
-std::string formatFeatures(const std::vector<Feature>& features);
+BMFR_API std::string formatFeatures(const std::vector<Feature>& features);
 
 /// Largest number of feature columns (constant included) a block fit supports.
 inline constexpr int kMaxFeatures = 24;

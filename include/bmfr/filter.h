@@ -1,6 +1,7 @@
 // The interface every reconstruction filter offers (BMFR, SVGF, ...): the same inputs, the same
 // output, the same debug views; and the registry that makes a filter from its name.
 #pragma once
+#include <bmfr/api.h>
 #include <bmfr/frame.h>
 #include <memory>
 #include <string>
@@ -19,7 +20,7 @@ struct DebugBuffers {
 };
 
 /// A temporal denoiser: owns its history; one instance per sequence; not thread-safe.
-class Filter {
+class BMFR_API Filter {
   public:
     virtual ~Filter() = default;
     /// Denoises one frame; returns linear HDR RGB (3 channels, packed) valid until the next
@@ -49,10 +50,10 @@ struct SettingDoc {
 
 /// Makes the filter `name` ("bmfr", "svgf") with its defaults overridden by `values`. Throws
 /// bmfr::Error for an unknown filter, an unknown key or a value out of range.
-std::unique_ptr<Filter> makeFilter(const std::string& name, const SettingValues& values = {});
+BMFR_API std::unique_ptr<Filter> makeFilter(const std::string& name, const SettingValues& values = {});
 /// The registered filters' names, in registry order.
-std::vector<std::string> filterNames();
+BMFR_API std::vector<std::string> filterNames();
 /// The settings table of filter `name`: the shared settings first.
-std::vector<SettingDoc> filterSettings(const std::string& name);
+BMFR_API std::vector<SettingDoc> filterSettings(const std::string& name);
 
 } // namespace bmfr

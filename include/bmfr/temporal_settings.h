@@ -3,6 +3,9 @@
 // Ranges and defaults are stated once, in the settings table (src/temporal/temporal_settings.cpp),
 // which validation, the command line and the README's table are made from.
 #pragma once
+#include <bmfr/api.h>
+#include <string>
+#include <vector>
 
 namespace bmfr {
 
@@ -26,10 +29,12 @@ struct TemporalSettings {
 };
 
 /// Throws bmfr::Error naming the first shared setting out of its range.
-void validate(const TemporalSettings& settings);
+BMFR_API void validate(const TemporalSettings& settings);
 
 /// "reference", "cpu" or "cuda"; parseBackend throws bmfr::Error for other names.
-const char* backendName(Backend backend);
-Backend parseBackend(const char* name);
+BMFR_API const char* backendName(Backend backend);
+BMFR_API Backend parseBackend(const char* name);
+/// The backends this build of the library holds, by name ("cuda" only where it was built).
+BMFR_API std::vector<std::string> compiledBackends();
 
 } // namespace bmfr

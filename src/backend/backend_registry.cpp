@@ -34,6 +34,8 @@ Backend parseBackend(const char* name) {
     throw Error(std::string("unknown backend '") + name + "' (expected reference, cpu or cuda)");
 }
 
+std::vector<std::string> compiledBackends() { return {"reference", "cpu"}; }
+
 namespace {
 [[noreturn]] void unavailable(Backend b) {
     throw Error(std::string("backend '") + backendName(b) +

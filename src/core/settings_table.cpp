@@ -5,22 +5,27 @@
 
 namespace bmfr::detail {
 
+namespace {
+
+[[noreturn]] void badText(const std::string& key, const std::string& text, const char* problem) {
+    throw SettingError("setting " + key + ": '" + text + "' " + problem, key, text, problem);
+}
+
+} // namespace
+
 double parseNumber(const std::string& key, const std::string& text, bool integer) {
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(v))
-        throw Error("setting " + key + ": '" + text + "' is not a number");
-    if (integer && v != std::floor(v))
-        throw Error("setting " + key + ": '" + text + "' is not a whole number");
-    if (integer && std::fabs(v) > 4e9)
-        throw Error("setting " + key + ": '" + text + "' is too large");
+    if (text.empty() || *end != '\0' || !std::isfinite(v)) badText(key, text, "is not a number");
+    if (integer && v != std::floor(v)) badText(key, text, "is not a whole number");
+    if (integer && std::fabs(v) > 4e9) badText(key, text, "is too large");
     return v;
 }
 
 bool parseBool(const std::string& key, const std::string& text) {
     if (text == "true" || text == "1" || text == "on" || text == "yes") return true;
     if (text == "false" || text == "0" || text == "off" || text == "no") return false;
-    throw Error("setting " + key + ": '" + text + "' is not true or false");
+    badText(key, text, "is not true or false");
 }
 
 std::string formatNumber(double v) {
@@ -41,9 +46,11 @@ std::string formatRange(const SettingRange& r, bool integer) {
 void checkInRange(const char* filter, const char* key, double v, const SettingRange& r) {
     const bool ok =
         std::isfinite(v) && (r.loOpen ? v > r.lo : v >= r.lo) && (r.hiOpen ? v < r.hi : v <= r.hi);
-    if (!ok)
-        throw Error(std::string(filter) + " " + key + " = " + formatNumber(v) + " is outside " +
-                    formatRange(r, false));
+    if (!ok) {
+        const std::string problem = "is outside " + formatRange(r, false);
+        throw SettingError(std::string(filter) + " " + key + " = " + formatNumber(v) + " " + problem,
+                           key, formatNumber(v), problem);
+    }
 }
 
 } // namespace bmfr::detail

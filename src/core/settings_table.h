@@ -110,7 +110,8 @@ template <class S> void assignSetting(const Setting<S>& e, S& s, const std::stri
         try {
             std::get<4>(e.field).set(s, text);
         } catch (const Error& err) {
-            throw Error(std::string("setting ") + e.key + ": " + err.what());
+            throw SettingError(std::string("setting ") + e.key + ": " + err.what(), e.key, text,
+                               err.what());
         }
         return;
     }

@@ -245,7 +245,8 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         }
         j["methods"][r.names[i]] = mj;
     }
-    writeFileAtomically((fs::path(o.output) / "table.json").string(), j.dump(2) + "\n");
+    r.scoresJson = j.dump(2) + "\n";
+    writeFileAtomically((fs::path(o.output) / "table.json").string(), r.scoresJson);
 
     // Plots.
     std::vector<std::pair<std::string, Raster>> plots;

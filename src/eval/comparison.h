@@ -38,6 +38,7 @@ struct ComparisonResult {
     std::vector<double> referenceTemporal; ///< [frame - first], NaN for the first
     double referenceTemporalMean = NAN;
     std::string reportPath;
+    std::string scoresJson; ///< the scores as written to table.json
 };
 
 /// Scores every method, writes every output; progress(done, total) per frame.

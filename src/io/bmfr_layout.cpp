@@ -4,6 +4,8 @@
 #include "io/exr.h"
 #include "io/sequence.h"
 #include <bmfr/error.h>
+#include <cmath>
+#include <fmt/format.h>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -236,23 +238,35 @@ std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory) {
     return std::make_unique<BmfrLayoutReader>(directory);
 }
 
+namespace {
+
+/// A C++ float literal that parses back to exactly `v` ("1.0f", "0.25f", "1e-05f"): the authors'
+/// code #includes camera_matrices.h, so "1f" (not a literal) would not compile.
+std::string floatLiteral(float v) {
+    if (!std::isfinite(v)) throw Error("camera_matrices.h: a matrix entry is not finite");
+    std::string s = fmt::format("{}", v);
+    if (s.find_first_of(".e") == std::string::npos) s += ".0";
+    return s + "f";
+}
+
+} // namespace
+
 BmfrLayoutWriter::BmfrLayoutWriter(const std::string& directory, const std::vector<Mat4>& matrices,
                                    const std::vector<std::array<float, 2>>& jitters,
                                    float positionLimitSquared, float normalLimitSquared)
     : dir_(directory) {
     fs::create_directories(directory);
     std::ostringstream h;
-    h.precision(9);
     h << "// Written by bmfr in the original BMFR dataset layout.\n";
-    h << "const float position_limit_squared = " << positionLimitSquared << "f;\n";
-    h << "const float normal_limit_squared = " << normalLimitSquared << "f;\n";
+    h << "const float position_limit_squared = " << floatLiteral(positionLimitSquared) << ";\n";
+    h << "const float normal_limit_squared = " << floatLiteral(normalLimitSquared) << ";\n";
     h << "const float camera_matrices[" << matrices.size() << "][4][4] = {\n";
     for (const Mat4& m : matrices) {
         Mat4 rowVec = transpose(m);
         h << "  {";
         for (int r = 0; r < 4; ++r) {
             h << "{";
-            for (int c = 0; c < 4; ++c) h << rowVec.m[r][c] << (c < 3 ? "f, " : "f");
+            for (int c = 0; c < 4; ++c) h << floatLiteral(rowVec.m[r][c]) << (c < 3 ? ", " : "");
             h << (r < 3 ? "}, " : "}");
         }
         h << "},\n";
@@ -261,7 +275,7 @@ BmfrLayoutWriter::BmfrLayoutWriter(const std::string& directory, const std::vect
     // Inverse of the reader's mapping: entry i holds frame i-1's jitter.
     for (size_t i = 0; i < jitters.size(); ++i) {
         const auto& j = jitters[i == 0 ? 0 : i - 1];
-        h << "  {" << j[0] + 0.5f << "f, " << 0.5f - j[1] << "f},\n";
+        h << "  {" << floatLiteral(j[0] + 0.5f) << ", " << floatLiteral(0.5f - j[1]) << "},\n";
     }
     h << "};\n";
     header_ = h.str();

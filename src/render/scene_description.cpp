@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "render/scene_description.h"
 #include "io/json_fields.h"
 #include <bmfr/error.h>
@@ -87,6 +88,14 @@ std::vector<std::string> presetNames() {
     std::vector<std::string> names;
     for (const auto& [k, v] : presets()) names.push_back(k);
     return names;
+}
+
+double estimatedRenderSeconds(const SceneDescription& d) {
+    const bool builtin = d.mesh.rfind("builtin:", 0) == 0;
+    const double input = builtin ? 0.6e-6 : 1.0e-6, reference = builtin ? 0.37e-6 : 0.65e-6;
+    const double bounces = std::max(1, d.bounces); // the rates were measured at one bounce
+    return double(d.width) * d.height * d.frames * bounces *
+           (input + reference * double(d.referenceSpp));
 }
 
 SceneDescription parseSceneDescription(const json& j, const std::string& baseDir) {
@@ -205,13 +214,20 @@ std::string cameraPoseProblem(const CameraPose& p) {
 }
 
 SceneDescription loadSceneDescription(const std::string& presetOrFile,
-                                      const std::string& scenesDir) {
+                                      const std::string& scenesDir, bool checkMesh) {
     if (auto it = presets().find(presetOrFile); it != presets().end()) {
         std::string text = it->second;
         for (size_t at; (at = text.find("{scenes}")) != std::string::npos;)
             text.replace(at, 8, scenesDir);
         SceneDescription d = parseSceneDescription(json::parse(text), ".");
         d.name = presetOrFile;
+        if (checkMesh && d.mesh.rfind("builtin:", 0) != 0 && !fs::exists(d.mesh))
+            throw Error("preset '" + presetOrFile + "' needs " + d.mesh +
+                        ", which is not there: give the folder holding sponza/ with --scenes DIR" +
+                        (fs::path(scenesDir).is_relative()
+                             ? " (the relative '" + scenesDir + "' is read from " +
+                                   fs::current_path().string() + ")"
+                             : std::string()));
         return d;
     }
     if (!fs::exists(presetOrFile)) {

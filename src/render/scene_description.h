@@ -43,9 +43,16 @@ std::string cameraPoseProblem(const CameraPose& pose);
 
 /// Parses a description; relative mesh paths resolve against `baseDir`. Throws bmfr::Error.
 SceneDescription parseSceneDescription(const nlohmann::json& j, const std::string& baseDir);
-/// Loads a preset by name or a JSON file. `scenesDir` replaces {scenes} in preset mesh paths.
+/// Loads a preset by name or a JSON file. `scenesDir` replaces {scenes} in preset mesh paths;
+/// with `checkMesh` a preset whose mesh is not there is an error that points to --scenes.
 SceneDescription loadSceneDescription(const std::string& presetOrFile,
-                                      const std::string& scenesDir);
+                                      const std::string& scenesDir, bool checkMesh = true);
 std::vector<std::string> presetNames();
+
+/// A rough render time for `d` on a 2-core machine of the CI's kind (AMD EPYC, 2 threads),
+/// seconds: path samples times a per-sample time measured there for the built-in box
+/// (0.37 us) and for meshes such as Sponza (1.0 us per 1-spp input sample with its features,
+/// 0.65 us per reference sample). Scales about inversely with cores.
+double estimatedRenderSeconds(const SceneDescription& d);
 
 } // namespace bmfr::render

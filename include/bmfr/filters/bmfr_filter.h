@@ -31,7 +31,7 @@ struct BmfrSettings : TemporalSettings {
 };
 
 /// Throws bmfr::Error naming the first setting out of its range.
-void validate(const BmfrSettings& settings);
+BMFR_API void validate(const BmfrSettings& settings);
 
 /// The authors' 16 block-grid offsets in pixels, used in order, one per frame.
 inline constexpr int kBlockOffsets[16][2] = {
@@ -39,7 +39,7 @@ inline constexpr int kBlockOffsets[16][2] = {
     {12, 14},   {-8, -16}, {6, 6},   {-2, -2}, {6, -14},  {-16, 12}, {14, -4},  {-6, 4}};
 
 /// Temporal BMFR reconstruction. Not thread-safe; one instance per sequence.
-class BmfrDenoiser final : public Filter {
+class BMFR_API BmfrDenoiser final : public Filter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit BmfrDenoiser(const BmfrSettings& settings = {});

@@ -23,9 +23,9 @@ struct SvgfSettings : TemporalSettings {
 };
 
 /// Throws bmfr::Error naming the first setting out of range.
-void validate(const SvgfSettings& settings);
+BMFR_API void validate(const SvgfSettings& settings);
 
-class SvgfDenoiser final : public Filter {
+class BMFR_API SvgfDenoiser final : public Filter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit SvgfDenoiser(const SvgfSettings& settings = {});

@@ -1,0 +1,168 @@
+// The command line's conventions: exit codes (0 ok, 1 runtime error, 2 usage error), the
+// command list, -q everywhere, -o for every output, errors in flag terms, --version, --json,
+// progress lines in logs, and the original-layout header that the authors' code compiles.
+#include "cli_runner.h"
+#include <bmfr/version.h>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using bmfr::testing::runCli;
+
+const char* const kCommands[] = {"demo", "render", "denoise", "eval",     "ablate",
+                                 "bench", "synth", "tonemap", "settings", "soak"};
+
+fs::path scratch(const std::string& name) {
+    fs::path p =
+        fs::temp_directory_path() / ("bmfr_conv_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(p);
+    return p;
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+TEST(CliConventions, NoCommandOrAnUnknownOneListsTheCommandsAndExits2) {
+    for (const char* args : {"", "frob"}) {
+        const auto r = runCli(args);
+        EXPECT_EQ(r.code, 2) << args;
+        EXPECT_EQ(r.output.rfind("bmfr: ", 0), 0u) << r.output;
+        for (const char* c : kCommands)
+            EXPECT_NE(r.output.find(std::string("  ") + c + " "), std::string::npos) << c;
+    }
+    EXPECT_NE(runCli("frob").output.find("unknown command 'frob'"), std::string::npos);
+}
+
+TEST(CliConventions, UsageErrorsExit2WithThePrefixAndTheUsageLine) {
+    struct Case {
+        const char* args;
+        const char* needle;
+    };
+    for (const Case& c : {Case{"denoise", "usage: bmfr denoise INPUT -o OUTPUT"},
+                          Case{"denoise in", "usage: bmfr denoise INPUT -o OUTPUT"},
+                          Case{"denoise in -o out --no-such-flag", "no-such-flag"},
+                          Case{"bench --frames many", "usage: bmfr bench"},
+                          Case{"render", "--output"},
+                          Case{"eval -o x", "usage: bmfr eval"}}) {
+        const auto r = runCli(c.args);
+        EXPECT_EQ(r.code, 2) << c.args << ": " << r.output; // never CLI11's 104..114
+        EXPECT_EQ(r.output.rfind("bmfr: ", 0), 0u) << c.args << ": " << r.output;
+        EXPECT_NE(r.output.find(c.needle), std::string::npos) << c.args << ": " << r.output;
+    }
+}
+
+TEST(CliConventions, VersionNamesTheVersionCommitAndBackends) {
+    const auto r = runCli("--version");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.output.find(std::string("bmfr ") + BMFR_VERSION + " (commit "), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("backends: reference, cpu"), std::string::npos) << r.output;
+}
+
+TEST(CliConventions, EveryCommandTakesQuietAndWritesWithDashO) {
+    for (const char* c : kCommands) {
+        const auto help = runCli(std::string(c) + " --help");
+        EXPECT_EQ(help.code, 0) << c;
+        EXPECT_NE(help.output.find("-q,--quiet"), std::string::npos) << c;
+        // An output is given with -o everywhere, never as a positional argument.
+        EXPECT_EQ(help.output.find("\n  output "), std::string::npos) << c << help.output;
+    }
+    for (const char* c : {"demo", "render", "denoise", "eval", "ablate", "synth", "tonemap"})
+        EXPECT_NE(runCli(std::string(c) + " --help").output.find("-o,--output"),
+                  std::string::npos)
+            << c;
+}
+
+TEST(CliConventions, DenoiseRefusesToWriteIntoItsInputAndLeavesItAlone) {
+    const fs::path in = scratch("self");
+    ASSERT_EQ(runCli("synth -o " + in.string() + " --width 16 --height 8 --frames 2 -q").code, 0);
+    const std::string before = slurp(in / "sequence.json");
+    const size_t files = size_t(std::distance(fs::directory_iterator(in), {}));
+    for (const std::string& out : {in.string(), in.string() + "/", in.string() + "/."}) {
+        const auto r = runCli("denoise " + in.string() + " -o " + out + " -q");
+        EXPECT_EQ(r.code, 1) << out;
+        EXPECT_NE(r.output.find("is the input folder"), std::string::npos) << r.output;
+    }
+    EXPECT_EQ(slurp(in / "sequence.json"), before);
+    EXPECT_EQ(size_t(std::distance(fs::directory_iterator(in), {})), files);
+    fs::remove_all(in);
+}
+
+TEST(CliConventions, ScoresAreLabelledWithTheFilterAndEvalPrintsJson) {
+    const fs::path in = scratch("json_in"), den = scratch("json_den"), out = scratch("json_out");
+    ASSERT_EQ(runCli("synth -o " + in.string() + " --width 32 --height 24 --frames 3 -q").code, 0);
+    const auto d = runCli("denoise " + in.string() + " -o " + den.string() + " --filter svgf " +
+                          "--no-png --no-flip");
+    ASSERT_EQ(d.code, 0) << d.output;
+    EXPECT_NE(d.output.find("\n  svgf "), std::string::npos) << d.output;
+    EXPECT_EQ(d.output.find("\n  bmfr "), std::string::npos) << d.output;
+    const auto e = runCli("eval -r " + in.string() + " -m noisy -m svgf=" + den.string() + " -o " +
+                              out.string() + " --no-flip --json",
+                          true);
+    ASSERT_EQ(e.code, 0);
+    const nlohmann::json j = nlohmann::json::parse(e.output); // stdout is the JSON alone
+    EXPECT_TRUE(j["methods"].contains("svgf"));
+    EXPECT_LT(j["methods"]["svgf"]["mean"]["rmse"].get<double>(),
+              j["methods"]["noisy"]["mean"]["rmse"].get<double>());
+    EXPECT_EQ(nlohmann::json::parse(slurp(out / "table.json")), j);
+    for (const fs::path& p : {in, den, out}) fs::remove_all(p);
+}
+
+TEST(CliConventions, LogsGetLinesNotCarriageReturnsAndHearFromLongSteps) {
+    const fs::path in = scratch("log_in"), out = scratch("log_out"), r = scratch("log_r");
+    ASSERT_EQ(runCli("synth -o " + in.string() + " --width 32 --height 32 --frames 2 -q").code, 0);
+    // Output is a pipe here, not a terminal.
+    const auto a = runCli("ablate " + in.string() + " -o " + out.string());
+    ASSERT_EQ(a.code, 0) << a.output;
+    EXPECT_EQ(a.output.find('\r'), std::string::npos);
+    EXPECT_NE(a.output.find("ablate: configuration 1 ("), std::string::npos) << a.output;
+    // One render frame that outlasts the heartbeat interval prints a still-working line.
+    setenv("BMFR_PROGRESS_HEARTBEAT_MS", "200", 1);
+    const auto g = runCli("render -o " + r.string() +
+                          " --width 96 --height 64 --frames 1 --reference-spp 512");
+    unsetenv("BMFR_PROGRESS_HEARTBEAT_MS");
+    ASSERT_EQ(g.code, 0) << g.output;
+    EXPECT_NE(g.output.find("render: 0/1, working ("), std::string::npos) << g.output;
+    EXPECT_EQ(g.output.find('\r'), std::string::npos);
+    for (const fs::path& p : {in, out, r}) fs::remove_all(p);
+}
+
+TEST(CliConventions, TheOriginalLayoutHeaderCompilesWithTheSystemCompiler) {
+    const fs::path in = scratch("header");
+    ASSERT_EQ(
+        runCli("synth -o " + in.string() + " --width 16 --height 8 --frames 3 --layout bmfr -q")
+            .code,
+        0);
+    // The authors' code #includes camera_matrices.h; so does this program, which prints a value.
+    std::ofstream(in / "use_header.cpp")
+        << "#include \"camera_matrices.h\"\n#include <cstdio>\n"
+           "int main() { std::printf(\"%zu %g %g\\n\", sizeof(camera_matrices) / "
+           "sizeof(camera_matrices[0]), double(camera_matrices[1][3][3]), "
+           "double(position_limit_squared)); return 0; }\n";
+    const std::string cxx = std::getenv("CXX") ? std::getenv("CXX") : "c++";
+    const std::string exe = (in / "use_header").string();
+    ASSERT_EQ(std::system((cxx + " -std=c++11 -Wall -Werror -o " + exe + " " +
+                           (in / "use_header.cpp").string())
+                              .c_str()),
+              0)
+        << slurp(in / "camera_matrices.h");
+    FILE* p = popen(exe.c_str(), "r");
+    char line[128] = {};
+    ASSERT_TRUE(fgets(line, sizeof line, p));
+    pclose(p);
+    EXPECT_EQ(std::string(line).rfind("3 ", 0), 0u) << line;
+    fs::remove_all(in);
+}
+
+} // namespace
