@@ -2,5 +2,8 @@
 # Configures and builds bmfr (Release) into build/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+# Debian's python3 (with its numpy and pytest) builds and runs the module, not a pyenv shim.
+py=()
+[ -x /usr/bin/python3 ] && py=(-DPython3_EXECUTABLE=/usr/bin/python3)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${py[@]}" > /dev/null
 cmake --build build -j "$(nproc)"

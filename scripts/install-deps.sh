@@ -3,7 +3,8 @@
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libopenexr-dev libimath-dev libtbb-dev libeigen3-dev libcli11-dev
       nlohmann-json3-dev libfmt-dev libstb-dev libgtest-dev libbenchmark-dev libembree-dev
-      libtinygltf-dev libtinyobjloader-dev python3 python3-skimage clang libclang-rt-14-dev)
+      libtinygltf-dev libtinyobjloader-dev python3 python3-skimage clang libclang-rt-14-dev
+      python3-dev python3-numpy python3-pytest pybind11-dev)
 missing=()
 for p in "${pkgs[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

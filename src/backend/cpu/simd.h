@@ -14,6 +14,8 @@ typedef int32_t i8 __attribute__((vector_size(32)));
 // Hot kernels are compiled twice, for x86-64-v3 (AVX2 + FMA) and the baseline, and the loader
 // picks one at run time. Within one machine the choice is fixed, so output bits are repeatable.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// Give cloned functions internal linkage: GCC gives an external clone's resolver default
+// visibility, which a shared libbmfr would export.
 #define BMFR_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
 #define BMFR_SIMD_CLONES

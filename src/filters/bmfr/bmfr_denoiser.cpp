@@ -10,7 +10,7 @@
 
 namespace bmfr {
 
-struct BmfrDenoiser::Impl {
+struct __attribute__((visibility("hidden"))) BmfrDenoiser::Impl {
     BmfrSettings settings;
     std::unique_ptr<BmfrPasses> passes;
     ThreadPool pool;

@@ -17,11 +17,10 @@ inline void axpyFrom(float f, const float* v, float* a, int begin, int end) {
     for (int i = begin; i < end; ++i) a[i] -= f * v[i];
 }
 
-} // namespace
-
 // Compiled for AVX2 and baseline, chosen at run time: the dot and axpy loops double in width.
+// Internal linkage: GCC would give an external clone's resolver default visibility.
 __attribute__((target_clones("avx2", "default"))) int
-solveHouseholder(float* columns, int featureCount, int rows, float* coeffs) {
+solveHouseholderClones(float* columns, int featureCount, int rows, float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
     HouseholderSteps q;
     for (int k = 0; k < M; ++k) {
@@ -37,6 +36,12 @@ solveHouseholder(float* columns, int featureCount, int rows, float* coeffs) {
     }
 
     return q.solve(M, coeffs);
+}
+
+} // namespace
+
+int solveHouseholder(float* columns, int featureCount, int rows, float* coeffs) {
+    return solveHouseholderClones(columns, featureCount, rows, coeffs);
 }
 
 } // namespace bmfr

@@ -8,7 +8,7 @@
 
 namespace bmfr {
 
-struct SvgfDenoiser::Impl {
+struct __attribute__((visibility("hidden"))) SvgfDenoiser::Impl {
     SvgfSettings settings;
     std::unique_ptr<SvgfPasses> passes;
     ThreadPool pool;

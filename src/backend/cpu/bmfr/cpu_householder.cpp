@@ -103,14 +103,9 @@ BMFR_SIMD_INLINE void updateGroup(const float* v, float* a, int count, int rows,
     }
 }
 
-} // namespace
-
-int solveHouseholderFast(float* columns, int featureCount, int rows, float* coeffs) {
-    return solveHouseholderFast(columns, featureCount, rows, rows, coeffs);
-}
-
-BMFR_SIMD_CLONES int solveHouseholderFast(float* columns, int featureCount, int rows, long stride,
-                                          float* coeffs) {
+// Internal linkage: GCC would give an external clone's resolver default visibility.
+BMFR_SIMD_CLONES int solveHouseholderClones(float* columns, int featureCount, int rows,
+                                            long stride, float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
     auto column = [&](int j) { return columns + long(j) * stride; };
     HouseholderSteps q;
@@ -143,6 +138,16 @@ BMFR_SIMD_CLONES int solveHouseholderFast(float* columns, int featureCount, int 
     }
 
     return q.solve(M, coeffs);
+}
+
+} // namespace
+
+int solveHouseholderFast(float* columns, int featureCount, int rows, long stride, float* coeffs) {
+    return solveHouseholderClones(columns, featureCount, rows, stride, coeffs);
+}
+
+int solveHouseholderFast(float* columns, int featureCount, int rows, float* coeffs) {
+    return solveHouseholderClones(columns, featureCount, rows, rows, coeffs);
 }
 
 } // namespace bmfr::cpu

@@ -1,0 +1,76 @@
+#include "arrays.h"
+#include <algorithm>
+#include <cmath>
+
+namespace bmfr::python {
+
+namespace {
+
+[[noreturn]] void bad(const char* name, const std::string& what) {
+    throw py::value_error(std::string(name) + ": " + what);
+}
+
+std::string shapeText(const py::array& a) {
+    std::string s = "(";
+    for (py::ssize_t d = 0; d < a.ndim(); ++d) s += (d ? ", " : "") + std::to_string(a.shape(d));
+    return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+} // namespace
+
+ImageArg imageArg(const py::handle& object, const char* name, int& height, int& width) {
+    if (!py::isinstance<py::array>(object))
+        bad(name, std::string("expected a numpy array, got ") +
+                      std::string(py::str(py::type::of(object).attr("__name__"))));
+    py::array a = py::reinterpret_borrow<py::array>(object);
+    if (!a.dtype().is(py::dtype::of<float>()))
+        bad(name, "dtype " + std::string(py::str(a.dtype())) +
+                      ", expected float32 (use .astype(numpy.float32))");
+    if (a.ndim() != 3 || (a.shape(2) != 3 && a.shape(2) != 4))
+        bad(name, "shape " + shapeText(a) + ", expected (height, width, 3) or (height, width, 4)");
+    if (a.shape(0) <= 0 || a.shape(1) <= 0) bad(name, "empty image " + shapeText(a));
+    if (a.shape(0) > 65536 || a.shape(1) > 65536) bad(name, "image " + shapeText(a) + " too large");
+    if (height < 0) height = int(a.shape(0)), width = int(a.shape(1));
+    if (a.shape(0) != height || a.shape(1) != width)
+        bad(name, "shape " + shapeText(a) + ", the colour is " + std::to_string(height) + "x" +
+                      std::to_string(width));
+    const int channels = int(a.shape(2));
+    const py::ssize_t f = sizeof(float);
+    // Pixels packed within rows (rows may be padded): a view without a copy.
+    const bool inPlace = a.strides(2) == f && a.strides(1) == channels * f &&
+                         a.strides(0) >= a.shape(1) * channels * f && a.strides(0) % f == 0;
+    if (!inPlace)
+        a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+    ImageView v;
+    v.data = static_cast<const float*>(a.data());
+    v.width = width;
+    v.height = height;
+    v.channels = channels;
+    v.rowStride = long(a.strides(0) / f);
+    return {a, v};
+}
+
+Mat4 matrixArg(const py::handle& object, const char* name) {
+    py::array_t<float, py::array::c_style | py::array::forcecast> a;
+    try {
+        a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(object);
+    } catch (const py::error_already_set&) {
+    }
+    if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+        bad(name, "expected a 4x4 matrix of numbers");
+    Mat4 m;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) m.m[r][c] = a.at(r, c);
+    return m;
+}
+
+py::array_t<float> toArray(const ImageView& v) {
+    py::array_t<float> out({py::ssize_t(v.height), py::ssize_t(v.width), py::ssize_t(v.channels)});
+    float* dst = out.mutable_data();
+    const long row = long(v.width) * v.channels;
+    for (int y = 0; y < v.height; ++y)
+        std::copy(v.data + y * v.stride(), v.data + y * v.stride() + row, dst + y * row);
+    return out;
+}
+
+} // namespace bmfr::python

@@ -1,0 +1,259 @@
+// The Python module `bmfr`: every filter of the library on numpy arrays, with the GIL released
+// while a frame is denoised, and the tools' readers for sequences (either layout) and EXR files.
+#include "arrays.h"
+#include "io/exr.h"
+#include "io/sequence.h"
+#include <bmfr/bmfr.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <algorithm>
+
+namespace py = pybind11;
+
+namespace bmfr::python {
+
+namespace {
+
+/// The settings-table key for a Python keyword: the key itself ("blockSize") or its flag with
+/// underscores ("block_size" for --block-size).
+std::string settingKey(const std::string& filter, const std::string& name) {
+    std::string flag = name;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    for (const SettingDoc& d : filterSettings(filter))
+        if (d.key == name || d.flag == flag) return d.key;
+    throw py::value_error(name + ": not a setting of the " + filter +
+                          " filter (see bmfr.settings(\"" + filter + "\"))");
+}
+
+std::string pythonName(const std::string& key) {
+    for (const std::string& f : filterNames())
+        for (const SettingDoc& d : filterSettings(f))
+            if (d.key == key) {
+                std::string n = d.flag;
+                std::replace(n.begin(), n.end(), '-', '_');
+                return n;
+            }
+    return key;
+}
+
+std::string settingText(const py::handle& v) {
+    if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
+    if (py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) || py::isinstance<py::str>(v))
+        return std::string(py::str(v));
+    throw py::value_error("expected a bool, number or string, got " +
+                          std::string(py::str(py::type::of(v).attr("__name__"))));
+}
+
+class PyFilter {
+  public:
+    PyFilter(const std::string& name, const std::string& backend, const py::kwargs& settings) {
+        const std::vector<std::string> names = filterNames();
+        if (std::find(names.begin(), names.end(), name) == names.end())
+            throw py::value_error("name: unknown filter '" + name + "'");
+        SettingValues values{{"backend", backend}};
+        for (const auto& [k, v] : settings) {
+            const std::string key = settingKey(name, std::string(py::str(k)));
+            try {
+                values.push_back({key, settingText(v)});
+            } catch (const py::value_error& e) {
+                throw py::value_error(std::string(py::str(k)) + ": " + e.what());
+            }
+        }
+        try {
+            filter_ = makeFilter(name, values);
+        } catch (const SettingError& e) {
+            throw py::value_error(pythonName(e.key()) + " " + e.value() + " " + e.problem());
+        } catch (const Error& e) {
+            throw py::value_error(e.what());
+        }
+    }
+
+    py::array_t<float> denoise(const py::handle& color, const py::handle& albedo,
+                               const py::handle& normal, const py::handle& position,
+                               const py::handle& viewProjection, std::pair<float, float> jitter,
+                               const py::handle& emission, bool reset) {
+        int h = -1, w = -1;
+        const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
+                       n = imageArg(normal, "normal", h, w),
+                       p = imageArg(position, "position", h, w);
+        ImageArg e;
+        FrameInput in;
+        if (!emission.is_none()) {
+            e = imageArg(emission, "emission", h, w);
+            in.emission = e.view;
+        }
+        in.color = c.view, in.albedo = a.view, in.normal = n.view, in.position = p.view;
+        in.viewProjection = matrixArg(viewProjection, "view_projection");
+        in.jitter[0] = jitter.first, in.jitter[1] = jitter.second;
+        in.reset = reset;
+        py::array_t<float> out({py::ssize_t(h), py::ssize_t(w), py::ssize_t(3)});
+        const MutableImageView target{out.mutable_data(), w, h, 3};
+        try {
+            py::gil_scoped_release unlocked; // other Python threads run during the frame
+            filter_->denoise(in, target);
+        } catch (const Error& err) {
+            throw py::value_error(err.what());
+        }
+        return out;
+    }
+
+    py::dict stats() const {
+        const FrameStats& s = filter_->lastStats();
+        py::dict stages;
+        for (int k = 0; k < s.times.count; ++k) stages[s.times.name[k]] = s.times.ms[k];
+        py::dict d;
+        d["stage_ms"] = stages;
+        d["total_ms"] = s.times.total;
+        d["non_finite_inputs"] = s.nonFiniteInputs;
+        d["discarded_pixels"] = s.discardedPixels;
+        return d;
+    }
+
+    void reset() { filter_->reset(); }
+    std::string name() const { return filter_->name(); }
+
+  private:
+    std::unique_ptr<Filter> filter_;
+};
+
+py::dict sequenceInfo(const SequenceInfo& i) {
+    py::dict d;
+    d["layout"] = i.layout;
+    d["directory"] = i.directory;
+    d["frame_count"] = i.frameCount;
+    d["width"] = i.width;
+    d["height"] = i.height;
+    d["color_is_demodulated"] = i.colorIsDemodulated;
+    d["has_reference"] = i.hasReference;
+    d["position_limit_squared"] =
+        i.positionLimitSquared ? py::object(py::float_(*i.positionLimitSquared)) : py::none();
+    d["normal_limit_squared"] =
+        i.normalLimitSquared ? py::object(py::float_(*i.normalLimitSquared)) : py::none();
+    d["extras"] = i.extraNames;
+    return d;
+}
+
+py::array_t<float> matrixArray(const Mat4& m) {
+    py::array_t<float> a({4, 4});
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) a.mutable_at(r, c) = m.m[r][c];
+    return a;
+}
+
+/// Frames of a sequence, loaded one at a time as dicts of arrays.
+class SequenceIterator {
+  public:
+    explicit SequenceIterator(const std::string& path) : reader_(open(path)) {}
+    py::dict next() {
+        if (index_ >= reader_->info().frameCount) throw py::stop_iteration();
+        try {
+            py::gil_scoped_release unlocked;
+            reader_->load(index_, frame_);
+        } catch (const Error& e) {
+            throw py::value_error(e.what());
+        }
+        py::dict d;
+        d["index"] = index_++;
+        d["color"] = toArray(view(frame_.color));
+        d["albedo"] = toArray(view(frame_.albedo));
+        d["normal"] = toArray(view(frame_.normal));
+        d["position"] = toArray(view(frame_.position));
+        d["view_projection"] = matrixArray(frame_.viewProjection);
+        d["jitter"] = py::make_tuple(frame_.jitter[0], frame_.jitter[1]);
+        if (frame_.emission.width) d["emission"] = toArray(view(frame_.emission));
+        if (frame_.reference.width) d["reference"] = toArray(view(frame_.reference));
+        py::list extras;
+        for (const ImageF& e : frame_.extras) extras.append(toArray(view(e)));
+        d["extras"] = extras;
+        return d;
+    }
+    const SequenceInfo& info() const { return reader_->info(); }
+    int size() const { return reader_->info().frameCount; }
+
+    static std::unique_ptr<SequenceReader> open(const std::string& path) {
+        try {
+            return SequenceReader::open(path);
+        } catch (const Error& e) {
+            throw py::value_error(e.what());
+        }
+    }
+
+  private:
+    std::unique_ptr<SequenceReader> reader_;
+    FrameData frame_;
+    int index_ = 0;
+};
+
+} // namespace
+
+} // namespace bmfr::python
+
+PYBIND11_MODULE(bmfr, m) {
+    using namespace bmfr;
+    using namespace bmfr::python;
+    m.doc() = "bmfr: real-time reconstruction of 1-spp path-traced frame sequences (BMFR, SVGF)";
+    m.attr("__version__") = BMFR_VERSION;
+    // Every library error (bad input, unreadable files) is a bmfr.Error, a ValueError.
+    py::register_exception<Error>(m, "Error", PyExc_ValueError);
+
+    py::class_<PyFilter>(m, "Filter", R"(A temporal reconstruction filter, one per sequence.
+
+Filter(name="bmfr", backend="cpu", **settings): settings by their flag name with underscores
+(block_size=32, taa=False) or their key (blockSize=32); bmfr.settings(name) lists them.)")
+        .def(py::init<const std::string&, const std::string&, const py::kwargs&>(),
+             py::arg("name") = "bmfr", py::arg("backend") = "cpu")
+        .def("denoise", &PyFilter::denoise, py::arg("color"), py::arg("albedo"), py::arg("normal"),
+             py::arg("position"), py::arg("view_projection"),
+             py::arg("jitter") = std::pair<float, float>(0.0f, 0.0f),
+             py::arg("emission") = py::none(), py::arg("reset") = false,
+             R"(Denoises one frame; returns a new (height, width, 3) float32 array.
+
+Images are float32 (height, width, 3) or (height, width, 4) arrays, viewed without a copy when
+their pixels are packed. view_projection is this frame's 4x4 world-to-clip matrix (row-major,
+column vectors, NDC y down); jitter the sub-pixel offset of the primary rays, pixels.)")
+        .def("reset", &PyFilter::reset, "Drops all history (a camera cut).")
+        .def_property_readonly("stats", &PyFilter::stats,
+                               "Facts about the last frame: stage_ms, total_ms, "
+                               "non_finite_inputs, discarded_pixels.")
+        .def_property_readonly("name", &PyFilter::name);
+
+    py::class_<SequenceIterator>(m, "Sequence")
+        .def("__iter__", [](SequenceIterator& s) -> SequenceIterator& { return s; })
+        .def("__next__", &SequenceIterator::next)
+        .def("__len__", &SequenceIterator::size)
+        .def_property_readonly("info",
+                               [](const SequenceIterator& s) { return sequenceInfo(s.info()); });
+
+    m.def(
+        "read_sequence", [](const std::string& path) { return SequenceIterator(path); },
+        py::arg("path"),
+        "The frames of a sequence folder (this project's sequence.json or the original BMFR "
+        "layout), one dict of arrays per frame; .info describes the sequence.");
+    m.def(
+        "read_exr",
+        [](const std::string& path, int channels) {
+            try {
+                return toArray(view(readExr(path, channels)));
+            } catch (const Error& e) {
+                throw py::value_error(e.what());
+            }
+        },
+        py::arg("path"), py::arg("channels") = 3, "An EXR file as a (height, width, channels) array.");
+    m.def("filter_names", &filterNames, "The filters this build holds.");
+    m.def("backends", &compiledBackends, "The backends this build holds.");
+    m.def(
+        "settings",
+        [](const std::string& name) {
+            py::list rows;
+            for (const SettingDoc& d : filterSettings(name)) {
+                std::string py = d.flag;
+                std::replace(py.begin(), py.end(), '-', '_');
+                rows.append(py::dict(py::arg("name") = py, py::arg("key") = d.key,
+                                     py::arg("unit") = d.unit, py::arg("range") = d.range,
+                                     py::arg("default") = d.defaultValue,
+                                     py::arg("help") = d.help));
+            }
+            return rows;
+        },
+        py::arg("name") = "bmfr", "A filter's settings: name, key, unit, range, default, help.");
+}

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Installs a build into a scratch prefix and builds examples/minimal against it, once through
+# find_package(bmfr) and once through pkg-config, and runs both programs.
+#   consumer_test.sh BUILD_DIR SOURCE_DIR SCRATCH [--shared]
+# With --shared, BUILD_DIR is configured as a shared-library build of the library alone first,
+# and the library must export the public API only.
+set -euo pipefail
+build=$1 src=$2 scratch=$3 mode=${4:-}
+rm -rf "$scratch"
+mkdir -p "$scratch"
+prefix=$scratch/prefix
+if [ "$mode" = --shared ]; then
+    cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON \
+          -DBMFR_BUILD_TESTS=OFF -DBMFR_PYTHON=OFF > "$scratch/configure.log"
+    cmake --build "$build" --target bmfr_library -j "$(nproc)" > "$scratch/build.log"
+    cmake --install "$build" --prefix "$prefix" --component library > /dev/null
+else
+    cmake --install "$build" --prefix "$prefix" > /dev/null
+fi
+
+# 1. CMake: find_package(bmfr 0.2 REQUIRED) and bmfr::bmfr.
+cmake -S "$src/examples/minimal" -B "$scratch/cmake-build" -DCMAKE_PREFIX_PATH="$prefix" \
+      -DCMAKE_BUILD_TYPE=Release > "$scratch/consumer-configure.log"
+cmake --build "$scratch/cmake-build" > "$scratch/consumer-build.log"
+LD_LIBRARY_PATH="$prefix/lib" "$scratch/cmake-build/denoise_one_frame"
+
+# 2. pkg-config, with nothing but the installed prefix on the include and library paths.
+pcdir=$(dirname "$(find "$prefix" -name bmfr.pc | head -1)")
+flags=$(PKG_CONFIG_PATH="$pcdir" pkg-config --cflags --libs bmfr)
+c++ -o "$scratch/pc-example" "$src/examples/minimal/denoise_one_frame.cpp" $flags
+LD_LIBRARY_PATH="$prefix/lib" "$scratch/pc-example"
+echo "pkg-config: $(PKG_CONFIG_PATH="$pcdir" pkg-config --modversion bmfr)"
+
+# The installed headers stand alone: nothing under include/ reaches into src/.
+if grep -rn '#include "' "$prefix/include/bmfr"; then
+    echo "installed headers include private files" >&2
+    exit 1
+fi
+
+if [ "$mode" = --shared ]; then
+    so=$(find "$prefix" -name 'libbmfr.so.*' | head -1)
+    [ -n "$so" ] || { echo "no libbmfr.so installed" >&2; exit 1; }
+    # Exported symbols: the public API (namespace bmfr, its typeinfo and vtables) and nothing of
+    # the internals (ThreadPool, the passes, the kernels live in bmfr:: too, so name them).
+    nm -D --defined-only -C "$so" | awk '{ $1 = ""; $2 = ""; print }' | sed 's/^ *//' > "$scratch/exports.txt"
+    echo "exported symbols: $(wc -l < "$scratch/exports.txt")"
+    if grep -v -E '^(bmfr::|typeinfo (name )?for bmfr::|vtable for bmfr::|_init|_fini)' \
+            "$scratch/exports.txt" | grep -q .; then
+        echo "symbols outside the public API are exported:" >&2
+        grep -v -E '^(bmfr::|typeinfo (name )?for bmfr::|vtable for bmfr::|_init|_fini)' \
+            "$scratch/exports.txt" | head -20 >&2
+        exit 1
+    fi
+    if grep -E 'ThreadPool|Passes|Staging|TemporalHistory|Householder|Impl::|cpu::|reference::|detail::' "$scratch/exports.txt"; then
+        echo "internal symbols are exported" >&2
+        exit 1
+    fi
+fi
+echo "consumer test passed"
