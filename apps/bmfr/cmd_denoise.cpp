@@ -17,6 +17,7 @@
 #include <fmt/core.h>
 #include <fmt/format.h>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -41,6 +42,14 @@ int runDenoise(const DenoiseJob& job) {
         throw Error("-o " + job.output + " is the input folder " + job.input +
                     "; refusing to write the results among the inputs (give another folder)");
     auto reader = SequenceReader::open(job.input);
+    std::map<std::string, std::string> layers;
+    for (const std::string& c : job.channels) {
+        const size_t eq = c.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == c.size())
+            throw Error("--channel '" + c + "': expected BUFFER=LAYER, as albedo=ViewLayer.DiffCol");
+        layers[c.substr(0, eq)] = c.substr(eq + 1);
+    }
+    reader->setLayerOverrides(layers);
     const SequenceInfo& info = reader->info();
     const SettingValues values = job.options.resolve(
         job.filter, {info.positionLimitSquared, info.normalLimitSquared, info.colorIsDemodulated});
@@ -231,6 +240,10 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--sample-fraction", job->sampleFraction,
                     "simulate fewer than 1 spp: keep this fraction of pixels per frame (0, 1]")
         ->default_val(1.0);
+    cmd->add_option("--channel", job->channels,
+                    "BUFFER=LAYER: read a buffer (color, albedo, normal, position, emission, "
+                    "reference) from this layer of multilayer EXRs, as "
+                    "albedo=ViewLayer.DiffCol; repeatable");
     job->options.addTo(*cmd, filterNames());
     cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });
 }

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace bmfr::app {
 
@@ -14,6 +15,7 @@ struct DenoiseJob {
     bool quiet = false, debug = false, png = true, flip = true;
     std::string filter = "bmfr"; ///< a name from filterNames()
     float sampleFraction = 1.0f; ///< < 1 simulates fewer than 1 spp with a per-frame pixel mask
+    std::vector<std::string> channels; ///< BUFFER=LAYER for multilayer EXR inputs
     FilterOptions options;
 };
 

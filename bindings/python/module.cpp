@@ -143,7 +143,10 @@ py::array_t<float> matrixArray(const Mat4& m) {
 /// Frames of a sequence, loaded one at a time as dicts of arrays.
 class SequenceIterator {
   public:
-    explicit SequenceIterator(const std::string& path) : reader_(open(path)) {}
+    SequenceIterator(const std::string& path, const std::map<std::string, std::string>& layers)
+        : reader_(open(path)) {
+        reader_->setLayerOverrides(layers);
+    }
     py::dict next() {
         if (index_ >= reader_->info().frameCount) throw py::stop_iteration();
         try {
@@ -225,10 +228,14 @@ column vectors, NDC y down); jitter the sub-pixel offset of the primary rays, pi
                                [](const SequenceIterator& s) { return sequenceInfo(s.info()); });
 
     m.def(
-        "read_sequence", [](const std::string& path) { return SequenceIterator(path); },
-        py::arg("path"),
+        "read_sequence",
+        [](const std::string& path, const std::map<std::string, std::string>& channels) {
+            return SequenceIterator(path, channels);
+        },
+        py::arg("path"), py::arg("channels") = std::map<std::string, std::string>(),
         "The frames of a sequence folder (this project's sequence.json or the original BMFR "
-        "layout), one dict of arrays per frame; .info describes the sequence.");
+        "layout), one dict of arrays per frame; .info describes the sequence. channels maps a "
+        "buffer to a multilayer EXR layer, as {'albedo': 'ViewLayer.DiffCol'}.");
     m.def(
         "read_exr",
         [](const std::string& path, int channels) {

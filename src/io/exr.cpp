@@ -5,9 +5,13 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfInputPart.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfThreading.h>
 #include <bmfr/error.h>
+#include <algorithm>
 #include <filesystem>
 #include <thread>
 #include <vector>
@@ -15,64 +19,147 @@
 namespace bmfr {
 
 
-ImageF readExr(const std::string& path, int channels) {
-    if (channels < 1 || channels > 3)
-        throw Error("readExr: " + std::to_string(channels) + " channels asked of " + path);
+namespace {
+
+/// One channel of a file: which part holds it, its name in that part, its full name.
+struct ChannelEntry {
+    int part;
+    std::string name, fullName;
+};
+
+void checkReadable(const std::string& path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw Error("missing file: " + path);
     const auto fileBytes = std::filesystem::file_size(path, ec);
     if (ec) throw Error("unreadable EXR " + path + ": " + ec.message());
     precheckExr(path, fileBytes); // before OpenEXR sizes anything from the header
+}
+
+std::vector<ChannelEntry> listChannels(Imf::MultiPartInputFile& file) {
+    std::vector<ChannelEntry> list;
+    for (int p = 0; p < file.parts(); ++p) {
+        const Imf::Header& h = file.header(p);
+        const std::string prefix = file.parts() > 1 && h.hasName() ? h.name() + "." : "";
+        for (auto it = h.channels().begin(); it != h.channels().end(); ++it) {
+            const std::string n = it.name();
+            list.push_back({p, n, n.rfind(prefix, 0) == 0 ? n : prefix + n});
+        }
+    }
+    return list;
+}
+
+std::string joined(const std::vector<ChannelEntry>& list) {
+    std::string s;
+    for (const ChannelEntry& c : list) s += (s.empty() ? "" : ",") + c.fullName;
+    return s;
+}
+
+/// The channels that fill `channels` slots from `layer` (empty: the unprefixed channels).
+std::vector<const ChannelEntry*> pickChannels(const std::vector<ChannelEntry>& list, int channels,
+                                              const std::string& layer) {
+    auto find = [&](const std::string& suffix) -> const ChannelEntry* {
+        const std::string want = layer.empty() ? suffix : layer + "." + suffix;
+        for (const ChannelEntry& c : list)
+            if (c.fullName == want) return &c;
+        return nullptr;
+    };
+    auto all = [&](std::initializer_list<const char*> names) {
+        std::vector<const ChannelEntry*> r;
+        for (const char* n : names) {
+            const ChannelEntry* c = find(n);
+            if (!c) return std::vector<const ChannelEntry*>();
+            r.push_back(c);
+        }
+        return r;
+    };
+    std::vector<const ChannelEntry*> r;
+    if (channels == 3) {
+        r = all({"R", "G", "B"});
+        if (r.empty()) r = all({"X", "Y", "Z"});
+    } else if (channels == 2) {
+        r = all({"R", "G"});
+        if (r.empty()) r = all({"X", "Y"});
+    } else {
+        for (const char* n : {"Y", "R", "V", "Z"})
+            if (r.empty()) r = all({n});
+        if (r.empty() && !layer.empty())
+            for (const ChannelEntry& c : list)
+                if (c.fullName == layer) r = {&c};
+        if (r.empty() && layer.empty() && list.size() == 1) r = {&list[0]};
+    }
+    return r;
+}
+
+} // namespace
+
+std::vector<std::string> exrChannelNames(const std::string& path) {
+    checkReadable(path);
     try {
-        Imf::InputFile file(path.c_str());
-        const Imath::Box2i dw = file.header().dataWindow();
+        Imf::MultiPartInputFile file(path.c_str());
+        std::vector<std::string> names;
+        for (const ChannelEntry& c : listChannels(file)) names.push_back(c.fullName);
+        return names;
+    } catch (const std::exception& e) {
+        throw Error("unreadable EXR " + path + ": " + e.what());
+    }
+}
+
+std::string findExrLayer(const std::string& path, const std::string& pass) {
+    std::vector<std::string> layers;
+    for (const std::string& n : exrChannelNames(path)) {
+        const size_t dot = n.rfind('.');
+        if (dot == std::string::npos) continue;
+        const std::string layer = n.substr(0, dot);
+        const bool match = layer == pass || (layer.size() > pass.size() &&
+                                             layer.compare(layer.size() - pass.size() - 1,
+                                                           std::string::npos, "." + pass) == 0);
+        if (match && std::find(layers.begin(), layers.end(), layer) == layers.end())
+            layers.push_back(layer);
+    }
+    if (layers.size() > 1)
+        throw Error(path + ": the pass '" + pass + "' is in several layers (" + layers[0] + ", " +
+                    layers[1] + "); choose one with --channel");
+    return layers.empty() ? std::string() : layers[0];
+}
+
+ImageF readExr(const std::string& path, int channels, const std::string& layer) {
+    if (channels < 1 || channels > 3)
+        throw Error("readExr: " + std::to_string(channels) + " channels asked of " + path);
+    checkReadable(path);
+    try {
+        Imf::MultiPartInputFile file(path.c_str());
+        const std::vector<ChannelEntry> list = listChannels(file);
+        const std::vector<const ChannelEntry*> pick = pickChannels(list, channels, layer);
+        if (pick.empty()) {
+            const std::string what = layer.empty() ? "" : " in layer '" + layer + "'";
+            throw Error(path + ": has channels [" + joined(list) + "], expected " +
+                        (channels == 3   ? "R,G,B (or X,Y,Z)"
+                         : channels == 2 ? "R,G (or X,Y)"
+                                         : "Y, R, V, Z or a single channel") +
+                        what);
+        }
+        const int part = pick[0]->part;
+        for (const ChannelEntry* c : pick)
+            if (c->part != part)
+                throw Error(path + ": the channels of layer '" + layer + "' span several parts");
+        if (file.header(part).type() != Imf::SCANLINEIMAGE &&
+            file.header(part).type() != Imf::TILEDIMAGE)
+            throw Error(path + ": deep images are not supported");
+        const Imath::Box2i dw = file.header(part).dataWindow();
         const long w = long(dw.max.x) - dw.min.x + 1, h = long(dw.max.y) - dw.min.y + 1;
         if (w <= 0 || h <= 0) throw Error(path + ": zero-size image");
-        if (!file.isComplete())
+        if (!file.partComplete(part))
             throw Error(path + ": truncated or incomplete EXR (pixel data missing)");
-        std::vector<std::string> names;
-        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
-            names.emplace_back(it.name());
-        auto has = [&](const char* n) {
-            for (auto& s : names)
-                if (s == n) return true;
-            return false;
-        };
-        std::vector<std::string> pick;
-        if (channels == 3 && has("R") && has("G") && has("B"))
-            pick = {"R", "G", "B"};
-        else if (channels == 2 && has("R") && has("G"))
-            pick = {"R", "G"};
-        else if (channels == 1 && has("Y"))
-            pick = {"Y"};
-        else if (channels == 1 && has("R"))
-            pick = {"R"};
-        else if (channels == 1 && names.size() == 1)
-            pick = {names[0]};
-        else {
-            std::string list;
-            for (auto& s : names) list += (list.empty() ? "" : ",") + s;
-            throw Error(path + ": has channels [" + list + "], expected " +
-                        (channels == 3   ? "R,G,B"
-                         : channels == 2 ? "R,G"
-                                         : "Y or a single channel"));
-        }
         ImageF img(int(w), int(h), channels);
         Imf::FrameBuffer fb;
         const size_t xs = sizeof(float) * channels, ys = xs * size_t(w);
         char* base =
             reinterpret_cast<char*>(img.data()) - dw.min.x * long(xs) - dw.min.y * long(ys);
-        // The same source channel may feed several slots: read the first, copy afterwards.
-        fb.insert(pick[0], Imf::Slice(Imf::FLOAT, base, xs, ys));
-        for (int c = 1; c < channels; ++c)
-            if (pick[c] != pick[0])
-                fb.insert(pick[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
-        file.setFrameBuffer(fb);
-        file.readPixels(dw.min.y, dw.max.y);
-        for (int c = 1; c < channels; ++c)
-            if (pick[c] == pick[0])
-                for (long i = 0; i < w * h; ++i)
-                    img.data()[i * channels + c] = img.data()[i * channels];
+        for (int c = 0; c < channels; ++c)
+            fb.insert(pick[c]->name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+        Imf::InputPart in(file, part);
+        in.setFrameBuffer(fb);
+        in.readPixels(dw.min.y, dw.max.y);
         return img;
     } catch (const Error&) {
         throw;

@@ -2,13 +2,27 @@
 #pragma once
 #include "core/image.h"
 #include <string>
+#include <vector>
 
 namespace bmfr {
 
-/// Reads an EXR as `channels` floats per pixel (3: R,G,B, or a single channel replicated;
-/// 2: R,G; 1: Y, R or the only channel). Throws bmfr::Error naming the file when it is missing,
+/// Reads an EXR as `channels` floats per pixel (3: R,G,B; 2: R,G; 1: Y, R or the only
+/// channel; never invented from fewer). Throws bmfr::Error naming the file when it is missing,
 /// unreadable, empty or lacks the channels.
-ImageF readExr(const std::string& path, int channels);
+///
+/// Multilayer and multi-part files (as Blender writes them): `layer` names the channel set, as
+/// in "ViewLayer.Denoising Albedo" for the channels "ViewLayer.Denoising Albedo.R/G/B"; X,Y,Z
+/// stand in for R,G,B and V or Z for a single channel. In a multi-part file a part's name is
+/// the layer prefix of its channels.
+ImageF readExr(const std::string& path, int channels, const std::string& layer = "");
+
+/// Every channel of an EXR by its full name (part name prefixed in multi-part files).
+std::vector<std::string> exrChannelNames(const std::string& path);
+
+/// The layer of `path` that holds `pass` (a name such as "Combined" or "Denoising Albedo"):
+/// a channel set named `pass` or ending in "." + pass. Empty when there is none; an error when
+/// several view layers hold it (say which with a layer name).
+std::string findExrLayer(const std::string& path, const std::string& pass);
 
 /// Writes 1, 2 or 3-channel float images (Y / R,G / R,G,B) atomically (temp file + rename).
 void writeExr(const std::string& path, const ImageF& image);

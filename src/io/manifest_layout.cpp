@@ -6,7 +6,9 @@
 #include "io/sequence.h"
 #include <bmfr/error.h>
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -30,7 +32,8 @@ class ManifestReader : public SequenceReader {
                 throw Error(mp.string() + ": \"format\" is not \"bmfr-sequence\"");
             requireKnownKeys(manifest_,
                              {"format", "version", "width", "height", "color_is_demodulated",
-                              "position_limit_squared", "normal_limit_squared", "extras", "frames"},
+                              "position_limit_squared", "normal_limit_squared", "extras", "layers",
+                              "frames", "generator"},
                              mp.string());
             for (size_t k = 0; k < manifest_.at("frames").size(); ++k)
                 requireKnownKeys(manifest_["frames"][k],
@@ -51,6 +54,13 @@ class ManifestReader : public SequenceReader {
                 info_.normalLimitSquared = manifest_["normal_limit_squared"].get<float>();
             if (manifest_.contains("extras"))
                 info_.extraNames = manifest_["extras"].get<std::vector<std::string>>();
+            if (manifest_.contains("layers")) {
+                for (const auto& [buffer, layer] : manifest_["layers"].items())
+                    layers_[buffer] = layer.get<std::string>();
+                requireKnownKeys(manifest_["layers"],
+                                 {"color", "albedo", "normal", "position", "emission", "reference"},
+                                 mp.string() + " \"layers\"");
+            }
             info_.frameCount = int(manifest_.at("frames").size());
             if (info_.frameCount == 0) throw Error(mp.string() + ": no frames");
             info_.hasReference = manifest_["frames"][0].contains("reference");
@@ -73,13 +83,11 @@ class ManifestReader : public SequenceReader {
         if (index < 0 || index >= info_.frameCount) throw Error(where + ": out of range");
         try {
             const json& j = manifest_["frames"][size_t(index)];
-            auto file = [&](const char* key) {
-                return (fs::path(info_.directory) / j.at(key).get<std::string>()).string();
-            };
-            f.color = readExr(file("color"), 3);
-            f.albedo = readExr(file("albedo"), 3);
-            f.normal = readExr(file("normal"), 3);
-            f.position = readExr(file("position"), 3);
+            auto file = [&](const char* key) { return readBuffer(j, key, where); };
+            f.color = file("color");
+            f.albedo = file("albedo");
+            f.normal = file("normal");
+            f.position = file("position");
             f.extras.clear();
             if (j.contains("extras")) {
                 for (const auto& e : j["extras"])
@@ -90,8 +98,8 @@ class ManifestReader : public SequenceReader {
                                 " extra buffers, the sequence names " +
                                 std::to_string(info_.extraNames.size()));
             }
-            f.reference = info_.hasReference ? readExr(file("reference"), 3) : ImageF();
-            f.emission = j.contains("emission") ? readExr(file("emission"), 3) : ImageF();
+            f.reference = info_.hasReference ? file("reference") : ImageF();
+            f.emission = j.contains("emission") ? file("emission") : ImageF();
             f.aovs.clear();
             if (loadAovs_ && j.contains("aovs"))
                 for (const json& entry : j["aovs"]) {
@@ -121,6 +129,45 @@ class ManifestReader : public SequenceReader {
 
   private:
     json manifest_;
+    std::map<std::string, std::string> layers_; ///< the sequence's own "layers"
+
+    /// A 3-channel buffer: a file name, or {"file", "layer"}; the layer comes from --channel,
+    /// then the entry, then the sequence's "layers", then kDefaultPasses when the file has
+    /// only layered channels.
+    ImageF readBuffer(const json& frame, const char* key, const std::string& where) const {
+        const json& entry = frame.at(key);
+        std::string name, layer;
+        if (entry.is_object()) {
+            requireKnownKeys(entry, {"file", "layer"}, where + " \"" + key + "\"");
+            name = entry.at("file").get<std::string>();
+            layer = entry.value("layer", "");
+        } else {
+            name = entry.get<std::string>();
+        }
+        const std::string path = (fs::path(info_.directory) / name).string();
+        if (auto it = layerOverrides_.find(key); it != layerOverrides_.end())
+            layer = it->second;
+        else if (auto it2 = layers_.find(key); layer.empty() && it2 != layers_.end())
+            layer = it2->second;
+        if (layer.empty()) {
+            const std::vector<std::string> names = exrChannelNames(path);
+            const bool plain = std::any_of(names.begin(), names.end(), [](const std::string& n) {
+                return n.find('.') == std::string::npos;
+            });
+            if (!plain) {
+                for (const DefaultPass& d : kDefaultPasses)
+                    if (d.buffer == std::string(key))
+                        for (const char* pass : d.passes)
+                            if (layer.empty()) layer = findExrLayer(path, pass);
+                if (layer.empty())
+                    throw Error(path + ": " + key +
+                                ": no plain channels and none of the default passes; name the "
+                                "layer with --channel " +
+                                key + "=LAYER");
+            }
+        }
+        return readExr(path, 3, layer);
+    }
 };
 
 } // namespace

@@ -20,6 +20,30 @@ FrameInput FrameData::input() const {
     return in;
 }
 
+const std::vector<DefaultPass> kDefaultPasses = {
+    {"color", {"Combined"}},
+    {"albedo", {"Denoising Albedo", "DiffCol"}},
+    {"normal", {"Normal", "Denoising Normal"}},
+    {"position", {"Position"}},
+    {"emission", {"Emit"}},
+    {"reference", {"Combined"}},
+};
+
+void SequenceReader::setLayerOverrides(const std::map<std::string, std::string>& layers) {
+    for (const auto& [buffer, layer] : layers) {
+        bool known = false;
+        for (const DefaultPass& d : kDefaultPasses) known = known || buffer == d.buffer;
+        if (!known)
+            throw Error("--channel " + buffer + "=" + layer +
+                        ": unknown buffer (color, albedo, normal, position, emission or "
+                        "reference)");
+    }
+    if (!layers.empty() && info_.layout != "manifest")
+        throw Error("--channel: the " + info_.layout +
+                    " layout has no multilayer files; layers apply to sequence.json folders");
+    layerOverrides_ = layers;
+}
+
 void SequenceReader::checkFrame(int index, const FrameData& f) const {
     auto check = [&](const ImageF& img, const char* name) {
         if (img.width != info_.width || img.height != info_.height)

@@ -3,6 +3,7 @@
 #include "core/image.h"
 #include <array>
 #include <bmfr/frame.h>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -48,12 +49,27 @@ class SequenceReader {
     static std::unique_ptr<SequenceReader> open(const std::string& directory);
     /// Also load FrameData::aovs (this project's layout only; off by default).
     void setLoadAovs(bool on) { loadAovs_ = on; }
+    /// Which layer of a multilayer EXR each buffer comes from ("albedo" -> "ViewLayer.DiffCol"),
+    /// replacing the sequence's own choice and the default mapping (kDefaultPasses). Buffers:
+    /// color, albedo, normal, position, emission, reference. Throws bmfr::Error for another
+    /// name, or for a layout without multilayer files (the original BMFR layout).
+    virtual void setLayerOverrides(const std::map<std::string, std::string>& layers);
 
   protected:
     SequenceInfo info_;
     bool loadAovs_ = false;
+    std::map<std::string, std::string> layerOverrides_;
     void checkFrame(int index, const FrameData& f) const;
 };
+
+/// Where a buffer is found in a multilayer EXR when neither the sequence nor the user names a
+/// layer: the first of these passes that the file holds, under any view layer. These are the
+/// names Blender's Cycles gives its passes.
+struct DefaultPass {
+    const char* buffer;
+    std::vector<const char*> passes;
+};
+extern const std::vector<DefaultPass> kDefaultPasses;
 
 std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory);
 std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory);

@@ -1,0 +1,184 @@
+// Multilayer and multi-part EXR input, as Blender's Cycles writes it: layer and channel names,
+// the default pass mapping, --channel overrides and the errors that name what is missing.
+#include "cli_runner.h"
+#include "io/exr.h"
+#include "io/sequence.h"
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
+#include <bmfr/error.h>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <map>
+#include <unistd.h>
+
+namespace bmfr {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int kW = 6, kH = 4;
+
+/// The value a test file holds at pixel i of channel `name`: distinct per channel.
+float valueOf(const std::string& name, int i) {
+    return float(std::hash<std::string>{}(name) % 1000) * 0.001f + float(i);
+}
+
+/// One part holding `channels` (full names), each filled with valueOf(name, i).
+void writeLayered(const fs::path& path, const std::vector<std::string>& channels) {
+    Imf::Header header(kW, kH);
+    for (const std::string& c : channels) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    std::vector<std::vector<float>> data;
+    Imf::FrameBuffer fb;
+    for (const std::string& c : channels) {
+        data.emplace_back(kW * kH);
+        for (int i = 0; i < kW * kH; ++i) data.back()[size_t(i)] = valueOf(c, i);
+        fb.insert(c, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data.back().data()),
+                                sizeof(float), sizeof(float) * kW));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(kH);
+}
+
+/// Parts named after layers, each with plain R,G,B (or X,Y,Z) channels.
+void writeMultiPart(const fs::path& path, const std::map<std::string, std::string>& parts) {
+    std::vector<Imf::Header> headers;
+    for (const auto& [name, xyz] : parts) {
+        Imf::Header h(kW, kH);
+        h.setName(name);
+        h.setType(Imf::SCANLINEIMAGE);
+        for (char c : xyz) h.channels().insert(std::string(1, c), Imf::Channel(Imf::FLOAT));
+        headers.push_back(h);
+    }
+    Imf::MultiPartOutputFile file(path.c_str(), headers.data(), int(headers.size()));
+    int p = 0;
+    for (const auto& [name, xyz] : parts) {
+        std::vector<std::vector<float>> data;
+        data.reserve(xyz.size());
+        Imf::FrameBuffer fb;
+        for (char c : xyz) {
+            const std::string full = name + "." + std::string(1, c);
+            data.emplace_back(kW * kH);
+            for (int i = 0; i < kW * kH; ++i) data.back()[size_t(i)] = valueOf(full, i);
+            fb.insert(std::string(1, c),
+                      Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data.back().data()),
+                                 sizeof(float), sizeof(float) * kW));
+        }
+        Imf::OutputPart part(file, p++);
+        part.setFrameBuffer(fb);
+        part.writePixels(kH);
+    }
+}
+
+void expectChannels(const ImageF& img, const std::vector<std::string>& names) {
+    ASSERT_EQ(img.width, kW);
+    ASSERT_EQ(img.channels, int(names.size()));
+    for (int i = 0; i < kW * kH; ++i)
+        for (size_t c = 0; c < names.size(); ++c)
+            ASSERT_EQ(img.data()[i * img.channels + int(c)], valueOf(names[c], i)) << names[c];
+}
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+fs::path freshDir(const std::string& name) {
+    fs::path p = fs::temp_directory_path() / ("bmfr_ml_" + name + "_" + std::to_string(getpid()));
+    fs::remove_all(p);
+    fs::create_directories(p);
+    return p;
+}
+
+const std::vector<std::string> kCyclesChannels = {
+    "ViewLayer.Combined.R",         "ViewLayer.Combined.G",         "ViewLayer.Combined.B",
+    "ViewLayer.Combined.A",         "ViewLayer.Denoising Albedo.R", "ViewLayer.Denoising Albedo.G",
+    "ViewLayer.Denoising Albedo.B", "ViewLayer.DiffCol.R",          "ViewLayer.DiffCol.G",
+    "ViewLayer.DiffCol.B",          "ViewLayer.Normal.X",           "ViewLayer.Normal.Y",
+    "ViewLayer.Normal.Z",           "ViewLayer.Position.X",         "ViewLayer.Position.Y",
+    "ViewLayer.Position.Z",         "ViewLayer.Emit.R",             "ViewLayer.Emit.G",
+    "ViewLayer.Emit.B",             "ViewLayer.Depth.Z"};
+
+TEST(MultilayerExr, LayersAndChannelNamesAsCyclesWritesThem) {
+    const fs::path dir = freshDir("layers");
+    const fs::path f = dir / "frame.exr";
+    writeLayered(f, kCyclesChannels);
+    expectChannels(readExr(f.string(), 3, "ViewLayer.Combined"),
+                   {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B"});
+    expectChannels(readExr(f.string(), 3, "ViewLayer.Normal"),
+                   {"ViewLayer.Normal.X", "ViewLayer.Normal.Y", "ViewLayer.Normal.Z"});
+    expectChannels(readExr(f.string(), 1, "ViewLayer.Depth"), {"ViewLayer.Depth.Z"});
+    EXPECT_EQ(findExrLayer(f.string(), "Denoising Albedo"), "ViewLayer.Denoising Albedo");
+    EXPECT_EQ(findExrLayer(f.string(), "Albedo"), ""); // whole pass names only
+    EXPECT_EQ(findExrLayer(f.string(), "Glossy"), "");
+    // No plain channels: reading without a layer names what the file has.
+    const std::string e = errorOf([&] { readExr(f.string(), 3); });
+    EXPECT_NE(e.find("ViewLayer.Normal.X"), std::string::npos) << e;
+    EXPECT_NE(errorOf([&] { readExr(f.string(), 3, "ViewLayer.Nope"); }).find("in layer"),
+              std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST(MultilayerExr, MultiPartFilesNameLayersByPart) {
+    const fs::path dir = freshDir("parts");
+    const fs::path f = dir / "parts.exr";
+    writeMultiPart(f, {{"ViewLayer.Combined", "RGB"}, {"ViewLayer.Normal", "XYZ"}});
+    EXPECT_EQ(exrChannelNames(f.string()).size(), 6u);
+    expectChannels(readExr(f.string(), 3, "ViewLayer.Normal"),
+                   {"ViewLayer.Normal.X", "ViewLayer.Normal.Y", "ViewLayer.Normal.Z"});
+    expectChannels(readExr(f.string(), 3, "ViewLayer.Combined"),
+                   {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B"});
+    fs::remove_all(dir);
+}
+
+TEST(MultilayerExr, SequencesUseTheDefaultPassesAndChannelOverrides) {
+    const fs::path dir = freshDir("sequence");
+    writeLayered(dir / "frame_0000.exr", kCyclesChannels);
+    std::ofstream(dir / "sequence.json") << R"({"format": "bmfr-sequence", "version": 1,
+        "width": 6, "height": 4, "frames": [{"color": "frame_0000.exr",
+        "albedo": "frame_0000.exr", "normal": "frame_0000.exr", "position": "frame_0000.exr",
+        "emission": {"file": "frame_0000.exr", "layer": "ViewLayer.Emit"},
+        "view_projection": [[1,0,0,0],[0,1,0,0],[0,0,-1,-0.2],[0,0,-1,0]]}]})";
+    auto reader = SequenceReader::open(dir.string());
+    FrameData f;
+    reader->load(0, f);
+    expectChannels(f.color,
+                   {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B"});
+    expectChannels(f.albedo, {"ViewLayer.Denoising Albedo.R", "ViewLayer.Denoising Albedo.G",
+                              "ViewLayer.Denoising Albedo.B"});
+    expectChannels(f.position,
+                   {"ViewLayer.Position.X", "ViewLayer.Position.Y", "ViewLayer.Position.Z"});
+    expectChannels(f.emission, {"ViewLayer.Emit.R", "ViewLayer.Emit.G", "ViewLayer.Emit.B"});
+    reader->setLayerOverrides({{"albedo", "ViewLayer.DiffCol"}});
+    reader->load(0, f);
+    expectChannels(f.albedo,
+                   {"ViewLayer.DiffCol.R", "ViewLayer.DiffCol.G", "ViewLayer.DiffCol.B"});
+    EXPECT_NE(errorOf([&] { reader->setLayerOverrides({{"colour", "X"}}); })
+                  .find("unknown buffer"),
+              std::string::npos);
+    reader->setLayerOverrides({{"normal", "ViewLayer.Nope"}});
+    EXPECT_NE(errorOf([&] { reader->load(0, f); }).find("in layer 'ViewLayer.Nope'"),
+              std::string::npos);
+    // The same through the CLI: --channel, and a bad one is a clear error.
+    const fs::path out = dir / "out";
+    auto ok = testing::runCli("denoise " + dir.string() + " -o " + out.string() +
+                              " -q --channel albedo=ViewLayer.DiffCol");
+    EXPECT_EQ(ok.code, 0) << ok.output;
+    auto bad = testing::runCli("denoise " + dir.string() + " -o " + out.string() +
+                               " -q --channel position=ViewLayer.Normalz");
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.output.find("in layer 'ViewLayer.Normalz'"), std::string::npos) << bad.output;
+    fs::remove_all(dir);
+}
+
+} // namespace
+} // namespace bmfr
