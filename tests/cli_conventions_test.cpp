@@ -16,8 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 using bmfr::testing::runCli;
 
-const char* const kCommands[] = {"demo", "render", "denoise", "eval",     "ablate",
-                                 "bench", "synth", "tonemap", "settings", "soak"};
+const char* const kCommands[] = {"demo",  "render", "denoise", "eval",     "ablate",
+                                 "bench", "synth",  "tonemap", "settings", "soak"};
 
 fs::path scratch(const std::string& name) {
     fs::path p =
@@ -53,8 +53,7 @@ TEST(CliConventions, UsageErrorsExit2WithThePrefixAndTheUsageLine) {
                           Case{"denoise in", "usage: bmfr denoise INPUT -o OUTPUT"},
                           Case{"denoise in -o out --no-such-flag", "no-such-flag"},
                           Case{"bench --frames many", "usage: bmfr bench"},
-                          Case{"render", "--output"},
-                          Case{"eval -o x", "usage: bmfr eval"}}) {
+                          Case{"render", "--output"}, Case{"eval -o x", "usage: bmfr eval"}}) {
         const auto r = runCli(c.args);
         EXPECT_EQ(r.code, 2) << c.args << ": " << r.output; // never CLI11's 104..114
         EXPECT_EQ(r.output.rfind("bmfr: ", 0), 0u) << c.args << ": " << r.output;
@@ -79,8 +78,7 @@ TEST(CliConventions, EveryCommandTakesQuietAndWritesWithDashO) {
         EXPECT_EQ(help.output.find("\n  output "), std::string::npos) << c << help.output;
     }
     for (const char* c : {"demo", "render", "denoise", "eval", "ablate", "synth", "tonemap"})
-        EXPECT_NE(runCli(std::string(c) + " --help").output.find("-o,--output"),
-                  std::string::npos)
+        EXPECT_NE(runCli(std::string(c) + " --help").output.find("-o,--output"), std::string::npos)
             << c;
 }
 

@@ -14,8 +14,8 @@ struct CliResult {
 
 /// `bmfr ARGS`; with `stdoutOnly` stderr goes to /dev/null.
 inline CliResult runCli(const std::string& args, bool stdoutOnly = false) {
-    const std::string cmd = std::string(BMFR_CLI_PATH) + " " + args +
-                            (stdoutOnly ? " 2>/dev/null" : " 2>&1");
+    const std::string cmd =
+        std::string(BMFR_CLI_PATH) + " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
     FILE* p = popen(cmd.c_str(), "r");
     std::string out;
     std::array<char, 512> buf;

@@ -17,7 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 
 using Result = bmfr::testing::CliResult;
-Result run(const std::string& args) { return bmfr::testing::runCli(args); }
+Result run(const std::string& args) {
+    return bmfr::testing::runCli(args);
+}
 
 fs::path scratch(const std::string& name) {
     fs::path p =

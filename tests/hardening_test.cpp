@@ -55,7 +55,9 @@ std::string errorOf(const std::function<void()>& f) {
     } while (0)
 
 using Result = bmfr::testing::CliResult;
-Result run(const std::string& args) { return bmfr::testing::runCli(args); }
+Result run(const std::string& args) {
+    return bmfr::testing::runCli(args);
+}
 
 std::string slurp(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -217,8 +219,8 @@ TEST(Hardening, FailedWritesAreErrorsWithThePath) {
     writeFileAtomically((dir / "ok.json").string(), std::string("{}"));
     EXPECT_EQ(slurp(dir / "ok.json"), "{}");
     EXPECT_FALSE(fs::exists(dir / "ok.json.part"));
-    ASSERT_EQ(run("synth -o " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code,
-              0);
+    ASSERT_EQ(
+        run("synth -o " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code, 0);
     Result r = run("denoise " + (dir / "in").string() + " -o " + (dir / "file").string() + " -q");
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("bmfr: error"), std::string::npos) << r.output;
@@ -272,8 +274,8 @@ TEST(Hardening, ExrChannelsAreNeverInventedOrEmpty) {
 TEST(Hardening, CommandLineBoundsAreChecked) {
     EXPECT_ERROR(parseFrameRange("0:99999999999", 10), "the sequence has frames 0:10");
     const fs::path dir = freshDir("eval");
-    ASSERT_EQ(run("synth -o " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code,
-              0);
+    ASSERT_EQ(
+        run("synth -o " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code, 0);
     const std::string base = "eval -r " + (dir / "in").string() + " -m noisy -o " +
                              (dir / "out").string() + " -q --no-flip ";
     for (const char* bad : {"--crop 1,1,2147483647,1", "--crop 1,1,-2,1", "--zoom -2",

@@ -99,14 +99,26 @@ fs::path freshDir(const std::string& name) {
     return p;
 }
 
-const std::vector<std::string> kCyclesChannels = {
-    "ViewLayer.Combined.R",         "ViewLayer.Combined.G",         "ViewLayer.Combined.B",
-    "ViewLayer.Combined.A",         "ViewLayer.Denoising Albedo.R", "ViewLayer.Denoising Albedo.G",
-    "ViewLayer.Denoising Albedo.B", "ViewLayer.DiffCol.R",          "ViewLayer.DiffCol.G",
-    "ViewLayer.DiffCol.B",          "ViewLayer.Normal.X",           "ViewLayer.Normal.Y",
-    "ViewLayer.Normal.Z",           "ViewLayer.Position.X",         "ViewLayer.Position.Y",
-    "ViewLayer.Position.Z",         "ViewLayer.Emit.R",             "ViewLayer.Emit.G",
-    "ViewLayer.Emit.B",             "ViewLayer.Depth.Z"};
+const std::vector<std::string> kCyclesChannels = {"ViewLayer.Combined.R",
+                                                  "ViewLayer.Combined.G",
+                                                  "ViewLayer.Combined.B",
+                                                  "ViewLayer.Combined.A",
+                                                  "ViewLayer.Denoising Albedo.R",
+                                                  "ViewLayer.Denoising Albedo.G",
+                                                  "ViewLayer.Denoising Albedo.B",
+                                                  "ViewLayer.DiffCol.R",
+                                                  "ViewLayer.DiffCol.G",
+                                                  "ViewLayer.DiffCol.B",
+                                                  "ViewLayer.Normal.X",
+                                                  "ViewLayer.Normal.Y",
+                                                  "ViewLayer.Normal.Z",
+                                                  "ViewLayer.Position.X",
+                                                  "ViewLayer.Position.Y",
+                                                  "ViewLayer.Position.Z",
+                                                  "ViewLayer.Emit.R",
+                                                  "ViewLayer.Emit.G",
+                                                  "ViewLayer.Emit.B",
+                                                  "ViewLayer.Depth.Z"};
 
 TEST(MultilayerExr, LayersAndChannelNamesAsCyclesWritesThem) {
     const fs::path dir = freshDir("layers");
@@ -160,10 +172,10 @@ TEST(MultilayerExr, SequencesUseTheDefaultPassesAndChannelOverrides) {
     expectChannels(f.emission, {"ViewLayer.Emit.R", "ViewLayer.Emit.G", "ViewLayer.Emit.B"});
     reader->setLayerOverrides({{"albedo", "ViewLayer.DiffCol"}});
     reader->load(0, f);
-    expectChannels(f.albedo,
-                   {"ViewLayer.DiffCol.R", "ViewLayer.DiffCol.G", "ViewLayer.DiffCol.B"});
-    EXPECT_NE(errorOf([&] { reader->setLayerOverrides({{"colour", "X"}}); })
-                  .find("unknown buffer"),
+    expectChannels(f.albedo, {"ViewLayer.DiffCol.R", "ViewLayer.DiffCol.G", "ViewLayer.DiffCol.B"});
+    EXPECT_NE(errorOf([&] {
+                  reader->setLayerOverrides({{"colour", "X"}});
+              }).find("unknown buffer"),
               std::string::npos);
     reader->setLayerOverrides({{"normal", "ViewLayer.Nope"}});
     EXPECT_NE(errorOf([&] { reader->load(0, f); }).find("in layer 'ViewLayer.Nope'"),

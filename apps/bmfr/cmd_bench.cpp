@@ -4,9 +4,9 @@
 #include "stream_floor.h"
 #include "synth/procedural_scene.h"
 #include <algorithm>
-#include <functional>
 #include <bmfr/bmfr.h>
 #include <fmt/core.h>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 

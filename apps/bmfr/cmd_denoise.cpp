@@ -46,7 +46,8 @@ int runDenoise(const DenoiseJob& job) {
     for (const std::string& c : job.channels) {
         const size_t eq = c.find('=');
         if (eq == std::string::npos || eq == 0 || eq + 1 == c.size())
-            throw Error("--channel '" + c + "': expected BUFFER=LAYER, as albedo=ViewLayer.DiffCol");
+            throw Error("--channel '" + c +
+                        "': expected BUFFER=LAYER, as albedo=ViewLayer.DiffCol");
         layers[c.substr(0, eq)] = c.substr(eq + 1);
     }
     reader->setLayerOverrides(layers);

@@ -8,7 +8,6 @@
 
 namespace bmfr::app {
 
-
 int runEval(const ComparisonOptions& o, bool quiet, bool json) {
     std::unique_ptr<Progress> bar; // the frame count is known once the reference is open
     ComparisonResult r = runComparison(o, [&](int done, int total) {

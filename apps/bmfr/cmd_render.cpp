@@ -42,7 +42,8 @@ int runRender(const RenderJob& job) {
         fmt::print("{:<16} {:>10} {:>7} {:>9}  {}\n", "preset", "size", "frames", "ref spp",
                    "estimated time on 2 cores (scales with 1/cores)");
         for (const std::string& n : render::presetNames()) {
-            const render::SceneDescription d = render::loadSceneDescription(n, job.scenesDir, false);
+            const render::SceneDescription d =
+                render::loadSceneDescription(n, job.scenesDir, false);
             fmt::print("{:<16} {:>10} {:>7} {:>9}  {}\n", n,
                        fmt::format("{}x{}", d.width, d.height), d.frames, d.referenceSpp,
                        durationText(render::estimatedRenderSeconds(d)));
@@ -102,7 +103,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     auto job = std::make_shared<RenderJob>();
     CLI::App* cmd =
         app.add_subcommand("render", "path trace a sequence: 1-spp input, features, reference");
-    cmd->add_option("-o,--output", job->output, "output directory (required unless --list-presets)");
+    cmd->add_option("-o,--output", job->output,
+                    "output directory (required unless --list-presets)");
     cmd->add_option("-s,--scene", job->scene, "preset name or scene description JSON")
         ->default_val("cornell-moving");
     cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")

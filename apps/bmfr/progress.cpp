@@ -36,11 +36,11 @@ void Progress::line(int done, const char* note) {
     const double ms = clock_.elapsed(), s = ms / 1000.0;
     const double rate = s > 0 ? done / s : 0, eta = rate > 0 ? (total_ - done) / rate : 0;
     if (note)
-        std::fprintf(stderr, "%s: %d/%d, %s (%.0f s elapsed)\n", label_.c_str(), done, total_,
-                     note, s);
+        std::fprintf(stderr, "%s: %d/%d, %s (%.0f s elapsed)\n", label_.c_str(), done, total_, note,
+                     s);
     else
-        std::fprintf(stderr, "%s: %d/%d (%.1f/s, ETA %.0fs)\n", label_.c_str(), done, total_,
-                     rate, eta);
+        std::fprintf(stderr, "%s: %d/%d (%.1f/s, ETA %.0fs)\n", label_.c_str(), done, total_, rate,
+                     eta);
     std::fflush(stderr);
     lastLineMs_ = ms;
     lastLineDone_ = done;
@@ -70,8 +70,7 @@ void Progress::heartbeat() {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!stop_) {
         wake_.wait_for(lock, std::chrono::milliseconds(std::min(1000, int(interval))));
-        if (!stop_ && done_ < total_ &&
-            clock_.elapsed() - std::max(lastLineMs_, 0.0) >= interval)
+        if (!stop_ && done_ < total_ && clock_.elapsed() - std::max(lastLineMs_, 0.0) >= interval)
             line(done_, "working");
     }
 }

@@ -10,7 +10,8 @@ std::string commandList(const CLI::App& app) {
     std::string s = "commands:\n";
     for (const CLI::App* sub : app.get_subcommands({}))
         s += fmt::format("  {:<10} {}\n", sub->get_name(), sub->get_description());
-    return s + "run 'bmfr COMMAND --help' for a command's options, 'bmfr --version' for the build\n";
+    return s +
+           "run 'bmfr COMMAND --help' for a command's options, 'bmfr --version' for the build\n";
 }
 
 namespace {

@@ -39,8 +39,7 @@ ImageArg imageArg(const py::handle& object, const char* name, int& height, int& 
     // Pixels packed within rows (rows may be padded): a view without a copy.
     const bool inPlace = a.strides(2) == f && a.strides(1) == channels * f &&
                          a.strides(0) >= a.shape(1) * channels * f && a.strides(0) % f == 0;
-    if (!inPlace)
-        a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+    if (!inPlace) a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
     ImageView v;
     v.data = static_cast<const float*>(a.data());
     v.width = width;

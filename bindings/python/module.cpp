@@ -3,10 +3,10 @@
 #include "arrays.h"
 #include "io/exr.h"
 #include "io/sequence.h"
+#include <algorithm>
 #include <bmfr/bmfr.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <algorithm>
 
 namespace py = pybind11;
 
@@ -245,7 +245,8 @@ column vectors, NDC y down); jitter the sub-pixel offset of the primary rays, pi
                 throw py::value_error(e.what());
             }
         },
-        py::arg("path"), py::arg("channels") = 3, "An EXR file as a (height, width, channels) array.");
+        py::arg("path"), py::arg("channels") = 3,
+        "An EXR file as a (height, width, channels) array.");
     m.def("filter_names", &filterNames, "The filters this build holds.");
     m.def("backends", &compiledBackends, "The backends this build holds.");
     m.def(

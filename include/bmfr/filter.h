@@ -50,7 +50,8 @@ struct SettingDoc {
 
 /// Makes the filter `name` ("bmfr", "svgf") with its defaults overridden by `values`. Throws
 /// bmfr::Error for an unknown filter, an unknown key or a value out of range.
-BMFR_API std::unique_ptr<Filter> makeFilter(const std::string& name, const SettingValues& values = {});
+BMFR_API std::unique_ptr<Filter> makeFilter(const std::string& name,
+                                            const SettingValues& values = {});
 /// The registered filters' names, in registry order.
 BMFR_API std::vector<std::string> filterNames();
 /// The settings table of filter `name`: the shared settings first.

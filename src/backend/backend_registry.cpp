@@ -34,7 +34,9 @@ Backend parseBackend(const char* name) {
     throw Error(std::string("unknown backend '") + name + "' (expected reference, cpu or cuda)");
 }
 
-std::vector<std::string> compiledBackends() { return {"reference", "cpu"}; }
+std::vector<std::string> compiledBackends() {
+    return {"reference", "cpu"};
+}
 
 namespace {
 [[noreturn]] void unavailable(Backend b) {

@@ -48,7 +48,8 @@ void checkInRange(const char* filter, const char* key, double v, const SettingRa
         std::isfinite(v) && (r.loOpen ? v > r.lo : v >= r.lo) && (r.hiOpen ? v < r.hi : v <= r.hi);
     if (!ok) {
         const std::string problem = "is outside " + formatRange(r, false);
-        throw SettingError(std::string(filter) + " " + key + " = " + formatNumber(v) + " " + problem,
+        throw SettingError(std::string(filter) + " " + key + " = " + formatNumber(v) + " " +
+                               problem,
                            key, formatNumber(v), problem);
     }
 }

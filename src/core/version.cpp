@@ -2,6 +2,8 @@
 
 namespace bmfr {
 
-const char* libraryVersion() { return BMFR_VERSION; }
+const char* libraryVersion() {
+    return BMFR_VERSION;
+}
 
 } // namespace bmfr

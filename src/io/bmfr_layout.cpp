@@ -5,10 +5,10 @@
 #include "io/sequence.h"
 #include <bmfr/error.h>
 #include <cmath>
-#include <fmt/format.h>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <sstream>
 

@@ -7,17 +7,16 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfInputPart.h>
 #include <OpenEXR/ImfMultiPartInputFile.h>
-#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfThreading.h>
-#include <bmfr/error.h>
 #include <algorithm>
+#include <bmfr/error.h>
 #include <filesystem>
 #include <thread>
 #include <vector>
 
 namespace bmfr {
-
 
 namespace {
 

@@ -4,12 +4,12 @@
 #include "io/exr.h"
 #include "io/json_fields.h"
 #include "io/sequence.h"
+#include <algorithm>
 #include <bmfr/error.h>
 #include <cstdio>
-#include <algorithm>
 #include <filesystem>
-#include <map>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 namespace bmfr {

@@ -1,6 +1,6 @@
-#include <algorithm>
 #include "render/scene_description.h"
 #include "io/json_fields.h"
+#include <algorithm>
 #include <bmfr/error.h>
 #include <cmath>
 #include <filesystem>
@@ -213,8 +213,8 @@ std::string cameraPoseProblem(const CameraPose& p) {
     return {};
 }
 
-SceneDescription loadSceneDescription(const std::string& presetOrFile,
-                                      const std::string& scenesDir, bool checkMesh) {
+SceneDescription loadSceneDescription(const std::string& presetOrFile, const std::string& scenesDir,
+                                      bool checkMesh) {
     if (auto it = presets().find(presetOrFile); it != presets().end()) {
         std::string text = it->second;
         for (size_t at; (at = text.find("{scenes}")) != std::string::npos;)

@@ -45,8 +45,8 @@ std::string cameraPoseProblem(const CameraPose& pose);
 SceneDescription parseSceneDescription(const nlohmann::json& j, const std::string& baseDir);
 /// Loads a preset by name or a JSON file. `scenesDir` replaces {scenes} in preset mesh paths;
 /// with `checkMesh` a preset whose mesh is not there is an error that points to --scenes.
-SceneDescription loadSceneDescription(const std::string& presetOrFile,
-                                      const std::string& scenesDir, bool checkMesh = true);
+SceneDescription loadSceneDescription(const std::string& presetOrFile, const std::string& scenesDir,
+                                      bool checkMesh = true);
 std::vector<std::string> presetNames();
 
 /// A rough render time for `d` on a 2-core machine of the CI's kind (AMD EPYC, 2 threads),

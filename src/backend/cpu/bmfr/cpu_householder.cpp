@@ -104,8 +104,8 @@ BMFR_SIMD_INLINE void updateGroup(const float* v, float* a, int count, int rows,
 }
 
 // Internal linkage: GCC would give an external clone's resolver default visibility.
-BMFR_SIMD_CLONES int solveHouseholderClones(float* columns, int featureCount, int rows,
-                                            long stride, float* coeffs) {
+BMFR_SIMD_CLONES int solveHouseholderClones(float* columns, int featureCount, int rows, long stride,
+                                            float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
     auto column = [&](int j) { return columns + long(j) * stride; };
     HouseholderSteps q;
