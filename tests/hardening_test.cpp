@@ -9,6 +9,7 @@
 #include "render/scene_description.h"
 #include "render/sequence_renderer.h"
 #include "synth/procedural_scene.h"
+#include "test_support.h"
 #include <array>
 #include <bmfr/bmfr.h>
 #include <chrono>
@@ -33,21 +34,10 @@ fs::path repro(const char* name) {
     if (!fs::exists(repro(name))) GTEST_SKIP() << "no ../shared/repro/" << name
 
 fs::path freshDir(const std::string& name) {
-    fs::path p =
-        fs::temp_directory_path() / ("bmfr_hard_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
+    return testing::freshDir("hard", name);
 }
 
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using testing::errorOf;
 #define EXPECT_ERROR(call, needle)                                                                 \
     do {                                                                                           \
         const std::string what_ = errorOf([&] { call; });                                          \

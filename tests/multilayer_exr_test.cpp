@@ -3,6 +3,7 @@
 #include "cli_runner.h"
 #include "io/exr.h"
 #include "io/sequence.h"
+#include "test_support.h"
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -83,20 +84,10 @@ void expectChannels(const ImageF& img, const std::vector<std::string>& names) {
             ASSERT_EQ(img.data()[i * img.channels + int(c)], valueOf(names[c], i)) << names[c];
 }
 
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using testing::errorOf;
 
 fs::path freshDir(const std::string& name) {
-    fs::path p = fs::temp_directory_path() / ("bmfr_ml_" + name + "_" + std::to_string(getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
+    return testing::freshDir("ml", name);
 }
 
 const std::vector<std::string> kCyclesChannels = {"ViewLayer.Combined.R",

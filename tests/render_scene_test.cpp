@@ -2,6 +2,7 @@
 #include "io/sequence.h"
 #include "render/ray_accel.h"
 #include "render/sequence_renderer.h"
+#include "test_support.h"
 #include <bmfr/error.h>
 #include <cmath>
 #include <filesystem>
@@ -22,11 +23,7 @@ fs::path scenesDir() {
 }
 
 fs::path freshDir(const std::string& name) {
-    fs::path p =
-        fs::temp_directory_path() / ("bmfr_render_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
+    return testing::freshDir("render", name);
 }
 
 void expectError(const std::function<void()>& f, const std::string& needle) {

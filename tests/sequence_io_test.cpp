@@ -3,6 +3,7 @@
 #include "io/exr.h"
 #include "io/sequence.h"
 #include "synth/procedural_scene.h"
+#include "test_support.h"
 #include <bmfr/error.h>
 #include <filesystem>
 #include <fstream>
@@ -14,11 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-    fs::path p =
-        fs::temp_directory_path() / ("bmfr_test_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
+    return testing::freshDir("test", name);
 }
 
 ImageF filled(int w, int h, float base) {
