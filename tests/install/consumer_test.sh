@@ -38,22 +38,6 @@ if grep -rn '#include "' "$prefix/include/bmfr"; then
 fi
 
 if [ "$mode" = --shared ]; then
-    so=$(find "$prefix" -name 'libbmfr.so.*' | head -1)
-    [ -n "$so" ] || { echo "no libbmfr.so installed" >&2; exit 1; }
-    # Exported symbols: the public API (namespace bmfr, its typeinfo and vtables) and nothing of
-    # the internals (ThreadPool, the passes, the kernels live in bmfr:: too, so name them).
-    nm -D --defined-only -C "$so" | awk '{ $1 = ""; $2 = ""; print }' | sed 's/^ *//' > "$scratch/exports.txt"
-    echo "exported symbols: $(wc -l < "$scratch/exports.txt")"
-    if grep -v -E '^(bmfr::|typeinfo (name )?for bmfr::|vtable for bmfr::|_init|_fini)' \
-            "$scratch/exports.txt" | grep -q .; then
-        echo "symbols outside the public API are exported:" >&2
-        grep -v -E '^(bmfr::|typeinfo (name )?for bmfr::|vtable for bmfr::|_init|_fini)' \
-            "$scratch/exports.txt" | head -20 >&2
-        exit 1
-    fi
-    if grep -E 'ThreadPool|Passes|Staging|TemporalHistory|Householder|Impl::|cpu::|reference::|detail::' "$scratch/exports.txt"; then
-        echo "internal symbols are exported" >&2
-        exit 1
-    fi
+    "$(dirname "$0")/check_exports.sh" "$(find "$prefix" -name 'libbmfr.so.*' | head -1)"
 fi
 echo "consumer test passed"
