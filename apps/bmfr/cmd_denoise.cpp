@@ -7,6 +7,7 @@
 #include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/png.h"
+#include "io/range_parsers.h"
 #include "io/sequence.h"
 #include "metrics/basic_metrics.h"
 #include "progress.h"
@@ -42,15 +43,7 @@ int runDenoise(const DenoiseJob& job) {
         throw Error("-o " + job.output + " is the input folder " + job.input +
                     "; refusing to write the results among the inputs (give another folder)");
     auto reader = SequenceReader::open(job.input);
-    std::map<std::string, std::string> layers;
-    for (const std::string& c : job.channels) {
-        const size_t eq = c.find('=');
-        if (eq == std::string::npos || eq == 0 || eq + 1 == c.size())
-            throw Error("--channel '" + c +
-                        "': expected BUFFER=LAYER, as albedo=ViewLayer.DiffCol");
-        layers[c.substr(0, eq)] = c.substr(eq + 1);
-    }
-    reader->setLayerOverrides(layers);
+    reader->setLayerOverrides(parseLayerMap(job.channels));
     const SequenceInfo& info = reader->info();
     const SettingValues values = job.options.resolve(
         job.filter, {info.positionLimitSquared, info.normalLimitSquared, info.colorIsDemodulated});

@@ -28,7 +28,7 @@ int runEval(const ComparisonOptions& o, bool quiet, bool json) {
 void addEvalCommand(CLI::App& app, int& exitCode) {
     struct Job {
         ComparisonOptions options;
-        std::vector<std::string> methods, crops;
+        std::vector<std::string> methods, crops, channels;
         bool quiet = false, noFlip = false, json = false;
     };
     auto job = std::make_shared<Job>();
@@ -54,6 +54,9 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--show-frame", job->options.showFrame,
                     "frame for pictures and heat maps (default: last)");
     cmd->add_flag("--no-flip", job->noFlip, "skip FLIP (the slowest metric)");
+    cmd->add_option("--channel", job->channels,
+                    "BUFFER=LAYER: the reference sequence's layer for a buffer in multilayer "
+                    "EXRs, as reference=ViewLayer.Combined; repeatable");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     cmd->add_flag("--json", job->json,
                   "print the scores as JSON on stdout (as table.json) instead of the table");
@@ -66,6 +69,7 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                                     : MethodSource{m.substr(0, eq), m.substr(eq + 1)});
         }
         for (const std::string& c : job->crops) o.crops.push_back(parseCrop(c));
+        o.referenceLayers = parseLayerMap(job->channels);
         if (o.zoom < 1 || o.zoom > 16) throw Error("--zoom must be in [1, 16]");
         if (o.autoCrops < 0 || o.autoCrops > 16) throw Error("--crops must be in [0, 16]");
         if (o.cropSize < 4 || o.cropSize > 1024) throw Error("--crop-size must be in [4, 1024]");

@@ -49,6 +49,25 @@ ImageArg imageArg(const py::handle& object, const char* name, int& height, int& 
     return {a, v};
 }
 
+ImageArg channelArg(const py::handle& object, const std::string& name, int height, int width) {
+    const char* n = name.c_str();
+    if (!py::isinstance<py::array>(object)) bad(n, "expected a numpy array");
+    py::array a = py::reinterpret_borrow<py::array>(object);
+    if (!a.dtype().is(py::dtype::of<float>()))
+        bad(n, "dtype " + std::string(py::str(a.dtype())) + ", expected float32");
+    const bool shapeOk = (a.ndim() == 2 || (a.ndim() == 3 && a.shape(2) == 1)) &&
+                         a.shape(0) == height && a.shape(1) == width;
+    if (!shapeOk)
+        bad(n, "shape " + shapeText(a) + ", expected (" + std::to_string(height) + ", " +
+                   std::to_string(width) + ") or (" + std::to_string(height) + ", " +
+                   std::to_string(width) + ", 1)");
+    const py::ssize_t f = sizeof(float);
+    if (!(a.strides(1) == f && a.strides(0) >= width * f && a.strides(0) % f == 0))
+        a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+    ImageView v{static_cast<const float*>(a.data()), width, height, 1, long(a.strides(0) / f)};
+    return {a, v};
+}
+
 Mat4 matrixArg(const py::handle& object, const char* name) {
     py::array_t<float, py::array::c_style | py::array::forcecast> a;
     try {

@@ -19,6 +19,9 @@ struct ImageArg {
 /// `height`/`width` < 0 take the size from this array.
 ImageArg imageArg(const py::handle& object, const char* name, int& height, int& width);
 
+/// A one-channel image argument: float32 (height, width) or (height, width, 1) of the given size.
+ImageArg channelArg(const py::handle& object, const std::string& name, int height, int width);
+
 /// A 4x4 matrix from any array-like of numbers (row-major, acting on column vectors).
 Mat4 matrixArg(const py::handle& object, const char* name);
 

@@ -71,7 +71,7 @@ class PyFilter {
     py::array_t<float> denoise(const py::handle& color, const py::handle& albedo,
                                const py::handle& normal, const py::handle& position,
                                const py::handle& viewProjection, std::pair<float, float> jitter,
-                               const py::handle& emission, bool reset) {
+                               const py::handle& emission, bool reset, const py::handle& extras) {
         int h = -1, w = -1;
         const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
                        n = imageArg(normal, "normal", h, w),
@@ -83,6 +83,15 @@ class PyFilter {
             in.emission = e.view;
         }
         in.color = c.view, in.albedo = a.view, in.normal = n.view, in.position = p.view;
+        std::vector<ImageArg> extraArgs;
+        if (!extras.is_none()) {
+            if (!py::isinstance<py::sequence>(extras) || py::isinstance<py::array>(extras))
+                throw py::value_error("extras: expected a list of (height, width) arrays");
+            const py::sequence list = py::reinterpret_borrow<py::sequence>(extras);
+            for (size_t k = 0; k < list.size(); ++k)
+                extraArgs.push_back(channelArg(list[k], "extras[" + std::to_string(k) + "]", h, w));
+            for (const ImageArg& x : extraArgs) in.extras.push_back(x.view);
+        }
         in.viewProjection = matrixArg(viewProjection, "view_projection");
         in.jitter[0] = jitter.first, in.jitter[1] = jitter.second;
         in.reset = reset;
@@ -209,11 +218,13 @@ Filter(name="bmfr", backend="cpu", **settings): settings by their flag name with
              py::arg("position"), py::arg("view_projection"),
              py::arg("jitter") = std::pair<float, float>(0.0f, 0.0f),
              py::arg("emission") = py::none(), py::arg("reset") = false,
+             py::arg("extras") = py::none(),
              R"(Denoises one frame; returns a new (height, width, 3) float32 array.
 
 Images are float32 (height, width, 3) or (height, width, 4) arrays, viewed without a copy when
 their pixels are packed. view_projection is this frame's 4x4 world-to-clip matrix (row-major,
-column vectors, NDC y down); jitter the sub-pixel offset of the primary rays, pixels.)")
+column vectors, NDC y down); jitter the sub-pixel offset of the primary rays, pixels. extras:
+a list of float32 (height, width) feature buffers for BMFR's extraK features.)")
         .def("reset", &PyFilter::reset, "Drops all history (a camera cut).")
         .def_property_readonly("stats", &PyFilter::stats,
                                "Facts about the last frame: stage_ms, total_ms, "

@@ -153,6 +153,7 @@ ComparisonResult runComparison(const ComparisonOptions& o,
                                const std::function<void(int, int)>& progress) {
     if (o.methods.empty()) throw Error("eval: give at least one --method NAME=PATH");
     auto reference = SequenceReader::open(o.reference);
+    reference->setLayerOverrides(o.referenceLayers);
     if (!reference->info().hasReference)
         throw Error(o.reference + ": the sequence has no reference frames");
     std::vector<std::unique_ptr<ResultSource>> sources;

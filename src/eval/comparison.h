@@ -6,6 +6,7 @@
 #include "io/range_parsers.h"
 #include <array>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct MethodSource {
 
 struct ComparisonOptions {
     std::string reference; ///< sequence folder with reference frames
+    /// Multilayer EXR layers of the reference sequence's buffers (`--channel`).
+    std::map<std::string, std::string> referenceLayers;
     std::vector<MethodSource> methods;
     std::string output;
     std::string frames;                    ///< "A:B" (A..B-1); empty = all

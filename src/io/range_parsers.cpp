@@ -38,4 +38,16 @@ std::array<int, 4> parseCrop(const std::string& s) {
     return c;
 }
 
+std::map<std::string, std::string> parseLayerMap(const std::vector<std::string>& items) {
+    std::map<std::string, std::string> layers;
+    for (const std::string& c : items) {
+        const size_t eq = c.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == c.size())
+            throw Error("--channel '" + c +
+                        "': expected BUFFER=LAYER, as albedo=ViewLayer.DiffCol");
+        layers[c.substr(0, eq)] = c.substr(eq + 1);
+    }
+    return layers;
+}
+
 } // namespace bmfr

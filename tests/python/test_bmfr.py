@@ -40,7 +40,8 @@ def frame_args(fr):
 
 
 @pytest.mark.parametrize("name,extra", [("bmfr", []), ("svgf", []),
-                                         ("bmfr", ["--block-size", 16, "--taa", "false"])])
+                                         ("bmfr", ["--block-size", 16, "--taa", "false"]),
+                                         ("bmfr", ["--features", "1,n.x,n.y,n.z,extra0"])])
 def test_same_bits_as_the_cli(sequence, tmp_path, name, extra):
     cli("denoise", sequence, "-o", tmp_path, "--filter", name, "--no-png", "--no-flip", "-q",
         *extra)
@@ -51,7 +52,8 @@ def test_same_bits_as_the_cli(sequence, tmp_path, name, extra):
     f = bmfr.Filter(name, **settings)
     count = 0
     for fr in seq:
-        out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"))
+        out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"),
+                        extras=fr["extras"])
         expected = bmfr.read_exr(str(tmp_path / f"denoised_{fr['index']:04d}.exr"))
         assert out.shape == (32, 48, 3) and out.dtype == np.float32
         assert np.array_equal(out, expected), f"frame {fr['index']} differs from the CLI"
@@ -93,6 +95,10 @@ def test_bad_arguments_raise_value_error_naming_them(sequence):
         assert message in str(e.value)
     with pytest.raises(ValueError, match="emission: shape"):
         f.denoise(c, a, n, p, vp, emission=c[:8])
+    with pytest.raises(ValueError, match=r"extras\[0\]: shape \(32, 48, 3\)"):
+        f.denoise(c, a, n, p, vp, extras=[c])
+    with pytest.raises(ValueError, match="extras: expected a list"):
+        f.denoise(c, a, n, p, vp, extras=c[..., 0])
 
 
 def test_settings_errors_raise_value_error_with_the_python_name():
