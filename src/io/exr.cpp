@@ -103,9 +103,10 @@ std::vector<std::string> exrChannelNames(const std::string& path) {
     }
 }
 
-std::string findExrLayer(const std::string& path, const std::string& pass) {
+std::string findExrLayer(const std::vector<std::string>& channelNames, const std::string& pass,
+                         const std::string& path) {
     std::vector<std::string> layers;
-    for (const std::string& n : exrChannelNames(path)) {
+    for (const std::string& n : channelNames) {
         const size_t dot = n.rfind('.');
         if (dot == std::string::npos) continue;
         const std::string layer = n.substr(0, dot);
@@ -121,50 +122,84 @@ std::string findExrLayer(const std::string& path, const std::string& pass) {
     return layers.empty() ? std::string() : layers[0];
 }
 
-ImageF readExr(const std::string& path, int channels, const std::string& layer) {
-    if (channels < 1 || channels > 3)
-        throw Error("readExr: " + std::to_string(channels) + " channels asked of " + path);
+std::string findExrLayer(const std::string& path, const std::string& pass) {
+    return findExrLayer(exrChannelNames(path), pass, path);
+}
+
+void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& reads) {
+    for (const ExrLayerRead& r : reads)
+        if (r.channels < 1 || r.channels > 3)
+            throw Error("readExr: " + std::to_string(r.channels) + " channels asked of " + path);
     checkReadable(path);
     try {
         Imf::MultiPartInputFile file(path.c_str());
         const std::vector<ChannelEntry> list = listChannels(file);
-        const std::vector<const ChannelEntry*> pick = pickChannels(list, channels, layer);
-        if (pick.empty()) {
-            const std::string what = layer.empty() ? "" : " in layer '" + layer + "'";
-            throw Error(path + ": has channels [" + joined(list) + "], expected " +
-                        (channels == 3   ? "R,G,B (or X,Y,Z)"
-                         : channels == 2 ? "R,G (or X,Y)"
-                                         : "Y, R, V, Z or a single channel") +
-                        what);
+        std::vector<std::vector<const ChannelEntry*>> picks;
+        for (const ExrLayerRead& r : reads) {
+            picks.push_back(pickChannels(list, r.channels, r.layer));
+            const std::vector<const ChannelEntry*>& pick = picks.back();
+            if (pick.empty()) {
+                const std::string what = r.layer.empty() ? "" : " in layer '" + r.layer + "'";
+                throw Error(path + ": has channels [" + joined(list) + "], expected " +
+                            (r.channels == 3   ? "R,G,B (or X,Y,Z)"
+                             : r.channels == 2 ? "R,G (or X,Y)"
+                                               : "Y, R, V, Z or a single channel") +
+                            what);
+            }
+            for (const ChannelEntry* c : pick)
+                if (c->part != pick[0]->part)
+                    throw Error(path + ": the channels of layer '" + r.layer +
+                                "' span several parts");
         }
-        const int part = pick[0]->part;
-        for (const ChannelEntry* c : pick)
-            if (c->part != part)
-                throw Error(path + ": the channels of layer '" + layer + "' span several parts");
-        if (file.header(part).type() != Imf::SCANLINEIMAGE &&
-            file.header(part).type() != Imf::TILEDIMAGE)
-            throw Error(path + ": deep images are not supported");
-        const Imath::Box2i dw = file.header(part).dataWindow();
-        const long w = long(dw.max.x) - dw.min.x + 1, h = long(dw.max.y) - dw.min.y + 1;
-        if (w <= 0 || h <= 0) throw Error(path + ": zero-size image");
-        if (!file.partComplete(part))
-            throw Error(path + ": truncated or incomplete EXR (pixel data missing)");
-        ImageF img(int(w), int(h), channels);
-        Imf::FrameBuffer fb;
-        const size_t xs = sizeof(float) * channels, ys = xs * size_t(w);
-        char* base =
-            reinterpret_cast<char*>(img.data()) - dw.min.x * long(xs) - dw.min.y * long(ys);
-        for (int c = 0; c < channels; ++c)
-            fb.insert(pick[c]->name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
-        Imf::InputPart in(file, part);
-        in.setFrameBuffer(fb);
-        in.readPixels(dw.min.y, dw.max.y);
-        return img;
+        // One frame buffer per part and round; a channel wanted twice waits for the next round.
+        std::vector<bool> done(reads.size(), false);
+        for (size_t remaining = reads.size(); remaining > 0;) {
+            const int part = [&] {
+                for (size_t k = 0; k < reads.size(); ++k)
+                    if (!done[k]) return picks[k][0]->part;
+                return 0;
+            }();
+            const Imf::Header& header = file.header(part);
+            if (header.type() != Imf::SCANLINEIMAGE && header.type() != Imf::TILEDIMAGE)
+                throw Error(path + ": deep images are not supported");
+            const Imath::Box2i dw = header.dataWindow();
+            const long w = long(dw.max.x) - dw.min.x + 1, h = long(dw.max.y) - dw.min.y + 1;
+            if (w <= 0 || h <= 0) throw Error(path + ": zero-size image");
+            if (!file.partComplete(part))
+                throw Error(path + ": truncated or incomplete EXR (pixel data missing)");
+            Imf::FrameBuffer fb;
+            for (size_t k = 0; k < reads.size(); ++k) {
+                if (done[k] || picks[k][0]->part != part) continue;
+                bool clash = false;
+                for (const ChannelEntry* c : picks[k]) clash = clash || fb.findSlice(c->name);
+                if (clash) continue;
+                const int ch = reads[k].channels;
+                ImageF& img = *reads[k].out;
+                img.resize(int(w), int(h), ch);
+                const size_t xs = sizeof(float) * ch, ys = xs * size_t(w);
+                char* base =
+                    reinterpret_cast<char*>(img.data()) - dw.min.x * long(xs) - dw.min.y * long(ys);
+                for (int c = 0; c < ch; ++c)
+                    fb.insert(picks[k][size_t(c)]->name,
+                              Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
+                done[k] = true;
+                --remaining;
+            }
+            Imf::InputPart in(file, part);
+            in.setFrameBuffer(fb);
+            in.readPixels(dw.min.y, dw.max.y);
+        }
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
         throw Error("unreadable EXR " + path + ": " + e.what());
     }
+}
+
+ImageF readExr(const std::string& path, int channels, const std::string& layer) {
+    ImageF img;
+    readExrLayers(path, {{layer, channels, &img}});
+    return img;
 }
 
 namespace {

@@ -19,6 +19,23 @@ ImageF readExr(const std::string& path, int channels, const std::string& layer =
 /// Every channel of an EXR by its full name (part name prefixed in multi-part files).
 std::vector<std::string> exrChannelNames(const std::string& path);
 
+/// One image wanted from a file: its layer ("" = the plain channels) and channel count.
+struct ExrLayerRead {
+    std::string layer;
+    int channels = 3;
+    ImageF* out = nullptr;
+};
+
+/// Reads several layers of one file in one pass over each part's pixels (a multilayer frame
+/// holds every buffer: decompressing it once per buffer would multiply the cost). Same rules and
+/// errors as readExr.
+void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& reads);
+
+/// findExrLayer over a channel list already read (exrChannelNames); `path` names the file in
+/// errors.
+std::string findExrLayer(const std::vector<std::string>& channelNames, const std::string& pass,
+                         const std::string& path);
+
 /// The layer of `path` that holds `pass` (a name such as "Combined" or "Denoising Albedo"):
 /// a channel set named `pass` or ending in "." + pass. Empty when there is none; an error when
 /// several view layers hold it (say which with a layer name).

@@ -83,11 +83,15 @@ class ManifestReader : public SequenceReader {
         if (index < 0 || index >= info_.frameCount) throw Error(where + ": out of range");
         try {
             const json& j = manifest_["frames"][size_t(index)];
-            auto file = [&](const char* key) { return readBuffer(j, key, where); };
-            f.color = file("color");
-            f.albedo = file("albedo");
-            f.normal = file("normal");
-            f.position = file("position");
+            std::vector<std::pair<const char*, ImageF*>> buffers = {{"color", &f.color},
+                                                                    {"albedo", &f.albedo},
+                                                                    {"normal", &f.normal},
+                                                                    {"position", &f.position}};
+            f.reference = ImageF();
+            f.emission = ImageF();
+            if (info_.hasReference) buffers.push_back({"reference", &f.reference});
+            if (j.contains("emission")) buffers.push_back({"emission", &f.emission});
+            readBuffers(j, buffers, where);
             f.extras.clear();
             if (j.contains("extras")) {
                 for (const auto& e : j["extras"])
@@ -98,8 +102,6 @@ class ManifestReader : public SequenceReader {
                                 " extra buffers, the sequence names " +
                                 std::to_string(info_.extraNames.size()));
             }
-            f.reference = info_.hasReference ? file("reference") : ImageF();
-            f.emission = j.contains("emission") ? file("emission") : ImageF();
             f.aovs.clear();
             if (loadAovs_ && j.contains("aovs"))
                 for (const json& entry : j["aovs"]) {
@@ -131,42 +133,61 @@ class ManifestReader : public SequenceReader {
     json manifest_;
     std::map<std::string, std::string> layers_; ///< the sequence's own "layers"
 
-    /// A 3-channel buffer: a file name, or {"file", "layer"}; the layer comes from --channel,
-    /// then the entry, then the sequence's "layers", then kDefaultPasses when the file has
-    /// only layered channels.
-    ImageF readBuffer(const json& frame, const char* key, const std::string& where) const {
-        const json& entry = frame.at(key);
-        std::string name, layer;
-        if (entry.is_object()) {
-            requireKnownKeys(entry, {"file", "layer"}, where + " \"" + key + "\"");
-            name = entry.at("file").get<std::string>();
-            layer = entry.value("layer", "");
-        } else {
-            name = entry.get<std::string>();
-        }
-        const std::string path = (fs::path(info_.directory) / name).string();
-        if (auto it = layerOverrides_.find(key); it != layerOverrides_.end())
-            layer = it->second;
-        else if (auto it2 = layers_.find(key); layer.empty() && it2 != layers_.end())
-            layer = it2->second;
-        if (layer.empty()) {
-            const std::vector<std::string> names = exrChannelNames(path);
-            const bool plain = std::any_of(names.begin(), names.end(), [](const std::string& n) {
-                return n.find('.') == std::string::npos;
-            });
-            if (!plain) {
-                for (const DefaultPass& d : kDefaultPasses)
-                    if (d.buffer == std::string(key))
-                        for (const char* pass : d.passes)
-                            if (layer.empty()) layer = findExrLayer(path, pass);
-                if (layer.empty())
-                    throw Error(path + ": " + key +
-                                ": no plain channels and none of the default passes; name the "
-                                "layer with --channel " +
-                                key + "=LAYER");
+    /// The 3-channel buffers of a frame. Each is a file name or {"file", "layer"}; the layer
+    /// comes from --channel, then the entry, then the sequence's "layers", then kDefaultPasses
+    /// when the file has only layered channels. Buffers in one file are read in one pass.
+    void readBuffers(const json& frame, const std::vector<std::pair<const char*, ImageF*>>& buffers,
+                     const std::string& where) const {
+        std::map<std::string, std::vector<std::pair<const char*, ExrLayerRead>>> byFile;
+        std::vector<std::string> order; // files in first-use order, for stable error messages
+        for (const auto& [key, out] : buffers) {
+            const json& entry = frame.at(key);
+            std::string name, layer;
+            if (entry.is_object()) {
+                requireKnownKeys(entry, {"file", "layer"}, where + " \"" + key + "\"");
+                name = entry.at("file").get<std::string>();
+                layer = entry.value("layer", "");
+            } else {
+                name = entry.get<std::string>();
             }
+            if (auto it = layerOverrides_.find(key); it != layerOverrides_.end())
+                layer = it->second;
+            else if (auto it2 = layers_.find(key); layer.empty() && it2 != layers_.end())
+                layer = it2->second;
+            const std::string path = (fs::path(info_.directory) / name).string();
+            if (!byFile.count(path)) order.push_back(path);
+            byFile[path].push_back({key, ExrLayerRead{layer, 3, out}});
         }
-        return readExr(path, 3, layer);
+        for (const std::string& path : order) {
+            std::vector<ExrLayerRead> reads;
+            std::vector<std::string> names;
+            for (auto& [key, read] : byFile[path]) {
+                if (read.layer.empty()) {
+                    if (names.empty()) names = exrChannelNames(path);
+                    read.layer = defaultLayer(names, key, path);
+                }
+                reads.push_back(read);
+            }
+            readExrLayers(path, reads);
+        }
+    }
+
+    /// "" when the file has plain channels, else the first of the buffer's default passes.
+    static std::string defaultLayer(const std::vector<std::string>& names, const char* key,
+                                    const std::string& path) {
+        const bool plain = std::any_of(names.begin(), names.end(), [](const std::string& n) {
+            return n.find('.') == std::string::npos;
+        });
+        if (plain) return {};
+        for (const DefaultPass& d : kDefaultPasses)
+            if (d.buffer == std::string(key))
+                for (const char* pass : d.passes)
+                    if (std::string layer = findExrLayer(names, pass, path); !layer.empty())
+                        return layer;
+        throw Error(path + ": " + key +
+                    ": no plain channels and none of the default passes; name the layer with "
+                    "--channel " +
+                    key + "=LAYER");
     }
 };
 
