@@ -14,26 +14,26 @@ namespace bmfr::python {
 
 namespace {
 
+/// A setting's Python name: its flag with underscores ("block_size").
+std::string pythonName(const SettingDoc& d) {
+    std::string n = d.flag;
+    std::replace(n.begin(), n.end(), '-', '_');
+    return n;
+}
+
+std::string pythonName(const std::string& filter, const std::string& key) {
+    for (const SettingDoc& d : filterSettings(filter))
+        if (d.key == key) return pythonName(d);
+    return key;
+}
+
 /// The settings-table key for a Python keyword: the key itself ("blockSize") or its flag with
 /// underscores ("block_size" for --block-size).
 std::string settingKey(const std::string& filter, const std::string& name) {
-    std::string flag = name;
-    std::replace(flag.begin(), flag.end(), '_', '-');
     for (const SettingDoc& d : filterSettings(filter))
-        if (d.key == name || d.flag == flag) return d.key;
+        if (d.key == name || pythonName(d) == name) return d.key;
     throw py::value_error(name + ": not a setting of the " + filter +
                           " filter (see bmfr.settings(\"" + filter + "\"))");
-}
-
-std::string pythonName(const std::string& key) {
-    for (const std::string& f : filterNames())
-        for (const SettingDoc& d : filterSettings(f))
-            if (d.key == key) {
-                std::string n = d.flag;
-                std::replace(n.begin(), n.end(), '-', '_');
-                return n;
-            }
-    return key;
 }
 
 std::string settingText(const py::handle& v) {
@@ -62,7 +62,7 @@ class PyFilter {
         try {
             filter_ = makeFilter(name, values);
         } catch (const SettingError& e) {
-            throw py::value_error(pythonName(e.key()) + " " + e.value() + " " + e.problem());
+            throw py::value_error(pythonName(name, e.key()) + " " + e.value() + " " + e.problem());
         } catch (const Error& e) {
             throw py::value_error(e.what());
         }
@@ -265,9 +265,7 @@ a list of float32 (height, width) feature buffers for BMFR's extraK features.)")
         [](const std::string& name) {
             py::list rows;
             for (const SettingDoc& d : filterSettings(name)) {
-                std::string py = d.flag;
-                std::replace(py.begin(), py.end(), '-', '_');
-                rows.append(py::dict(py::arg("name") = py, py::arg("key") = d.key,
+                rows.append(py::dict(py::arg("name") = pythonName(d), py::arg("key") = d.key,
                                      py::arg("unit") = d.unit, py::arg("range") = d.range,
                                      py::arg("default") = d.defaultValue,
                                      py::arg("help") = d.help));
