@@ -38,6 +38,7 @@ class ManifestReader : public SequenceReader {
             for (size_t k = 0; k < manifest_.at("frames").size(); ++k)
                 requireKnownKeys(manifest_["frames"][k],
                                  {"color", "albedo", "normal", "position", "reference", "emission",
+                                  "motion", "previous_position", "previous_normal", "reset",
                                   "extras", "aovs", "view_projection", "jitter"},
                                  mp.string() + " frame " + std::to_string(k));
             if (!manifest_.contains("width") || !manifest_.contains("height"))
@@ -58,7 +59,8 @@ class ManifestReader : public SequenceReader {
                 for (const auto& [buffer, layer] : manifest_["layers"].items())
                     layers_[buffer] = layer.get<std::string>();
                 requireKnownKeys(manifest_["layers"],
-                                 {"color", "albedo", "normal", "position", "emission", "reference"},
+                                 {"color", "albedo", "normal", "position", "emission", "reference",
+                                  "motion", "previous_position", "previous_normal"},
                                  mp.string() + " \"layers\"");
             }
             info_.frameCount = int(manifest_.at("frames").size());
@@ -83,15 +85,23 @@ class ManifestReader : public SequenceReader {
         if (index < 0 || index >= info_.frameCount) throw Error(where + ": out of range");
         try {
             const json& j = manifest_["frames"][size_t(index)];
-            std::vector<std::pair<const char*, ImageF*>> buffers = {{"color", &f.color},
-                                                                    {"albedo", &f.albedo},
-                                                                    {"normal", &f.normal},
-                                                                    {"position", &f.position}};
+            std::vector<Buffer> buffers = {{"color", &f.color, 3},
+                                           {"albedo", &f.albedo, 3},
+                                           {"normal", &f.normal, 3},
+                                           {"position", &f.position, 3}};
+            // Optional buffers: one a frame does not name is left empty, not kept from the last.
+            const Buffer optional[] = {{"emission", &f.emission, 3},
+                                       {"motion", &f.motion, 2},
+                                       {"previous_position", &f.previousPosition, 3},
+                                       {"previous_normal", &f.previousNormal, 3}};
             f.reference = ImageF();
-            f.emission = ImageF();
-            if (info_.hasReference) buffers.push_back({"reference", &f.reference});
-            if (j.contains("emission")) buffers.push_back({"emission", &f.emission});
+            if (info_.hasReference) buffers.push_back({"reference", &f.reference, 3});
+            for (const Buffer& b : optional) {
+                *b.out = ImageF();
+                if (j.contains(b.key)) buffers.push_back(b);
+            }
             readBuffers(j, buffers, where);
+            f.reset = j.value("reset", false);
             f.extras.clear();
             if (j.contains("extras")) {
                 for (const auto& e : j["extras"])
@@ -133,14 +143,20 @@ class ManifestReader : public SequenceReader {
     json manifest_;
     std::map<std::string, std::string> layers_; ///< the sequence's own "layers"
 
-    /// The 3-channel buffers of a frame. Each is a file name or {"file", "layer"}; the layer
+    struct Buffer {
+        const char* key;
+        ImageF* out;
+        int channels;
+    };
+
+    /// The image buffers of a frame. Each is a file name or {"file", "layer"}; the layer
     /// comes from --channel, then the entry, then the sequence's "layers", then kDefaultPasses
     /// when the file has only layered channels. Buffers in one file are read in one pass.
-    void readBuffers(const json& frame, const std::vector<std::pair<const char*, ImageF*>>& buffers,
+    void readBuffers(const json& frame, const std::vector<Buffer>& buffers,
                      const std::string& where) const {
         std::map<std::string, std::vector<std::pair<const char*, ExrLayerRead>>> byFile;
         std::vector<std::string> order; // files in first-use order, for stable error messages
-        for (const auto& [key, out] : buffers) {
+        for (const auto& [key, out, channels] : buffers) {
             const json& entry = frame.at(key);
             std::string name, layer;
             if (entry.is_object()) {
@@ -156,7 +172,7 @@ class ManifestReader : public SequenceReader {
                 layer = it2->second;
             const std::string path = (fs::path(info_.directory) / name).string();
             if (!byFile.count(path)) order.push_back(path);
-            byFile[path].push_back({key, ExrLayerRead{layer, 3, out}});
+            byFile[path].push_back({key, ExrLayerRead{layer, channels, out}});
         }
         for (const std::string& path : order) {
             std::vector<ExrLayerRead> reads;
@@ -243,6 +259,10 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
     j["position"] = put("position", f.position);
     if (f.reference.width) j["reference"] = put("reference", f.reference);
     if (f.emission.width) j["emission"] = put("emission", f.emission);
+    if (f.motion.width) j["motion"] = put("motion", f.motion);
+    if (f.previousPosition.width) j["previous_position"] = put("previous_position", f.previousPosition);
+    if (f.previousNormal.width) j["previous_normal"] = put("previous_normal", f.previousNormal);
+    if (f.reset) j["reset"] = true;
     if (!f.extras.empty()) {
         j["extras"] = json::array();
         for (size_t e = 0; e < f.extras.size(); ++e)

@@ -6,7 +6,7 @@ namespace bmfr {
 
 namespace fs = std::filesystem;
 
-FrameInput FrameData::input() const {
+FrameInput FrameData::input(bool motionInput) const {
     FrameInput in;
     in.color = view(color);
     in.albedo = view(albedo);
@@ -14,6 +14,12 @@ FrameInput FrameData::input() const {
     in.position = view(position);
     if (emission.width) in.emission = view(emission);
     for (const ImageF& e : extras) in.extras.push_back(view(e));
+    if (motionInput) {
+        if (motion.width) in.motion = view(motion);
+        if (previousPosition.width) in.previousPosition = view(previousPosition);
+        if (previousNormal.width) in.previousNormal = view(previousNormal);
+    }
+    in.reset = reset;
     in.viewProjection = viewProjection;
     in.jitter[0] = jitter[0];
     in.jitter[1] = jitter[1];
@@ -27,6 +33,10 @@ const std::vector<DefaultPass> kDefaultPasses = {
     {"position", {"Position"}},
     {"emission", {"Emit"}},
     {"reference", {"Combined"}},
+    // Cycles has no pass of these conventions (its Vector pass points the other way, y up).
+    {"motion", {}},
+    {"previous_position", {}},
+    {"previous_normal", {}},
 };
 
 void SequenceReader::setLayerOverrides(const std::map<std::string, std::string>& layers) {
@@ -35,8 +45,8 @@ void SequenceReader::setLayerOverrides(const std::map<std::string, std::string>&
         for (const DefaultPass& d : kDefaultPasses) known = known || buffer == d.buffer;
         if (!known)
             throw Error("--channel " + buffer + "=" + layer +
-                        ": unknown buffer (color, albedo, normal, position, emission or "
-                        "reference)");
+                        ": unknown buffer (color, albedo, normal, position, emission, "
+                        "reference, motion, previous_position or previous_normal)");
     }
     if (!layers.empty() && info_.layout != "manifest")
         throw Error("--channel: the " + info_.layout +
@@ -59,6 +69,9 @@ void SequenceReader::checkFrame(int index, const FrameData& f) const {
     for (const ImageF& e : f.extras) check(e, "extra");
     if (f.reference.width) check(f.reference, "reference");
     if (f.emission.width) check(f.emission, "emission");
+    if (f.motion.width) check(f.motion, "motion");
+    if (f.previousPosition.width) check(f.previousPosition, "previous_position");
+    if (f.previousNormal.width) check(f.previousNormal, "previous_normal");
 }
 
 std::unique_ptr<SequenceReader> SequenceReader::open(const std::string& directory) {

@@ -17,13 +17,19 @@ struct FrameData {
     std::vector<ImageF> extras; ///< 1-channel extra features, in SequenceInfo::extraNames order
     ImageF reference;           ///< empty (0x0) when the sequence has none
     ImageF emission; ///< first-hit emitted radiance (noise-free); empty when the layout has none
+    /// FrameInput::motion (2 channels), previousPosition and previousNormal; empty when the
+    /// sequence has none.
+    ImageF motion, previousPosition, previousNormal;
+    bool reset = false; ///< a camera cut: the history is dropped at this frame
     /// Further named outputs (depth, motion, direct/indirect, diffuse/glossy splits...).
     std::vector<std::pair<std::string, ImageF>> aovs;
     Mat4 viewProjection;
     float jitter[2] = {0, 0};
 
-    /// A view for Denoiser::denoise (valid while this object lives).
-    FrameInput input() const;
+    /// A view for Denoiser::denoise (valid while this object lives). Without `motion`, the
+    /// motion vectors and previous positions and normals are left out: the filters then
+    /// reproject by the cameras alone.
+    FrameInput input(bool motion = true) const;
 };
 
 struct SequenceInfo {
@@ -51,7 +57,8 @@ class SequenceReader {
     void setLoadAovs(bool on) { loadAovs_ = on; }
     /// Which layer of a multilayer EXR each buffer comes from ("albedo" -> "ViewLayer.DiffCol"),
     /// replacing the sequence's own choice and the default mapping (kDefaultPasses). Buffers:
-    /// color, albedo, normal, position, emission, reference. Throws bmfr::Error for another
+    /// color, albedo, normal, position, emission, reference, motion, previous_position,
+    /// previous_normal. Throws bmfr::Error for another
     /// name, or for a layout without multilayer files (the original BMFR layout).
     virtual void setLayerOverrides(const std::map<std::string, std::string>& layers);
 

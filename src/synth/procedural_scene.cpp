@@ -1,6 +1,7 @@
 #include "synth/procedural_scene.h"
 #include "core/hash.h"
 #include "core/mat4.h"
+#include "temporal/reprojection.h"
 #include <bmfr/error.h>
 #include <cmath>
 #include <tbb/parallel_for.h>
@@ -19,19 +20,40 @@ constexpr float kRoom = 5.0f, kCeiling = 4.0f;
 const Vec3 kSphereCentre{1.2f, 1.0f, -0.2f};
 constexpr float kSphereRadius = 1.0f;
 const Vec3 kBoxLo{-2.2f, 0.0f, -1.8f}, kBoxHi{-0.8f, 1.6f, -0.4f};
+const Vec3 kBoxCentre = 0.5f * (kBoxLo + kBoxHi);
+
+/// Where the moving objects are at one time: the sphere's centre and the box's turn about
+/// the vertical axis through its centre.
+struct Objects {
+    Vec3 sphereCentre = kSphereCentre;
+    float boxAngle = 0.0f; ///< radians
+};
+
+Objects objectsAt(float t) {
+    return {kSphereCentre + Vec3{0.05f * t, 0.0f, 0.0f}, 0.04f * t};
+}
+
+/// Rotation about the vertical axis by `angle` radians.
+Vec3 turnY(Vec3 v, float angle) {
+    const float c = std::cos(angle), s = std::sin(angle);
+    return {c * v.x + s * v.z, v.y, -s * v.x + c * v.z};
+}
 const Vec3 kLights[2] = {{0.3f, 3.6f, 1.5f}, {-3.5f, 2.2f, 3.5f}};
 const Vec3 kLightPower[2] = {{9.0f, 8.5f, 8.0f}, {2.0f, 2.4f, 3.0f}};
 
-void hitSphere(Vec3 o, Vec3 d, Hit& h) {
-    Vec3 oc = o - kSphereCentre;
+void hitSphere(const Objects& s, Vec3 o, Vec3 d, Hit& h) {
+    Vec3 oc = o - s.sphereCentre;
     float b = dot(oc, d), c = dot(oc, oc) - kSphereRadius * kSphereRadius;
     float disc = b * b - c;
     if (disc < 0) return;
     float t = -b - std::sqrt(disc);
-    if (t > 1e-4f && t < h.t) h = {t, normalize(o + t * d - kSphereCentre), 7};
+    if (t > 1e-4f && t < h.t) h = {t, normalize(o + t * d - s.sphereCentre), 7};
 }
 
-void hitBox(Vec3 o, Vec3 d, Hit& h) {
+void hitBox(const Objects& objects, Vec3 wo, Vec3 wd, Hit& h) {
+    // In the box's own frame, where it is axis-aligned.
+    const Vec3 o = objects.boxAngle == 0.0f ? wo : kBoxCentre + turnY(wo - kBoxCentre, -objects.boxAngle);
+    const Vec3 d = objects.boxAngle == 0.0f ? wd : turnY(wd, -objects.boxAngle);
     float t0 = 1e-4f, t1 = h.t;
     int axis = -1;
     float sign = 0;
@@ -47,7 +69,7 @@ void hitBox(Vec3 o, Vec3 d, Hit& h) {
     if (axis < 0) return;
     Vec3 n{};
     (axis == 0 ? n.x : axis == 1 ? n.y : n.z) = sign;
-    h = {t0, n, 8};
+    h = {t0, objects.boxAngle == 0.0f ? n : turnY(n, objects.boxAngle), 8};
 }
 
 void hitRoom(Vec3 o, Vec3 d, Hit& h) {
@@ -70,22 +92,22 @@ void hitRoom(Vec3 o, Vec3 d, Hit& h) {
     }
 }
 
-Hit trace(Vec3 o, Vec3 d) {
+Hit trace(const Objects& s, Vec3 o, Vec3 d) {
     Hit h;
     hitRoom(o, d, h);
-    hitSphere(o, d, h);
-    hitBox(o, d, h);
+    hitSphere(s, o, d, h);
+    hitBox(s, o, d, h);
     return h;
 }
 
-bool occluded(Vec3 p, Vec3 light) {
+bool occluded(const Objects& s, Vec3 p, Vec3 light) {
     Vec3 d = light - p;
     float dist = length(d);
     d = d / dist;
     Hit h;
     h.t = dist;
-    hitSphere(p, d, h);
-    hitBox(p, d, h);
+    hitSphere(s, p, d, h);
+    hitBox(s, p, d, h);
     return h.t < dist;
 }
 
@@ -109,13 +131,13 @@ Vec3 albedoOf(int material, Vec3 p) {
 }
 
 /// Demodulated outgoing radiance: direct light from both lights plus a smooth ambient term.
-Vec3 irradiance(Vec3 p, Vec3 n) {
+Vec3 irradiance(const Objects& s, Vec3 p, Vec3 n) {
     Vec3 e = (0.04f + 0.03f * n.y) * Vec3{1, 1, 1};
     for (int k = 0; k < 2; ++k) {
         Vec3 l = kLights[k] - p;
         float d2 = dot(l, l);
         float cosine = dot(n, l) / std::sqrt(d2);
-        if (cosine <= 0 || occluded(p + 1e-3f * n, kLights[k])) continue;
+        if (cosine <= 0 || occluded(s, p + 1e-3f * n, kLights[k])) continue;
         e += (cosine / d2) * kLightPower[k];
     }
     return e;
@@ -138,6 +160,8 @@ ProceduralScene::ProceduralScene(const ProceduralSceneOptions& o) : opt_(o) {
                     " outside [1, 100000]");
     if (!std::isfinite(o.cameraSpeed) || std::fabs(o.cameraSpeed) > 1000.0f)
         throw Error("procedural scene: camera speed must be a finite number in [-1000, 1000]");
+    if (!std::isfinite(o.objectSpeed) || std::fabs(o.objectSpeed) > 100.0f)
+        throw Error("procedural scene: object speed must be a finite number in [-100, 100]");
 }
 
 SequenceInfo ProceduralScene::info() const {
@@ -153,21 +177,62 @@ SequenceInfo ProceduralScene::info() const {
     return s;
 }
 
+namespace {
+
+/// The camera of frame `index` (any integer: -1 is the frame before the first).
+struct Camera {
+    Vec3 eye;
+    Mat4 viewProjection;
+    float jitter[2];
+};
+
+Camera cameraOf(const ProceduralSceneOptions& o, int index) {
+    const float t = float(index) * o.cameraSpeed;
+    Camera c;
+    c.eye = {-2.6f + 0.09f * t, 1.9f - 0.01f * t, 4.3f - 0.03f * t};
+    const Vec3 target{0.0f + 0.03f * t, 0.9f, -0.5f};
+    c.viewProjection = multiply(perspectiveYDown(1.05f, float(o.width) / float(o.height), 0.05f, 50.0f),
+                                lookAt(c.eye, target, {0, 1, 0}));
+    c.jitter[0] = o.jitter ? halton(index + 1, 2) - 0.5f : 0.0f;
+    c.jitter[1] = o.jitter ? halton(index + 1, 3) - 0.5f : 0.0f;
+    return c;
+}
+
+/// Where the point p (normal n) of `material` was in the previous frame, objects moving from
+/// `was` to `now`; the room does not move.
+void previousOf(int material, Vec3 p, Vec3 n, const Objects& now, const Objects& was, Vec3& pp,
+                Vec3& pn) {
+    pp = p, pn = n;
+    if (material == 7) {
+        pp = p - (now.sphereCentre - was.sphereCentre);
+    } else if (material == 8) {
+        const float turn = was.boxAngle - now.boxAngle;
+        pp = kBoxCentre + turnY(p - kBoxCentre, turn);
+        pn = turnY(n, turn);
+    }
+}
+
+} // namespace
+
 void ProceduralScene::render(int index, FrameData& f) const {
     const int w = opt_.width, h = opt_.height;
-    const float t = float(index) * opt_.cameraSpeed;
-    const Vec3 eye{-2.6f + 0.09f * t, 1.9f - 0.01f * t, 4.3f - 0.03f * t};
-    const Vec3 target{0.0f + 0.03f * t, 0.9f, -0.5f};
-    const Mat4 vp = multiply(perspectiveYDown(1.05f, float(w) / float(h), 0.05f, 50.0f),
-                             lookAt(eye, target, {0, 1, 0}));
+    const Camera cam = cameraOf(opt_, index), prevCam = cameraOf(opt_, index - 1);
+    const Objects now = objectsAt(float(index) * opt_.objectSpeed);
+    const Objects was = objectsAt(float(index - 1) * opt_.objectSpeed);
+    const Vec3 eye = cam.eye;
     Mat4 inv;
-    invert(vp, inv);
-    f.viewProjection = vp;
-    f.jitter[0] = opt_.jitter ? halton(index + 1, 2) - 0.5f : 0.0f;
-    f.jitter[1] = opt_.jitter ? halton(index + 1, 3) - 0.5f : 0.0f;
+    invert(cam.viewProjection, inv);
+    f.viewProjection = cam.viewProjection;
+    f.jitter[0] = cam.jitter[0], f.jitter[1] = cam.jitter[1];
     for (ImageF* img : {&f.color, &f.albedo, &f.normal, &f.position, &f.reference})
         img->resize(w, h, 3);
     f.extras.assign(1, ImageF(w, h, 1));
+    f.motion = f.previousPosition = f.previousNormal = ImageF();
+    if (opt_.motionVectors) {
+        f.motion.resize(w, h, 2);
+        f.previousPosition.resize(w, h, 3);
+        f.previousNormal.resize(w, h, 3);
+    }
 
     tbb::parallel_for(0, h, [&](int y) {
         for (int x = 0; x < w; ++x) {
@@ -176,10 +241,10 @@ void ProceduralScene::render(int index, FrameData& f) const {
             Vec4 a = transformPoint(inv, {sx, sy, -1.0f}), b = transformPoint(inv, {sx, sy, 1.0f});
             Vec3 pa{a.x / a.w, a.y / a.w, a.z / a.w}, pb{b.x / b.w, b.y / b.w, b.z / b.w};
             Vec3 d = normalize(pb - pa);
-            Hit hit = trace(eye, d);
+            Hit hit = trace(now, eye, d);
             Vec3 p = eye + hit.t * d;
             Vec3 alb = albedoOf(hit.material, p);
-            Vec3 truth = alb * irradiance(p, hit.n);
+            Vec3 truth = alb * irradiance(now, p, hit.n);
             const long i = long(y) * w + x;
             // Unit-mean exponential noise shared by the channels, with a little chroma noise.
             uint32_t key = hashKeys(opt_.seed, uint32_t(index), uint32_t(i));
@@ -194,6 +259,16 @@ void ProceduralScene::render(int index, FrameData& f) const {
             store3(f.normal.data(), i, hit.n);
             store3(f.position.data(), i, p);
             f.extras[0].data()[i] = float(hit.material);
+            if (opt_.motionVectors) {
+                Vec3 pp, pn;
+                previousOf(hit.material, p, hit.n, now, was, pp, pn);
+                store3(f.previousPosition.data(), i, pp);
+                store3(f.previousNormal.data(), i, pn);
+                Vec2 prev{-1e6f, -1e6f}, at; // behind the previous camera: off every image
+                if (projectToPixel(prevCam.viewProjection, pp, prevCam.jitter, w, h, at)) prev = at;
+                f.motion.data()[2 * i] = prev.x - float(x);
+                f.motion.data()[2 * i + 1] = prev.y - float(y);
+            }
         }
     });
 }

@@ -15,13 +15,19 @@ struct ProceduralSceneOptions {
     uint32_t seed = 1;        ///< noise seed
     bool jitter = true;       ///< per-frame sub-pixel offsets (Halton 2,3), else pixel centres
     float cameraSpeed = 1.0f; ///< scales the camera path per frame; 0 = static camera
+    /// Scales the objects' motion per frame: the sphere slides 0.05 m and the box turns 0.04 rad
+    /// about its vertical axis per frame at 1. 0 = static objects; [-100, 100].
+    float objectSpeed = 0.0f;
+    /// Also write the exact motion vectors and previous positions and normals (FrameInput).
+    bool motionVectors = false;
 };
 
 class ProceduralScene {
   public:
     explicit ProceduralScene(const ProceduralSceneOptions& options);
     /// Renders frame `index`: noisy colour, albedo, normal, position, extras (material id),
-    /// reference (the exact truth), matrix and jitter.
+    /// reference (the exact truth), matrix and jitter; with motionVectors, motion and previous
+    /// positions and normals too.
     void render(int index, FrameData& out) const;
     SequenceInfo info() const;
     const ProceduralSceneOptions& options() const { return opt_; }

@@ -28,6 +28,9 @@ const InputPlanes& InputStaging::stage(const FrameInput& f) {
     p.position = packed(f.position, 3, position_);
     p.emission = packed(f.emission, 3, emission_);
     p.sampleMask = packed(f.sampleMask, 1, sampleMask_);
+    p.motion = packed(f.motion, 2, motion_);
+    p.previousPosition = packed(f.previousPosition, 3, previousPosition_);
+    p.previousNormal = packed(f.previousNormal, 3, previousNormal_);
     p.extraCount = int(f.extras.size());
     for (int e = 0; e < p.extraCount; ++e) p.extras[e] = packed(f.extras[size_t(e)], 1, extras_[e]);
     return p;

@@ -17,7 +17,8 @@ class InputStaging {
   private:
     const float* packed(const ImageView& v, int channels, std::vector<float>& copy);
     InputPlanes planes_;
-    std::vector<float> color_, albedo_, normal_, position_, emission_, sampleMask_;
+    std::vector<float> color_, albedo_, normal_, position_, emission_, sampleMask_, motion_;
+    std::vector<float> previousPosition_, previousNormal_;
     std::vector<float> extras_[InputPlanes::kMaxExtras];
 };
 

@@ -16,6 +16,9 @@ struct InputPlanes {
     const float* position = nullptr;
     const float* emission = nullptr;   ///< null when the frame has none
     const float* sampleMask = nullptr; ///< null at 1 spp
+    const float* motion = nullptr;           ///< 2 floats per pixel; null: reproject by camera
+    const float* previousPosition = nullptr; ///< null: the current position stands in
+    const float* previousNormal = nullptr;   ///< null: the current normal stands in
     const float* extras[kMaxExtras] = {};
     int extraCount = 0;
     int width = 0, height = 0;

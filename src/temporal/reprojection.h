@@ -2,6 +2,8 @@
 // Shared by every temporal filter (BMFR phases I and III, TAA, SVGF): one implementation.
 #pragma once
 #include "core/mat4.h"
+#include "temporal/history.h"
+#include "temporal/pixel_input.h"
 #include <cstdint>
 
 namespace bmfr {
@@ -17,6 +19,42 @@ BMFR_HD bool projectToPixel(const Mat4& vp, Vec3 p, const float jitter[2], int w
     pixel.y = (c.y / c.w * 0.5f + 0.5f) * float(height) - 0.5f - jitter[1];
     return std::isfinite(pixel.x) && std::isfinite(pixel.y) && std::fabs(pixel.x) < 1e8f &&
            std::fabs(pixel.y) < 1e8f;
+}
+
+/// Pixel i's surface as the previous frame saw it: where it was, and the position and normal
+/// that the discard test compares with the previous frame's buffers.
+struct PreviousSurface {
+    Vec2 pixel{-1e6f, -1e6f}; ///< continuous pixel; out of every image when there is none
+    Vec3 position, normal;
+};
+
+/// Where pixel i (at x, y) with current surface (p, n) was in the previous frame: through the
+/// frame's motion vector when it has one, else by projecting its previous position (or, without
+/// one, its current position) with the previous camera. The previous position and normal stand
+/// in for p and n in the discard test when the frame has them. Non-finite values are counted in
+/// `bad` on every frame; a non-finite motion vector means no history, a non-finite previous
+/// position or normal is replaced by 0. Returns false when there is no previous pixel.
+BMFR_HD bool findPreviousSurface(const InputPlanes& in, long i, int x, int y, Vec3 p, Vec3 n,
+                                 const PreviousFrame& prev, int64_t& bad, PreviousSurface& s) {
+    s.position = in.previousPosition ? finiteOrZero(load3(in.previousPosition, i), bad) : p;
+    s.normal = in.previousNormal ? finiteOrZero(load3(in.previousNormal, i), bad) : n;
+    s.pixel = {-1e6f, -1e6f};
+    if (in.motion) {
+        const float mx = in.motion[2 * i], my = in.motion[2 * i + 1];
+        const bool finite = std::isfinite(mx) && std::isfinite(my);
+        bad += int64_t(!std::isfinite(mx)) + int64_t(!std::isfinite(my));
+        if (!prev.valid || !finite) return false;
+        const Vec2 pixel{float(x) + mx, float(y) + my};
+        if (!(std::fabs(pixel.x) < 1e8f && std::fabs(pixel.y) < 1e8f)) return false;
+        s.pixel = pixel;
+        return true;
+    }
+    if (!prev.valid) return false;
+    Vec2 pixel;
+    if (!projectToPixel(prev.viewProjection, s.position, prev.jitter, in.width, in.height, pixel))
+        return false;
+    s.pixel = pixel;
+    return true;
 }
 
 /// The 2x2 bilinear footprint of a continuous pixel coordinate: taps (0,0), (1,0), (0,1),

@@ -3,6 +3,7 @@
 #pragma once
 #include "backend/cpu/simd.h"
 #include "core/mat4.h"
+#include "temporal/history.h"
 #include "temporal/reprojection.h"
 
 namespace bmfr::cpu {
@@ -23,6 +24,48 @@ BMFR_SIMD_INLINE simd::i8 project8(const simd::f8 p[3], const Mat4& m, const flo
     const i8 valid = (cw > 0.0f) & (px < big) & (px > -big) & (py < big) & (py > -big);
     px = valid ? px : splat8(-1e6f), py = valid ? py : splat8(-1e6f);
     return valid;
+}
+
+/// findPreviousSurface (temporal/reprojection.h) of the n <= 8 pixels [i, i + n) of one row,
+/// the first at column x of row y, with current surfaces (p, n): the previous pixels (lanes
+/// without one at -1e6), and the positions and normals for the discard test. Returns the lanes
+/// with a previous pixel; counts non-finite values in `bad` as the scalar version does.
+struct Surface8 {
+    simd::f8 px, py;
+    simd::f8 position[3], normal[3];
+};
+
+BMFR_SIMD_INLINE simd::i8 previousSurface8(const InputPlanes& in, const PreviousFrame& prev, long i,
+                                           int x, int y, int n, const simd::f8 p[3],
+                                           const simd::f8 nrm[3], int64_t& bad, Surface8& s) {
+    using namespace simd;
+    for (int c = 0; c < 3; ++c) s.position[c] = p[c], s.normal[c] = nrm[c];
+    if (in.previousPosition) {
+        loadXyz8(in.previousPosition + 3 * i, n, s.position);
+        finiteOrZero8(s.position, bad);
+    }
+    if (in.previousNormal) {
+        loadXyz8(in.previousNormal + 3 * i, n, s.normal);
+        finiteOrZero8(s.normal, bad);
+    }
+    if (in.motion) {
+        f8 mx, my;
+        loadXy8(in.motion + 2 * i, n, mx, my);
+        const i8 okX = finite8(mx), okY = finite8(my);
+        bad += countLanes(~okX) + countLanes(~okY);
+        const f8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+        s.px = (float(x) + lane) + mx, s.py = float(y) + my;
+        const f8 big = splat8(1e8f);
+        const i8 valid = okX & okY & (s.px < big) & (s.px > -big) & (s.py < big) & (s.py > -big) &
+                         (prev.valid ? firstLanes(n) : i8{});
+        s.px = valid ? s.px : splat8(-1e6f), s.py = valid ? s.py : splat8(-1e6f);
+        return valid;
+    }
+    if (!prev.valid) {
+        s.px = s.py = splat8(-1e6f);
+        return i8{};
+    }
+    return project8(s.position, prev.viewProjection, prev.jitter, in.width, in.height, s.px, s.py);
 }
 
 /// bilinearFootprint of eight continuous pixels: top-left tap and the four tap weights.

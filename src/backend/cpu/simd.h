@@ -64,6 +64,18 @@ BMFR_SIMD_INLINE int hminLanes(i8 v) {
             : __builtin_shuffle(v, i8{2, 3, 0, 1, 6, 7, 4, 5});
     return v[0] < v[1] ? v[0] : v[1];
 }
+/// Lanes whose value is finite (x - x is NaN for NaN and Inf).
+BMFR_SIMD_INLINE i8 finite8(f8 v) {
+    return (v - v) == 0.0f;
+}
+/// Non-finite lanes of three channels replaced by 0 and counted (staged tails read as 0).
+BMFR_SIMD_INLINE void finiteOrZero8(f8 v[3], int64_t& bad) {
+    for (int c = 0; c < 3; ++c) {
+        const i8 ok = finite8(v[c]);
+        bad += countLanes(~ok);
+        v[c] = ok ? v[c] : f8{};
+    }
+}
 /// Lanes 0 .. n-1 true.
 BMFR_SIMD_INLINE i8 firstLanes(int n) {
     const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
@@ -114,6 +126,14 @@ BMFR_SIMD_INLINE void loadXyz8(const float* p, int n, f8 out[3]) {
     float staged[24] = {};
     std::memcpy(staged, p, sizeof(float) * 3 * size_t(n));
     deinterleave3(staged, out[0], out[1], out[2]);
+}
+/// The first n (1 to 8) packed xy records (motion vectors); lanes n to 7 read as 0.
+BMFR_SIMD_INLINE void loadXy8(const float* p, int n, f8& x, f8& y) {
+    float staged[16] = {};
+    std::memcpy(staged, p, sizeof(float) * 2 * size_t(n));
+    const f8 a = load8(staged), b = load8(staged + 8);
+    x = __builtin_shuffle(a, b, i8{0, 2, 4, 6, 8, 10, 12, 14});
+    y = __builtin_shuffle(a, b, i8{1, 3, 5, 7, 9, 11, 13, 15});
 }
 /// Stores the first n (1 to 8) records as packed xyz.
 BMFR_SIMD_INLINE void storeXyz8(float* p, int n, const f8 v[3]) {

@@ -41,14 +41,15 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
     store3(a.normal, i, n);
     store3(a.position, i, p);
 
-    Vec2 pp{-1e6f, -1e6f}; // out of every image: TAA and phase III skip it
     uint8_t accept = 0;
     float samples = 0.0f, blend = 1.0f;
     Vec3 old{};
     const PreviousFrame& prev = a.previous;
-    if (prev.valid && projectToPixel(prev.viewProjection, p, prev.jitter, a.width, a.height, pp)) {
-        const BilinearFootprint fp = bilinearFootprint(pp);
-        accept = acceptTaps(fp, p, n, a.prevPosition, a.prevNormal, a.width, a.height, a.limits);
+    PreviousSurface was; // its pixel stays out of every image without one: TAA and phase III skip it
+    if (findPreviousSurface(a.in, i, int(i % a.width), int(i / a.width), p, n, prev, bad, was)) {
+        const BilinearFootprint fp = bilinearFootprint(was.pixel);
+        accept = acceptTaps(fp, was.position, was.normal, a.prevPosition, a.prevNormal, a.width,
+                            a.height, a.limits);
         const float total = gatherAccepted(fp, accept, a.width, [&](long j, float wt) {
             old += wt * load3(a.prevNoisy, j);
             samples += wt * float(a.prevLength[j]);
@@ -62,8 +63,8 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
     a.length[i] = blend < 1.0f ? nextHistoryLength(samples) : 1;
     if (a.accumulate && blend < 1.0f) c = lerp(old, c, blend);
     store3(a.noisy, i, c);
-    a.previousPixel[2 * i] = pp.x;
-    a.previousPixel[2 * i + 1] = pp.y;
+    a.previousPixel[2 * i] = was.pixel.x;
+    a.previousPixel[2 * i + 1] = was.pixel.y;
     a.accept[i] = accept;
     return prev.valid && accept == 0;
 }

@@ -46,14 +46,14 @@ BMFR_HD void svgfAccumulatePixel(const SvgfFrame& f, long i, int64_t& bad) {
     f.depth[i] = transformPoint(f.viewProjection, p).w;
     const bool present = !f.in.sampleMask || f.in.sampleMask[i] > 0.5f;
 
-    Vec2 pp{-1e6f, -1e6f};
     uint8_t accept = 0;
     float samples = 0, oldM1 = 0, oldM2 = 0, total = 0;
     Vec3 oldColor{};
-    if (f.previous.valid &&
-        projectToPixel(f.previous.viewProjection, p, f.previous.jitter, w, h, pp)) {
-        const BilinearFootprint fp = bilinearFootprint(pp);
-        accept = acceptTaps(fp, p, n, f.prevPosition, f.prevNormal, w, h, f.limits);
+    PreviousSurface was;
+    if (findPreviousSurface(f.in, i, int(i % w), int(i / w), p, n, f.previous, bad, was)) {
+        const BilinearFootprint fp = bilinearFootprint(was.pixel);
+        accept = acceptTaps(fp, was.position, was.normal, f.prevPosition, f.prevNormal, w, h,
+                            f.limits);
         // Taps that never had a sample carry no history.
         for (int t = 0; t < 4; ++t)
             if ((accept >> t & 1) && f.prevLength[long(tapY(fp, t)) * w + tapX(fp, t)] == 0)
@@ -65,8 +65,8 @@ BMFR_HD void svgfAccumulatePixel(const SvgfFrame& f, long i, int64_t& bad) {
             samples += wt * float(f.prevLength[j]);
         });
     }
-    f.previousPixel[2 * i] = pp.x;
-    f.previousPixel[2 * i + 1] = pp.y;
+    f.previousPixel[2 * i] = was.pixel.x;
+    f.previousPixel[2 * i + 1] = was.pixel.y;
     f.accept[i] = accept;
     Vec3 color{};
     float m1 = 0, m2 = 0;

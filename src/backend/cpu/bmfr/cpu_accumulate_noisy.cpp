@@ -9,20 +9,6 @@ using namespace simd;
 
 namespace {
 
-/// Lanes whose value is finite (x - x is NaN for NaN and Inf).
-BMFR_SIMD_INLINE i8 finite8(f8 v) {
-    return (v - v) == 0.0f;
-}
-
-/// Non-finite lanes replaced by 0 and counted (staged tails read as 0, which is finite).
-BMFR_SIMD_INLINE void finiteOrZero8(f8 v[3], int64_t& bad) {
-    for (int c = 0; c < 3; ++c) {
-        const i8 ok = finite8(v[c]);
-        bad += countLanes(~ok);
-        v[c] = ok ? v[c] : f8{};
-    }
-}
-
 /// The eight pixels' inputs as readPixel (temporal/pixel_input.h) reads them.
 struct Inputs8 {
     f8 position[3], normal[3], color[3];
@@ -89,12 +75,13 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl,
         storeFirst(pl.surface[3 + c] + i, px.normal[c], n);
     }
     f8 color[3] = {px.color[0], px.color[1], px.color[2]};
-    f8 length = splat8(1.0f), ppx = splat8(-1e6f), ppy = splat8(-1e6f);
+    f8 length = splat8(1.0f);
     i8 accept{};
+    Surface8 was;
+    const i8 valid = previousSurface8(a.in, t.previous, i, int(i % t.width), int(i / t.width), n,
+                                      px.position, px.normal, bad, was);
     if (t.hasHistory()) {
-        const i8 valid = project8(px.position, t.previous.viewProjection, t.previous.jitter,
-                                  t.width, t.height, ppx, ppy);
-        const Footprint8 fp = footprint8(ppx, ppy);
+        const Footprint8 fp = footprint8(was.px, was.py);
         const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
         const f8 limP = splat8(s.positionLimitSquared), limN = splat8(s.normalLimitSquared);
         i8 ok[4];
@@ -102,8 +89,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl,
             for (int k = 0; k < 4; ++k) {
                 f8 d[6];
                 for (int c = 0; c < 3; ++c) {
-                    d[c] = tapPlane(taps, pl.prevSurface[c], k) - px.position[c];
-                    d[3 + c] = tapPlane(taps, pl.prevSurface[3 + c], k) - px.normal[c];
+                    d[c] = tapPlane(taps, pl.prevSurface[c], k) - was.position[c];
+                    d[3 + c] = tapPlane(taps, pl.prevSurface[3 + c], k) - was.normal[c];
                 }
                 // dot(d, d) in Vec3's order, so the decisions match the reference bit for bit.
                 const f8 dp = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
@@ -131,8 +118,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl,
     }
     for (int c = 0; c < 3; ++c) storeFirst(pl.noisy[c] + i, color[c], n);
     storeFirst(pl.noisy[3] + i, length, n);
-    storeFirst(pl.previousPixel[0] + i, ppx, n);
-    storeFirst(pl.previousPixel[1] + i, ppy, n);
+    storeFirst(pl.previousPixel[0] + i, was.px, n);
+    storeFirst(pl.previousPixel[1] + i, was.py, n);
     storeBytes(pl.accept + i, accept, n);
 }
 
