@@ -101,17 +101,28 @@ void expectConformance(const std::string& filter, const std::string& backend,
 
 struct ProceduralFrames {
     std::vector<FrameData> frames;
-    ProceduralFrames(int w, int h, int n, bool poison) {
+    /// With `moving`, the sphere slides and the box turns, and the frames carry motion vectors
+    /// and previous positions and normals (poisoned too, with `poison`).
+    ProceduralFrames(int w, int h, int n, bool poison, bool moving = false) {
         ProceduralSceneOptions o;
         o.width = w, o.height = h, o.frames = n;
+        o.objectSpeed = moving ? 2.0f : 0.0f, o.motionVectors = moving;
         ProceduralScene scene(o);
         frames.resize(size_t(n));
         for (int i = 0; i < n; ++i) {
-            scene.render(i, frames[size_t(i)]);
+            FrameData& f = frames[size_t(i)];
+            scene.render(i, f);
             if (poison && i % 3 == 1) {
-                frames[size_t(i)].color.pixels[5] = NAN;
-                frames[size_t(i)].normal.pixels[3 * 17 + 1] = INFINITY;
-                frames[size_t(i)].position.pixels.back() = -INFINITY;
+                f.color.pixels[5] = NAN;
+                f.normal.pixels[3 * 17 + 1] = INFINITY;
+                f.position.pixels.back() = -INFINITY;
+                if (moving) {
+                    f.motion.pixels[2 * 40] = NAN;
+                    f.motion.pixels[2 * 41 + 1] = -INFINITY;
+                    f.motion.pixels[2 * 42] = 5e9f; // finite, far outside every image
+                    f.previousPosition.pixels[3 * 50 + 2] = NAN;
+                    f.previousNormal.pixels[3 * 60] = INFINITY;
+                }
             }
         }
     }
@@ -167,6 +178,20 @@ struct Conformance : testing::TestWithParam<std::tuple<std::string, std::string>
 TEST_P(Conformance, ProceduralFramesOfOddSizeWithNonFiniteInput) {
     const ProceduralFrames p(203, 117, 12, true);
     expectConformance(filter().name, backend(), {}, 12, p.source(), "203x117 with NaN/Inf");
+}
+
+TEST_P(Conformance, MovingObjectsThroughMotionVectors) {
+    const ProceduralFrames p(131, 77, 10, true, true);
+    expectConformance(filter().name, backend(), {}, 10, p.source(),
+                      "131x77, moving objects, motion vectors with NaN/Inf");
+    // World-space motion alone: previous positions projected by the previous camera.
+    const FrameSource worldOnly = [&p](int i) {
+        FrameInput in = p.frames[size_t(i)].input();
+        in.motion = {};
+        return in;
+    };
+    expectConformance(filter().name, backend(), {}, 10, worldOnly,
+                      "131x77, previous positions without motion vectors");
 }
 
 TEST_P(Conformance, ImagesSmallerThanABlock) {
