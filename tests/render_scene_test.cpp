@@ -95,10 +95,11 @@ TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
         EXPECT_FALSE(d.cameraKeys.empty()) << name;
         EXPECT_EQ(d.referenceSpp, 4096) << name;
     }
-    EXPECT_EQ(presetNames().size(), 5u);
+    EXPECT_EQ(presetNames().size(), 7u);
+    EXPECT_EQ(loadSceneDescription("cornell-objects", "/s", false).animations.size(), 3u);
     EXPECT_FLOAT_EQ(loadSceneDescription("sponza-glossy", "/s", false).roughnessOverride, 0.1f);
     EXPECT_EQ(loadSceneDescription("sponza-light", "/s", false).quadLights.size(), 1u);
-    expectError([] { loadSceneDescription("no-such-preset", "."); }, "presets: cornell-moving");
+    expectError([] { loadSceneDescription("no-such-preset", "."); }, "presets: cornell-moving cornell-objects");
     // A Sponza preset whose mesh is not under --scenes says so, and names the flag.
     expectError([] { loadSceneDescription("sponza-moving", "no/such/dir"); },
                 "with --scenes DIR (the relative 'no/such/dir' is read from");
@@ -160,9 +161,12 @@ TEST(RenderScene, ResumeSkipsFinishedFramesAndBothLayoutsAreReadable) {
     reader->setLoadAovs(true);
     FrameData f;
     reader->load(1, f);
-    ASSERT_EQ(f.aovs.size(), 6u);
-    EXPECT_EQ(f.aovs[1].first, "motion");
-    EXPECT_EQ(f.aovs[1].second.channels, 2);
+    ASSERT_EQ(f.aovs.size(), 5u);
+    EXPECT_EQ(f.aovs[0].first, "depth");
+    EXPECT_EQ(f.aovs[0].second.channels, 1);
+    // Motion vectors are an input of their own; a static scene has no previous positions.
+    EXPECT_EQ(f.motion.channels, 2);
+    EXPECT_EQ(f.previousPosition.width, 0);
     fs::remove_all(d);
 }
 

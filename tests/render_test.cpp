@@ -89,8 +89,8 @@ TEST(Render, LambertianPlaneUnderTheSunMatchesAnalyticIrradiance) {
     // The 1-spp frame is exact too here: the light sample alone carries it.
     EXPECT_NEAR(meanOf(f.color), expected, 0.01 * expected);
     // And its splits: all direct, all diffuse.
-    EXPECT_NEAR(meanOf(f.aovs[2].second), expected, 0.01 * expected);
-    EXPECT_NEAR(meanOf(f.aovs[3].second), 0.0, 1e-9);
+    EXPECT_NEAR(meanOf(f.aovs[1].second), expected, 0.01 * expected);
+    EXPECT_NEAR(meanOf(f.aovs[2].second), 0.0, 1e-9);
 }
 
 TEST(Render, OneSppMeanEqualsTheReferenceWithinTheNoise) {
@@ -175,7 +175,7 @@ TEST(Render, WorldPositionReprojectsToThePixelItsMotionVectorNames) {
     int checked = 0;
     for (int y = 2; y < h - 2; ++y)
         for (int x = 2; x < w - 2; ++x) {
-            const ImageF& mv = f1.aovs[1].second;
+            const ImageF& mv = f1.motion;
             Vec2 prev{x + mv.at(x, y, 0), y + mv.at(x, y, 1)};
             if (prev.x < 0 || prev.y < 0 || prev.x > w - 2 || prev.y > h - 2) continue;
             // Bilinear lookup of the previous frame's position buffer.

@@ -24,12 +24,12 @@ std::vector<std::string> FrameRenderer::extraNames() {
     return {"material_id", "roughness"};
 }
 std::vector<std::string> FrameRenderer::aovNames() {
-    return {"depth", "motion", "direct", "indirect", "diffuse", "glossy"};
+    return {"depth", "direct", "indirect", "diffuse", "glossy"};
 }
 
 FrameRenderer::FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height,
                              int bounces, uint32_t seed)
-    : scene_(scene), accel_(accel), width_(width), height_(height), bounces_(bounces), seed_(seed) {
+    : scene_(&scene), accel_(&accel), width_(width), height_(height), bounces_(bounces), seed_(seed) {
     Vec3 lo, hi;
     scene.bounds(lo, hi);
     float diag = std::fmax(length(hi - lo), 1e-3f);
@@ -47,7 +47,7 @@ Mat4 FrameRenderer::viewProjectionOf(const CameraPose& pose) const {
 bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& previousPose,
                            bool hasPrevious, const LightSet& lights, bool jitterOn,
                            int referenceSpp, FrameData& out, FrameRenderStats& stats,
-                           const std::atomic<bool>* cancel) const {
+                           const std::atomic<bool>* cancel, const ObjectMotion* objects) const {
     const int w = width_, h = height_;
     out.viewProjection = viewProjectionOf(pose);
     frameJitter(index, jitterOn, out.jitter);
@@ -59,11 +59,14 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     out.extras.assign(2, ImageF(w, h, 1));
     out.aovs.clear();
     for (const std::string& n : aovNames())
-        out.aovs.emplace_back(n, ImageF(w, h, n == "depth" ? 1 : n == "motion" ? 2 : 3));
+        out.aovs.emplace_back(n, ImageF(w, h, n == "depth" ? 1 : 3));
+    out.motion = ImageF(w, h, 2);
+    out.previousPosition = objects ? ImageF(w, h, 3) : ImageF();
+    out.previousNormal = objects ? ImageF(w, h, 3) : ImageF();
     out.reference = referenceSpp > 0 ? ImageF(w, h, 3) : ImageF();
     out.emission = ImageF(w, h, 3);
 
-    const Integrator integrator(scene_, accel_, lights, bounces_);
+    const Integrator integrator(*scene_, *accel_, lights, bounces_);
     const float spread = 2.0f * std::tan(0.5f * pose.fovY) / float(h);
     const Vec3 forward = normalize(pose.target - pose.position);
     std::atomic<uint64_t> rays{0};
@@ -98,10 +101,10 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 Rng rng(uint32_t(i), uint32_t(index), 0u, seed_);
                 PathContribution c = integrator.sample(ph, rng, localRays);
                 store3(out.color.data(), i, c.total);
-                store3(out.aovs[2].second.data(), i, c.direct);
-                store3(out.aovs[3].second.data(), i, c.indirect);
-                store3(out.aovs[4].second.data(), i, c.diffuse);
-                store3(out.aovs[5].second.data(), i, c.glossy);
+                store3(out.aovs[1].second.data(), i, c.direct);
+                store3(out.aovs[2].second.data(), i, c.indirect);
+                store3(out.aovs[3].second.data(), i, c.diffuse);
+                store3(out.aovs[4].second.data(), i, c.glossy);
                 const SurfacePoint& s = ph.surface;
                 Vec3 p = ph.hit ? s.p : pose.position + skyDistance_ * dir;
                 store3(out.albedo.data(), i, ph.hit ? s.baseColor : Vec3{1, 1, 1});
@@ -112,11 +115,29 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 out.extras[0].data()[i] = ph.hit ? float(s.material) : -1.0f;
                 out.extras[1].data()[i] = ph.hit ? s.roughness : 1.0f;
                 out.aovs[0].second.data()[i] = dot(p - pose.position, forward);
-                Vec2 prev{float(x), float(y)};
-                if (hasPrevious && !projectToPixel(prevVp, p, prevJitter, w, h, prev))
-                    prev = {float(x), float(y)};
-                out.aovs[1].second.data()[2 * i] = prev.x - float(x);
-                out.aovs[1].second.data()[2 * i + 1] = prev.y - float(y);
+                // Where this point was a frame ago: objects carry it, the sky stays put.
+                Vec3 pp = p, pn = ph.hit ? s.ns : -1.0f * dir;
+                if (objects && ph.hit && s.triangle >= 0) {
+                    const size_t o = size_t(scene_->triangleObject[size_t(s.triangle)]);
+                    const Vec4 q = transformPoint(objects->points[o], p);
+                    pp = {q.x, q.y, q.z};
+                    const Mat4& nm = objects->normals[o];
+                    const Vec3 n{nm.m[0][0] * pn.x + nm.m[0][1] * pn.y + nm.m[0][2] * pn.z,
+                                 nm.m[1][0] * pn.x + nm.m[1][1] * pn.y + nm.m[1][2] * pn.z,
+                                 nm.m[2][0] * pn.x + nm.m[2][1] * pn.y + nm.m[2][2] * pn.z};
+                    if (length(n) > 0) pn = normalize(n);
+                }
+                if (objects) {
+                    store3(out.previousPosition.data(), i, pp);
+                    store3(out.previousNormal.data(), i, pn);
+                }
+                // Off every image when the previous camera did not see the point.
+                Vec2 prev{float(x), float(y)}, at;
+                if (hasPrevious)
+                    prev = projectToPixel(prevVp, pp, prevJitter, w, h, at) ? at
+                                                                            : Vec2{-1e6f, -1e6f};
+                out.motion.data()[2 * i] = prev.x - float(x);
+                out.motion.data()[2 * i + 1] = prev.y - float(y);
             }
             rays += localRays;
         });

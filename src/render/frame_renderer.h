@@ -14,6 +14,12 @@ struct FrameRenderStats {
     double inputSeconds = 0, referenceSeconds = 0;
 };
 
+/// Where each object's points and normals were one frame earlier (SceneAnimator::toPrevious),
+/// indexed by Scene::triangleObject.
+struct ObjectMotion {
+    std::vector<Mat4> points, normals;
+};
+
 /// Sub-pixel offset of frame `index`: Halton (2, 3) minus 0.5, pixels.
 void frameJitter(int index, bool enabled, float jitter[2]);
 
@@ -22,12 +28,22 @@ class FrameRenderer {
     FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height, int bounces,
                   uint32_t seed);
 
-    /// Fills `out` (colour, albedo, normal, position, extras material_id and roughness, AOVs
-    /// depth, motion, direct, indirect, diffuse, glossy; reference when referenceSpp > 0).
-    /// Returns false when `cancel` became true (out is then incomplete and must be dropped).
+    /// Fills `out` (colour, albedo, normal, position, emission, motion, extras material_id and
+    /// roughness, AOVs depth, direct, indirect, diffuse, glossy; reference when referenceSpp >
+    /// 0). With `objects` (a scene whose objects move), also the previous position and normal of
+    /// each visible point, and motion vectors that follow the objects. Returns false when
+    /// `cancel` became true (out is then incomplete and must be dropped).
     bool render(int index, const CameraPose& pose, const CameraPose& previousPose, bool hasPrevious,
                 const LightSet& lights, bool jitter, int referenceSpp, FrameData& out,
-                FrameRenderStats& stats, const std::atomic<bool>* cancel) const;
+                FrameRenderStats& stats, const std::atomic<bool>* cancel,
+                const ObjectMotion* objects = nullptr) const;
+
+    /// Traces this frame's posed copy of the scene (moving objects); the clip planes stay
+    /// those of the scene given at construction, so every frame's matrices agree.
+    void setGeometry(const Scene& scene, const RayAccel& accel) {
+        scene_ = &scene;
+        accel_ = &accel;
+    }
 
     /// The world-to-clip matrix render() uses for `pose`.
     Mat4 viewProjectionOf(const CameraPose& pose) const;
@@ -37,8 +53,8 @@ class FrameRenderer {
     static std::vector<std::string> aovNames();
 
   private:
-    const Scene& scene_;
-    const RayAccel& accel_;
+    const Scene* scene_;
+    const RayAccel* accel_;
     int width_, height_, bounces_;
     uint32_t seed_;
     float zNear_, zFar_, skyDistance_;

@@ -261,7 +261,10 @@ struct Loader {
     void node(int index, const Mat& parent) {
         const tinygltf::Node& nd = model.nodes[size_t(index)];
         Mat m = mul(parent, nodeMatrix(nd));
-        if (nd.mesh >= 0) mesh(model.meshes[size_t(nd.mesh)], m);
+        if (nd.mesh >= 0) {
+            scene.beginObject(nd.name.empty() ? "node" + std::to_string(index) : nd.name);
+            mesh(model.meshes[size_t(nd.mesh)], m);
+        }
         if (nd.skin >= 0)
             scene.warnings.push_back("node '" + nd.name + "': skinning ignored (static pose)");
         if (nd.camera >= 0) {

@@ -53,6 +53,7 @@ Scene loadObj(const std::string& path) {
     fallback.name = "default";
     s.materials.push_back(fallback);
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        s.beginObject(shape.name.empty() ? "scene" : shape.name);
         const auto& idx = shape.mesh.indices;
         for (size_t f = 0; f + 2 < idx.size(); f += 3) {
             int mid = shape.mesh.material_ids[f / 3];

@@ -5,7 +5,13 @@
 
 namespace bmfr::render {
 
+void Scene::beginObject(const std::string& name) {
+    objectNames.push_back(name);
+}
+
 void Scene::addTriangle(Vec3 a, Vec3 b, Vec3 c, int material) {
+    if (objectNames.empty()) beginObject("scene");
+    triangleObject.push_back(int(objectNames.size() - 1));
     Vec3 n = cross(b - a, c - a);
     float len = length(n);
     n = len > 0 ? n / len : Vec3{0, 1, 0};
@@ -63,15 +69,19 @@ Scene builtinCornellBox() {
     int white = mat("white", {0.725f, 0.71f, 0.68f}), red = mat("red", {0.63f, 0.065f, 0.05f}),
         green = mat("green", {0.14f, 0.45f, 0.091f}),
         light = mat("light", {0.78f, 0.78f, 0.78f}, {17, 12, 4});
+    s.beginObject("room");
     addQuad(s, {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, white);   // floor
     addQuad(s, {-1, 2, -1}, {1, 2, -1}, {1, 2, 1}, {-1, 2, 1}, white);   // ceiling
     addQuad(s, {-1, 0, -1}, {1, 0, -1}, {1, 2, -1}, {-1, 2, -1}, white); // back
     addQuad(s, {-1, 0, -1}, {-1, 2, -1}, {-1, 2, 1}, {-1, 0, 1}, red);   // left
     addQuad(s, {1, 0, -1}, {1, 0, 1}, {1, 2, 1}, {1, 2, -1}, green);     // right
+    s.beginObject("light");
     addQuad(s, {-0.24f, 1.98f, -0.22f}, {0.23f, 1.98f, -0.22f}, {0.23f, 1.98f, 0.16f},
             {-0.24f, 1.98f, 0.16f}, light);
-    addBlock(s, {0.33f, 0, 0.37f}, {0.3f, 0.3f, 0.3f}, -0.29f, white);  // short block
-    addBlock(s, {-0.34f, 0, -0.28f}, {0.3f, 0.6f, 0.3f}, 0.31f, white); // tall block
+    s.beginObject("short_block");
+    addBlock(s, {0.33f, 0, 0.37f}, {0.3f, 0.3f, 0.3f}, -0.29f, white);
+    s.beginObject("tall_block");
+    addBlock(s, {-0.34f, 0, -0.28f}, {0.3f, 0.6f, 0.3f}, 0.31f, white);
     NamedCamera cam;
     cam.name = "front";
     cam.position = {0, 1, 3.4f}, cam.forward = {0, 0, -1}, cam.up = {0, 1, 0}, cam.fovY = 0.69f;
@@ -79,8 +89,41 @@ Scene builtinCornellBox() {
     return s;
 }
 
+Scene builtinCornellObjects() {
+    Scene s = builtinCornellBox();
+    Material m;
+    m.name = "sphere";
+    m.baseColor = {0.2f, 0.35f, 0.75f};
+    m.roughness = 1.0f;
+    m.specular = 0.0f;
+    s.materials.push_back(m);
+    const int material = int(s.materials.size() - 1);
+    s.beginObject("sphere");
+    // A UV sphere with smooth normals: 24 rings of 48 segments.
+    const Vec3 c{0.0f, 1.3f, 0.2f};
+    const float r = 0.25f, pi = 3.14159265f;
+    const int rings = 24, segments = 48;
+    auto at = [&](int i, int j) {
+        const float theta = pi * float(i) / float(rings), phi = 2 * pi * float(j) / float(segments);
+        return Vec3{std::sin(theta) * std::cos(phi), std::cos(theta),
+                    std::sin(theta) * std::sin(phi)};
+    };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const Vec3 d[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+            for (int t = 0; t < 2; ++t) {
+                const int k[3] = {0, t == 0 ? 2 : 3, t == 0 ? 1 : 2};
+                if ((i == 0 && t == 0) || (i == rings - 1 && t == 1)) continue; // degenerate
+                s.addTriangle(c + r * d[k[0]], c + r * d[k[1]], c + r * d[k[2]], material);
+                for (int v = 0; v < 3; ++v) s.normals[s.normals.size() - 3 + size_t(v)] = d[k[v]];
+            }
+        }
+    return s;
+}
+
 Scene loadScene(const std::string& path) {
     if (path == "builtin:cornell") return builtinCornellBox();
+    if (path == "builtin:cornell-objects") return builtinCornellObjects();
     if (!std::filesystem::exists(path)) throw Error("scene file not found: " + path);
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower((unsigned char)c));

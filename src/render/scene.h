@@ -39,18 +39,29 @@ struct Scene {
     std::vector<Vec3> positions, normals;
     std::vector<Vec2f> uvs;
     std::vector<int> triangleMaterial;
+    /// Parts that can move on their own: glTF mesh nodes, OBJ objects or groups, the built-in
+    /// scenes' named parts. Several objects may share a name (an animation moves them all).
+    std::vector<std::string> objectNames;
+    std::vector<int> triangleObject; ///< per triangle: index into objectNames
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<NamedCamera> cameras;
     std::vector<std::string> warnings;
     size_t triangleCount() const { return triangleMaterial.size(); }
+    /// Adds a triangle to the current object (the first call starts one named "scene").
     void addTriangle(Vec3 a, Vec3 b, Vec3 c, int material);
+    /// Starts an object: the triangles added from now on belong to it.
+    void beginObject(const std::string& name);
     /// Axis-aligned bounds of all vertices.
     void bounds(Vec3& lo, Vec3& hi) const;
 };
 
-/// The built-in Cornell box (needs no files): 2 m box, two blocks, a ceiling light.
+/// The built-in Cornell box (needs no files): 2 m box, two blocks, a ceiling light. Objects:
+/// room, light, short_block, tall_block.
 Scene builtinCornellBox();
+/// The built-in box with a sphere (objects as builtinCornellBox, plus "sphere": radius 0.25 m,
+/// centre (0, 1.3, 0.2)), for scenes that move things.
+Scene builtinCornellObjects();
 /// Loads glTF 2.0 (.gltf/.glb). Throws bmfr::Error for unsupported required features.
 Scene loadGltf(const std::string& path);
 /// Loads OBJ + MTL (Kd, Ke, map_Kd, d/map_d ignored, Ns -> roughness).

@@ -45,6 +45,53 @@ const std::map<std::string, const char*>& presets() {
                 {"frame": 0,  "position": [-0.45, 1.0, 0.95], "target": [0.1, 0.8, -1.0],  "fov_deg": 70},
                 {"frame": 30, "position": [0.0, 1.2, 0.9],    "target": [0.0, 0.85, -1.0], "fov_deg": 70},
                 {"frame": 59, "position": [0.45, 1.0, 0.95],  "target": [-0.1, 0.8, -1.0], "fov_deg": 70}]}})"},
+        // Objects that move across a static camera's view and occlude each other: the short
+        // block slides left in front of the tall one, which turns; a sphere falls in front of
+        // the short block and bounces.
+        {"cornell-objects", R"({
+            "mesh": "builtin:cornell-objects", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
+            "camera": {"keyframes": [{"frame": 0, "position": [0.0, 1.0, 3.4], "target": [0.0, 1.0, 0.0], "fov_deg": 40}]},
+            "animations": [
+                {"object": "short_block", "keys": [
+                    {"frame": 0, "translation": [0.0, 0.0, 0.0]},
+                    {"frame": 59, "translation": [-0.55, 0.0, 0.0]}]},
+                {"object": "sphere", "keys": [
+                    {"frame": 0,  "translation": [0.74, 0.0, 0.58]},
+                    {"frame": 10, "translation": [0.735, -0.19, 0.58]},
+                    {"frame": 20, "translation": [0.73, -0.74, 0.58]},
+                    {"frame": 24, "translation": [0.725, -1.05, 0.58]},
+                    {"frame": 32, "translation": [0.72, -0.75, 0.58]},
+                    {"frame": 40, "translation": [0.715, -0.6, 0.58]},
+                    {"frame": 48, "translation": [0.71, -0.75, 0.58]},
+                    {"frame": 54, "translation": [0.705, -1.05, 0.58]},
+                    {"frame": 59, "translation": [0.7, -1.05, 0.58]}]},
+                {"object": "tall_block", "pivot": [-0.34, 0.0, -0.28], "keys": [
+                    {"frame": 0, "rotation_deg": [0, 0, 0]},
+                    {"frame": 59, "rotation_deg": [0, 35, 0]}]}]})"},
+        // The same objects seen from a camera that moves as well.
+        {"cornell-objects-moving", R"({
+            "mesh": "builtin:cornell-objects", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
+            "camera": {"keyframes": [
+                {"frame": 0,  "position": [-0.45, 1.0, 3.0],  "target": [0.1, 0.9, 0.0],  "fov_deg": 45},
+                {"frame": 30, "position": [0.0, 1.2, 3.2],    "target": [0.0, 0.95, 0.0], "fov_deg": 45},
+                {"frame": 59, "position": [0.45, 1.0, 3.0],   "target": [-0.1, 0.9, 0.0], "fov_deg": 45}]},
+            "animations": [
+                {"object": "short_block", "keys": [
+                    {"frame": 0, "translation": [0.0, 0.0, 0.0]},
+                    {"frame": 59, "translation": [-0.55, 0.0, 0.0]}]},
+                {"object": "sphere", "keys": [
+                    {"frame": 0,  "translation": [0.74, 0.0, 0.58]},
+                    {"frame": 10, "translation": [0.735, -0.19, 0.58]},
+                    {"frame": 20, "translation": [0.73, -0.74, 0.58]},
+                    {"frame": 24, "translation": [0.725, -1.05, 0.58]},
+                    {"frame": 32, "translation": [0.72, -0.75, 0.58]},
+                    {"frame": 40, "translation": [0.715, -0.6, 0.58]},
+                    {"frame": 48, "translation": [0.71, -0.75, 0.58]},
+                    {"frame": 54, "translation": [0.705, -1.05, 0.58]},
+                    {"frame": 59, "translation": [0.7, -1.05, 0.58]}]},
+                {"object": "tall_block", "pivot": [-0.34, 0.0, -0.28], "keys": [
+                    {"frame": 0, "rotation_deg": [0, 0, 0]},
+                    {"frame": 59, "rotation_deg": [0, 35, 0]}]}]})"},
         {"sponza-moving", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
@@ -104,7 +151,8 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
     try {
         requireKnownKeys(j,
                          {"mesh", "width", "height", "frames", "reference_spp", "bounces", "seed",
-                          "jitter", "roughness_override", "sky", "sun", "lights", "camera"},
+                          "jitter", "roughness_override", "sky", "sun", "lights", "camera",
+                          "animations"},
                          where);
         d.mesh = j.at("mesh").get<std::string>();
         if (d.mesh.rfind("builtin:", 0) != 0 && fs::path(d.mesh).is_relative())
@@ -158,6 +206,40 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
             std::sort(q.path.begin(), q.path.end(),
                       [](auto& a, auto& b) { return a.first < b.first; });
             d.quadLights.push_back(q);
+        }
+        for (const json& a : j.value("animations", json::array())) {
+            requireKnownKeys(a, {"object", "pivot", "keys"}, "scene description animation");
+            ObjectAnimation anim;
+            anim.object = a.at("object").get<std::string>();
+            const std::string what = "scene description animation of '" + anim.object + "'";
+            if (a.contains("pivot")) anim.pivot = vec3(a["pivot"], "animation pivot");
+            for (const json& k : a.at("keys")) {
+                requireKnownKeys(k, {"frame", "translation", "rotation_deg", "scale"}, what);
+                RigidKey key;
+                key.frame = float(numberField(k, "frame", -1e9, 1e9, 0, what));
+                if (k.contains("translation"))
+                    key.translation = vec3(k["translation"], "animation translation");
+                if (k.contains("rotation_deg"))
+                    key.rotation = quatFromEulerDegrees(vec3(k["rotation_deg"], "rotation_deg"));
+                if (k.contains("scale"))
+                    key.scale = k["scale"].is_number()
+                                    ? Vec3{1, 1, 1} * k["scale"].get<float>()
+                                    : vec3(k["scale"], "animation scale");
+                for (float c : {key.scale.x, key.scale.y, key.scale.z})
+                    if (!(c > 0.0f && c <= 1000.0f))
+                        throw Error(what + ": scale must be in (0, 1000]");
+                for (float c : {key.translation.x, key.translation.y, key.translation.z})
+                    if (!std::isfinite(c)) throw Error(what + ": translation is not finite");
+                anim.keys.push_back(key);
+            }
+            if (anim.keys.empty()) throw Error(what + ": \"keys\" is empty");
+            std::sort(anim.keys.begin(), anim.keys.end(),
+                      [](const RigidKey& x, const RigidKey& y) { return x.frame < y.frame; });
+            for (size_t i = 1; i < anim.keys.size(); ++i)
+                if (anim.keys[i].frame == anim.keys[i - 1].frame)
+                    throw Error(what + ": two keys at frame " +
+                                std::to_string(anim.keys[i].frame));
+            d.animations.push_back(anim);
         }
         const json& cam = j.at("camera");
         requireKnownKeys(cam, {"keyframes", "gltf_camera"}, "scene description 'camera'");

@@ -1,6 +1,7 @@
 // The scene description (JSON): mesh, lights, camera path, resolution, frame count, reference
 // spp, moving lights; and the built-in presets matching the BMFR paper's test sequences.
 #pragma once
+#include "render/animation.h"
 #include "render/camera_path.h"
 #include "render/lights.h"
 #include <nlohmann/json.hpp>
@@ -30,6 +31,8 @@ struct SceneDescription {
     std::vector<QuadLightSpec> quadLights;
     std::vector<CameraKey> cameraKeys;
     std::string gltfCamera; ///< use this named camera of the mesh file (static)
+    /// Moving objects: keyframed rigid transforms of the mesh's named objects.
+    std::vector<ObjectAnimation> animations;
 };
 
 inline constexpr int kMaxSceneSide = 16384;    ///< pixels per side

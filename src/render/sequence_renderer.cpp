@@ -75,6 +75,16 @@ std::string renderFingerprint(const SceneDescription& d, const std::string& layo
         for (Vec3 v : {k.pose.position, k.pose.target, k.pose.up}) add(s, v);
     }
     s += d.gltfCamera;
+    for (const ObjectAnimation& a : d.animations) {
+        s += a.object + ":";
+        add(s, a.pivot);
+        for (const RigidKey& k : a.keys) {
+            s += fmt::format("{}:{},{},{},{}:", k.frame, k.rotation.x, k.rotation.y, k.rotation.z,
+                             k.rotation.w);
+            add(s, k.translation);
+            add(s, k.scale);
+        }
+    }
     uint64_t h = 1469598103934665603ull; // FNV-1a
     for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
     return fmt::format("{:016x}", h);
@@ -114,9 +124,15 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
         keys = {k};
     }
     const CameraPath path(keys);
+    const SceneAnimator animator(scene, d.animations);
     RayAccel accel(scene);
     report.loadSeconds = clock.elapsed() / 1000.0;
     FrameRenderer renderer(scene, accel, d.width, d.height, d.bounces, d.seed);
+    // Moving objects: each frame traces its own posed copy, with its own BVH.
+    Scene posed;
+    if (animator.animated()) posed = scene;
+    std::unique_ptr<RayAccel> posedAccel;
+    ObjectMotion objects;
 
     // Matrices of all frames up front (the original layout's header lists them all); the
     // renderer's own matrices, so the header matches the frames exactly.
@@ -159,12 +175,19 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
             progress(i + 1, d.frames);
             continue;
         }
+        if (animator.animated()) {
+            animator.pose(float(i), posed);
+            posedAccel = std::make_unique<RayAccel>(posed);
+            renderer.setGeometry(posed, *posedAccel);
+            animator.toPrevious(float(i), objects.points, objects.normals);
+        }
         std::vector<QuadLight> quads;
         for (const QuadLightSpec& q : d.quadLights) quads.push_back(q.at(float(i)));
-        LightSet lights(scene, quads, d.environment);
+        LightSet lights(animator.animated() ? posed : scene, quads, d.environment);
         FrameRenderStats stats;
         bool done = renderer.render(i, path.at(float(i)), path.at(float(i - 1)), i > 0, lights,
-                                    d.jitter, d.referenceSpp, frame, stats, cancel);
+                                    d.jitter, d.referenceSpp, frame, stats, cancel,
+                                    animator.animated() ? &objects : nullptr);
         report.rays += stats.rays;
         if (!done) {
             report.interrupted = true;
