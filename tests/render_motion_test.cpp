@@ -62,11 +62,11 @@ TEST(RenderMotion, ObjectsCarryTheirPointsAndTheVectorsFindThemInThePreviousFram
     ASSERT_EQ(now.motion.channels, 2);
     ASSERT_EQ(now.previousPosition.channels, 3);
     // The preset's keys by hand, from frame 1 back to frame 0: the sphere's translation goes
-    // from 0.1 of the way to its frame-10 key back to its frame-0 key; the short block's from
-    // 1/59 of (-0.55, 0, 0) back to 0; the tall block turns back by 35/59 degrees about its
-    // pivot (-0.34, 0, -0.28).
-    const Vec3 sphereBack{0.0005f, 0.019f, 0.0f}, blockBack{0.55f / 59.0f, 0.0f, 0.0f};
-    const double turn = -35.0 / 59.0 * 3.14159265358979 / 180.0;
+    // from a quarter of the way to its frame-4 key (0, -0.087, 0) back to its frame-0 key; the
+    // short block's from 1/15 of (-0.6, 0, 0) back to 0; the tall block turns back by 60/30
+    // degrees about its pivot (-0.34, 0, -0.28).
+    const Vec3 sphereBack{0.0f, 0.087f / 4.0f, 0.0f}, blockBack{0.6f / 15.0f, 0.0f, 0.0f};
+    const double turn = -2.0 * 3.14159265358979 / 180.0;
     int sphere = 0, shortBlock = 0, tallBlock = 0, staticPixels = 0, found = 0;
     for (int y = 1; y < h - 1; ++y)
         for (int x = 1; x < w - 1; ++x) {

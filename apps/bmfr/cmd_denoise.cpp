@@ -80,12 +80,14 @@ int runDenoise(const DenoiseJob& job) {
     FrameData frame;
     ImageF previousOut, previousRef, previousNoisy;
     std::vector<double> referenceTemporal;
+    int motionFrames = 0; // frames that came with motion vectors or previous positions
 
     for (int i = first; i < last; ++i) {
         Stopwatch clock;
         reader->load(i, frame);
         tRead.push_back(clock.lap());
-        FrameInput in = frame.input();
+        FrameInput in = frame.input(job.motion);
+        motionFrames += frame.motion.width || frame.previousPosition.width ? 1 : 0;
         if (job.sampleFraction < 1.0f) {
             // Fewer than 1 spp, simulated: a fixed pseudo-random subset of pixels per frame.
             for (long k = 0; k < sampleMask.pixelCount(); ++k)
@@ -155,6 +157,9 @@ int runDenoise(const DenoiseJob& job) {
     if (bmfrFilter) report["features"] = features;
     report["filter"] = job.filter;
     report["backend"] = settingValue(values, "backend", "cpu");
+    report["reprojection"] = motionFrames == 0  ? "camera (the input has no motion vectors)"
+                             : job.motion       ? "motion vectors"
+                                                : "camera (motion vectors ignored: --no-motion)";
     for (const auto& [key, value] : values) report["settings"][key] = value;
     report["median_ms"] = stages.medians();
     report["median_ms"]["total"] = stages.totalMedian();
@@ -209,6 +214,7 @@ int runDenoise(const DenoiseJob& job) {
                    threads ? threads : int(std::thread::hardware_concurrency()));
         fmt::print("  {}   (read {:.1f}, write {:.1f})\n", stages.line(), median(tRead),
                    median(tWrite));
+        fmt::print("  reprojection: {}\n", report["reprojection"].get<std::string>());
         fmt::print("{}", summary);
         fmt::print("\nwrote {}/denoised_NNNN.exr{}, report.json{}\n", job.output,
                    job.png ? " and .png" : "", info.hasReference ? ", scores.csv" : "");
@@ -228,6 +234,9 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
                   "also write accumulated colour, fitted frame, history length, discard mask");
     cmd->add_flag("!--no-png", job->png, "skip the tone-mapped PNGs");
     cmd->add_flag("!--no-flip", job->flip, "skip FLIP when scoring (the slowest metric)");
+    cmd->add_flag("!--no-motion", job->motion,
+                  "ignore the sequence's motion vectors and previous positions: reproject by "
+                  "the cameras alone, as the BMFR paper does (for comparisons)");
     cmd->add_option("--filter", job->filter,
                     "the filter: " + fmt::format("{}", fmt::join(filterNames(), ", ")))
         ->default_val("bmfr");
@@ -236,7 +245,7 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
         ->default_val(1.0);
     cmd->add_option("--channel", job->channels,
                     "BUFFER=LAYER: read a buffer (color, albedo, normal, position, emission, "
-                    "reference) from this layer of multilayer EXRs, as "
+                    "reference, motion, previous_position, previous_normal) from this layer of multilayer EXRs, as "
                     "albedo=ViewLayer.DiffCol; repeatable");
     job->options.addTo(*cmd, filterNames());
     cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });

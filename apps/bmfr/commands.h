@@ -13,6 +13,7 @@ struct DenoiseJob {
     std::string input, output;
     std::string frames; ///< "A:B" (A..B-1), "A:" or ":B"; empty = all
     bool quiet = false, debug = false, png = true, flip = true;
+    bool motion = true; ///< reproject through the sequence's motion vectors when it has them
     std::string filter = "bmfr"; ///< a name from filterNames()
     float sampleFraction = 1.0f; ///< < 1 simulates fewer than 1 spp with a per-frame pixel mask
     std::vector<std::string> channels; ///< BUFFER=LAYER for multilayer EXR inputs

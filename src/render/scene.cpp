@@ -93,9 +93,14 @@ Scene builtinCornellObjects() {
     Scene s = builtinCornellBox();
     Material m;
     m.name = "sphere";
-    m.baseColor = {0.2f, 0.35f, 0.75f};
+    m.baseColor = {1, 1, 1};
     m.roughness = 1.0f;
     m.specular = 0.0f;
+    // Checkered, so that history taken from the wrong place shows.
+    Texture checker;
+    checker.makeChecker(12, 6, {0.75f, 0.75f, 0.72f}, {0.12f, 0.25f, 0.65f});
+    s.textures.push_back(std::move(checker));
+    m.baseColorTexture = int(s.textures.size() - 1);
     s.materials.push_back(m);
     const int material = int(s.materials.size() - 1);
     s.beginObject("sphere");
@@ -111,11 +116,18 @@ Scene builtinCornellObjects() {
     for (int i = 0; i < rings; ++i)
         for (int j = 0; j < segments; ++j) {
             const Vec3 d[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+            const Vec2f uv[4] = {{float(j) / float(segments), float(i) / float(rings)},
+                                 {float(j) / float(segments), float(i + 1) / float(rings)},
+                                 {float(j + 1) / float(segments), float(i + 1) / float(rings)},
+                                 {float(j + 1) / float(segments), float(i) / float(rings)}};
             for (int t = 0; t < 2; ++t) {
                 const int k[3] = {0, t == 0 ? 2 : 3, t == 0 ? 1 : 2};
-                if ((i == 0 && t == 0) || (i == rings - 1 && t == 1)) continue; // degenerate
+                if ((i == 0 && t == 1) || (i == rings - 1 && t == 0)) continue; // at a pole
                 s.addTriangle(c + r * d[k[0]], c + r * d[k[1]], c + r * d[k[2]], material);
-                for (int v = 0; v < 3; ++v) s.normals[s.normals.size() - 3 + size_t(v)] = d[k[v]];
+                for (int v = 0; v < 3; ++v) {
+                    s.normals[s.normals.size() - 3 + size_t(v)] = d[k[v]];
+                    s.uvs[s.uvs.size() - 3 + size_t(v)] = uv[k[v]];
+                }
             }
         }
     return s;

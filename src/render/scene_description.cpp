@@ -37,37 +37,52 @@ Vec3 vec3(const json& j, const char* what) {
     return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
 }
 
-const std::map<std::string, const char*>& presets() {
-    static const std::map<std::string, const char*> p = {
+/// The moving objects of the cornell-objects presets.
+const std::string kCornellAnimations = R"("animations": [
+                {"object": "short_block", "keys": [
+                    {"frame": 0,  "translation": [0.0, 0.0, 0.0]},
+                    {"frame": 15, "translation": [-0.6, 0.0, 0.0]},
+                    {"frame": 30, "translation": [0.0, 0.0, 0.0]},
+                    {"frame": 45, "translation": [-0.6, 0.0, 0.0]},
+                    {"frame": 59, "translation": [0.0, 0.0, 0.0]}]},
+                {"object": "sphere", "keys": [
+                    {"frame": 0,  "translation": [0.74, 0.0, 0.58]},
+                    {"frame": 4,  "translation": [0.74, -0.087, 0.58]},
+                    {"frame": 8,  "translation": [0.74, -0.348, 0.58]},
+                    {"frame": 11, "translation": [0.74, -0.659, 0.58]},
+                    {"frame": 13.9, "translation": [0.74, -1.05, 0.58]},
+                    {"frame": 17, "translation": [0.74, -0.594, 0.58]},
+                    {"frame": 21, "translation": [0.74, -0.43, 0.58]},
+                    {"frame": 25, "translation": [0.74, -0.38, 0.58]},
+                    {"frame": 29, "translation": [0.74, -0.43, 0.58]},
+                    {"frame": 33, "translation": [0.74, -0.594, 0.58]},
+                    {"frame": 36, "translation": [0.74, -1.05, 0.58]},
+                    {"frame": 40, "translation": [0.74, -0.72, 0.58]},
+                    {"frame": 45, "translation": [0.74, -0.62, 0.58]},
+                    {"frame": 50, "translation": [0.74, -0.72, 0.58]},
+                    {"frame": 54, "translation": [0.74, -1.05, 0.58]},
+                    {"frame": 59, "translation": [0.74, -1.05, 0.58]}]},
+                {"object": "tall_block", "pivot": [-0.34, 0.0, -0.28], "keys": [
+                    {"frame": 0, "rotation_deg": [0, 0, 0]},
+                    {"frame": 30, "rotation_deg": [0, 60, 0]},
+                    {"frame": 59, "rotation_deg": [0, 0, 0]}]}])";
+
+const std::map<std::string, std::string>& presets() {
+    static const std::map<std::string, std::string> p = {
         {"cornell-moving", R"({
             "mesh": "builtin:cornell", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
             "camera": {"keyframes": [
                 {"frame": 0,  "position": [-0.45, 1.0, 0.95], "target": [0.1, 0.8, -1.0],  "fov_deg": 70},
                 {"frame": 30, "position": [0.0, 1.2, 0.9],    "target": [0.0, 0.85, -1.0], "fov_deg": 70},
                 {"frame": 59, "position": [0.45, 1.0, 0.95],  "target": [-0.1, 0.8, -1.0], "fov_deg": 70}]}})"},
-        // Objects that move across a static camera's view and occlude each other: the short
-        // block slides left in front of the tall one, which turns; a sphere falls in front of
-        // the short block and bounces.
+        // Objects that move across a static camera's view and occlude each other, at the
+        // speeds of a game at 30 frames a second: the short block slides to and fro in front
+        // of the tall one (1.2 m/s), which turns (2 degrees a frame); a sphere falls in front
+        // of the short block under gravity (up to 4.5 m/s) and bounces.
         {"cornell-objects", R"({
             "mesh": "builtin:cornell-objects", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
             "camera": {"keyframes": [{"frame": 0, "position": [0.0, 1.0, 3.4], "target": [0.0, 1.0, 0.0], "fov_deg": 40}]},
-            "animations": [
-                {"object": "short_block", "keys": [
-                    {"frame": 0, "translation": [0.0, 0.0, 0.0]},
-                    {"frame": 59, "translation": [-0.55, 0.0, 0.0]}]},
-                {"object": "sphere", "keys": [
-                    {"frame": 0,  "translation": [0.74, 0.0, 0.58]},
-                    {"frame": 10, "translation": [0.735, -0.19, 0.58]},
-                    {"frame": 20, "translation": [0.73, -0.74, 0.58]},
-                    {"frame": 24, "translation": [0.725, -1.05, 0.58]},
-                    {"frame": 32, "translation": [0.72, -0.75, 0.58]},
-                    {"frame": 40, "translation": [0.715, -0.6, 0.58]},
-                    {"frame": 48, "translation": [0.71, -0.75, 0.58]},
-                    {"frame": 54, "translation": [0.705, -1.05, 0.58]},
-                    {"frame": 59, "translation": [0.7, -1.05, 0.58]}]},
-                {"object": "tall_block", "pivot": [-0.34, 0.0, -0.28], "keys": [
-                    {"frame": 0, "rotation_deg": [0, 0, 0]},
-                    {"frame": 59, "rotation_deg": [0, 35, 0]}]}]})"},
+            )" + kCornellAnimations + "}"},
         // The same objects seen from a camera that moves as well.
         {"cornell-objects-moving", R"({
             "mesh": "builtin:cornell-objects", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
@@ -75,23 +90,7 @@ const std::map<std::string, const char*>& presets() {
                 {"frame": 0,  "position": [-0.45, 1.0, 3.0],  "target": [0.1, 0.9, 0.0],  "fov_deg": 45},
                 {"frame": 30, "position": [0.0, 1.2, 3.2],    "target": [0.0, 0.95, 0.0], "fov_deg": 45},
                 {"frame": 59, "position": [0.45, 1.0, 3.0],   "target": [-0.1, 0.9, 0.0], "fov_deg": 45}]},
-            "animations": [
-                {"object": "short_block", "keys": [
-                    {"frame": 0, "translation": [0.0, 0.0, 0.0]},
-                    {"frame": 59, "translation": [-0.55, 0.0, 0.0]}]},
-                {"object": "sphere", "keys": [
-                    {"frame": 0,  "translation": [0.74, 0.0, 0.58]},
-                    {"frame": 10, "translation": [0.735, -0.19, 0.58]},
-                    {"frame": 20, "translation": [0.73, -0.74, 0.58]},
-                    {"frame": 24, "translation": [0.725, -1.05, 0.58]},
-                    {"frame": 32, "translation": [0.72, -0.75, 0.58]},
-                    {"frame": 40, "translation": [0.715, -0.6, 0.58]},
-                    {"frame": 48, "translation": [0.71, -0.75, 0.58]},
-                    {"frame": 54, "translation": [0.705, -1.05, 0.58]},
-                    {"frame": 59, "translation": [0.7, -1.05, 0.58]}]},
-                {"object": "tall_block", "pivot": [-0.34, 0.0, -0.28], "keys": [
-                    {"frame": 0, "rotation_deg": [0, 0, 0]},
-                    {"frame": 59, "rotation_deg": [0, 35, 0]}]}]})"},
+            )" + kCornellAnimations + "}"},
         {"sponza-moving", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,

@@ -55,11 +55,25 @@ bool Texture::load(const std::string& path, bool srgb, std::string& error) {
 }
 
 void Texture::makeFlat(Vec3 rgb, float alpha) {
-    auto byte = [&](float v) {
-        return srgb_ ? linearToSrgbByte(v) : uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255));
-    };
     srgb_ = true;
+    auto byte = [&](float v) { return linearToSrgbByte(v); };
     levels_.assign(1, Level{1, 1, {byte(rgb.x), byte(rgb.y), byte(rgb.z), uint8_t(alpha * 255)}});
+}
+
+void Texture::makeChecker(int cellsU, int cellsV, Vec3 a, Vec3 b) {
+    constexpr int kTexels = 8; // per cell side
+    srgb_ = true, hasAlpha_ = false;
+    Level l{cellsU * kTexels, cellsV * kTexels, {}};
+    l.rgba.resize(size_t(l.w) * size_t(l.h) * 4);
+    for (int y = 0; y < l.h; ++y)
+        for (int x = 0; x < l.w; ++x) {
+            const Vec3 c = ((x / kTexels + y / kTexels) & 1) ? b : a;
+            uint8_t* t = &l.rgba[(size_t(y) * size_t(l.w) + size_t(x)) * 4];
+            t[0] = linearToSrgbByte(c.x), t[1] = linearToSrgbByte(c.y);
+            t[2] = linearToSrgbByte(c.z), t[3] = 255;
+        }
+    levels_.assign(1, std::move(l));
+    buildMips();
 }
 
 void Texture::buildMips() {

@@ -18,6 +18,8 @@ class Texture {
     bool load(const std::string& path, bool srgb, std::string& error);
     /// Flat 1x1 texture.
     void makeFlat(Vec3 rgb, float alpha = 1);
+    /// A checkerboard of cellsU x cellsV cells over [0, 1]^2, colours a and b (linear RGB).
+    void makeChecker(int cellsU, int cellsV, Vec3 a, Vec3 b);
     /// Bilinear sample at `lod` (0 = full resolution), wrapping (glTF's default sampler).
     TexSample sample(float u, float v, float lod) const;
     /// Alpha of the nearest full-resolution texel: the cheap lookup an alpha test needs.
