@@ -18,6 +18,9 @@ struct BenchJob {
     std::vector<std::string> sizes{"1280x720", "1920x1080", "3840x2160"};
     int warmup = 5, frames = 30, threads = 0;
     bool json = false, baseline = true, quiet = false;
+    /// Moving objects with motion vectors; the baseline is then the same backend reprojecting
+    /// by the camera alone, so the ratio is the cost of the motion-vector path.
+    bool motion = false;
     std::string filter = "bmfr", backend = "cpu", baselineBackend = "reference";
 };
 
@@ -28,20 +31,27 @@ int distinctFrames(int w, int h) {
 }
 
 nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<void()>& frameDone) {
-    const int distinct = distinctFrames(w, h);
+    // With motion, each frame twice (half as many): its vectors point to the frame before it
+    // when the cycle goes forwards and to the one after it when it comes back.
+    const int distinct = job.motion ? std::max(2, distinctFrames(w, h) / 2) : distinctFrames(w, h);
     ProceduralSceneOptions so;
     so.width = w, so.height = h, so.frames = distinct;
+    so.objectSpeed = job.motion ? 1.0f : 0.0f, so.motionVectors = job.motion;
     ProceduralScene scene(so);
-    std::vector<FrameData> frames(static_cast<size_t>(distinct));
+    std::vector<FrameData> frames(static_cast<size_t>(distinct)), backwards;
     for (int i = 0; i < distinct; ++i) scene.render(i, frames[size_t(i)]);
+    if (job.motion) {
+        backwards.resize(static_cast<size_t>(distinct));
+        for (int i = 0; i < distinct; ++i) scene.render(i, backwards[size_t(i)], i + 1);
+    }
     const std::string threads = std::to_string(job.threads);
     std::unique_ptr<Filter> d =
         makeFilter(job.filter, {{"threads", threads}, {"backend", job.backend}});
     // The baseline backend runs on the same frames, interleaved frame by frame with the
     // measured one, so both see the same machine load.
     std::unique_ptr<Filter> ref;
-    if (job.baseline)
-        ref = makeFilter(job.filter, {{"threads", threads}, {"backend", job.baselineBackend}});
+    const std::string baseline = job.motion ? job.backend : job.baselineBackend;
+    if (job.baseline) ref = makeFilter(job.filter, {{"threads", threads}, {"backend", baseline}});
     // The memory baselines, measured in this run on buffers freed before the passes start.
     const bool floors = job.filter == "bmfr" && job.backend == "cpu";
     const double floor = floors ? streamFloorMs(w, h, job.threads, 5, fastPassTraffic()) : 0.0;
@@ -50,12 +60,14 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     for (int i = 0; i < job.warmup + job.frames; ++i) {
         // Cycle forwards then backwards so the camera motion stays continuous.
         int period = 2 * distinct - 2, k = period > 0 ? i % period : 0;
+        const bool back = k >= distinct || (k == 0 && i > 0); // frame 0 comes after frame 1
         if (k >= distinct) k = period - k;
-        const FrameInput in = frames[size_t(k)].input();
+        const FrameData& frame = (back && job.motion ? backwards : frames)[size_t(k)];
+        const FrameInput in = frame.input();
         d->denoise(in);
         if (i >= job.warmup) log.add(d->lastStats().times);
         if (ref) {
-            ref->denoise(in);
+            ref->denoise(job.motion ? frame.input(false) : in);
             if (i >= job.warmup) refLog.add(ref->lastStats().times);
         }
         frameDone();
@@ -64,7 +76,7 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
         {"total_ms", log.totalMedian()}, {"stages", log.medians()}, {"line", log.line()}};
     if (floors) r["stream_floor_ms"] = floor, r["single_pass_floor_ms"] = single;
     if (ref) {
-        r["baseline_backend"] = job.baselineBackend;
+        r["baseline_backend"] = job.motion ? job.backend + ", camera path" : baseline;
         r["baseline_total_ms"] = refLog.totalMedian();
         r["baseline_stages"] = refLog.medians();
         r["speedup"] = refLog.totalMedian() / log.totalMedian();
@@ -95,6 +107,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--backend", job->backend, "the backend measured: reference, cpu or cuda")
         ->default_val("cpu");
     cmd->add_option("--filter", job->filter, "the filter measured")->default_val("bmfr");
+    cmd->add_flag("--motion", job->motion,
+                  "moving objects with motion vectors and previous positions; the baseline is "
+                  "the same backend reprojecting by the camera alone (the cost of the motion "
+                  "path)");
     cmd->callback([job, &exitCode] {
         nlohmann::json all;
         Progress progress("bench", int(job->sizes.size()) * (job->warmup + job->frames),
@@ -111,7 +127,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 progress.pause();
                 fmt::print("{:>10} {} on {}: {} ms   (median of {} frames)\n", size, job->filter,
                            job->backend, r["line"].get<std::string>(), job->frames);
-                if (r.contains("baseline_line"))
+                if (r.contains("baseline_line") && job->motion)
+                    fmt::print("{:>10} camera path: {} ms   -> motion vectors cost {:+.1f}%\n", "",
+                               r["baseline_line"].get<std::string>(),
+                               100.0 * (1.0 / r["speedup"].get<double>() - 1.0));
+                else if (r.contains("baseline_line"))
                     fmt::print("{:>10} {} backend: {} ms   -> {} is {:.1f}x faster\n", "",
                                job->baselineBackend, r["baseline_line"].get<std::string>(),
                                job->backend, r["speedup"].get<double>());

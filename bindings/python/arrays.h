@@ -17,7 +17,8 @@ struct ImageArg {
 
 /// Throws py::value_error naming `name` for a wrong dtype, rank, channel count or size.
 /// `height`/`width` < 0 take the size from this array.
-ImageArg imageArg(const py::handle& object, const char* name, int& height, int& width);
+ImageArg imageArg(const py::handle& object, const char* name, int& height, int& width,
+                  int minChannels = 3);
 
 /// A one-channel image argument: float32 (height, width) or (height, width, 1) of the given size.
 ImageArg channelArg(const py::handle& object, const std::string& name, int height, int width);

@@ -71,16 +71,30 @@ class PyFilter {
     py::array_t<float> denoise(const py::handle& color, const py::handle& albedo,
                                const py::handle& normal, const py::handle& position,
                                const py::handle& viewProjection, std::pair<float, float> jitter,
-                               const py::handle& emission, bool reset, const py::handle& extras) {
+                               const py::handle& emission, bool reset, const py::handle& extras,
+                               const py::handle& motion, const py::handle& previousPosition,
+                               const py::handle& previousNormal) {
         int h = -1, w = -1;
         const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
                        n = imageArg(normal, "normal", h, w),
                        p = imageArg(position, "position", h, w);
-        ImageArg e;
+        ImageArg e, mv, pp, pn;
         FrameInput in;
         if (!emission.is_none()) {
             e = imageArg(emission, "emission", h, w);
             in.emission = e.view;
+        }
+        if (!motion.is_none()) {
+            mv = imageArg(motion, "motion", h, w, 2);
+            in.motion = mv.view;
+        }
+        if (!previousPosition.is_none()) {
+            pp = imageArg(previousPosition, "previous_position", h, w);
+            in.previousPosition = pp.view;
+        }
+        if (!previousNormal.is_none()) {
+            pn = imageArg(previousNormal, "previous_normal", h, w);
+            in.previousNormal = pn.view;
         }
         in.color = c.view, in.albedo = a.view, in.normal = n.view, in.position = p.view;
         std::vector<ImageArg> extraArgs;
@@ -173,6 +187,12 @@ class SequenceIterator {
         d["view_projection"] = matrixArray(frame_.viewProjection);
         d["jitter"] = py::make_tuple(frame_.jitter[0], frame_.jitter[1]);
         if (frame_.emission.width) d["emission"] = toArray(view(frame_.emission));
+        if (frame_.motion.width) d["motion"] = toArray(view(frame_.motion));
+        if (frame_.previousPosition.width)
+            d["previous_position"] = toArray(view(frame_.previousPosition));
+        if (frame_.previousNormal.width)
+            d["previous_normal"] = toArray(view(frame_.previousNormal));
+        d["reset"] = frame_.reset;
         if (frame_.reference.width) d["reference"] = toArray(view(frame_.reference));
         py::list extras;
         for (const ImageF& e : frame_.extras) extras.append(toArray(view(e)));
@@ -218,13 +238,17 @@ Filter(name="bmfr", backend="cpu", **settings): settings by their flag name with
              py::arg("position"), py::arg("view_projection"),
              py::arg("jitter") = std::pair<float, float>(0.0f, 0.0f),
              py::arg("emission") = py::none(), py::arg("reset") = false,
-             py::arg("extras") = py::none(),
+             py::arg("extras") = py::none(), py::arg("motion") = py::none(),
+             py::arg("previous_position") = py::none(), py::arg("previous_normal") = py::none(),
              R"(Denoises one frame; returns a new (height, width, 3) float32 array.
 
 Images are float32 (height, width, 3) or (height, width, 4) arrays, viewed without a copy when
 their pixels are packed. view_projection is this frame's 4x4 world-to-clip matrix (row-major,
 column vectors, NDC y down); jitter the sub-pixel offset of the primary rays, pixels. extras:
-a list of float32 (height, width) feature buffers for BMFR's extraK features.)")
+a list of float32 (height, width) feature buffers for BMFR's extraK features. motion:
+(height, width, 2..4) pixels from each pixel to where its surface was in the previous frame
+(x right, y down, both frames' jitter included); previous_position and previous_normal: that
+surface's previous world position and normal, for moving objects (bmfr::FrameInput).)")
         .def("reset", &PyFilter::reset, "Drops all history (a camera cut).")
         .def_property_readonly("stats", &PyFilter::stats,
                                "Facts about the last frame: stage_ms, total_ms, "

@@ -214,11 +214,11 @@ void previousOf(int material, Vec3 p, Vec3 n, const Objects& now, const Objects&
 
 } // namespace
 
-void ProceduralScene::render(int index, FrameData& f) const {
+void ProceduralScene::render(int index, FrameData& f, int previous) const {
     const int w = opt_.width, h = opt_.height;
-    const Camera cam = cameraOf(opt_, index), prevCam = cameraOf(opt_, index - 1);
+    const Camera cam = cameraOf(opt_, index), prevCam = cameraOf(opt_, previous);
     const Objects now = objectsAt(float(index) * opt_.objectSpeed);
-    const Objects was = objectsAt(float(index - 1) * opt_.objectSpeed);
+    const Objects was = objectsAt(float(previous) * opt_.objectSpeed);
     const Vec3 eye = cam.eye;
     Mat4 inv;
     invert(cam.viewProjection, inv);

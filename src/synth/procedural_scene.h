@@ -28,7 +28,10 @@ class ProceduralScene {
     /// Renders frame `index`: noisy colour, albedo, normal, position, extras (material id),
     /// reference (the exact truth), matrix and jitter; with motionVectors, motion and previous
     /// positions and normals too.
-    void render(int index, FrameData& out) const;
+    void render(int index, FrameData& out) const { render(index, out, index - 1); }
+    /// The same, with the motion vectors and previous positions pointing to frame `previous`
+    /// (a sequence played backwards: index + 1).
+    void render(int index, FrameData& out, int previous) const;
     SequenceInfo info() const;
     const ProceduralSceneOptions& options() const { return opt_; }
 

@@ -129,9 +129,14 @@ BMFR_SIMD_INLINE void loadXyz8(const float* p, int n, f8 out[3]) {
 }
 /// The first n (1 to 8) packed xy records (motion vectors); lanes n to 7 read as 0.
 BMFR_SIMD_INLINE void loadXy8(const float* p, int n, f8& x, f8& y) {
-    float staged[16] = {};
-    std::memcpy(staged, p, sizeof(float) * 2 * size_t(n));
-    const f8 a = load8(staged), b = load8(staged + 8);
+    f8 a, b;
+    if (n == 8) {
+        a = load8(p), b = load8(p + 8);
+    } else {
+        float staged[16] = {};
+        std::memcpy(staged, p, sizeof(float) * 2 * size_t(n));
+        a = load8(staged), b = load8(staged + 8);
+    }
     x = __builtin_shuffle(a, b, i8{0, 2, 4, 6, 8, 10, 12, 14});
     y = __builtin_shuffle(a, b, i8{1, 3, 5, 7, 9, 11, 13, 15});
 }
