@@ -7,6 +7,8 @@
 #include "test_support.h"
 #include <bmfr/error.h>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -126,6 +128,67 @@ TEST(RenderMotion, ObjectsCarryTheirPointsAndTheVectorsFindThemInThePreviousFram
     EXPECT_GT(tallBlock, 100);
     EXPECT_GT(staticPixels, 1000);
     EXPECT_GT(found, 2000);
+}
+
+/// A glTF file: "mover" (no mesh) slides 1 m along x from 0 to 1 s and carries its child
+/// "rider" (a triangle 2 m behind it); "floor" (the same triangle, 1 m down) stays.
+std::string writeAnimatedGltf(const std::filesystem::path& dir) {
+    const float data[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, // POSITION
+                          0, 1,                      // times, seconds
+                          0, 0, 0, 1, 0, 0};         // translations
+    std::ofstream(dir / "anim.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(data), sizeof data);
+    const char* gltf = R"({
+      "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 2]}],
+      "nodes": [{"name": "mover", "children": [1]},
+                {"name": "rider", "mesh": 0, "translation": [0, 0, -2]},
+                {"name": "floor", "mesh": 0, "translation": [0, -1, 0]}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "buffers": [{"uri": "anim.bin", "byteLength": 68}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                      {"buffer": 0, "byteOffset": 36, "byteLength": 8},
+                      {"buffer": 0, "byteOffset": 44, "byteLength": 24}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR",
+                     "min": [0], "max": [1]},
+                    {"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC3"}],
+      "animations": [{"name": "slide", "channels": [{"sampler": 0, "target": {"node": 0,
+                      "path": "translation"}}], "samplers": [{"input": 1, "output": 2}]}]})";
+    std::ofstream(dir / "anim.gltf") << gltf;
+    return (dir / "anim.gltf").string();
+}
+
+TEST(RenderMotion, GltfAnimationChannelsMoveTheirNodesAndChildren) {
+    const auto dir = testing::freshDir("RenderMotion", "gltf");
+    const Scene rest = loadScene(writeAnimatedGltf(dir));
+    ASSERT_EQ(rest.objectNames, (std::vector<std::string>{"rider", "floor"}));
+    ASSERT_EQ(rest.nodeChannels.size(), 1u);
+    EXPECT_NEAR(rest.positions[1].z, -2.0f, 1e-6f); // the rider at rest, 2 m behind
+    const SceneAnimator animator(rest, {}, 10.0f);   // 10 frames a second
+    ASSERT_TRUE(animator.animated());
+    Scene posed = rest;
+    animator.pose(5, posed); // 0.5 s: the mover, and so the rider, 0.5 m along x
+    for (int v = 0; v < 3; ++v) {
+        EXPECT_NEAR(posed.positions[size_t(v)].x, rest.positions[size_t(v)].x + 0.5f, 1e-6f);
+        EXPECT_NEAR(posed.positions[size_t(v)].z, rest.positions[size_t(v)].z, 1e-6f);
+        EXPECT_EQ(posed.positions[3 + size_t(v)].x, rest.positions[3 + size_t(v)].x); // floor
+    }
+    animator.pose(25, posed); // held after the last key
+    EXPECT_NEAR(posed.positions[0].x, 1.0f, 1e-6f);
+    std::vector<Mat4> points, normals;
+    animator.toPrevious(5, points, normals);
+    const Vec4 back = transformPoint(points[0], {0.5f, 0, -2});
+    EXPECT_NEAR(back.x, 0.4f, 1e-6f);
+    EXPECT_NEAR(transformPoint(points[1], {0.3f, -1, 0}).x, 0.3f, 1e-7f); // the floor stays
+    // Played from a scene description; a file without animations is refused.
+    const std::string text = R"({"mesh": ")" + (dir / "anim.gltf").string() +
+                             R"(", "gltf_animation": {"fps": 24}, "sky": {"radiance": [1, 1, 1]},
+        "camera": {"keyframes": [{"position": [0, 0, 3], "target": [0, 0, 0]}]}})";
+    EXPECT_EQ(parseSceneDescription(nlohmann::json::parse(text), ".").gltfAnimationFps, 24.0f);
+    EXPECT_NE(testing::errorOf([] { SceneAnimator(builtinCornellBox(), {}, 30.0f); })
+                  .find("it has none"),
+              std::string::npos);
 }
 
 TEST(RenderMotion, AnAnimationOfAnUnknownObjectOrBadKeysIsAClearError) {

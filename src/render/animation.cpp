@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <bmfr/error.h>
 #include <cmath>
+#include <functional>
 
 namespace bmfr::render {
 
@@ -94,8 +95,27 @@ Mat4 ObjectAnimation::at(float frame) const {
                              multiply(scaleMatrix(k.scale), translationMatrix(-1.0f * pivot))));
 }
 
-SceneAnimator::SceneAnimator(const Scene& rest, std::vector<ObjectAnimation> animations)
-    : rest_(rest), animations_(std::move(animations)), animationOf_(rest.objectNames.size(), -1) {
+SceneAnimator::SceneAnimator(const Scene& rest, std::vector<ObjectAnimation> animations,
+                             float fileFps)
+    : rest_(rest), animations_(std::move(animations)), fileFps_(fileFps),
+      animationOf_(rest.objectNames.size(), -1), moves_(rest.objectNames.size(), 0),
+      restInverse_(rest.objectNames.size()) {
+    if (fileFps_ > 0) {
+        if (rest.nodeChannels.empty())
+            throw Error("scene description: \"gltf_animation\" asks to play the mesh's "
+                        "animations, but it has none");
+        // An object moves when a channel targets its node or an ancestor.
+        std::vector<char> animatedNode(rest.nodes.size(), 0);
+        for (const NodeChannel& c : rest.nodeChannels) animatedNode[size_t(c.node)] = 1;
+        const std::vector<Mat4> restWorld = nodeWorlds(-1);
+        for (size_t o = 0; o < rest.objectNames.size(); ++o) {
+            for (int n = rest.objectNode[o]; n >= 0 && !moves_[o]; n = rest.nodes[size_t(n)].parent)
+                moves_[o] = animatedNode[size_t(n)];
+            if (moves_[o] && !invert(restWorld[size_t(rest.objectNode[o])], restInverse_[o]))
+                throw Error("glTF: the node of object '" + rest.objectNames[o] +
+                            "' has a singular transform");
+        }
+    }
     for (size_t a = 0; a < animations_.size(); ++a) {
         bool found = false;
         for (size_t o = 0; o < rest.objectNames.size(); ++o)
@@ -103,7 +123,7 @@ SceneAnimator::SceneAnimator(const Scene& rest, std::vector<ObjectAnimation> ani
                 if (animationOf_[o] >= 0)
                     throw Error("scene description: object '" + animations_[a].object +
                                 "' is animated twice");
-                animationOf_[o] = int(a), found = true;
+                animationOf_[o] = int(a), moves_[o] = 1, found = true;
             }
         if (!found) {
             std::vector<std::string> names = rest.objectNames;
@@ -116,12 +136,67 @@ SceneAnimator::SceneAnimator(const Scene& rest, std::vector<ObjectAnimation> ani
                         "', but the scene has no such object (objects: " + list + ")");
         }
     }
+    animated_ = std::find(moves_.begin(), moves_.end(), char(1)) != moves_.end();
+}
+
+std::vector<Mat4> SceneAnimator::nodeWorlds(float seconds) const {
+    const size_t n = rest_.nodes.size();
+    std::vector<Vec3> t(n), sc(n);
+    std::vector<Quat> r(n);
+    for (size_t i = 0; i < n; ++i)
+        t[i] = rest_.nodes[i].translation, r[i] = rest_.nodes[i].rotation,
+        sc[i] = rest_.nodes[i].scale;
+    if (seconds >= 0)
+        for (const NodeChannel& c : rest_.nodeChannels) {
+            // The keys around `seconds`, held outside the range.
+            const size_t count = c.times.size();
+            size_t k = size_t(std::upper_bound(c.times.begin(), c.times.end(), seconds) -
+                              c.times.begin());
+            size_t a = k == 0 ? 0 : k - 1, b = std::min(k, count - 1);
+            float f = a == b ? 0.0f : (seconds - c.times[a]) / (c.times[b] - c.times[a]);
+            if (c.step) f = 0.0f;
+            const float* va = &c.values[a * (c.path == NodeChannel::Path::Rotation ? 4 : 3)];
+            const float* vb = &c.values[b * (c.path == NodeChannel::Path::Rotation ? 4 : 3)];
+            const size_t node = size_t(c.node);
+            if (c.path == NodeChannel::Path::Rotation)
+                r[node] = slerp({va[0], va[1], va[2], va[3]}, {vb[0], vb[1], vb[2], vb[3]}, f);
+            else
+                (c.path == NodeChannel::Path::Translation ? t : sc)[node] =
+                    lerp(Vec3{va[0], va[1], va[2]}, Vec3{vb[0], vb[1], vb[2]}, f);
+        }
+    std::vector<Mat4> world(n);
+    std::vector<char> done(n, 0);
+    // Parents before children, whatever the file's order (glTF trees are acyclic).
+    std::function<const Mat4&(size_t)> of = [&](size_t i) -> const Mat4& {
+        if (done[i]) return world[i];
+        Mat4 local;
+        if (rest_.nodes[i].hasMatrix) {
+            for (int row = 0; row < 4; ++row)
+                for (int col = 0; col < 4; ++col)
+                    local.m[row][col] = rest_.nodes[i].matrix[col * 4 + row];
+        } else {
+            local = multiply(translationMatrix(t[i]),
+                             multiply(rotationMatrix(r[i]), scaleMatrix(sc[i])));
+        }
+        const int parent = rest_.nodes[i].parent;
+        world[i] = parent >= 0 ? multiply(of(size_t(parent)), local) : local;
+        done[i] = 1;
+        return world[i];
+    };
+    for (size_t i = 0; i < n; ++i) of(i);
+    return world;
 }
 
 std::vector<Mat4> SceneAnimator::objectMatrices(float frame) const {
     std::vector<Mat4> m(rest_.objectNames.size());
-    for (size_t o = 0; o < m.size(); ++o)
-        if (animationOf_[o] >= 0) m[o] = animations_[size_t(animationOf_[o])].at(frame);
+    std::vector<Mat4> worlds;
+    if (fileFps_ > 0) worlds = nodeWorlds(std::max(0.0f, frame / fileFps_));
+    for (size_t o = 0; o < m.size(); ++o) {
+        if (fileFps_ > 0 && moves_[o] && rest_.objectNode[o] >= 0)
+            m[o] = multiply(worlds[size_t(rest_.objectNode[o])], restInverse_[o]);
+        if (animationOf_[o] >= 0)
+            m[o] = multiply(animations_[size_t(animationOf_[o])].at(frame), m[o]);
+    }
     return m;
 }
 
@@ -137,7 +212,7 @@ void SceneAnimator::pose(float frame, Scene& posed) const {
     }
     for (size_t t = 0; t < rest_.triangleCount(); ++t) {
         const int o = rest_.triangleObject[t];
-        if (animationOf_[size_t(o)] < 0) continue;
+        if (!moves_[size_t(o)]) continue;
         for (size_t v = 3 * t; v < 3 * t + 3; ++v) {
             posed.positions[v] = point3(m[size_t(o)], rest_.positions[v]);
             const Vec3 n = transformDirection(normalMatrix[size_t(o)], rest_.normals[v]);
@@ -152,7 +227,7 @@ void SceneAnimator::toPrevious(float frame, std::vector<Mat4>& points,
     points.assign(now.size(), Mat4{});
     normals.assign(now.size(), Mat4{});
     for (size_t o = 0; o < now.size(); ++o) {
-        if (animationOf_[o] < 0) continue;
+        if (!moves_[o]) continue;
         Mat4 inv, back;
         if (!invert(now[o], inv))
             throw Error("scene description: the animation of '" + rest_.objectNames[o] +

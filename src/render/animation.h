@@ -8,11 +8,6 @@
 
 namespace bmfr::render {
 
-/// A unit quaternion (x, y, z, w): a rotation.
-struct Quat {
-    float x = 0, y = 0, z = 0, w = 1;
-};
-
 /// A rotation from Euler angles in degrees, applied about x, then y, then z.
 Quat quatFromEulerDegrees(Vec3 degrees);
 /// Shortest-arc spherical interpolation; t in [0, 1].
@@ -39,10 +34,12 @@ struct ObjectAnimation {
 /// The scene posed at any frame, and each object's map from one frame to the one before.
 class SceneAnimator {
   public:
-    /// Resolves every animation's object name against scene.objectNames. Throws bmfr::Error
-    /// for a name the scene lacks (listing the names it has).
-    SceneAnimator(const Scene& rest, std::vector<ObjectAnimation> animations);
-    bool animated() const { return !animations_.empty(); }
+    /// Resolves every animation's object name against scene.objectNames. With `fileFps` > 0,
+    /// also plays the file's own node animations (glTF), frame f at f / fileFps seconds, before
+    /// the keyed transforms. Throws bmfr::Error for a name the scene lacks (listing the names
+    /// it has), or for fileFps > 0 with a file that has no animations.
+    SceneAnimator(const Scene& rest, std::vector<ObjectAnimation> animations, float fileFps = 0);
+    bool animated() const { return animated_; }
     /// Writes the rest scene's triangles moved to `frame` into `posed` (a copy of the rest
     /// scene): positions, and normals through the inverse transpose.
     void pose(float frame, Scene& posed) const;
@@ -53,8 +50,14 @@ class SceneAnimator {
   private:
     const Scene& rest_;
     std::vector<ObjectAnimation> animations_;
-    std::vector<int> animationOf_; ///< per object: index into animations_, -1 = static
+    float fileFps_ = 0;
+    bool animated_ = false;
+    std::vector<int> animationOf_; ///< per object: index into animations_, -1 = none
+    std::vector<char> moves_;      ///< per object: keyed or moved by the file's animations
+    std::vector<Mat4> restInverse_; ///< per object moved by the file: its node's rest world^-1
     std::vector<Mat4> objectMatrices(float frame) const;
+    /// World matrices of every file node at `seconds` (< 0: the rest pose, no channels).
+    std::vector<Mat4> nodeWorlds(float seconds) const;
 };
 
 } // namespace bmfr::render

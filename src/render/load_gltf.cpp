@@ -258,11 +258,82 @@ struct Loader {
         }
     }
 
+    /// The hierarchy (parents, rest transforms) and every animation's channels, so that a
+    /// scene description can play them.
+    void hierarchy() {
+        scene.nodes.resize(model.nodes.size());
+        for (size_t i = 0; i < model.nodes.size(); ++i) {
+            const tinygltf::Node& nd = model.nodes[i];
+            SceneNode& n = scene.nodes[i];
+            for (int child : nd.children)
+                if (child >= 0 && size_t(child) < scene.nodes.size())
+                    scene.nodes[size_t(child)].parent = int(i);
+            n.hasMatrix = nd.matrix.size() == 16;
+            for (size_t k = 0; k < 16 && n.hasMatrix; ++k) n.matrix[k] = float(nd.matrix[k]);
+            if (nd.translation.size() == 3)
+                n.translation = {float(nd.translation[0]), float(nd.translation[1]),
+                                 float(nd.translation[2])};
+            if (nd.rotation.size() == 4)
+                n.rotation = {float(nd.rotation[0]), float(nd.rotation[1]),
+                              float(nd.rotation[2]), float(nd.rotation[3])};
+            if (nd.scale.size() == 3)
+                n.scale = {float(nd.scale[0]), float(nd.scale[1]), float(nd.scale[2])};
+        }
+        for (const tinygltf::Animation& a : model.animations)
+            for (const tinygltf::AnimationChannel& c : a.channels) {
+                const std::string what = "animation '" + a.name + "'";
+                if (c.sampler < 0 || size_t(c.sampler) >= a.samplers.size() || c.target_node < 0 ||
+                    size_t(c.target_node) >= model.nodes.size())
+                    throw Error("glTF: " + what + " has a channel without a sampler or node");
+                NodeChannel ch;
+                ch.node = c.target_node;
+                if (c.target_path == "translation")
+                    ch.path = NodeChannel::Path::Translation;
+                else if (c.target_path == "rotation")
+                    ch.path = NodeChannel::Path::Rotation;
+                else if (c.target_path == "scale")
+                    ch.path = NodeChannel::Path::Scale;
+                else {
+                    scene.warnings.push_back(what + ": " + c.target_path +
+                                             " channels are not played");
+                    continue;
+                }
+                if (scene.nodes[size_t(ch.node)].hasMatrix) {
+                    scene.warnings.push_back(what + ": a channel targets a node placed by a "
+                                                    "matrix (not allowed by glTF), ignored");
+                    continue;
+                }
+                const tinygltf::AnimationSampler& sm = a.samplers[size_t(c.sampler)];
+                ch.step = sm.interpolation == "STEP";
+                const bool cubic = sm.interpolation == "CUBICSPLINE";
+                if (cubic)
+                    scene.warnings.push_back(what + ": CUBICSPLINE played as LINEAR through "
+                                                    "its keys");
+                AccessorReader in(model, sm.input, what + " times");
+                AccessorReader out(model, sm.output, what + " values");
+                const int width = ch.path == NodeChannel::Path::Rotation ? 4 : 3;
+                const size_t perKey = cubic ? 3 : 1; // in-tangent, value, out-tangent
+                if (out.components != width || out.count != in.count * perKey || in.count == 0)
+                    throw Error("glTF: " + what + " has " + std::to_string(out.count) +
+                                " values of " + std::to_string(out.components) + " for " +
+                                std::to_string(in.count) + " times");
+                for (size_t k = 0; k < in.count; ++k) {
+                    ch.times.push_back(in.component(k, 0));
+                    if (k && !(ch.times[k] > ch.times[k - 1]))
+                        throw Error("glTF: " + what + ": key times must increase");
+                    for (int v = 0; v < width; ++v)
+                        ch.values.push_back(out.component(k * perKey + (cubic ? 1 : 0), v));
+                }
+                scene.nodeChannels.push_back(std::move(ch));
+            }
+    }
+
     void node(int index, const Mat& parent) {
         const tinygltf::Node& nd = model.nodes[size_t(index)];
         Mat m = mul(parent, nodeMatrix(nd));
         if (nd.mesh >= 0) {
             scene.beginObject(nd.name.empty() ? "node" + std::to_string(index) : nd.name);
+            scene.objectNode.back() = index;
             mesh(model.meshes[size_t(nd.mesh)], m);
         }
         if (nd.skin >= 0)
@@ -298,6 +369,7 @@ Scene loadGltf(const std::string& path) {
         throw Error("unsupported glTF feature in " + path + ": required extension " + ext);
     Loader loader{model, std::filesystem::path(path).parent_path().string(), {}, {}};
     loader.materials();
+    loader.hierarchy();
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (model.scenes.empty()) throw Error("glTF " + path + " has no scene");
     for (int n : model.scenes[size_t(sceneIndex)].nodes) loader.node(n, identity());

@@ -7,6 +7,7 @@ namespace bmfr::render {
 
 void Scene::beginObject(const std::string& name) {
     objectNames.push_back(name);
+    objectNode.push_back(-1);
 }
 
 void Scene::addTriangle(Vec3 a, Vec3 b, Vec3 c, int material) {

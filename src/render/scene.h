@@ -27,6 +27,30 @@ struct Vec2f {
     float x = 0, y = 0;
 };
 
+/// A unit quaternion (x, y, z, w): a rotation.
+struct Quat {
+    float x = 0, y = 0, z = 0, w = 1;
+};
+
+/// A node of the file's transform hierarchy (glTF), kept for the file's own animations.
+struct SceneNode {
+    int parent = -1;
+    Vec3 translation{0, 0, 0};
+    Quat rotation;
+    Vec3 scale{1, 1, 1};
+    bool hasMatrix = false; ///< placed by a matrix (which glTF does not let animations touch)
+    float matrix[16] = {};  ///< column-major, as glTF, when hasMatrix
+};
+
+/// One animation channel of the file: a node's translation, rotation or scale over time.
+struct NodeChannel {
+    enum class Path { Translation, Rotation, Scale } path = Path::Translation;
+    int node = 0;
+    bool step = false;         ///< STEP interpolation, else LINEAR
+    std::vector<float> times;  ///< seconds, increasing
+    std::vector<float> values; ///< 3 (or 4 for rotations) per time
+};
+
 /// A camera keyframe as read from a file (glTF cameras).
 struct NamedCamera {
     std::string name;
@@ -43,6 +67,11 @@ struct Scene {
     /// scenes' named parts. Several objects may share a name (an animation moves them all).
     std::vector<std::string> objectNames;
     std::vector<int> triangleObject; ///< per triangle: index into objectNames
+    /// The file's node hierarchy and animation channels (glTF); objectNode[o] is object o's
+    /// node, -1 for objects of other sources.
+    std::vector<SceneNode> nodes;
+    std::vector<NodeChannel> nodeChannels;
+    std::vector<int> objectNode;
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<NamedCamera> cameras;

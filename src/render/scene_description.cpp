@@ -151,7 +151,7 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         requireKnownKeys(j,
                          {"mesh", "width", "height", "frames", "reference_spp", "bounces", "seed",
                           "jitter", "roughness_override", "sky", "sun", "lights", "camera",
-                          "animations"},
+                          "animations", "gltf_animation"},
                          where);
         d.mesh = j.at("mesh").get<std::string>();
         if (d.mesh.rfind("builtin:", 0) != 0 && fs::path(d.mesh).is_relative())
@@ -239,6 +239,11 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
                     throw Error(what + ": two keys at frame " +
                                 std::to_string(anim.keys[i].frame));
             d.animations.push_back(anim);
+        }
+        if (j.contains("gltf_animation")) {
+            requireKnownKeys(j["gltf_animation"], {"fps"}, "scene description 'gltf_animation'");
+            d.gltfAnimationFps = float(
+                numberField(j["gltf_animation"], "fps", 1e-3, 1000, 30, "gltf_animation"));
         }
         const json& cam = j.at("camera");
         requireKnownKeys(cam, {"keyframes", "gltf_camera"}, "scene description 'camera'");

@@ -33,6 +33,9 @@ struct SceneDescription {
     std::string gltfCamera; ///< use this named camera of the mesh file (static)
     /// Moving objects: keyframed rigid transforms of the mesh's named objects.
     std::vector<ObjectAnimation> animations;
+    /// Frames per second at which the mesh file's own animations play (glTF translation,
+    /// rotation and scale channels); 0 = not played. (0, 1000].
+    float gltfAnimationFps = 0;
 };
 
 inline constexpr int kMaxSceneSide = 16384;    ///< pixels per side

@@ -75,6 +75,7 @@ std::string renderFingerprint(const SceneDescription& d, const std::string& layo
         for (Vec3 v : {k.pose.position, k.pose.target, k.pose.up}) add(s, v);
     }
     s += d.gltfCamera;
+    if (d.gltfAnimationFps > 0) s += fmt::format("gltf@{};", d.gltfAnimationFps);
     for (const ObjectAnimation& a : d.animations) {
         s += a.object + ":";
         add(s, a.pivot);
@@ -124,7 +125,7 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
         keys = {k};
     }
     const CameraPath path(keys);
-    const SceneAnimator animator(scene, d.animations);
+    const SceneAnimator animator(scene, d.animations, d.gltfAnimationFps);
     RayAccel accel(scene);
     report.loadSeconds = clock.elapsed() / 1000.0;
     FrameRenderer renderer(scene, accel, d.width, d.height, d.bounces, d.seed);
