@@ -215,14 +215,16 @@ TEST(MotionVectors, BadMotionInputIsAClearErrorOrCounted) {
     FrameInput in = frames[0].input();
     ImageF one(24, 16, 1);
     in.motion = view(one);
-    EXPECT_NE(testing::errorOf([&] { f->denoise(in); })
-                  .find("input buffer 'motion' has 1 channels, expected 2 to 4"),
+    EXPECT_NE(testing::errorOf([&] {
+                  f->denoise(in);
+              }).find("input buffer 'motion' has 1 channels, expected 2 to 4"),
               std::string::npos);
     ImageF small(12, 16, 3);
     in = frames[0].input();
     in.previousPosition = view(small);
-    EXPECT_NE(testing::errorOf([&] { f->denoise(in); })
-                  .find("input buffer 'previousPosition' is 12x16, colour is 24x16"),
+    EXPECT_NE(testing::errorOf([&] {
+                  f->denoise(in);
+              }).find("input buffer 'previousPosition' is 12x16, colour is 24x16"),
               std::string::npos);
     // Non-finite vectors are counted and mean no history there, never a wild read.
     f->denoise(frames[0].input());

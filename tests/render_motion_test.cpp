@@ -73,7 +73,8 @@ TEST(RenderMotion, ObjectsCarryTheirPointsAndTheVectorsFindThemInThePreviousFram
     for (int y = 1; y < h - 1; ++y)
         for (int x = 1; x < w - 1; ++x) {
             const long i = long(y) * w + x;
-            const Vec3 p = load3(now.position.data(), i), pp = load3(now.previousPosition.data(), i);
+            const Vec3 p = load3(now.position.data(), i),
+                       pp = load3(now.previousPosition.data(), i);
             const float material = now.extras[0].data()[i];
             Vec3 expected = p;
             // Material ids: 0 white (room and blocks), 4 the sphere. Which white: by place (the
@@ -165,7 +166,7 @@ TEST(RenderMotion, GltfAnimationChannelsMoveTheirNodesAndChildren) {
     ASSERT_EQ(rest.objectNames, (std::vector<std::string>{"rider", "floor"}));
     ASSERT_EQ(rest.nodeChannels.size(), 1u);
     EXPECT_NEAR(rest.positions[1].z, -2.0f, 1e-6f); // the rider at rest, 2 m behind
-    const SceneAnimator animator(rest, {}, 10.0f);   // 10 frames a second
+    const SceneAnimator animator(rest, {}, 10.0f);  // 10 frames a second
     ASSERT_TRUE(animator.animated());
     Scene posed = rest;
     animator.pose(5, posed); // 0.5 s: the mover, and so the rider, 0.5 m along x
@@ -186,9 +187,9 @@ TEST(RenderMotion, GltfAnimationChannelsMoveTheirNodesAndChildren) {
                              R"(", "gltf_animation": {"fps": 24}, "sky": {"radiance": [1, 1, 1]},
         "camera": {"keyframes": [{"position": [0, 0, 3], "target": [0, 0, 0]}]}})";
     EXPECT_EQ(parseSceneDescription(nlohmann::json::parse(text), ".").gltfAnimationFps, 24.0f);
-    EXPECT_NE(testing::errorOf([] { SceneAnimator(builtinCornellBox(), {}, 30.0f); })
-                  .find("it has none"),
-              std::string::npos);
+    EXPECT_NE(
+        testing::errorOf([] { SceneAnimator(builtinCornellBox(), {}, 30.0f); }).find("it has none"),
+        std::string::npos);
 }
 
 TEST(RenderMotion, AnAnimationOfAnUnknownObjectOrBadKeysIsAClearError) {

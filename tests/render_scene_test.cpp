@@ -99,7 +99,8 @@ TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
     EXPECT_EQ(loadSceneDescription("cornell-objects", "/s", false).animations.size(), 3u);
     EXPECT_FLOAT_EQ(loadSceneDescription("sponza-glossy", "/s", false).roughnessOverride, 0.1f);
     EXPECT_EQ(loadSceneDescription("sponza-light", "/s", false).quadLights.size(), 1u);
-    expectError([] { loadSceneDescription("no-such-preset", "."); }, "presets: cornell-moving cornell-objects");
+    expectError([] { loadSceneDescription("no-such-preset", "."); },
+                "presets: cornell-moving cornell-objects");
     // A Sponza preset whose mesh is not under --scenes says so, and names the flag.
     expectError([] { loadSceneDescription("sponza-moving", "no/such/dir"); },
                 "with --scenes DIR (the relative 'no/such/dir' is read from");

@@ -157,9 +157,9 @@ int runDenoise(const DenoiseJob& job) {
     if (bmfrFilter) report["features"] = features;
     report["filter"] = job.filter;
     report["backend"] = settingValue(values, "backend", "cpu");
-    report["reprojection"] = motionFrames == 0  ? "camera (the input has no motion vectors)"
-                             : job.motion       ? "motion vectors"
-                                                : "camera (motion vectors ignored: --no-motion)";
+    report["reprojection"] = motionFrames == 0 ? "camera (the input has no motion vectors)"
+                             : job.motion      ? "motion vectors"
+                                               : "camera (motion vectors ignored: --no-motion)";
     for (const auto& [key, value] : values) report["settings"][key] = value;
     report["median_ms"] = stages.medians();
     report["median_ms"]["total"] = stages.totalMedian();
@@ -245,7 +245,8 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
         ->default_val(1.0);
     cmd->add_option("--channel", job->channels,
                     "BUFFER=LAYER: read a buffer (color, albedo, normal, position, emission, "
-                    "reference, motion, previous_position, previous_normal) from this layer of multilayer EXRs, as "
+                    "reference, motion, previous_position, previous_normal) from this layer of "
+                    "multilayer EXRs, as "
                     "albedo=ViewLayer.DiffCol; repeatable");
     job->options.addTo(*cmd, filterNames());
     cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });

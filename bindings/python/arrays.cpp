@@ -28,9 +28,9 @@ ImageArg imageArg(const py::handle& object, const char* name, int& height, int& 
         bad(name, "dtype " + std::string(py::str(a.dtype())) +
                       ", expected float32 (use .astype(numpy.float32))");
     if (a.ndim() != 3 || a.shape(2) < minChannels || a.shape(2) > 4)
-        bad(name, "shape " + shapeText(a) + ", expected (height, width, C) with C " +
-                      (minChannels == 3 ? std::string("3 or 4")
-                                        : std::to_string(minChannels) + " to 4"));
+        bad(name,
+            "shape " + shapeText(a) + ", expected (height, width, C) with C " +
+                (minChannels == 3 ? std::string("3 or 4") : std::to_string(minChannels) + " to 4"));
     if (a.shape(0) <= 0 || a.shape(1) <= 0) bad(name, "empty image " + shapeText(a));
     if (a.shape(0) > 65536 || a.shape(1) > 65536) bad(name, "image " + shapeText(a) + " too large");
     if (height < 0) height = int(a.shape(0)), width = int(a.shape(1));

@@ -69,7 +69,7 @@ struct FrameInput {
     /// Optional shading normal of this pixel's surface in the previous frame, 3 or 4 channels,
     /// unit length; compared with the previous frame's normals (else the current normal is).
     ImageView previousNormal;
-    Mat4 viewProjection;           ///< this frame's world-to-clip matrix
+    Mat4 viewProjection; ///< this frame's world-to-clip matrix
     /// Sub-pixel offset of this frame's primary rays from the pixel centre, pixels, [-0.5, 0.5].
     float jitter[2] = {0.0f, 0.0f};
     bool reset = false; ///< camera cut: drop all history before this frame

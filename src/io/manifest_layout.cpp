@@ -260,7 +260,8 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
     if (f.reference.width) j["reference"] = put("reference", f.reference);
     if (f.emission.width) j["emission"] = put("emission", f.emission);
     if (f.motion.width) j["motion"] = put("motion", f.motion);
-    if (f.previousPosition.width) j["previous_position"] = put("previous_position", f.previousPosition);
+    if (f.previousPosition.width)
+        j["previous_position"] = put("previous_position", f.previousPosition);
     if (f.previousNormal.width) j["previous_normal"] = put("previous_normal", f.previousNormal);
     if (f.reset) j["reset"] = true;
     if (!f.extras.empty()) {

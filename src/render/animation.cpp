@@ -82,8 +82,9 @@ Mat4 ObjectAnimation::at(float frame) const {
     if (frame >= keys.back().frame) {
         k = keys.back();
     } else if (frame > keys.front().frame) {
-        const auto next = std::upper_bound(keys.begin(), keys.end(), frame,
-                                           [](float f, const RigidKey& key) { return f < key.frame; });
+        const auto next =
+            std::upper_bound(keys.begin(), keys.end(), frame,
+                             [](float f, const RigidKey& key) { return f < key.frame; });
         const RigidKey &a = *(next - 1), &b = *next;
         const float t = (frame - a.frame) / (b.frame - a.frame);
         k.translation = lerp(a.translation, b.translation, t);
@@ -150,8 +151,8 @@ std::vector<Mat4> SceneAnimator::nodeWorlds(float seconds) const {
         for (const NodeChannel& c : rest_.nodeChannels) {
             // The keys around `seconds`, held outside the range.
             const size_t count = c.times.size();
-            size_t k = size_t(std::upper_bound(c.times.begin(), c.times.end(), seconds) -
-                              c.times.begin());
+            size_t k =
+                size_t(std::upper_bound(c.times.begin(), c.times.end(), seconds) - c.times.begin());
             size_t a = k == 0 ? 0 : k - 1, b = std::min(k, count - 1);
             float f = a == b ? 0.0f : (seconds - c.times[a]) / (c.times[b] - c.times[a]);
             if (c.step) f = 0.0f;

@@ -26,7 +26,7 @@ struct RigidKey {
 /// held before the first and after the last.
 struct ObjectAnimation {
     std::string object;
-    Vec3 pivot{0, 0, 0}; ///< scene units, in the scene file's placement
+    Vec3 pivot{0, 0, 0};        ///< scene units, in the scene file's placement
     std::vector<RigidKey> keys; ///< sorted by frame, at least one
     Mat4 at(float frame) const;
 };
@@ -52,8 +52,8 @@ class SceneAnimator {
     std::vector<ObjectAnimation> animations_;
     float fileFps_ = 0;
     bool animated_ = false;
-    std::vector<int> animationOf_; ///< per object: index into animations_, -1 = none
-    std::vector<char> moves_;      ///< per object: keyed or moved by the file's animations
+    std::vector<int> animationOf_;  ///< per object: index into animations_, -1 = none
+    std::vector<char> moves_;       ///< per object: keyed or moved by the file's animations
     std::vector<Mat4> restInverse_; ///< per object moved by the file: its node's rest world^-1
     std::vector<Mat4> objectMatrices(float frame) const;
     /// World matrices of every file node at `seconds` (< 0: the rest pose, no channels).

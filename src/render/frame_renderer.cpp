@@ -29,7 +29,8 @@ std::vector<std::string> FrameRenderer::aovNames() {
 
 FrameRenderer::FrameRenderer(const Scene& scene, const RayAccel& accel, int width, int height,
                              int bounces, uint32_t seed)
-    : scene_(&scene), accel_(&accel), width_(width), height_(height), bounces_(bounces), seed_(seed) {
+    : scene_(&scene), accel_(&accel), width_(width), height_(height), bounces_(bounces),
+      seed_(seed) {
     Vec3 lo, hi;
     scene.bounds(lo, hi);
     float diag = std::fmax(length(hi - lo), 1e-3f);
@@ -134,8 +135,8 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 // Off every image when the previous camera did not see the point.
                 Vec2 prev{float(x), float(y)}, at;
                 if (hasPrevious)
-                    prev = projectToPixel(prevVp, pp, prevJitter, w, h, at) ? at
-                                                                            : Vec2{-1e6f, -1e6f};
+                    prev =
+                        projectToPixel(prevVp, pp, prevJitter, w, h, at) ? at : Vec2{-1e6f, -1e6f};
                 out.motion.data()[2 * i] = prev.x - float(x);
                 out.motion.data()[2 * i + 1] = prev.y - float(y);
             }

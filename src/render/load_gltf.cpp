@@ -274,8 +274,8 @@ struct Loader {
                 n.translation = {float(nd.translation[0]), float(nd.translation[1]),
                                  float(nd.translation[2])};
             if (nd.rotation.size() == 4)
-                n.rotation = {float(nd.rotation[0]), float(nd.rotation[1]),
-                              float(nd.rotation[2]), float(nd.rotation[3])};
+                n.rotation = {float(nd.rotation[0]), float(nd.rotation[1]), float(nd.rotation[2]),
+                              float(nd.rotation[3])};
             if (nd.scale.size() == 3)
                 n.scale = {float(nd.scale[0]), float(nd.scale[1]), float(nd.scale[2])};
         }

@@ -82,7 +82,8 @@ const std::map<std::string, std::string>& presets() {
         {"cornell-objects", R"({
             "mesh": "builtin:cornell-objects", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
             "camera": {"keyframes": [{"frame": 0, "position": [0.0, 1.0, 3.4], "target": [0.0, 1.0, 0.0], "fov_deg": 40}]},
-            )" + kCornellAnimations + "}"},
+            )" + kCornellAnimations +
+                                "}"},
         // The same objects seen from a camera that moves as well.
         {"cornell-objects-moving", R"({
             "mesh": "builtin:cornell-objects", "width": 640, "height": 480, "frames": 60, "reference_spp": 4096,
@@ -221,9 +222,8 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
                 if (k.contains("rotation_deg"))
                     key.rotation = quatFromEulerDegrees(vec3(k["rotation_deg"], "rotation_deg"));
                 if (k.contains("scale"))
-                    key.scale = k["scale"].is_number()
-                                    ? Vec3{1, 1, 1} * k["scale"].get<float>()
-                                    : vec3(k["scale"], "animation scale");
+                    key.scale = k["scale"].is_number() ? Vec3{1, 1, 1} * k["scale"].get<float>()
+                                                       : vec3(k["scale"], "animation scale");
                 for (float c : {key.scale.x, key.scale.y, key.scale.z})
                     if (!(c > 0.0f && c <= 1000.0f))
                         throw Error(what + ": scale must be in (0, 1000]");
@@ -236,14 +236,13 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
                       [](const RigidKey& x, const RigidKey& y) { return x.frame < y.frame; });
             for (size_t i = 1; i < anim.keys.size(); ++i)
                 if (anim.keys[i].frame == anim.keys[i - 1].frame)
-                    throw Error(what + ": two keys at frame " +
-                                std::to_string(anim.keys[i].frame));
+                    throw Error(what + ": two keys at frame " + std::to_string(anim.keys[i].frame));
             d.animations.push_back(anim);
         }
         if (j.contains("gltf_animation")) {
             requireKnownKeys(j["gltf_animation"], {"fps"}, "scene description 'gltf_animation'");
-            d.gltfAnimationFps = float(
-                numberField(j["gltf_animation"], "fps", 1e-3, 1000, 30, "gltf_animation"));
+            d.gltfAnimationFps =
+                float(numberField(j["gltf_animation"], "fps", 1e-3, 1000, 30, "gltf_animation"));
         }
         const json& cam = j.at("camera");
         requireKnownKeys(cam, {"keyframes", "gltf_camera"}, "scene description 'camera'");

@@ -52,7 +52,8 @@ void hitSphere(const Objects& s, Vec3 o, Vec3 d, Hit& h) {
 
 void hitBox(const Objects& objects, Vec3 wo, Vec3 wd, Hit& h) {
     // In the box's own frame, where it is axis-aligned.
-    const Vec3 o = objects.boxAngle == 0.0f ? wo : kBoxCentre + turnY(wo - kBoxCentre, -objects.boxAngle);
+    const Vec3 o =
+        objects.boxAngle == 0.0f ? wo : kBoxCentre + turnY(wo - kBoxCentre, -objects.boxAngle);
     const Vec3 d = objects.boxAngle == 0.0f ? wd : turnY(wd, -objects.boxAngle);
     float t0 = 1e-4f, t1 = h.t;
     int axis = -1;
@@ -191,8 +192,9 @@ Camera cameraOf(const ProceduralSceneOptions& o, int index) {
     Camera c;
     c.eye = {-2.6f + 0.09f * t, 1.9f - 0.01f * t, 4.3f - 0.03f * t};
     const Vec3 target{0.0f + 0.03f * t, 0.9f, -0.5f};
-    c.viewProjection = multiply(perspectiveYDown(1.05f, float(o.width) / float(o.height), 0.05f, 50.0f),
-                                lookAt(c.eye, target, {0, 1, 0}));
+    c.viewProjection =
+        multiply(perspectiveYDown(1.05f, float(o.width) / float(o.height), 0.05f, 50.0f),
+                 lookAt(c.eye, target, {0, 1, 0}));
     c.jitter[0] = o.jitter ? halton(index + 1, 2) - 0.5f : 0.0f;
     c.jitter[1] = o.jitter ? halton(index + 1, 3) - 0.5f : 0.0f;
     return c;

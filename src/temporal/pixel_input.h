@@ -14,8 +14,8 @@ struct InputPlanes {
     const float* albedo = nullptr;
     const float* normal = nullptr;
     const float* position = nullptr;
-    const float* emission = nullptr;   ///< null when the frame has none
-    const float* sampleMask = nullptr; ///< null at 1 spp
+    const float* emission = nullptr;         ///< null when the frame has none
+    const float* sampleMask = nullptr;       ///< null at 1 spp
     const float* motion = nullptr;           ///< 2 floats per pixel; null: reproject by camera
     const float* previousPosition = nullptr; ///< null: the current position stands in
     const float* previousNormal = nullptr;   ///< null: the current normal stands in

@@ -52,8 +52,8 @@ BMFR_HD void svgfAccumulatePixel(const SvgfFrame& f, long i, int64_t& bad) {
     PreviousSurface was;
     if (findPreviousSurface(f.in, i, int(i % w), int(i / w), p, n, f.previous, bad, was)) {
         const BilinearFootprint fp = bilinearFootprint(was.pixel);
-        accept = acceptTaps(fp, was.position, was.normal, f.prevPosition, f.prevNormal, w, h,
-                            f.limits);
+        accept =
+            acceptTaps(fp, was.position, was.normal, f.prevPosition, f.prevNormal, w, h, f.limits);
         // Taps that never had a sample carry no history.
         for (int t = 0; t < 4; ++t)
             if ((accept >> t & 1) && f.prevLength[long(tapY(fp, t)) * w + tapX(fp, t)] == 0)
