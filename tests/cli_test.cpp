@@ -182,6 +182,30 @@ TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
     fs::remove_all(out);
 }
 
+TEST(Cli, MovingObjectsRenderWithMotionAndDenoiseSaysHowItReprojects) {
+    fs::path in = scratch("objects_in"), out = scratch("objects_out"), cam = scratch("objects_cam");
+    ASSERT_EQ(run("render -s cornell-objects --width 40 --height 30 --frames 3 --no-reference -q "
+                  "-o " + in.string())
+                  .code,
+              0);
+    for (const char* f : {"motion_0002.exr", "previous_position_0002.exr",
+                          "previous_normal_0002.exr"})
+        EXPECT_TRUE(fs::exists(in / f)) << f;
+    Result with = run("denoise " + in.string() + " -o " + out.string() + " --no-png");
+    ASSERT_EQ(with.code, 0) << with.output;
+    EXPECT_NE(with.output.find("reprojection: motion vectors"), std::string::npos) << with.output;
+    Result without = run("denoise " + in.string() + " -o " + cam.string() + " --no-png --no-motion");
+    ASSERT_EQ(without.code, 0) << without.output;
+    EXPECT_NE(without.output.find("motion vectors ignored: --no-motion"), std::string::npos);
+    const bmfr::ImageF a = bmfr::readExr((out / "denoised_0002.exr").string(), 3),
+                       b = bmfr::readExr((cam / "denoised_0002.exr").string(), 3);
+    EXPECT_NE(a.pixels, b.pixels) << "the moving objects reproject differently";
+    std::ifstream report(out / "report.json");
+    const std::string text((std::istreambuf_iterator<char>(report)), {});
+    EXPECT_NE(text.find("\"reprojection\": \"motion vectors\""), std::string::npos) << text;
+    for (const fs::path& p : {in, out, cam}) fs::remove_all(p);
+}
+
 TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
     fs::path in = scratch("set_in"), out = scratch("set_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);
