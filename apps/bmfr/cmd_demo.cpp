@@ -49,16 +49,21 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
                 "rendered {} frames: {:.3f} s per 1-spp frame, {:.2f} s per reference frame\n\n",
                 r.rendered, r.inputSeconds / r.rendered, r.referenceSeconds / r.rendered);
         // BMFR and two ablations, as the paper compares them, then the comparison report.
+        // Where objects move, also BMFR by the camera path alone (the paper's reprojection).
         struct Variant {
             const char* name;
             const char* folder;
             std::vector<std::string> disabled;
             const char* filter;
+            bool motion = true;
         };
-        const Variant variants[] = {{"bmfr", "denoised", {}, "bmfr"},
-                                    {"accumulation only", "accumulation_only", {"fitting"}, "bmfr"},
-                                    {"bmfr without TAA", "bmfr_no_taa", {"taa"}, "bmfr"},
-                                    {"svgf", "svgf", {}, "svgf"}};
+        std::vector<Variant> variants = {
+            {"bmfr", "denoised", {}, "bmfr"},
+            {"accumulation only", "accumulation_only", {"fitting"}, "bmfr"},
+            {"bmfr without TAA", "bmfr_no_taa", {"taa"}, "bmfr"},
+            {"svgf", "svgf", {}, "svgf"}};
+        if (!d.animations.empty() || d.gltfAnimationFps > 0)
+            variants.push_back({"bmfr camera path", "bmfr_camera_path", {}, "bmfr", false});
         ComparisonOptions eval;
         eval.reference = input;
         eval.output = (fs::path(job->output) / "report").string();
@@ -72,6 +77,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             dj.debug = main;
             dj.filter = v.filter;
             dj.options.disabled = v.disabled;
+            dj.motion = v.motion;
             runDenoise(dj);
             eval.methods.push_back({v.name, dj.output});
         }
