@@ -19,6 +19,13 @@ BMFR_HD Vec4 transformPoint(const Mat4& m, Vec3 p) {
     return r;
 }
 
+/// The upper 3x3 of m times v: a direction (or, with the inverse transpose, a normal).
+BMFR_HD Vec3 transformVector(const Mat4& m, Vec3 v) {
+    return {m.m[0][0] * v.x + m.m[0][1] * v.y + m.m[0][2] * v.z,
+            m.m[1][0] * v.x + m.m[1][1] * v.y + m.m[1][2] * v.z,
+            m.m[2][0] * v.x + m.m[2][1] * v.y + m.m[2][2] * v.z};
+}
+
 Mat4 multiply(const Mat4& a, const Mat4& b);
 Mat4 transpose(const Mat4& a);
 /// Inverse in double precision; returns false when the matrix is singular or not finite.

@@ -44,12 +44,6 @@ Mat4 scaleMatrix(Vec3 s) {
     return m;
 }
 
-Vec3 transformDirection(const Mat4& m, Vec3 v) {
-    return {m.m[0][0] * v.x + m.m[0][1] * v.y + m.m[0][2] * v.z,
-            m.m[1][0] * v.x + m.m[1][1] * v.y + m.m[1][2] * v.z,
-            m.m[2][0] * v.x + m.m[2][1] * v.y + m.m[2][2] * v.z};
-}
-
 Vec3 point3(const Mat4& m, Vec3 p) {
     const Vec4 h = transformPoint(m, p);
     return {h.x, h.y, h.z};
@@ -216,7 +210,7 @@ void SceneAnimator::pose(float frame, Scene& posed) const {
         if (!moves_[size_t(o)]) continue;
         for (size_t v = 3 * t; v < 3 * t + 3; ++v) {
             posed.positions[v] = point3(m[size_t(o)], rest_.positions[v]);
-            const Vec3 n = transformDirection(normalMatrix[size_t(o)], rest_.normals[v]);
+            const Vec3 n = transformVector(normalMatrix[size_t(o)], rest_.normals[v]);
             posed.normals[v] = length(n) > 0 ? normalize(n) : rest_.normals[v];
         }
     }

@@ -122,10 +122,7 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                     const size_t o = size_t(scene_->triangleObject[size_t(s.triangle)]);
                     const Vec4 q = transformPoint(objects->points[o], p);
                     pp = {q.x, q.y, q.z};
-                    const Mat4& nm = objects->normals[o];
-                    const Vec3 n{nm.m[0][0] * pn.x + nm.m[0][1] * pn.y + nm.m[0][2] * pn.z,
-                                 nm.m[1][0] * pn.x + nm.m[1][1] * pn.y + nm.m[1][2] * pn.z,
-                                 nm.m[2][0] * pn.x + nm.m[2][1] * pn.y + nm.m[2][2] * pn.z};
+                    const Vec3 n = transformVector(objects->normals[o], pn);
                     if (length(n) > 0) pn = normalize(n);
                 }
                 if (objects) {
