@@ -39,12 +39,12 @@ std::string durationText(double seconds) {
 
 int runRender(const RenderJob& job) {
     if (job.list) {
-        fmt::print("{:<16} {:>10} {:>7} {:>9}  {}\n", "preset", "size", "frames", "ref spp",
+        fmt::print("{:<24} {:>10} {:>7} {:>9}  {}\n", "preset", "size", "frames", "ref spp",
                    "estimated time on 2 cores (scales with 1/cores)");
         for (const std::string& n : render::presetNames()) {
             const render::SceneDescription d =
                 render::loadSceneDescription(n, job.scenesDir, false);
-            fmt::print("{:<16} {:>10} {:>7} {:>9}  {}\n", n,
+            fmt::print("{:<24} {:>10} {:>7} {:>9}  {}\n", n,
                        fmt::format("{}x{}", d.width, d.height), d.frames, d.referenceSpp,
                        durationText(render::estimatedRenderSeconds(d)));
         }
