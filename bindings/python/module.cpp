@@ -78,24 +78,24 @@ class PyFilter {
         const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
                        n = imageArg(normal, "normal", h, w),
                        p = imageArg(position, "position", h, w);
-        ImageArg e, mv, pp, pn;
         FrameInput in;
-        if (!emission.is_none()) {
-            e = imageArg(emission, "emission", h, w);
-            in.emission = e.view;
-        }
-        if (!motion.is_none()) {
-            mv = imageArg(motion, "motion", h, w, 2);
-            in.motion = mv.view;
-        }
-        if (!previousPosition.is_none()) {
-            pp = imageArg(previousPosition, "previous_position", h, w);
-            in.previousPosition = pp.view;
-        }
-        if (!previousNormal.is_none()) {
-            pn = imageArg(previousNormal, "previous_normal", h, w);
-            in.previousNormal = pn.view;
-        }
+        // The optional images: None leaves the view empty; the arrays live in `kept`.
+        ImageArg kept[4];
+        const struct {
+            const py::handle& object;
+            const char* name;
+            int minChannels;
+            ImageView& view;
+        } optional[] = {{emission, "emission", 3, in.emission},
+                        {motion, "motion", 2, in.motion},
+                        {previousPosition, "previous_position", 3, in.previousPosition},
+                        {previousNormal, "previous_normal", 3, in.previousNormal}};
+        for (size_t k = 0; k < 4; ++k)
+            if (!optional[k].object.is_none()) {
+                kept[k] =
+                    imageArg(optional[k].object, optional[k].name, h, w, optional[k].minChannels);
+                optional[k].view = kept[k].view;
+            }
         in.color = c.view, in.albedo = a.view, in.normal = n.view, in.position = p.view;
         std::vector<ImageArg> extraArgs;
         if (!extras.is_none()) {

@@ -58,9 +58,7 @@ class ManifestReader : public SequenceReader {
             if (manifest_.contains("layers")) {
                 for (const auto& [buffer, layer] : manifest_["layers"].items())
                     layers_[buffer] = layer.get<std::string>();
-                requireKnownKeys(manifest_["layers"],
-                                 {"color", "albedo", "normal", "position", "emission", "reference",
-                                  "motion", "previous_position", "previous_normal"},
+                requireKnownKeys(manifest_["layers"], layeredBufferNames(),
                                  mp.string() + " \"layers\"");
             }
             info_.frameCount = int(manifest_.at("frames").size());

@@ -1,4 +1,5 @@
 #include "io/sequence.h"
+#include <algorithm>
 #include <bmfr/error.h>
 #include <filesystem>
 
@@ -39,15 +40,21 @@ const std::vector<DefaultPass> kDefaultPasses = {
     {"previous_normal", {}},
 };
 
+std::vector<std::string> layeredBufferNames() {
+    std::vector<std::string> names;
+    for (const DefaultPass& d : kDefaultPasses) names.push_back(d.buffer);
+    return names;
+}
+
 void SequenceReader::setLayerOverrides(const std::map<std::string, std::string>& layers) {
-    for (const auto& [buffer, layer] : layers) {
-        bool known = false;
-        for (const DefaultPass& d : kDefaultPasses) known = known || buffer == d.buffer;
-        if (!known)
-            throw Error("--channel " + buffer + "=" + layer +
-                        ": unknown buffer (color, albedo, normal, position, emission, "
-                        "reference, motion, previous_position or previous_normal)");
-    }
+    const std::vector<std::string> names = layeredBufferNames();
+    for (const auto& [buffer, layer] : layers)
+        if (std::find(names.begin(), names.end(), buffer) == names.end()) {
+            std::string list;
+            for (size_t k = 0; k < names.size(); ++k)
+                list += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+            throw Error("--channel " + buffer + "=" + layer + ": unknown buffer (" + list + ")");
+        }
     if (!layers.empty() && info_.layout != "manifest")
         throw Error("--channel: the " + info_.layout +
                     " layout has no multilayer files; layers apply to sequence.json folders");

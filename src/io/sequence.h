@@ -77,6 +77,8 @@ struct DefaultPass {
     std::vector<const char*> passes;
 };
 extern const std::vector<DefaultPass> kDefaultPasses;
+/// The image buffers a layer can be named for (those of kDefaultPasses), in that order.
+std::vector<std::string> layeredBufferNames();
 
 std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory);
 std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory);

@@ -45,8 +45,8 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
     float samples = 0.0f, blend = 1.0f;
     Vec3 old{};
     const PreviousFrame& prev = a.previous;
-    PreviousSurface
-        was; // its pixel stays out of every image without one: TAA and phase III skip it
+    // Without a previous pixel, was.pixel stays out of every image: TAA and phase III skip it.
+    PreviousSurface was;
     if (findPreviousSurface(a.in, i, int(i % a.width), int(i / a.width), p, n, prev, bad, was)) {
         const BilinearFootprint fp = bilinearFootprint(was.pixel);
         accept = acceptTaps(fp, was.position, was.normal, a.prevPosition, a.prevNormal, a.width,

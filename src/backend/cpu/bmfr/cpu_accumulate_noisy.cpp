@@ -63,10 +63,11 @@ BMFR_SIMD_INLINE f8 nextHistoryLength8(f8 samples) {
     return samples > 254.0f ? splat8(255.0f) : rounded + 1.0f;
 }
 
-/// Phase I of pixels [i, i + n) of one row, n <= 8: accumulateNoisyPixel
+/// Phase I of the n <= 8 pixels from column x of row y: accumulateNoisyPixel
 /// (filters/bmfr/accumulation_kernels.h) eight pixels at a time.
-BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl, long i, int n,
-                                      int64_t& bad, int64_t& lost) {
+BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl, int x, int y,
+                                      int n, int64_t& bad, int64_t& lost) {
+    const long i = long(y) * a.t.width + x;
     const BmfrSettings& s = a.s;
     const TemporalHistory& t = a.t;
     const Inputs8 px = readInputs(a, i, n, bad);
@@ -78,8 +79,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl,
     f8 length = splat8(1.0f);
     i8 accept{};
     Surface8 was;
-    const i8 valid = previousSurface8(a.in, t.previous, i, int(i % t.width), int(i / t.width), n,
-                                      px.position, px.normal, bad, was);
+    const i8 valid =
+        previousSurface8(a.in, t.previous, i, x, y, n, px.position, px.normal, bad, was);
     if (t.hasHistory()) {
         const Footprint8 fp = footprint8(was.px, was.py);
         const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
@@ -129,7 +130,7 @@ BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64
     const FramePlanes pl(a.b, a.t.cur);
     for (long y = y0; y < y1; ++y)
         for (int x = 0; x < w; x += 8)
-            accumulateGroup(a, pl, y * w + x, std::min(8, w - x), bad, lost);
+            accumulateGroup(a, pl, x, int(y), std::min(8, w - x), bad, lost);
 }
 
 } // namespace
