@@ -51,14 +51,17 @@ struct FrameInput {
     /// keeps the history of unsampled pixels; BMFR ignores the mask. Leave data null for 1 spp.
     ImageView sampleMask;
     std::vector<ImageView> extras; ///< optional 1-channel feature buffers (BMFR's Feature::Extra)
-    /// Optional motion vectors, 2 to 4 channels (the first two are read): for pixel (x, y), the
+    /// Optional motion vectors, 2 to 4 channels: for pixel (x, y), the
     /// continuous pixel coordinate of the same surface point in the previous frame is
     /// (x + motion.x, y + motion.y), in pixels, x to the right and y downwards, where integer
     /// coordinates are the previous frame's sample positions. Both frames' jitter is therefore
     /// included: an engine's unjittered vector mv (previous minus current screen position, in
     /// pixels) becomes mv + jitter - previous jitter. With motion, every filter reprojects through
-    /// it instead of the camera, so moving objects keep their history. Leave data null to
-    /// reproject by the cameras (static scenes).
+    /// it instead of the camera, so moving objects keep their history. A third channel, when
+    /// present, is the depth offset: the surface's view depth in the previous frame minus its
+    /// view depth in this one, scene units (WALR's depth test reads it; without it WALR projects
+    /// the point with the previous camera). Leave data null to reproject by the cameras (static
+    /// scenes).
     ImageView motion;
     /// Optional world position of this pixel's surface point in the previous frame, 3 or 4
     /// channels, scene units. The history discard test compares it with the previous frame's
@@ -69,6 +72,11 @@ struct FrameInput {
     /// Optional shading normal of this pixel's surface in the previous frame, 3 or 4 channels,
     /// unit length; compared with the previous frame's normals (else the current normal is).
     ImageView previousNormal;
+    /// Optional diffuse indirect light at the first hit divided by the albedo, 3 or 4 channels,
+    /// from the same sample as `color` (colour = albedo * diffuseIndirect + the rest). Needed
+    /// only by WALR's `signal=diffuse-indirect`, the paper's own use, which filters this alone
+    /// and adds the rest back unfiltered.
+    ImageView diffuseIndirect;
     Mat4 viewProjection; ///< this frame's world-to-clip matrix
     /// Sub-pixel offset of this frame's primary rays from the pixel centre, pixels, [-0.5, 0.5].
     float jitter[2] = {0.0f, 0.0f};

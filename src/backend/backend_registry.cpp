@@ -10,10 +10,12 @@ namespace bmfr {
 namespace reference {
 std::unique_ptr<BmfrPasses> makeBmfrPasses();
 std::unique_ptr<SvgfPasses> makeSvgfPasses();
+std::unique_ptr<WalrPasses> makeWalrPasses();
 } // namespace reference
 namespace cpu {
 std::unique_ptr<BmfrPasses> makeBmfrPasses();
 std::unique_ptr<SvgfPasses> makeSvgfPasses();
+std::unique_ptr<WalrPasses> makeWalrPasses();
 } // namespace cpu
 
 const char* backendName(Backend b) {
@@ -63,6 +65,17 @@ std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend b) {
         return reference::makeSvgfPasses();
     case Backend::Cpu:
         return cpu::makeSvgfPasses();
+    default:
+        unavailable(b);
+    }
+}
+
+std::unique_ptr<WalrPasses> makeWalrPasses(Backend b) {
+    switch (b) {
+    case Backend::Reference:
+        return reference::makeWalrPasses();
+    case Backend::Cpu:
+        return cpu::makeWalrPasses();
     default:
         unavailable(b);
     }

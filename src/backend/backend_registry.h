@@ -2,6 +2,7 @@
 #pragma once
 #include "filters/bmfr/bmfr_passes.h"
 #include "filters/svgf/svgf_passes.h"
+#include "filters/walr/walr_passes.h"
 #include <memory>
 
 namespace bmfr {
@@ -9,5 +10,6 @@ namespace bmfr {
 /// Throws bmfr::Error when `backend` is not built into this library.
 std::unique_ptr<BmfrPasses> makeBmfrPasses(Backend backend);
 std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend backend);
+std::unique_ptr<WalrPasses> makeWalrPasses(Backend backend);
 
 } // namespace bmfr

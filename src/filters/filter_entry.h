@@ -29,5 +29,6 @@ FilterEntry tableFilterEntry(const char* name, const char* title,
 /// Each filter folder defines its entry (src/filters/<name>/<name>_denoiser.cpp).
 FilterEntry bmfrFilterEntry();
 FilterEntry svgfFilterEntry();
+FilterEntry walrFilterEntry();
 
 } // namespace bmfr

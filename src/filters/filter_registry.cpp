@@ -11,6 +11,7 @@ const std::vector<FilterEntry>& filters() {
     static const std::vector<FilterEntry> kFilters = {
         bmfrFilterEntry(),
         svgfFilterEntry(),
+        walrFilterEntry(),
     };
     return kFilters;
 }

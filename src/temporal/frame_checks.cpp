@@ -48,6 +48,7 @@ void checkFrameInput(const FrameInput& f, int extrasNeeded) {
     if (f.motion.data) checkImage(f.motion, "motion", kMotion, w, h);
     if (f.previousPosition.data) checkImage(f.previousPosition, "previousPosition", kRgb, w, h);
     if (f.previousNormal.data) checkImage(f.previousNormal, "previousNormal", kRgb, w, h);
+    if (f.diffuseIndirect.data) checkImage(f.diffuseIndirect, "diffuseIndirect", kRgb, w, h);
     if (f.extras.size() > 16) throw Error("at most 16 extra buffers");
     for (size_t e = 0; e < f.extras.size(); ++e)
         checkImage(f.extras[e], "extra" + std::to_string(e), kScalar, w, h);

@@ -4,9 +4,11 @@
 
 namespace bmfr {
 
-const float* InputStaging::packed(const ImageView& v, int channels, std::vector<float>& copy) {
+const float* InputStaging::packed(const ImageView& v, int channels, std::vector<float>& copy,
+                                  int first) {
     if (!v.data) return nullptr;
-    if (v.channels == channels && v.stride() == long(v.width) * channels) return v.data;
+    if (first == 0 && v.channels == channels && v.stride() == long(v.width) * channels)
+        return v.data;
     const size_t n = size_t(v.width) * size_t(v.height) * size_t(channels);
     if (copy.size() != n) copy.resize(n);
     const long stride = v.stride();
@@ -14,7 +16,7 @@ const float* InputStaging::packed(const ImageView& v, int channels, std::vector<
         const float* row = v.data + long(y) * stride;
         float* dst = copy.data() + size_t(y) * size_t(v.width) * size_t(channels);
         for (int x = 0; x < v.width; ++x)
-            for (int c = 0; c < channels; ++c) dst[x * channels + c] = row[x * v.channels + c];
+            for (int c = 0; c < channels; ++c) dst[x * channels + c] = row[x * v.channels + first + c];
     }
     return copy.data();
 }
@@ -29,6 +31,8 @@ const InputPlanes& InputStaging::stage(const FrameInput& f) {
     p.emission = packed(f.emission, 3, emission_);
     p.sampleMask = packed(f.sampleMask, 1, sampleMask_);
     p.motion = packed(f.motion, 2, motion_);
+    p.motionDepth = f.motion.channels >= 3 ? packed(f.motion, 1, motionDepth_, 2) : nullptr;
+    p.diffuseIndirect = packed(f.diffuseIndirect, 3, diffuseIndirect_);
     p.previousPosition = packed(f.previousPosition, 3, previousPosition_);
     p.previousNormal = packed(f.previousNormal, 3, previousNormal_);
     p.extraCount = int(f.extras.size());

@@ -15,9 +15,11 @@ class InputStaging {
     const InputPlanes& stage(const FrameInput& frame);
 
   private:
-    const float* packed(const ImageView& v, int channels, std::vector<float>& copy);
+    /// Channels [first, first + channels) of v, packed (v itself when it already is).
+    const float* packed(const ImageView& v, int channels, std::vector<float>& copy, int first = 0);
     InputPlanes planes_;
     std::vector<float> color_, albedo_, normal_, position_, emission_, sampleMask_, motion_;
+    std::vector<float> motionDepth_, diffuseIndirect_;
     std::vector<float> previousPosition_, previousNormal_;
     std::vector<float> extras_[InputPlanes::kMaxExtras];
 };

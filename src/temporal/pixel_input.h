@@ -17,6 +17,8 @@ struct InputPlanes {
     const float* emission = nullptr;         ///< null when the frame has none
     const float* sampleMask = nullptr;       ///< null at 1 spp
     const float* motion = nullptr;           ///< 2 floats per pixel; null: reproject by camera
+    const float* motionDepth = nullptr;      ///< motion's third channel (depth offset), or null
+    const float* diffuseIndirect = nullptr;  ///< demodulated diffuse indirect, or null
     const float* previousPosition = nullptr; ///< null: the current position stands in
     const float* previousNormal = nullptr;   ///< null: the current normal stands in
     const float* extras[kMaxExtras] = {};

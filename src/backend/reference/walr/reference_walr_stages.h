@@ -1,0 +1,17 @@
+// WALR's reference stages, which the CPU backend reuses where it has nothing faster.
+#pragma once
+#include "filters/walr/walr_passes.h"
+
+namespace bmfr::reference {
+
+/// Passes 1a and 1b: inputs, reprojection, moving average and the level-0 averages (in
+/// b.averages[0]); returns the count of non-finite inputs replaced.
+int64_t walrPreprocess(const WalrPassContext& ctx, WalrBuffers& b);
+/// REFWLR over the whole frame into b.spatial.
+void walrSpatialRefwlr(const WalrPassContext& ctx, WalrBuffers& b);
+/// The per-pixel solve of the last a-trous level (b.lastAverages) into b.spatial.
+void walrSolve(const WalrPassContext& ctx, WalrBuffers& b);
+/// Pass 3: the variance-clipped post blend and the composition into b.output.
+void walrPostprocess(const WalrPassContext& ctx, WalrBuffers& b);
+
+} // namespace bmfr::reference

@@ -1,0 +1,96 @@
+#include "filters/walr/walr_passes.h"
+
+namespace bmfr {
+
+void WalrBuffers::allocate(int w, int h) {
+    for (int k = 0; k < 2; ++k) {
+        pre[k].resize(w, h, 3), post[k].resize(w, h, 3), depth[k].resize(w, h, 1);
+        position[k].resize(w, h, 3), normal[k].resize(w, h, 3), count[k].resize(w, h, 1);
+        averages[k].resize(w, h, kWalrAverages), weights[k].resize(w, h, 1);
+    }
+    signal.resize(w, h, 3), features.resize(w, h, 2), offset.resize(w, h, 2);
+    expectedDepth.resize(w, h, 1), previousPixel.resize(w, h, 2), postHistory.resize(w, h, 3);
+    accept.resize(w, h, 1), spatial.resize(w, h, 3), output.resize(w, h, 3);
+}
+
+WalrFrame WalrBuffers::frame(const WalrPassContext& ctx) {
+    const WalrSettings& s = ctx.settings;
+    const int cur = ctx.history.cur, prev = 1 - cur;
+    WalrFrame f;
+    f.in = ctx.input;
+    if (s.signal == WalrSignal::Color) f.in.diffuseIndirect = nullptr;
+    f.modes = {s.colorIsDemodulated, true, s.albedoEpsilon};
+    f.previous = ctx.history.previous;
+    f.viewProjection = ctx.frame.viewProjection;
+    f.view = viewBasisOf(ctx.frame.viewProjection);
+    f.limits = {s.positionLimitSquared, s.normalLimitSquared};
+    f.preAlpha = s.preAlpha, f.depthTolerance = s.depthTolerance;
+    f.depthTest = s.historyTest == WalrHistoryTest::Depth;
+    f.dilation = s.motionDilation;
+    f.width = ctx.history.width, f.height = ctx.history.height;
+    f.prevPre = pre[prev].data(), f.prevPost = post[prev].data(), f.prevDepth = depth[prev].data();
+    f.prevPosition = position[prev].data(), f.prevNormal = normal[prev].data();
+    f.prevCount = count[prev].data();
+    f.pre = pre[cur].data(), f.depth = depth[cur].data(), f.position = position[cur].data();
+    f.normal = normal[cur].data(), f.count = count[cur].data();
+    f.signal = signal.data(), f.features = features.data(), f.offset = offset.data();
+    f.expectedDepth = expectedDepth.data(), f.previousPixel = previousPixel.data();
+    f.postHistory = postHistory.data(), f.accept = accept.data();
+    return f;
+}
+
+EdgeGuide WalrBuffers::guide(const WalrPassContext& ctx) const {
+    const WalrSettings& s = ctx.settings;
+    const int cur = ctx.history.cur;
+    EdgeGuide g;
+    g.position = position[cur].data(), g.normal = normal[cur].data(), g.depth = depth[cur].data();
+    g.width = ctx.history.width, g.height = ctx.history.height;
+    g.nearFraction = s.edgeNear, g.farFraction = s.edgeFar;
+    g.tracing = s.edgeTracing, g.replacement = s.averageReplacement;
+    return g;
+}
+
+WalrLevel WalrBuffers::level(const WalrPassContext& ctx, int t, bool keepWeights) {
+    WalrLevel l;
+    const int src = t % 2;
+    l.in = averages[src].data(), l.out = averages[1 - src].data();
+    l.weightIn = keepWeights && t > 0 ? weights[src].data() : nullptr;
+    l.weightOut = keepWeights ? weights[1 - src].data() : nullptr;
+    l.planeStride = planeStride();
+    l.iteration = t;
+    l.step = 1;
+    for (int k = 0; k < t; ++k) l.step *= 3;
+    l.frame = uint32_t(ctx.history.frameIndex);
+    l.seed = ctx.settings.seed;
+    return l;
+}
+
+WalrPost WalrBuffers::postInputs(const WalrPassContext& ctx) {
+    const WalrSettings& s = ctx.settings;
+    const TemporalHistory& h = ctx.history;
+    WalrPost p;
+    p.in = ctx.input;
+    p.spatial = spatial.data(), p.postHistory = postHistory.data(), p.signal = signal.data();
+    p.count = count[h.cur].data(), p.post = post[h.cur].data(), p.output = output.data();
+    p.width = h.width, p.height = h.height;
+    p.alpha = s.taaBlendAlpha, p.gamma = s.varianceGamma, p.albedoEpsilon = s.albedoEpsilon;
+    p.enabled = s.taa, p.diffuseIndirect = s.signal == WalrSignal::DiffuseIndirect;
+    return p;
+}
+
+void WalrBuffers::captureDebug(int cur) {
+    if (countF.width != signal.width || countF.height != signal.height) {
+        countF.resize(signal.width, signal.height, 1);
+        acceptF.resize(signal.width, signal.height, 1);
+    }
+    for (long i = 0; i < signal.pixelCount(); ++i) {
+        countF.data()[i] = count[cur].data()[i];
+        acceptF.data()[i] = accept.data()[i];
+    }
+}
+
+DebugBuffers WalrBuffers::debug(int cur) const {
+    return {view(pre[cur]), view(spatial), view(countF), view(acceptF)};
+}
+
+} // namespace bmfr

@@ -1,0 +1,75 @@
+// The interface a backend implements for WALR, and the host buffers both host backends use.
+#pragma once
+#include "core/image.h"
+#include "core/parallel.h"
+#include "filters/walr/edge_tracing.h"
+#include "filters/walr/walr_temporal_kernels.h"
+#include "temporal/history.h"
+#include <bmfr/filters/walr_filter.h>
+#include <memory>
+
+namespace bmfr {
+
+/// Inputs of one frame's passes.
+struct WalrPassContext {
+    const WalrSettings& settings;
+    const InputPlanes& input;
+    const FrameInput& frame; ///< for the cameras
+    const TemporalHistory& history;
+    ThreadPool& pool;
+};
+
+/// WALR's per-pixel buffers in host memory: the history (double-buffered) and this frame's.
+struct WalrBuffers {
+    // History, [slot].
+    ImageF pre[2], post[2];        ///< preprocess and postprocess averages (3)
+    ImageF depth[2];               ///< view depth (1)
+    ImageF position[2], normal[2]; ///< sanitised features (3)
+    ImageU8 count[2];              ///< samples in the preprocess average
+    // This frame.
+    ImageF signal, features, offset, expectedDepth, previousPixel, postHistory;
+    ImageU8 accept;
+    ImageF averages[2]; ///< a-trous ping-pong: kWalrAverages planes of width x height
+    ImageF weights[2];  ///< the sample-count weights W, when kept
+    ImageF spatial;     ///< the spatial filter's output (3)
+    ImageF output;      ///< final radiance (3)
+    int lastAverages = 0;
+    ImageF countF, acceptF; ///< debug copies, sized on first use
+
+    void allocate(int w, int h);
+    long planeStride() const { return long(signal.width) * signal.height; }
+    /// The kernels' views of this frame.
+    WalrFrame frame(const WalrPassContext& ctx);
+    EdgeGuide guide(const WalrPassContext& ctx) const;
+    WalrPost postInputs(const WalrPassContext& ctx);
+    WalrLevel level(const WalrPassContext& ctx, int t, bool keepWeights);
+    DebugBuffers debug(int cur) const;
+    void captureDebug(int cur);
+};
+
+/// One backend's WALR passes.
+class WalrPasses {
+  public:
+    virtual ~WalrPasses() = default;
+    virtual void allocate(int w, int h) = 0;
+    /// Runs every stage, writing the histories to slot history.cur; returns the count of
+    /// non-finite input values replaced.
+    virtual int64_t run(const WalrPassContext& ctx, StageTimes& times) = 0;
+    virtual ImageView output() const = 0;
+    virtual void captureDebug(int cur) = 0;
+    virtual DebugBuffers debug(int cur) const = 0;
+};
+
+/// The part of a host backend's WALR passes that only reads WalrBuffers.
+class HostWalrPasses : public WalrPasses {
+  public:
+    void allocate(int w, int h) override { buffers.allocate(w, h); }
+    ImageView output() const override { return view(buffers.output); }
+    void captureDebug(int cur) override { buffers.captureDebug(cur); }
+    DebugBuffers debug(int cur) const override { return buffers.debug(cur); }
+
+  protected:
+    WalrBuffers buffers;
+};
+
+} // namespace bmfr

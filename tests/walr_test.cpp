@@ -1,0 +1,376 @@
+// WALR (Meunier and Harada 2022): tests W1 to W11 of the implementation notes, the solver
+// against an exact double-precision solve, WALR against REFWLR, the CPU backend against the
+// reference, and the filter end to end on a path-traced Cornell box.
+#include "backend/cpu/walr/cpu_walr_atrous.h"
+#include "core/hash.h"
+#include "filters/walr/refwlr.h"
+#include "filters/walr/walr_temporal_kernels.h"
+#include "test_scenes.h"
+#include <Eigen/Dense>
+#include <bmfr/bmfr.h>
+#include <bmfr/error.h>
+#include <cmath>
+#include <gtest/gtest.h>
+
+namespace bmfr {
+namespace {
+
+/// A synthetic G-buffer: positions, normals (for the edge weights), depth, features and signal.
+struct Field {
+    int w = 0, h = 0;
+    std::vector<float> pos, nrm, depth, feat, sig;
+    Field(int width, int height)
+        : w(width), h(height), pos(size_t(3 * w * h)), nrm(size_t(3 * w * h)),
+          depth(size_t(w * h), 10.0f), feat(size_t(2 * w * h), 0.5f), sig(size_t(3 * w * h)) {
+        for (long i = 0; i < long(w) * h; ++i) {
+            setPosition(i, {float(i % w) * 0.01f, float(i / w) * 0.01f, 10.0f});
+            store3(nrm.data(), i, {0, 0, 1});
+        }
+    }
+    long size() const { return long(w) * h; }
+    void setPosition(long i, Vec3 p) {
+        store3(pos.data(), i, p);
+        depth[size_t(i)] = p.z;
+    }
+    EdgeGuide guide(bool tracing = true, bool replacement = true, float nearF = 0.005f,
+                    float farF = 0.02f) const {
+        EdgeGuide g;
+        g.position = pos.data(), g.normal = nrm.data(), g.depth = depth.data();
+        g.width = w, g.height = h, g.nearFraction = nearF, g.farFraction = farF;
+        g.tracing = tracing, g.replacement = replacement;
+        return g;
+    }
+};
+
+struct WalrRun {
+    std::vector<float> out;   ///< 3 per pixel
+    std::vector<float> means; ///< the final averages' mean colour YX_c0, 3 per pixel
+};
+
+/// WALR's spatial filter through the kernels: T iterations, then the solve.
+WalrRun runWalr(const Field& f, const EdgeGuide& g, int iterations, bool keepW = false,
+                float eps = 1e-4f, uint32_t frame = 0, bool eightWide = false) {
+    const long n = f.size();
+    std::vector<float> a(size_t(kWalrAverages * n)), b(a.size());
+    std::vector<float> wa(static_cast<size_t>(n)), wb(static_cast<size_t>(n));
+    for (long i = 0; i < n; ++i) {
+        float s[kWalrAverages];
+        walrSampleProducts(load3(f.sig.data(), i), {f.feat[2 * i], f.feat[2 * i + 1]}, s);
+        for (int k = 0; k < kWalrAverages; ++k) a[size_t(k * n + i)] = s[k];
+    }
+    ThreadPool pool(2);
+    cpu::EdgePlanes planes;
+    if (eightWide) planes.fill(pool, g);
+    int step = 1;
+    for (int t = 0; t < iterations; ++t, step *= 3) {
+        WalrLevel l;
+        l.in = a.data(), l.out = b.data(), l.planeStride = n, l.iteration = t, l.step = step;
+        l.weightIn = keepW && t > 0 ? wa.data() : nullptr;
+        l.weightOut = keepW ? wb.data() : nullptr;
+        l.frame = frame;
+        if (eightWide)
+            cpu::walrAtrousIteration(pool, g, planes, l);
+        else
+            for (int y = 0; y < f.h; ++y)
+                for (int x = 0; x < f.w; ++x) walrAtrousPixel(g, l, x, y);
+        std::swap(a, b);
+        std::swap(wa, wb);
+    }
+    WalrRun r;
+    r.out.resize(size_t(3 * n));
+    r.means.resize(size_t(3 * n));
+    for (long i = 0; i < n; ++i) {
+        store3(r.out.data(), i,
+               walrSolvePixel(a.data(), n, i, {f.feat[2 * i], f.feat[2 * i + 1]}, eps));
+        store3(r.means.data(), i, {a[size_t(5 * n + i)], a[size_t(8 * n + i)], a[size_t(11 * n + i)]});
+    }
+    return r;
+}
+
+float rnd(uint32_t a, uint32_t b) {
+    return unitFloat(hashKeys(a, b, 77u));
+}
+
+/// Smoothly varying features (no pivot clamp fires) and normals tilted with them.
+void varyFeatures(Field& f) {
+    for (long i = 0; i < f.size(); ++i) {
+        const float x = float(i % f.w) / float(f.w), y = float(i / f.w) / float(f.h);
+        f.feat[size_t(2 * i)] = 0.5f + 0.3f * std::sin(9.0f * x + 2.0f * y);
+        f.feat[size_t(2 * i + 1)] = 0.5f + 0.3f * std::cos(7.0f * y - 3.0f * x);
+    }
+}
+
+// W1: a signal that is exactly linear in the features is reproduced, for any weights.
+TEST(Walr, W1ReproducesASignalLinearInTheFeatures) {
+    Field f(121, 121);
+    varyFeatures(f);
+    for (long i = 0; i < f.size(); ++i) {
+        // A tilted normal field, so that the edge weights are not all 1.
+        const float x = float(i % f.w) / float(f.w);
+        store3(f.nrm.data(), i, normalize(Vec3{0.3f * std::sin(5.0f * x), 0.1f, 1.0f}));
+        const float u = f.feat[size_t(2 * i)], v = f.feat[size_t(2 * i + 1)];
+        store3(f.sig.data(), i, {0.2f + 0.5f * u - 0.3f * v, 1.0f - u, 0.3f + 2.0f * v});
+    }
+    for (bool keepW : {false, true}) {
+        const WalrRun r = runWalr(f, f.guide(true, true, 0.0f, 0.5f), 4, keepW);
+        float worst = 0;
+        for (size_t k = 0; k < r.out.size(); ++k) worst = std::fmax(worst, std::fabs(r.out[k] - f.sig[k]));
+        EXPECT_LT(worst, 2e-4f) << "keepW " << keepW;
+    }
+}
+
+// W2 and W3: constant normals make the ε clamp fire; a constant stays constant and any signal
+// reduces to the edge-aware mean.
+TEST(Walr, W2W3FlatNormalsGiveTheEdgeAwareMean) {
+    Field f(90, 70);
+    for (long i = 0; i < f.size(); ++i) store3(f.sig.data(), i, {2.5f, 2.5f, 2.5f});
+    WalrRun r = runWalr(f, f.guide(), 4);
+    for (float v : r.out) ASSERT_NEAR(v, 2.5f, 2e-5f);
+    for (long i = 0; i < f.size(); ++i)
+        store3(f.sig.data(), i, {rnd(uint32_t(i), 1), rnd(uint32_t(i), 2), 3 * rnd(uint32_t(i), 3)});
+    r = runWalr(f, f.guide(), 4);
+    for (size_t k = 0; k < r.out.size(); ++k) ASSERT_NEAR(r.out[k], r.means[k], 2e-5f) << k;
+}
+
+// W4: the output is linear in the signal (the weights depend only on geometry).
+TEST(Walr, W4OutputIsLinearInTheSignal) {
+    Field a(80, 60);
+    varyFeatures(a);
+    Field b = a, c = a;
+    for (long i = 0; i < a.size(); ++i) {
+        const Vec3 va{rnd(uint32_t(i), 4), rnd(uint32_t(i), 5), rnd(uint32_t(i), 6)};
+        const Vec3 vb{rnd(uint32_t(i), 7), rnd(uint32_t(i), 8), rnd(uint32_t(i), 9)};
+        store3(a.sig.data(), i, va);
+        store3(b.sig.data(), i, vb);
+        store3(c.sig.data(), i, 2.0f * va + 3.0f * vb);
+    }
+    const WalrRun ra = runWalr(a, a.guide(), 3), rb = runWalr(b, b.guide(), 3),
+                  rc = runWalr(c, c.guide(), 3);
+    for (size_t k = 0; k < ra.out.size(); ++k) {
+        if (ra.out[k] <= 0 || rb.out[k] <= 0) continue; // the >= 0 clamp is not linear
+        ASSERT_NEAR(rc.out[k], 2.0f * ra.out[k] + 3.0f * rb.out[k], 2e-4f) << k;
+    }
+}
+
+// W5: with every weight 1, T = 4 averages each pixel of the 81x81 window exactly once.
+TEST(Walr, W5ImpulseCoversTheWindowExactlyOnce) {
+    for (int T : {3, 4}) {
+        Field f(161, 161); // every pixel whose window holds the impulse is inside
+        const long centre = 80 * 161 + 80;
+        store3(f.sig.data(), centre, {1, 1, 1});
+        const WalrRun r = runWalr(f, f.guide(true, true, 1.0f, 2.0f), T);
+        const int window = T == 3 ? 27 : 81;
+        const float expected = 1.0f / float(window * window);
+        long nonzero = 0;
+        for (long i = 0; i < f.size(); ++i) {
+            const int dx = int(i % f.w) - 80, dy = int(i / f.w) - 80;
+            const bool inside = std::abs(dx) <= window / 2 && std::abs(dy) <= window / 2;
+            const float m = r.means[size_t(3 * i)];
+            if (m != 0) ++nonzero;
+            if (inside) {
+                ASSERT_NEAR(m, expected, expected * 1e-4f) << dx << "," << dy;
+            } else {
+                ASSERT_EQ(m, 0.0f) << dx << "," << dy;
+            }
+        }
+        EXPECT_EQ(nonzero, long(window) * window);
+    }
+}
+
+// W5 (second part) and the oracle: with every weight 1, WALR equals REFWLR in the interior.
+TEST(Walr, EqualsRefwlrInTheInteriorWhenAllWeightsAreOne) {
+    Field f(101, 97);
+    varyFeatures(f);
+    for (long i = 0; i < f.size(); ++i) {
+        store3(f.pos.data(), i, {0, 0, 10}); // one point: every plane distance is 0
+        store3(f.sig.data(), i, {rnd(uint32_t(i), 10), rnd(uint32_t(i), 11), rnd(uint32_t(i), 12)});
+    }
+    const EdgeGuide g = f.guide();
+    const WalrRun r = runWalr(f, g, 4);
+    for (int y = 40; y <= 56; y += 4)
+        for (int x = 40; x <= 60; x += 5) {
+            const Vec3 ref = refwlrPixel(g, f.sig.data(), f.feat.data(), 40, 1e-4, x, y);
+            const Vec3 got = load3(r.out.data(), long(y) * f.w + x);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], ref[c], 1e-4f) << x << "," << y;
+        }
+}
+
+// W6: two parallel planes further apart than the ramp: what happens on B never reaches A.
+TEST(Walr, W6DepthStepSeparatesThePlanesExactly) {
+    Field f(120, 60);
+    varyFeatures(f);
+    for (long i = 0; i < f.size(); ++i) {
+        const int x = int(i % f.w);
+        f.setPosition(i, {float(x) * 0.01f, float(i / f.w) * 0.01f, x < 60 ? 10.0f : 12.0f});
+        store3(f.sig.data(), i, {rnd(uint32_t(i), 13), 0.5f, 0.5f});
+    }
+    Field g = f;
+    for (long i = 0; i < f.size(); ++i)
+        if (i % f.w >= 60) store3(g.sig.data(), i, {5.0f * rnd(uint32_t(i), 14), 9.0f, 0.0f});
+    const WalrRun a = runWalr(f, f.guide(), 4), b = runWalr(g, g.guide(), 4);
+    for (long i = 0; i < f.size(); ++i) {
+        if (i % f.w >= 60) continue;
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(a.out[size_t(3 * i + c)], b.out[size_t(3 * i + c)]);
+    }
+}
+
+// W7: a 1-pixel strip in front of a wall stops every tap that crosses it when tracing; testing
+// only the tap's end leaks the right side's light into the left.
+TEST(Walr, W7EdgeTracingStopsLeaksPastAThinOccluder) {
+    const int strip = 60;
+    Field f(121, 60);
+    for (long i = 0; i < f.size(); ++i) {
+        const int x = int(i % f.w);
+        f.setPosition(i, {float(x) * 0.01f, float(i / f.w) * 0.01f, x == strip ? 9.0f : 10.0f});
+        const float v = x > strip ? 1.0f : 0.0f;
+        store3(f.sig.data(), i, {v, v, v});
+    }
+    auto leak = [&](bool tracing) {
+        const WalrRun r = runWalr(f, f.guide(tracing, true), 4);
+        float worst = 0;
+        for (long i = 0; i < f.size(); ++i)
+            if (i % f.w < strip) worst = std::fmax(worst, r.out[size_t(3 * i)]);
+        return worst;
+    };
+    EXPECT_EQ(leak(true), 0.0f);
+    EXPECT_GT(leak(false), 0.2f);
+}
+
+// W8: the pivot-clamped Cholesky with three right-hand sides solves XX + diag(delta) exactly,
+// and stays finite for rank-deficient matrices.
+TEST(Walr, W8ClampedCholeskySolvesTheRidgedSystem) {
+    for (uint32_t trial = 0; trial < 200; ++trial) {
+        // Averages of a few random samples: positive semi-definite, often nearly singular.
+        const int samples = 1 + int(trial % 6);
+        Eigen::Matrix3d xx = Eigen::Matrix3d::Zero();
+        for (int s = 0; s < samples; ++s) {
+            const Eigen::Vector3d x{1.0, rnd(trial, 100 + s), rnd(trial, 200 + s)};
+            xx += x * x.transpose() / samples;
+        }
+        const double eps = 1e-4;
+        const Cholesky3<double> c = choleskyClamped<double>(xx(0, 1), xx(0, 2), xx(1, 1),
+                                                            xx(1, 2), xx(2, 2), eps);
+        // delta from the pivots as the algorithm meets them.
+        const double p1 = xx(1, 1) - xx(0, 1) * xx(0, 1);
+        const double d1 = std::max(0.0, eps - p1);
+        const double c21 = (xx(1, 2) - xx(0, 2) * xx(0, 1)) / std::sqrt(p1 + d1);
+        const double p2 = xx(2, 2) - xx(0, 2) * xx(0, 2) - c21 * c21;
+        const double d2 = std::max(0.0, eps - p2);
+        Eigen::Matrix3d ridged = xx;
+        ridged(1, 1) += d1;
+        ridged(2, 2) += d2;
+        const Eigen::Vector3d rhs{rnd(trial, 1), rnd(trial, 2), rnd(trial, 3)};
+        const Eigen::Vector3d exact = ridged.ldlt().solve(rhs);
+        const double r[3] = {rhs[0], rhs[1], rhs[2]};
+        double beta[3];
+        choleskySolve(c, r, beta);
+        for (int k = 0; k < 3; ++k) {
+            ASSERT_TRUE(std::isfinite(beta[k]));
+            ASSERT_NEAR(beta[k], exact[k], 1e-8 * (1 + std::fabs(exact[k]))) << trial;
+        }
+        if (d1 == 0 && d2 == 0) { // no clamp: C C^T is XX itself
+            Eigen::Matrix3d cm;
+            cm << c.c00, 0, 0, c.c10, c.c11, 0, c.c20, c.c21, c.c22;
+            ASSERT_LT((cm * cm.transpose() - xx).norm(), 1e-12);
+        }
+    }
+}
+
+// W9: on a curved surface with normal-dependent light, the regression keeps the gradient that
+// the same-sized edge-aware mean flattens.
+TEST(Walr, W9KeepsGradientsTheMeanFlattens) {
+    Field f(121, 121);
+    const ViewBasis view; // camera at the origin looking down -z
+    const Vec3 light = normalize(Vec3{0.6f, -0.3f, 1.0f});
+    double errWalr = 0, errMean = 0;
+    // The sphere fills the image: every pixel sees it.
+    for (long i = 0; i < f.size(); ++i) {
+        const float x = (float(i % f.w) - 60.0f) / 90.0f, y = (float(i / f.w) - 60.0f) / 90.0f;
+        const float zz = std::sqrt(std::fmax(0.0f, 1.0f - x * x - y * y));
+        const Vec3 n = normalize(Vec3{x, y, zz + 1e-3f});
+        f.setPosition(i, {x, y, 10.0f - zz});
+        store3(f.nrm.data(), i, n);
+        const Vec2 o = walrNormalFeatures(n, {x, y, -10.0f + zz}, view);
+        f.feat[size_t(2 * i)] = o.x, f.feat[size_t(2 * i + 1)] = o.y;
+        const float v = std::fmax(0.0f, dot(n, light));
+        store3(f.sig.data(), i, {v, v, v});
+    }
+    const WalrRun r = runWalr(f, f.guide(true, true, 0.05f, 0.2f), 4);
+    for (long i = 0; i < f.size(); ++i) {
+        errWalr += std::pow(r.out[size_t(3 * i)] - f.sig[size_t(3 * i)], 2);
+        errMean += std::pow(r.means[size_t(3 * i)] - f.sig[size_t(3 * i)], 2);
+    }
+    EXPECT_LT(errWalr, 0.5 * errMean); // measured: 0.29
+}
+
+// W11: camera-facing normals give continuous features, also at grazing angles.
+TEST(Walr, W11OctahedralFeaturesAreContinuousOverVisibleNormals) {
+    const ViewBasis view;
+    const Vec3 p{0, 0, -5}; // in front of the camera at the origin
+    float worst = 0;
+    for (int a = 0; a < 360; ++a)
+        for (int e = 0; e < 89; ++e) {
+            auto dir = [](float az, float el) {
+                const float r = std::cos(el);
+                return Vec3{r * std::cos(az), r * std::sin(az), std::sin(el)};
+            };
+            const float az = float(a) * 0.01745f, el = float(e) * 0.01745f + 0.001f;
+            const Vec3 n0 = dir(az, el), n1 = dir(az + 0.001f, el + 0.001f);
+            const Vec2 f0 = walrNormalFeatures(n0, p, view), f1 = walrNormalFeatures(n1, p, view);
+            const float df = std::hypot(f1.x - f0.x, f1.y - f0.y), dn = length(n1 - n0);
+            worst = std::fmax(worst, df / dn);
+        }
+    EXPECT_LT(worst, 3.0f); // a fold would give a jump, far above any Lipschitz bound
+    // Back-facing normals are flipped towards the camera first.
+    const Vec2 a = walrNormalFeatures({0, 0, 1}, p, view), b = walrNormalFeatures({0, 0, -1}, p, view);
+    EXPECT_EQ(a.x, b.x);
+    EXPECT_EQ(a.y, b.y);
+}
+
+// The CPU backend's eight-wide iterations are the reference's bit for bit, edges, tracing,
+// replacement and W included.
+TEST(Walr, EightWideIterationsMatchTheScalarKernelBitForBit) {
+    Field f(133, 71);
+    varyFeatures(f);
+    for (long i = 0; i < f.size(); ++i) {
+        const int x = int(i % f.w), y = int(i / f.w);
+        const float z = (x / 17 + y / 13) % 3 == 0 ? 9.0f : 10.0f + 0.002f * float(x);
+        f.setPosition(i, {float(x) * 0.01f, float(y) * 0.01f, z});
+        store3(f.nrm.data(), i, normalize(Vec3{0.01f * float(x % 7), 0.0f, 1.0f}));
+        store3(f.sig.data(), i, {rnd(uint32_t(i), 20), rnd(uint32_t(i), 21), rnd(uint32_t(i), 22)});
+    }
+    for (bool keepW : {false, true})
+        for (bool tracing : {true, false}) {
+            const EdgeGuide g = f.guide(tracing, true);
+            const WalrRun a = runWalr(f, g, 4, keepW, 1e-4f, 3, false);
+            const WalrRun b = runWalr(f, g, 4, keepW, 1e-4f, 3, true);
+            for (size_t k = 0; k < a.means.size(); ++k)
+                ASSERT_EQ(a.means[k], b.means[k]) << k << " keepW " << keepW << " tracing " << tracing;
+        }
+}
+
+TEST(Walr, VarianceClipLeavesAHistoryInsideTheBoxAlone) {
+    NeighbourhoodMoments m{{1, 2, 3}, {0.5f, 0.5f, 1.0f}};
+    const Vec3 inside{1.2f, 1.7f, 3.9f}, outside{3.0f, 2.0f, 3.0f};
+    const Vec3 a = varianceClip(inside, m, 1.0f), b = varianceClip(outside, m, 1.0f);
+    EXPECT_EQ(a.x, inside.x);
+    EXPECT_EQ(a.y, inside.y);
+    EXPECT_EQ(a.z, inside.z);
+    EXPECT_NEAR(b.x, 1.5f, 1e-6f); // pulled along the line to the mean onto the box
+    EXPECT_NEAR(b.y, 2.0f, 1e-6f);
+}
+
+TEST(Walr, CatmullRomIsExactAtPixelCentresAndClampedAtZero) {
+    std::vector<float> img(3 * 8 * 8);
+    for (size_t k = 0; k < img.size(); ++k) img[k] = float(k % 5);
+    const Vec3 v = sampleCatmullRom(img.data(), 8, 8, {3, 4});
+    EXPECT_EQ(v.x, img[3 * (4 * 8 + 3)]);
+    std::vector<float> step(3 * 8 * 8, 0.0f);
+    for (int x = 4; x < 8; ++x)
+        for (int y = 0; y < 8; ++y) store3(step.data(), y * 8 + x, {1, 1, 1});
+    EXPECT_GE(sampleCatmullRom(step.data(), 8, 8, {3.3f, 2}).x, 0.0f); // the undershoot is cut
+    EXPECT_LE(sampleCatmullRom(step.data(), 8, 8, {3.3f, 2}).x, 0.5f);
+}
+
+} // namespace
+} // namespace bmfr
