@@ -61,7 +61,7 @@ TEST(RenderMotion, ObjectsCarryTheirPointsAndTheVectorsFindThemInThePreviousFram
     const int w = 96, h = 72;
     const Rendered r = renderPreset("cornell-objects-moving", w, h, 2);
     const FrameData &was = r.frames[0], &now = r.frames[1];
-    ASSERT_EQ(now.motion.channels, 2);
+    ASSERT_EQ(now.motion.channels, 3); // x, y and the depth offset
     ASSERT_EQ(now.previousPosition.channels, 3);
     // The preset's keys by hand, from frame 1 back to frame 0: the sphere's translation goes
     // from a quarter of the way to its frame-4 key (0, -0.087, 0) back to its frame-0 key; the
@@ -99,8 +99,12 @@ TEST(RenderMotion, ObjectsCarryTheirPointsAndTheVectorsFindThemInThePreviousFram
                 << x << "," << y << " material " << material << " p " << p.x << "," << p.y << ","
                 << p.z << " was " << pp.x << "," << pp.y << "," << pp.z;
             // Where the vector points, the previous frame saw this point (smooth interiors).
-            const Vec2 prev{float(x) + now.motion.data()[2 * i],
-                            float(y) + now.motion.data()[2 * i + 1]};
+            const Vec2 prev{float(x) + now.motion.data()[3 * i],
+                            float(y) + now.motion.data()[3 * i + 1]};
+            // The depth offset: the point's view depth by the previous camera minus now.
+            const float offset = transformPoint(was.viewProjection, pp).w -
+                                 transformPoint(now.viewProjection, p).w;
+            ASSERT_NEAR(now.motion.data()[3 * i + 2], offset, 1e-4f * (1 + std::fabs(offset)));
             const BilinearFootprint fp = bilinearFootprint(prev);
             if (fp.x0 < 0 || fp.y0 < 0 || fp.x0 + 1 >= w || fp.y0 + 1 >= h) continue;
             Vec3 seen{}, taps[4];

@@ -166,7 +166,8 @@ TEST(RenderScene, ResumeSkipsFinishedFramesAndBothLayoutsAreReadable) {
     EXPECT_EQ(f.aovs[0].first, "depth");
     EXPECT_EQ(f.aovs[0].second.channels, 1);
     // Motion vectors are an input of their own; a static scene has no previous positions.
-    EXPECT_EQ(f.motion.channels, 2);
+    EXPECT_EQ(f.motion.channels, 3); // with the depth offset
+    EXPECT_EQ(f.diffuseIndirect.channels, 3);
     EXPECT_EQ(f.previousPosition.width, 0);
     fs::remove_all(d);
 }

@@ -73,14 +73,15 @@ class PyFilter {
                                const py::handle& viewProjection, std::pair<float, float> jitter,
                                const py::handle& emission, bool reset, const py::handle& extras,
                                const py::handle& motion, const py::handle& previousPosition,
-                               const py::handle& previousNormal) {
+                               const py::handle& previousNormal,
+                               const py::handle& diffuseIndirect) {
         int h = -1, w = -1;
         const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
                        n = imageArg(normal, "normal", h, w),
                        p = imageArg(position, "position", h, w);
         FrameInput in;
         // The optional images: None leaves the view empty; the arrays live in `kept`.
-        ImageArg kept[4];
+        ImageArg kept[5];
         const struct {
             const py::handle& object;
             const char* name;
@@ -89,8 +90,9 @@ class PyFilter {
         } optional[] = {{emission, "emission", 3, in.emission},
                         {motion, "motion", 2, in.motion},
                         {previousPosition, "previous_position", 3, in.previousPosition},
-                        {previousNormal, "previous_normal", 3, in.previousNormal}};
-        for (size_t k = 0; k < 4; ++k)
+                        {previousNormal, "previous_normal", 3, in.previousNormal},
+                        {diffuseIndirect, "diffuse_indirect", 3, in.diffuseIndirect}};
+        for (size_t k = 0; k < 5; ++k)
             if (!optional[k].object.is_none()) {
                 kept[k] =
                     imageArg(optional[k].object, optional[k].name, h, w, optional[k].minChannels);
@@ -192,6 +194,8 @@ class SequenceIterator {
             d["previous_position"] = toArray(view(frame_.previousPosition));
         if (frame_.previousNormal.width)
             d["previous_normal"] = toArray(view(frame_.previousNormal));
+        if (frame_.diffuseIndirect.width)
+            d["diffuse_indirect"] = toArray(view(frame_.diffuseIndirect));
         d["reset"] = frame_.reset;
         if (frame_.reference.width) d["reference"] = toArray(view(frame_.reference));
         py::list extras;
@@ -223,7 +227,7 @@ class SequenceIterator {
 PYBIND11_MODULE(bmfr, m) {
     using namespace bmfr;
     using namespace bmfr::python;
-    m.doc() = "bmfr: real-time reconstruction of 1-spp path-traced frame sequences (BMFR, SVGF)";
+    m.doc() = "bmfr: real-time reconstruction of 1-spp path-traced frame sequences (BMFR, SVGF, WALR)";
     m.attr("__version__") = BMFR_VERSION;
     // Every library error (bad input, unreadable files) is a bmfr.Error, a ValueError.
     py::register_exception<Error>(m, "Error", PyExc_ValueError);
@@ -240,6 +244,7 @@ Filter(name="bmfr", backend="cpu", **settings): settings by their flag name with
              py::arg("emission") = py::none(), py::arg("reset") = false,
              py::arg("extras") = py::none(), py::arg("motion") = py::none(),
              py::arg("previous_position") = py::none(), py::arg("previous_normal") = py::none(),
+             py::arg("diffuse_indirect") = py::none(),
              R"(Denoises one frame; returns a new (height, width, 3) float32 array.
 
 Images are float32 (height, width, 3) or (height, width, 4) arrays, viewed without a copy when
@@ -248,7 +253,9 @@ column vectors, NDC y down); jitter the sub-pixel offset of the primary rays, pi
 a list of float32 (height, width) feature buffers for BMFR's extraK features. motion:
 (height, width, 2..4) pixels from each pixel to where its surface was in the previous frame
 (x right, y down, both frames' jitter included); previous_position and previous_normal: that
-surface's previous world position and normal, for moving objects (bmfr::FrameInput).)")
+surface's previous world position and normal, for moving objects; a third motion channel is the
+depth offset. diffuse_indirect: the demodulated diffuse indirect light, for WALR's
+signal="diffuse-indirect" (bmfr::FrameInput).)")
         .def("reset", &PyFilter::reset, "Drops all history (a camera cut).")
         .def_property_readonly("stats", &PyFilter::stats,
                                "Facts about the last frame: stage_ms, total_ms, "

@@ -38,7 +38,7 @@ class ManifestReader : public SequenceReader {
             for (size_t k = 0; k < manifest_.at("frames").size(); ++k)
                 requireKnownKeys(manifest_["frames"][k],
                                  {"color", "albedo", "normal", "position", "reference", "emission",
-                                  "motion", "previous_position", "previous_normal", "reset",
+                                  "motion", "previous_position", "previous_normal", "diffuse_indirect", "reset",
                                   "extras", "aovs", "view_projection", "jitter"},
                                  mp.string() + " frame " + std::to_string(k));
             if (!manifest_.contains("width") || !manifest_.contains("height"))
@@ -89,9 +89,10 @@ class ManifestReader : public SequenceReader {
                                            {"position", &f.position, 3}};
             // Optional buffers: one a frame does not name is left empty, not kept from the last.
             const Buffer optional[] = {{"emission", &f.emission, 3},
-                                       {"motion", &f.motion, 2},
+                                       {"motion", &f.motion, 0},
                                        {"previous_position", &f.previousPosition, 3},
-                                       {"previous_normal", &f.previousNormal, 3}};
+                                       {"previous_normal", &f.previousNormal, 3},
+                                       {"diffuse_indirect", &f.diffuseIndirect, 3}};
             f.reference = ImageF();
             if (info_.hasReference) buffers.push_back({"reference", &f.reference, 3});
             for (const Buffer& b : optional) {
@@ -144,7 +145,7 @@ class ManifestReader : public SequenceReader {
     struct Buffer {
         const char* key;
         ImageF* out;
-        int channels;
+        int channels; ///< 0: 2, or 3 when the file has a third (B) channel (motion's depth offset)
     };
 
     /// The image buffers of a frame. Each is a file name or {"file", "layer"}; the layer
@@ -176,9 +177,12 @@ class ManifestReader : public SequenceReader {
             std::vector<ExrLayerRead> reads;
             std::vector<std::string> names;
             for (auto& [key, read] : byFile[path]) {
-                if (read.layer.empty()) {
+                if (read.layer.empty() || read.channels == 0)
                     if (names.empty()) names = exrChannelNames(path);
-                    read.layer = defaultLayer(names, key, path);
+                if (read.layer.empty()) read.layer = defaultLayer(names, key, path);
+                if (read.channels == 0) {
+                    const std::string b = read.layer.empty() ? "B" : read.layer + ".B";
+                    read.channels = std::find(names.begin(), names.end(), b) != names.end() ? 3 : 2;
                 }
                 reads.push_back(read);
             }
@@ -261,6 +265,8 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
     if (f.previousPosition.width)
         j["previous_position"] = put("previous_position", f.previousPosition);
     if (f.previousNormal.width) j["previous_normal"] = put("previous_normal", f.previousNormal);
+    if (f.diffuseIndirect.width)
+        j["diffuse_indirect"] = put("diffuse_indirect", f.diffuseIndirect);
     if (f.reset) j["reset"] = true;
     if (!f.extras.empty()) {
         j["extras"] = json::array();

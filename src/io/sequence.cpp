@@ -14,6 +14,7 @@ FrameInput FrameData::input(bool motionInput) const {
     in.normal = view(normal);
     in.position = view(position);
     if (emission.width) in.emission = view(emission);
+    if (diffuseIndirect.width) in.diffuseIndirect = view(diffuseIndirect);
     for (const ImageF& e : extras) in.extras.push_back(view(e));
     if (motionInput) {
         if (motion.width) in.motion = view(motion);
@@ -38,6 +39,7 @@ const std::vector<DefaultPass> kDefaultPasses = {
     {"motion", {}},
     {"previous_position", {}},
     {"previous_normal", {}},
+    {"diffuse_indirect", {}},
 };
 
 std::vector<std::string> layeredBufferNames() {
@@ -79,6 +81,7 @@ void SequenceReader::checkFrame(int index, const FrameData& f) const {
     if (f.motion.width) check(f.motion, "motion");
     if (f.previousPosition.width) check(f.previousPosition, "previous_position");
     if (f.previousNormal.width) check(f.previousNormal, "previous_normal");
+    if (f.diffuseIndirect.width) check(f.diffuseIndirect, "diffuse_indirect");
 }
 
 std::unique_ptr<SequenceReader> SequenceReader::open(const std::string& directory) {

@@ -17,9 +17,9 @@ struct FrameData {
     std::vector<ImageF> extras; ///< 1-channel extra features, in SequenceInfo::extraNames order
     ImageF reference;           ///< empty (0x0) when the sequence has none
     ImageF emission; ///< first-hit emitted radiance (noise-free); empty when the layout has none
-    /// FrameInput::motion (2 channels), previousPosition and previousNormal; empty when the
-    /// sequence has none.
-    ImageF motion, previousPosition, previousNormal;
+    /// FrameInput::motion (2 channels, or 3 with the depth offset), previousPosition,
+    /// previousNormal and diffuseIndirect; empty when the sequence has none.
+    ImageF motion, previousPosition, previousNormal, diffuseIndirect;
     bool reset = false; ///< a camera cut: the history is dropped at this frame
     /// Further named outputs (depth, motion, direct/indirect, diffuse/glossy splits...).
     std::vector<std::pair<std::string, ImageF>> aovs;

@@ -61,7 +61,8 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     out.aovs.clear();
     for (const std::string& n : aovNames())
         out.aovs.emplace_back(n, ImageF(w, h, n == "depth" ? 1 : 3));
-    out.motion = ImageF(w, h, 2);
+    out.motion = ImageF(w, h, 3);
+    out.diffuseIndirect = ImageF(w, h, 3);
     out.previousPosition = objects ? ImageF(w, h, 3) : ImageF();
     out.previousNormal = objects ? ImageF(w, h, 3) : ImageF();
     out.reference = referenceSpp > 0 ? ImageF(w, h, 3) : ImageF();
@@ -70,6 +71,7 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     const Integrator integrator(*scene_, *accel_, lights, bounces_);
     const float spread = 2.0f * std::tan(0.5f * pose.fovY) / float(h);
     const Vec3 forward = normalize(pose.target - pose.position);
+    const Vec3 prevForward = normalize(previousPose.target - previousPose.position);
     std::atomic<uint64_t> rays{0};
     std::atomic<bool> stopped{false};
     Stopwatch clock;
@@ -107,6 +109,12 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 store3(out.aovs[3].second.data(), i, c.diffuse);
                 store3(out.aovs[4].second.data(), i, c.glossy);
                 const SurfacePoint& s = ph.surface;
+                // Demodulated, so that albedo * diffuse_indirect is the split itself.
+                const Vec3 base = ph.hit ? s.baseColor : Vec3{};
+                store3(out.diffuseIndirect.data(), i,
+                       {base.x > 0 ? c.diffuseIndirect.x / base.x : 0.0f,
+                        base.y > 0 ? c.diffuseIndirect.y / base.y : 0.0f,
+                        base.z > 0 ? c.diffuseIndirect.z / base.z : 0.0f});
                 Vec3 p = ph.hit ? s.p : pose.position + skyDistance_ * dir;
                 store3(out.albedo.data(), i, ph.hit ? s.baseColor : Vec3{1, 1, 1});
                 store3(out.emission.data(), i,
@@ -134,8 +142,13 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 if (hasPrevious)
                     prev =
                         projectToPixel(prevVp, pp, prevJitter, w, h, at) ? at : Vec2{-1e6f, -1e6f};
-                out.motion.data()[2 * i] = prev.x - float(x);
-                out.motion.data()[2 * i + 1] = prev.y - float(y);
+                out.motion.data()[3 * i] = prev.x - float(x);
+                out.motion.data()[3 * i + 1] = prev.y - float(y);
+                // The depth offset: view depth a frame ago minus now (WALR's depth test).
+                out.motion.data()[3 * i + 2] =
+                    hasPrevious ? dot(pp - previousPose.position, prevForward) -
+                                      out.aovs[0].second.data()[i]
+                                : 0.0f;
             }
             rays += localRays;
         });

@@ -134,6 +134,7 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
     auto add = [&](int vertex, Vec3 radianceD, Vec3 radianceG) {
         // vertex 0: light reaching the primary hit (direct); later vertices: indirect.
         (vertex == 0 ? out.direct : out.indirect) += radianceD + radianceG;
+        if (vertex > 0) out.diffuseIndirect += radianceD;
         out.diffuse += radianceD;
         out.glossy += radianceG;
     };

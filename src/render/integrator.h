@@ -20,9 +20,10 @@ struct PrimaryHit {
     int lightQuad = -1; ///< the hit is analytic quad light k
 };
 
-/// One sample's radiance and its splits (direct + indirect = diffuse + glossy = total).
+/// One sample's radiance and its splits (direct + indirect = diffuse + glossy = total), and
+/// the indirect light through the primary hit's diffuse lobe (part of indirect and of diffuse).
 struct PathContribution {
-    Vec3 total, direct, indirect, diffuse, glossy;
+    Vec3 total, direct, indirect, diffuse, glossy, diffuseIndirect;
 };
 
 class Integrator {

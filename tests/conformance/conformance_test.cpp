@@ -39,6 +39,10 @@ const FilterCase kFilters[] = {
      {{"progressive variant",
        {{"kernelRadius", "1"}, {"reverseLevels", "true"}, {"spatialVarianceFrames", "0"}}},
       {"one level", {{"iterations", "1"}}}}},
+    {"walr",
+     {{"REFWLR over a 9x9 window", {{"solver", "refwlr"}, {"iterations", "2"}}},
+      {"three iterations", {{"iterations", "3"}}},
+      {"the world-space history test", {{"historyTest", "world"}}}}},
 };
 
 // The stated tolerance: |backend - reference| <= kAbs + kRel * |reference| per channel, and the
