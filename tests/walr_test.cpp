@@ -1,7 +1,7 @@
 // WALR (Meunier and Harada 2022): tests W1 to W11 of the implementation notes, the solver
 // against an exact double-precision solve, WALR against REFWLR, the CPU backend against the
 // reference, and the filter end to end on a path-traced Cornell box.
-#include "backend/cpu/walr/cpu_walr_atrous.h"
+#include "backend/cpu/walr/cpu_walr_spatial.h"
 #include "core/hash.h"
 #include "filters/walr/refwlr.h"
 #include "filters/walr/walr_temporal_kernels.h"
@@ -51,16 +51,18 @@ struct WalrRun {
     std::vector<float> means; ///< the final averages' mean colour YX_c0, 3 per pixel
 };
 
-/// WALR's spatial filter through the kernels: T iterations, then the solve.
+/// WALR's spatial filter through the kernels: T iterations, then the solve; with `eightWide`,
+/// the CPU backend's interleaved iterations and solve instead of the scalar kernels on planes.
 WalrRun runWalr(const Field& f, const EdgeGuide& g, int iterations, bool keepW = false,
                 float eps = 1e-4f, uint32_t frame = 0, bool eightWide = false) {
     const long n = f.size();
-    std::vector<float> a(size_t(kWalrAverages * n)), b(a.size());
+    const AverageLayout layout = eightWide ? AverageLayout{1, 16} : AverageLayout{n, 1};
+    std::vector<float> a(size_t(16 * n)), b(a.size());
     std::vector<float> wa(static_cast<size_t>(n)), wb(static_cast<size_t>(n));
     for (long i = 0; i < n; ++i) {
         float s[kWalrAverages];
         walrSampleProducts(load3(f.sig.data(), i), {f.feat[2 * i], f.feat[2 * i + 1]}, s);
-        for (int k = 0; k < kWalrAverages; ++k) a[size_t(k * n + i)] = s[k];
+        for (int k = 0; k < kWalrAverages; ++k) a[size_t(layout.at(k, i))] = s[k];
     }
     ThreadPool pool(2);
     cpu::EdgePlanes planes;
@@ -68,7 +70,7 @@ WalrRun runWalr(const Field& f, const EdgeGuide& g, int iterations, bool keepW =
     int step = 1;
     for (int t = 0; t < iterations; ++t, step *= 3) {
         WalrLevel l;
-        l.in = a.data(), l.out = b.data(), l.planeStride = n, l.iteration = t, l.step = step;
+        l.in = a.data(), l.out = b.data(), l.layout = layout, l.iteration = t, l.step = step;
         l.weightIn = keepW && t > 0 ? wa.data() : nullptr;
         l.weightOut = keepW ? wb.data() : nullptr;
         l.frame = frame;
@@ -83,10 +85,13 @@ WalrRun runWalr(const Field& f, const EdgeGuide& g, int iterations, bool keepW =
     WalrRun r;
     r.out.resize(size_t(3 * n));
     r.means.resize(size_t(3 * n));
+    if (eightWide) cpu::walrSolveImage(pool, f.w, f.h, a.data(), f.feat.data(), eps, r.out.data());
     for (long i = 0; i < n; ++i) {
-        store3(r.out.data(), i,
-               walrSolvePixel(a.data(), n, i, {f.feat[2 * i], f.feat[2 * i + 1]}, eps));
-        store3(r.means.data(), i, {a[size_t(5 * n + i)], a[size_t(8 * n + i)], a[size_t(11 * n + i)]});
+        if (!eightWide)
+            store3(r.out.data(), i,
+                   walrSolvePixel(a.data(), layout, i, {f.feat[2 * i], f.feat[2 * i + 1]}, eps));
+        store3(r.means.data(), i,
+               {a[size_t(layout.at(5, i))], a[size_t(layout.at(8, i))], a[size_t(layout.at(11, i))]});
     }
     return r;
 }
@@ -331,8 +336,8 @@ TEST(Walr, W11OctahedralFeaturesAreContinuousOverVisibleNormals) {
     EXPECT_EQ(a.y, b.y);
 }
 
-// The CPU backend's eight-wide iterations are the reference's bit for bit, edges, tracing,
-// replacement and W included.
+// The CPU backend's eight-wide iterations and solve are the reference's bit for bit, edges,
+// tracing, replacement and W included.
 TEST(Walr, EightWideIterationsMatchTheScalarKernelBitForBit) {
     Field f(133, 71);
     varyFeatures(f);
@@ -348,8 +353,10 @@ TEST(Walr, EightWideIterationsMatchTheScalarKernelBitForBit) {
             const EdgeGuide g = f.guide(tracing, true);
             const WalrRun a = runWalr(f, g, 4, keepW, 1e-4f, 3, false);
             const WalrRun b = runWalr(f, g, 4, keepW, 1e-4f, 3, true);
-            for (size_t k = 0; k < a.means.size(); ++k)
+            for (size_t k = 0; k < a.means.size(); ++k) {
                 ASSERT_EQ(a.means[k], b.means[k]) << k << " keepW " << keepW << " tracing " << tracing;
+                ASSERT_EQ(a.out[k], b.out[k]) << k << " keepW " << keepW << " tracing " << tracing;
+            }
         }
 }
 

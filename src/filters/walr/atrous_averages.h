@@ -22,14 +22,21 @@ BMFR_HD void walrSampleProducts(Vec3 y, Vec2 f, float a[kWalrAverages]) {
     }
 }
 
-/// One iteration's planes: channel k of pixel i at in[k * planeStride + i]. `weightIn` and
-/// `weightOut` are the sample-count weights W (null when they are dropped, as in the paper).
+/// Where channel k of pixel i lies: at k * channelStride + i * pixelStride (planes, or
+/// interleaved pixels).
+struct AverageLayout {
+    long channelStride = 0, pixelStride = 1;
+    BMFR_HD long at(int k, long i) const { return k * channelStride + i * pixelStride; }
+};
+
+/// One iteration's averages, in and out. `weightIn` and `weightOut` are the sample-count
+/// weights W (null when they are dropped, as in the paper).
 struct WalrLevel {
     const float* in = nullptr;
     float* out = nullptr;
     const float* weightIn = nullptr;
     float* weightOut = nullptr;
-    long planeStride = 0;
+    AverageLayout layout;
     int iteration = 0; ///< t: taps at spacing 3^t
     int step = 1;
     uint32_t frame = 0, seed = 0;
@@ -49,7 +56,7 @@ BMFR_HD void walrAtrousPixel(const EdgeGuide& g, const WalrLevel& l, int x, int 
     const EdgeCentre c = edgeCentre(g, i);
     float sum[kWalrAverages];
     float total = l.weightIn ? l.weightIn[i] : 1.0f;
-    for (int k = 0; k < kWalrAverages; ++k) sum[k] = total * l.in[k * l.planeStride + i];
+    for (int k = 0; k < kWalrAverages; ++k) sum[k] = total * l.in[l.layout.at(k, i)];
     for (int tap = 0; tap < 8; ++tap) {
         const int ux = walrTapX(tap), uy = walrTapY(tap);
         const TracedTap t = traceTap(g, c, x, y, ux, uy, l.step,
@@ -57,10 +64,10 @@ BMFR_HD void walrAtrousPixel(const EdgeGuide& g, const WalrLevel& l, int x, int 
         if (!(t.weight > 0)) continue;
         const long j = long(y + t.steps * uy) * g.width + x + t.steps * ux;
         const float w = l.weightIn ? t.weight * l.weightIn[j] : t.weight;
-        for (int k = 0; k < kWalrAverages; ++k) sum[k] += w * l.in[k * l.planeStride + j];
+        for (int k = 0; k < kWalrAverages; ++k) sum[k] += w * l.in[l.layout.at(k, j)];
         total += w;
     }
-    for (int k = 0; k < kWalrAverages; ++k) l.out[k * l.planeStride + i] = sum[k] / total;
+    for (int k = 0; k < kWalrAverages; ++k) l.out[l.layout.at(k, i)] = sum[k] / total;
     if (l.weightOut) l.weightOut[i] = total;
 }
 
@@ -79,10 +86,11 @@ template <class T> BMFR_HD Vec3 walrPredict(const T a[kWalrAverages], Vec2 f, T 
     return {out[0], out[1], out[2]};
 }
 
-/// walrPredict of pixel i from the last iteration's planes.
-BMFR_HD Vec3 walrSolvePixel(const float* planes, long planeStride, long i, Vec2 f, float eps) {
+/// walrPredict of pixel i from the last iteration's averages.
+BMFR_HD Vec3 walrSolvePixel(const float* averages, const AverageLayout& layout, long i, Vec2 f,
+                            float eps) {
     float a[kWalrAverages];
-    for (int k = 0; k < kWalrAverages; ++k) a[k] = planes[k * planeStride + i];
+    for (int k = 0; k < kWalrAverages; ++k) a[k] = averages[layout.at(k, i)];
     return walrPredict<float>(a, f, eps);
 }
 

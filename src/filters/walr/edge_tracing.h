@@ -24,11 +24,19 @@ struct EdgeGuide {
 struct EdgeCentre {
     Vec3 p, n;
     float a = 0, b = 0;
+    float slope = 0; ///< 1 / (b - a), or 0 when the ramp is empty
 };
+
+/// 1 / (b - a) for a ramp from a to b (0 when b <= a: the ramp is then never evaluated).
+BMFR_HD float rampSlope(float a, float b) {
+    return b > a ? 1.0f / (b - a) : 0.0f;
+}
 
 BMFR_HD EdgeCentre edgeCentre(const EdgeGuide& g, long i) {
     const float z = g.depth[i] > 0 ? g.depth[i] : 0.0f;
-    return {load3(g.position, i), load3(g.normal, i), g.nearFraction * z, g.farFraction * z};
+    EdgeCentre c{load3(g.position, i), load3(g.normal, i), g.nearFraction * z, g.farFraction * z};
+    c.slope = rampSlope(c.a, c.b);
+    return c;
 }
 
 /// Weight of a pixel at world position q against the centre's plane (the distance is invariant
@@ -37,7 +45,7 @@ BMFR_HD float edgeWeight(const EdgeCentre& c, Vec3 q) {
     const float d = std::fabs(dot(c.n, q - c.p));
     if (!(d > c.a)) return 1.0f;
     if (!(d < c.b)) return 0.0f;
-    return (c.b - d) / (c.b - c.a);
+    return (c.b - d) * c.slope;
 }
 
 /// Smallest weight at pixels (x + k ux, y + k uy), k = 1 .. steps (all inside the image); stops
@@ -64,6 +72,11 @@ struct TracedTap {
     int steps = 0;
 };
 
+/// The step a replacement reads, drawn uniformly from [1, edge - 1] by `hash` (edge > 1).
+BMFR_HD int replacementStep(uint32_t hash, int edge) {
+    return 1 + int(unitFloat(hash) * float(edge - 1));
+}
+
 /// The tap at step * (ux, uy) from (x, y). Outside the image it is dropped. Without tracing only
 /// its end is tested. With tracing, a tap whose segment meets an edge (weight 0 at step k_e) is
 /// replaced, when replacement is on and k_e > 1, by the pixel at a step drawn uniformly from
@@ -80,7 +93,7 @@ BMFR_HD TracedTap traceTap(const EdgeGuide& g, const EdgeCentre& c, int x, int y
     const float w = tracedWeight(g, c, x, y, ux, uy, step, edge);
     if (w > 0) return {w, step};
     if (!g.replacement || edge <= 1) return {};
-    const int k = 1 + int(unitFloat(hash) * float(edge - 1));
+    const int k = replacementStep(hash, edge);
     int unused = 0;
     return {tracedWeight(g, c, x, y, ux, uy, k, unused), k};
 }

@@ -6,7 +6,7 @@ void WalrBuffers::allocate(int w, int h) {
     for (int k = 0; k < 2; ++k) {
         pre[k].resize(w, h, 3), post[k].resize(w, h, 3), depth[k].resize(w, h, 1);
         position[k].resize(w, h, 3), normal[k].resize(w, h, 3), count[k].resize(w, h, 1);
-        averages[k].resize(w, h, kWalrAverages), weights[k].resize(w, h, 1);
+        averages[k].resize(w, h, interleaved ? 16 : kWalrAverages), weights[k].resize(w, h, 1);
     }
     signal.resize(w, h, 3), features.resize(w, h, 2), offset.resize(w, h, 2);
     expectedDepth.resize(w, h, 1), previousPixel.resize(w, h, 2), postHistory.resize(w, h, 3);
@@ -56,7 +56,7 @@ WalrLevel WalrBuffers::level(const WalrPassContext& ctx, int t, bool keepWeights
     l.in = averages[src].data(), l.out = averages[1 - src].data();
     l.weightIn = keepWeights && t > 0 ? weights[src].data() : nullptr;
     l.weightOut = keepWeights ? weights[1 - src].data() : nullptr;
-    l.planeStride = planeStride();
+    l.layout = layout();
     l.iteration = t;
     l.step = 1;
     for (int k = 0; k < t; ++k) l.step *= 3;

@@ -29,7 +29,10 @@ struct WalrBuffers {
     // This frame.
     ImageF signal, features, offset, expectedDepth, previousPixel, postHistory;
     ImageU8 accept;
-    ImageF averages[2]; ///< a-trous ping-pong: kWalrAverages planes of width x height
+    /// A-trous ping-pong: kWalrAverages planes, or with `interleaved` 16 floats per pixel (a
+    /// cache line: what the CPU backend reads per tap).
+    ImageF averages[2];
+    bool interleaved = false;
     ImageF weights[2];  ///< the sample-count weights W, when kept
     ImageF spatial;     ///< the spatial filter's output (3)
     ImageF output;      ///< final radiance (3)
@@ -37,7 +40,9 @@ struct WalrBuffers {
     ImageF countF, acceptF; ///< debug copies, sized on first use
 
     void allocate(int w, int h);
-    long planeStride() const { return long(signal.width) * signal.height; }
+    AverageLayout layout() const {
+        return interleaved ? AverageLayout{1, 16} : AverageLayout{signal.pixelCount(), 1};
+    }
     /// The kernels' views of this frame.
     WalrFrame frame(const WalrPassContext& ctx);
     EdgeGuide guide(const WalrPassContext& ctx) const;

@@ -104,10 +104,9 @@ BMFR_HD bool walrSameSurface(const WalrFrame& f, long i, long j) {
 }
 
 /// Pass 1b at pixel (x, y): history test at the nearest previous pixel, Catmull-Rom resampling
-/// of both histories, the moving average, and the averages of iteration 0 (planes of stride
-/// `planeStride` in `averages`).
+/// of both histories, the moving average, and the averages of iteration 0.
 BMFR_HD void walrAccumulatePixel(const WalrFrame& f, int x, int y, float* averages,
-                                 long planeStride) {
+                                 const AverageLayout& layout) {
     const long i = long(y) * f.width + x;
     const Vec2 off = walrDilatedOffset(f, x, y);
     const Vec2 pp{float(x) + off.x, float(y) + off.y}; // NaN when there is none
@@ -139,7 +138,7 @@ BMFR_HD void walrAccumulatePixel(const WalrFrame& f, int x, int y, float* averag
     f.previousPixel[2 * i + 1] = keep ? pp.y : -1e6f;
     float a[kWalrAverages];
     walrSampleProducts(acc, {f.features[2 * i], f.features[2 * i + 1]}, a);
-    for (int k = 0; k < kWalrAverages; ++k) averages[k * planeStride + i] = a[k];
+    for (int k = 0; k < kWalrAverages; ++k) averages[layout.at(k, i)] = a[k];
 }
 
 /// What the postprocess reads and writes.

@@ -1,6 +1,6 @@
-// The CPU backend's WALR: the reference's per-pixel preprocess, solve and postprocess, and the
-// eight-wide a-trous iterations, where nearly all of WALR's time goes.
-#include "backend/cpu/walr/cpu_walr_atrous.h"
+// The CPU backend's WALR: the reference's per-pixel preprocess and postprocess, and the
+// eight-wide spatial filter, where nearly all of WALR's time goes.
+#include "backend/cpu/walr/cpu_walr_spatial.h"
 #include "backend/reference/walr/reference_walr_stages.h"
 #include "core/stopwatch.h"
 
@@ -10,6 +10,10 @@ namespace {
 
 class CpuWalrPasses final : public HostWalrPasses {
   public:
+    void allocate(int w, int h) override {
+        buffers.interleaved = true;
+        buffers.allocate(w, h);
+    }
     int64_t run(const WalrPassContext& ctx, StageTimes& times) override {
         const WalrSettings& s = ctx.settings;
         Stopwatch clock;
@@ -23,7 +27,9 @@ class CpuWalrPasses final : public HostWalrPasses {
             for (int t = 0; t < s.iterations; ++t)
                 walrAtrousIteration(ctx.pool, g, planes_, buffers.level(ctx, t, s.sampleWeights));
             buffers.lastAverages = s.iterations % 2;
-            reference::walrSolve(ctx, buffers);
+            walrSolveImage(ctx.pool, g.width, g.height,
+                           buffers.averages[buffers.lastAverages].data(),
+                           buffers.features.data(), s.pivotEpsilon, buffers.spatial.data());
         }
         times.add("spatial", clock.lap());
         reference::walrPostprocess(ctx, buffers);

@@ -17,9 +17,9 @@ int64_t walrPreprocess(const WalrPassContext& ctx, WalrBuffers& b) {
         nonFinite += bad;
     });
     float* level0 = b.averages[0].data();
-    const long stride = b.planeStride();
+    const AverageLayout layout = b.layout();
     ctx.pool.forEachPixel(w, h.height, 4,
-                          [&](int x, int y) { walrAccumulatePixel(f, x, y, level0, stride); });
+                          [&](int x, int y) { walrAccumulatePixel(f, x, y, level0, layout); });
     return nonFinite.load();
 }
 
@@ -37,13 +37,13 @@ void walrSpatialRefwlr(const WalrPassContext& ctx, WalrBuffers& b) {
 
 void walrSolve(const WalrPassContext& ctx, WalrBuffers& b) {
     const float* planes = b.averages[b.lastAverages].data();
-    const long stride = b.planeStride();
+    const AverageLayout layout = b.layout();
     const float* f = b.features.data();
     const float eps = ctx.settings.pivotEpsilon;
     ctx.pool.parallelFor(ctx.history.height, 8, [&](long y0, long y1) {
         for (long i = y0 * ctx.history.width; i < y1 * ctx.history.width; ++i)
             store3(b.spatial.data(), i,
-                   walrSolvePixel(planes, stride, i, {f[2 * i], f[2 * i + 1]}, eps));
+                   walrSolvePixel(planes, layout, i, {f[2 * i], f[2 * i + 1]}, eps));
     });
 }
 

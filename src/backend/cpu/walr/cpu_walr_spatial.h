@@ -1,0 +1,37 @@
+// The CPU backend's WALR spatial filter: edge tracing eight pixels at a time over padded planes
+// of positions and normals, then each pixel's 14 averages gathered as one cache line per tap,
+// and the per-pixel solve eight pixels at a time. Mirrors walrAtrousPixel and walrSolvePixel
+// (filters/walr/atrous_averages.h) bit for bit, on averages interleaved 16 floats per pixel.
+#pragma once
+#include "core/parallel.h"
+#include "filters/walr/atrous_averages.h"
+#include <vector>
+
+namespace bmfr::cpu {
+
+/// The guide's positions, normals and depth as seven planes with rows padded on both sides, so
+/// that every tap's trace loads eight lanes without bounds checks. Filled once per frame. Also
+/// each pixel's trace along each of the 8 directions so far (smallest weight and first zero):
+/// the segment of iteration t begins with that of iteration t - 1, so each iteration traces
+/// only the steps beyond the last one's.
+struct EdgePlanes {
+    static constexpr int kPad = 96; ///< >= the largest step (81) + 8 lanes - 1
+    std::vector<float> planes;
+    std::vector<float> tracedMin; ///< [row][block of 8 pixels][direction][lane]
+    std::vector<int32_t> tracedEdge;
+    long rowStride = 0, planeSize = 0, blocksPerRow = 0;
+    const float* plane(int k) const { return planes.data() + k * planeSize + kPad; }
+    void fill(ThreadPool& pool, const EdgeGuide& g);
+};
+
+/// One a-trous iteration (walrAtrousPixel) over the whole image; level.layout must be
+/// interleaved ({1, 16}). Iterations run in order from 0 after planes.fill.
+void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& planes,
+                         const WalrLevel& level);
+
+/// walrSolvePixel over the whole image from interleaved averages into `out` (3 floats per
+/// pixel); features has 2 floats per pixel.
+void walrSolveImage(ThreadPool& pool, int width, int height, const float* averages,
+                    const float* features, float eps, float* out);
+
+} // namespace bmfr::cpu
