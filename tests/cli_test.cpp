@@ -206,6 +206,30 @@ TEST(Cli, MovingObjectsRenderWithMotionAndDenoiseSaysHowItReprojects) {
     for (const fs::path& p : {in, out, cam}) fs::remove_all(p);
 }
 
+TEST(Cli, WalrFiltersTheColourOrTheRenderedDiffuseIndirectLight) {
+    fs::path in = scratch("walr_in"), out = scratch("walr_out"), synth = scratch("walr_synth");
+    ASSERT_EQ(run("render -s cornell-moving --width 40 --height 30 --frames 2 --no-reference -q "
+                  "-o " + in.string())
+                  .code,
+              0);
+    EXPECT_TRUE(fs::exists(in / "diffuse_indirect_0001.exr"));
+    EXPECT_EQ(bmfr::readExr((in / "motion_0001.exr").string(), 3).channels, 3); // depth offset
+    for (const char* signal : {"color", "diffuse-indirect"}) {
+        Result r = run("denoise " + in.string() + " -o " + out.string() +
+                       " --no-png --filter walr --walr-signal " + signal);
+        ASSERT_EQ(r.code, 0) << r.output;
+        EXPECT_NE(r.output.find("bmfr denoise (walr, cpu backend)"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("spatial"), std::string::npos) << r.output;
+    }
+    // A sequence without the buffer that diffuse-indirect mode filters: an error that names it.
+    ASSERT_EQ(run("synth -o " + synth.string() + " --width 32 --height 24 --frames 2 -q").code, 0);
+    Result bad = run("denoise " + synth.string() + " -o " + out.string() +
+                     " --no-png --filter walr --walr-signal diffuse-indirect");
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.output.find("'diffuseIndirect' is missing"), std::string::npos) << bad.output;
+    for (const fs::path& p : {in, out, synth}) fs::remove_all(p);
+}
+
 TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
     fs::path in = scratch("set_in"), out = scratch("set_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);

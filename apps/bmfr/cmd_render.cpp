@@ -21,6 +21,7 @@ struct RenderJob {
     std::optional<int> width, height, frames, referenceSpp, bounces;
     std::optional<uint32_t> seed;
     bool noReference = false, quiet = false, list = false, overwrite = false;
+    bool diffuseIndirect = false;
 };
 
 } // namespace
@@ -62,6 +63,7 @@ int runRender(const RenderJob& job) {
     if (job.noReference) d.referenceSpp = 0;
     if (job.bounces) d.bounces = *job.bounces;
     if (job.seed) d.seed = *job.seed;
+    if (job.diffuseIndirect) d.diffuseIndirectOnly = true;
     render::validate(d);
 
     gInterrupted = false;
@@ -121,6 +123,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--bounces", job->bounces,
                     "BSDF-sampled secondary rays per path (default 1, as the paper)");
     cmd->add_option("--seed", job->seed, "random seed");
+    cmd->add_flag("--diffuse-indirect-only", job->diffuseIndirect,
+                  "colour and reference hold only the diffuse indirect light, no emission (the "
+                  "signal WALR's paper filters: to compare filters on it)");
     cmd->add_option("--layout", job->layout, "manifest (sequence.json) or bmfr (original dataset)")
         ->default_val("manifest");
     cmd->add_flag("--list-presets", job->list, "print the preset names");

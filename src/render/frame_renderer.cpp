@@ -96,14 +96,15 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                     Vec3 sum{};
                     for (int s = 1; s <= referenceSpp; ++s) {
                         Rng rng(uint32_t(i), uint32_t(index), uint32_t(s), seed_);
-                        sum += integrator.sample(ph, rng, localRays).total;
+                        const PathContribution c = integrator.sample(ph, rng, localRays);
+                        sum += diffuseIndirectOnly_ ? c.diffuseIndirect : c.total;
                     }
                     store3(out.reference.data(), i, sum / float(referenceSpp));
                     continue;
                 }
                 Rng rng(uint32_t(i), uint32_t(index), 0u, seed_);
                 PathContribution c = integrator.sample(ph, rng, localRays);
-                store3(out.color.data(), i, c.total);
+                store3(out.color.data(), i, diffuseIndirectOnly_ ? c.diffuseIndirect : c.total);
                 store3(out.aovs[1].second.data(), i, c.direct);
                 store3(out.aovs[2].second.data(), i, c.indirect);
                 store3(out.aovs[3].second.data(), i, c.diffuse);
@@ -118,7 +119,9 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 Vec3 p = ph.hit ? s.p : pose.position + skyDistance_ * dir;
                 store3(out.albedo.data(), i, ph.hit ? s.baseColor : Vec3{1, 1, 1});
                 store3(out.emission.data(), i,
-                       ph.hit ? s.emission : lights.environment().sky + lights.sunRadiance(dir));
+                       diffuseIndirectOnly_ ? Vec3{}
+                       : ph.hit             ? s.emission
+                                            : lights.environment().sky + lights.sunRadiance(dir));
                 store3(out.normal.data(), i, ph.hit ? s.ns : -1.0f * dir);
                 store3(out.position.data(), i, p);
                 out.extras[0].data()[i] = ph.hit ? float(s.material) : -1.0f;

@@ -45,6 +45,9 @@ class FrameRenderer {
         accel_ = &accel;
     }
 
+    /// Colour and reference hold only the diffuse indirect light (SceneDescription).
+    void setDiffuseIndirectOnly(bool on) { diffuseIndirectOnly_ = on; }
+
     /// The world-to-clip matrix render() uses for `pose`.
     Mat4 viewProjectionOf(const CameraPose& pose) const;
 
@@ -57,6 +60,7 @@ class FrameRenderer {
     const RayAccel* accel_;
     int width_, height_, bounces_;
     uint32_t seed_;
+    bool diffuseIndirectOnly_ = false;
     float zNear_, zFar_, skyDistance_;
 };
 

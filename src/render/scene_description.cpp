@@ -152,6 +152,7 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         requireKnownKeys(j,
                          {"mesh", "width", "height", "frames", "reference_spp", "bounces", "seed",
                           "jitter", "roughness_override", "sky", "sun", "lights", "camera",
+                          "diffuse_indirect_only",
                           "animations", "gltf_animation"},
                          where);
         d.mesh = j.at("mesh").get<std::string>();
@@ -165,6 +166,7 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         d.bounces = int(integerField(j, "bounces", 0, 64, d.bounces, where));
         d.seed = uint32_t(integerField(j, "seed", 0, 4294967295LL, d.seed, where));
         d.jitter = j.value("jitter", d.jitter);
+        d.diffuseIndirectOnly = j.value("diffuse_indirect_only", d.diffuseIndirectOnly);
         if (j.contains("sky")) {
             requireKnownKeys(j["sky"], {"radiance"}, "scene description 'sky'");
             d.environment.sky = vec3(j["sky"].at("radiance"), "sky.radiance");

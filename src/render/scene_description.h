@@ -27,6 +27,9 @@ struct SceneDescription {
     int bounces = 1;         ///< BSDF-sampled secondary rays per path; the paper uses 1
     uint32_t seed = 1;
     bool jitter = true; ///< per-frame sub-pixel offsets (Halton 2,3)
+    /// The colour and reference hold only the indirect light through the primary hit's diffuse
+    /// lobe (the signal WALR's paper filters), with no emission: for comparing filters on it.
+    bool diffuseIndirectOnly = false;
     Environment environment;
     std::vector<QuadLightSpec> quadLights;
     std::vector<CameraKey> cameraKeys;

@@ -59,6 +59,7 @@ std::string renderFingerprint(const SceneDescription& d, const std::string& layo
                          fs::last_write_time(d.mesh, ec).time_since_epoch().count());
     s += fmt::format("{}x{};{};{};{};{};{};", d.width, d.height, d.referenceSpp, d.bounces, d.seed,
                      d.jitter, d.roughnessOverride);
+    if (d.diffuseIndirectOnly) s += "diffuse-indirect;";
     add(s, d.environment.sky);
     add(s, d.environment.sun.direction);
     add(s, d.environment.sun.irradiance);
@@ -129,6 +130,7 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     RayAccel accel(scene);
     report.loadSeconds = clock.elapsed() / 1000.0;
     FrameRenderer renderer(scene, accel, d.width, d.height, d.bounces, d.seed);
+    renderer.setDiffuseIndirectOnly(d.diffuseIndirectOnly);
     // Moving objects: each frame traces its own posed copy, with its own BVH.
     Scene posed;
     if (animator.animated()) posed = scene;

@@ -39,7 +39,7 @@ def frame_args(fr):
     return (fr["color"], fr["albedo"], fr["normal"], fr["position"], fr["view_projection"])
 
 
-@pytest.mark.parametrize("name,extra", [("bmfr", []), ("svgf", []),
+@pytest.mark.parametrize("name,extra", [("bmfr", []), ("svgf", []), ("walr", []),
                                          ("bmfr", ["--block-size", 16, "--taa", "false"]),
                                          ("bmfr", ["--features", "1,n.x,n.y,n.z,extra0"])])
 def test_same_bits_as_the_cli(sequence, tmp_path, name, extra):
