@@ -162,6 +162,14 @@ TEST(Walr, W4OutputIsLinearInTheSignal) {
         if (ra.out[k] <= 0 || rb.out[k] <= 0) continue; // the >= 0 clamp is not linear
         ASSERT_NEAR(rc.out[k], 2.0f * ra.out[k] + 3.0f * rb.out[k], 2e-4f) << k;
     }
+    // An affine remap of the features ([0, 1] to [-1, 1], as the paper allows either) changes
+    // nothing while no pivot clamp fires.
+    Field d = a;
+    for (float& v : d.feat) v = 2.0f * v - 1.0f;
+    const WalrRun rd = runWalr(d, d.guide(), 3);
+    for (size_t k = 0; k < ra.out.size(); ++k) {
+        if (ra.out[k] > 0) ASSERT_NEAR(rd.out[k], ra.out[k], 2e-4f) << k;
+    }
 }
 
 // W5: with every weight 1, T = 4 averages each pixel of the 81x81 window exactly once.
@@ -469,6 +477,11 @@ TEST(Walr, DiffuseIndirectSignalAddsTheRestBackUnfiltered) {
     for (float& v : f.diffuseIndirect.pixels) v = 0.25f;
     const ImageView out = d.denoise(f.input());
     for (long k = 0; k < 3L * w * h; ++k) ASSERT_NEAR(out.data[k], f.color.pixels[size_t(k)], 1e-5f);
+    // A non-finite value in the buffer is counted and replaced, never passed on.
+    f.diffuseIndirect.pixels[7] = NAN;
+    const ImageView poisoned = d.denoise(f.input());
+    EXPECT_EQ(d.lastStats().nonFiniteInputs, 1);
+    for (long k = 0; k < 3L * w * h; ++k) ASSERT_TRUE(std::isfinite(poisoned.data[k])) << k;
     s.colorIsDemodulated = true;
     EXPECT_NE(errorOf([&] { WalrDenoiser bad(s); }).find("colorIsDemodulated"), std::string::npos);
 }

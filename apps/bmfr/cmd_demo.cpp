@@ -48,7 +48,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             fmt::print(
                 "rendered {} frames: {:.3f} s per 1-spp frame, {:.2f} s per reference frame\n\n",
                 r.rendered, r.inputSeconds / r.rendered, r.referenceSeconds / r.rendered);
-        // BMFR and two ablations, as the paper compares them, then the comparison report.
+        // BMFR and two ablations, as the paper compares them, SVGF and WALR, then the report.
         // Where objects move, also BMFR by the camera path alone (the paper's reprojection).
         struct Variant {
             const char* name;
@@ -61,7 +61,8 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             {"bmfr", "denoised", {}, "bmfr"},
             {"accumulation only", "accumulation_only", {"fitting"}, "bmfr"},
             {"bmfr without TAA", "bmfr_no_taa", {"taa"}, "bmfr"},
-            {"svgf", "svgf", {}, "svgf"}};
+            {"svgf", "svgf", {}, "svgf"},
+            {"walr", "walr", {}, "walr"}};
         if (!d.animations.empty() || d.gltfAnimationFps > 0)
             variants.push_back({"bmfr camera path", "bmfr_camera_path", {}, "bmfr", false});
         ComparisonOptions eval;
