@@ -168,7 +168,8 @@ TEST(Walr, W4OutputIsLinearInTheSignal) {
     for (float& v : d.feat) v = 2.0f * v - 1.0f;
     const WalrRun rd = runWalr(d, d.guide(), 3);
     for (size_t k = 0; k < ra.out.size(); ++k) {
-        if (ra.out[k] > 0) ASSERT_NEAR(rd.out[k], ra.out[k], 2e-4f) << k;
+        if (ra.out[k] <= 0) continue;
+        ASSERT_NEAR(rd.out[k], ra.out[k], 2e-4f) << k;
     }
 }
 
