@@ -170,19 +170,24 @@ def test_read_sequence_errors_and_exr_round_trip(sequence, tmp_path):
     assert issubclass(bmfr.Error, ValueError)
 
 
-def test_motion_vectors_give_the_cli_bits_on_moving_objects(tmp_path):
+@pytest.mark.parametrize("name,settings", [("bmfr", {}),
+                                           ("walr", {"walr_signal": "diffuse-indirect"})])
+def test_motion_vectors_give_the_cli_bits_on_moving_objects(tmp_path, name, settings):
     seq_dir = tmp_path / "objects"
     cli("render", "-s", "cornell-objects", "--width", 40, "--height", 30, "--frames", 4,
         "--no-reference", "-q", "-o", seq_dir)
-    cli("denoise", seq_dir, "-o", tmp_path / "cli", "--no-png", "-q")
+    flags = [a for k, v in settings.items() for a in ("--" + k.replace("_", "-"), v)]
+    cli("denoise", seq_dir, "-o", tmp_path / "cli", "--no-png", "-q", "--filter", name, *flags)
     seq = bmfr.read_sequence(str(seq_dir))
-    f = bmfr.Filter("bmfr", **sequence_settings(seq.info))
+    f = bmfr.Filter(name, **sequence_settings(seq.info), **settings)
     for fr in seq:
-        assert fr["motion"].shape == (30, 40, 2) and fr["previous_position"].shape == (30, 40, 3)
+        # Motion carries the depth offset as its third channel.
+        assert fr["motion"].shape == (30, 40, 3) and fr["previous_position"].shape == (30, 40, 3)
         out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"),
                         extras=fr["extras"], motion=fr["motion"],
                         previous_position=fr["previous_position"],
-                        previous_normal=fr["previous_normal"], reset=fr["reset"])
+                        previous_normal=fr["previous_normal"], reset=fr["reset"],
+                        diffuse_indirect=fr["diffuse_indirect"])
         expected = bmfr.read_exr(str(tmp_path / "cli" / f"denoised_{fr['index']:04d}.exr"))
         assert np.array_equal(out, expected), f"frame {fr['index']} differs from the CLI"
     with pytest.raises(ValueError, match=r"motion: shape \(30, 40, 1\), expected \(height, "
