@@ -14,28 +14,44 @@ BMFR_HD void catmullRomWeights(float f, float w[4]) {
     w[3] = f * f * (-0.5f + 0.5f * f);
 }
 
-/// The 3-channel image `img` (packed, width x height) sampled at continuous pixel `p` (integers
-/// are pixel centres), taps clamped to the image's edge. Catmull-Rom overshoots next to steps,
-/// so the result is clamped to >= 0 (the filtered signals are radiance).
-BMFR_HD Vec3 sampleCatmullRom(const float* img, int width, int height, Vec2 p) {
+/// The 3-channel images `a` and `b` (packed, width x height) sampled at continuous pixel `p`
+/// (integers are pixel centres) with the same weights, taps clamped to the image's edge.
+/// Catmull-Rom overshoots next to steps, so the results are clamped to >= 0 (the filtered
+/// signals are radiance).
+BMFR_HD void sampleCatmullRom2(const float* a, const float* b, int width, int height, Vec2 p,
+                               Vec3& outA, Vec3& outB) {
     const float bx = std::floor(p.x), by = std::floor(p.y);
     float wx[4], wy[4];
     catmullRomWeights(p.x - bx, wx);
     catmullRomWeights(p.y - by, wy);
     const int x0 = int(bx) - 1, y0 = int(by) - 1;
-    Vec3 sum{};
+    int xs[4];
+    for (int i = 0; i < 4; ++i) {
+        const int x = x0 + i;
+        xs[i] = x < 0 ? 0 : (x >= width ? width - 1 : x);
+    }
+    Vec3 sumA{}, sumB{};
     for (int j = 0; j < 4; ++j) {
         int y = y0 + j;
         y = y < 0 ? 0 : (y >= height ? height - 1 : y);
-        Vec3 row{};
+        const long row = long(y) * width;
+        Vec3 rowA{}, rowB{};
         for (int i = 0; i < 4; ++i) {
-            int x = x0 + i;
-            x = x < 0 ? 0 : (x >= width ? width - 1 : x);
-            row += wx[i] * load3(img, long(y) * width + x);
+            rowA += wx[i] * load3(a, row + xs[i]);
+            if (b) rowB += wx[i] * load3(b, row + xs[i]);
         }
-        sum += wy[j] * row;
+        sumA += wy[j] * rowA;
+        sumB += wy[j] * rowB;
     }
-    return vmax(sum, Vec3{0, 0, 0});
+    outA = vmax(sumA, Vec3{0, 0, 0});
+    outB = vmax(sumB, Vec3{0, 0, 0});
+}
+
+/// sampleCatmullRom2 of one image.
+BMFR_HD Vec3 sampleCatmullRom(const float* img, int width, int height, Vec2 p) {
+    Vec3 v, unused;
+    sampleCatmullRom2(img, nullptr, width, height, p, v, unused);
+    return v;
 }
 
 } // namespace bmfr

@@ -125,9 +125,9 @@ BMFR_HD void walrAccumulatePixel(const WalrFrame& f, int x, int y, float* averag
     uint8_t n = 1;
     if (keep) {
         const float samples = float(f.prevCount[j]);
-        const Vec3 h = sampleCatmullRom(f.prevPre, f.width, f.height, pp);
+        Vec3 h;
+        sampleCatmullRom2(f.prevPre, f.prevPost, f.width, f.height, pp, h, post);
         acc = lerp(h, y3, firstBlendWeight(samples, f.preAlpha));
-        post = sampleCatmullRom(f.prevPost, f.width, f.height, pp);
         n = uint8_t(samples < 255.0f ? samples + 1.0f : 255.0f);
     }
     store3(f.pre, i, acc);
