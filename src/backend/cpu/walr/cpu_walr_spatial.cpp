@@ -8,9 +8,11 @@ namespace bmfr::cpu {
 using namespace simd;
 
 void EdgePlanes::fill(ThreadPool& pool, const EdgeGuide& g) {
-    rowStride = g.width + 2 * kPad;
-    planeSize = rowStride * g.height;
-    planes.assign(size_t(7 * planeSize), 0.0f);
+    // The seven planes' rows interleaved (row y of plane k at (7 y + k) * planeSize): a trace
+    // step's three position loads then fall within one small stretch of memory.
+    planeSize = g.width + 2 * kPad;
+    rowStride = 7 * planeSize;
+    planes.assign(size_t(rowStride * g.height), 0.0f);
     blocksPerRow = (g.width + 7) / 8;
     tracedMin.resize(size_t(64 * blocksPerRow * g.height));
     tracedEdge.resize(tracedMin.size());

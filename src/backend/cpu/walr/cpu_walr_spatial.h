@@ -19,7 +19,9 @@ struct EdgePlanes {
     std::vector<float> planes;
     std::vector<float> tracedMin; ///< [row][block of 8 pixels][direction][lane]
     std::vector<int32_t> tracedEdge;
-    long rowStride = 0, planeSize = 0, blocksPerRow = 0;
+    long rowStride = 0; ///< floats from one row of a plane to the next
+    long planeSize = 0; ///< floats from a row of one plane to the same row of the next
+    long blocksPerRow = 0;
     const float* plane(int k) const { return planes.data() + k * planeSize + kPad; }
     void fill(ThreadPool& pool, const EdgeGuide& g);
 };
