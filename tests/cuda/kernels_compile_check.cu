@@ -4,6 +4,8 @@
 #include "filters/bmfr/accumulation_kernels.h"
 #include "filters/bmfr/fitting_kernel.h"
 #include "filters/svgf/svgf_kernels.h"
+#include "filters/walr/refwlr.h"
+#include "filters/walr/walr_temporal_kernels.h"
 #include "temporal/taa.h"
 
 namespace bmfr {
@@ -37,5 +39,15 @@ __global__ void svgf(SvgfFrame f, AtrousLevel l, SvgfSettings s, float* filtered
     svgfDepthGradientPixel(f, threadIdx.x, 0);
     svgfVariancePixel(f, s, threadIdx.x, 0, filtered, var);
     svgfAtrousPixel(l, s, threadIdx.x, 0);
+}
+__global__ void walr(WalrFrame f, EdgeGuide g, WalrLevel l, WalrPost p, float* out) {
+    int64_t bad = 0;
+    const int x = threadIdx.x, y = blockIdx.x;
+    walrInputPixel(f, long(y) * f.width + x, bad);
+    walrAccumulatePixel(f, x, y, out, l.layout);
+    walrAtrousPixel(g, l, x, y);
+    store3(out, x, walrSolvePixel(l.out, l.layout, x, {0.5f, 0.5f}, 1e-4f));
+    store3(out, x, refwlrPixel(g, out, out, 4, 1e-4, x, y));
+    walrPostPixel(p, x, y);
 }
 } // namespace bmfr
