@@ -1,22 +1,14 @@
 // The interface a backend implements for SVGF, and the host buffers both host backends use.
 #pragma once
 #include "core/image.h"
-#include "core/parallel.h"
+#include "filters/filter_core.h"
 #include "filters/svgf/svgf_kernels.h"
-#include "temporal/history.h"
 #include <bmfr/filters/svgf_filter.h>
 #include <memory>
 
 namespace bmfr {
 
-/// Inputs of one frame's passes.
-struct SvgfPassContext {
-    const SvgfSettings& settings;
-    const InputPlanes& input;
-    const FrameInput& frame; ///< for the camera
-    const TemporalHistory& history;
-    ThreadPool& pool;
-};
+using SvgfPassContext = PassContext<SvgfSettings>;
 
 /// SVGF's per-pixel buffers in host memory: the history (double-buffered) and this frame's.
 struct SvgfBuffers {

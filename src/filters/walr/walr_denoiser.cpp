@@ -2,22 +2,13 @@
 #include "filters/filter_entry.h"
 #include "filters/walr/walr_passes.h"
 #include "filters/walr/walr_settings_table.h"
-#include "temporal/frame_checks.h"
-#include "temporal/input_staging.h"
 #include <bmfr/error.h>
 
 namespace bmfr {
 
-struct __attribute__((visibility("hidden"))) WalrDenoiser::Impl {
-    WalrSettings settings;
-    std::unique_ptr<WalrPasses> passes;
-    ThreadPool pool;
-    TemporalHistory history;
-    InputStaging staging;
-    FrameStats stats;
-    bool debug = false;
-    explicit Impl(const WalrSettings& s)
-        : settings(s), passes(makeWalrPasses(s.backend)), pool(s.threads) {}
+struct __attribute__((visibility("hidden"))) WalrDenoiser::Impl
+    : FilterCore<WalrSettings, WalrPasses> {
+    explicit Impl(const WalrSettings& s) : FilterCore(s, makeWalrPasses(s.backend)) {}
 };
 
 WalrDenoiser::WalrDenoiser(const WalrSettings& s) {
@@ -35,25 +26,16 @@ const FrameStats& WalrDenoiser::lastStats() const {
     return impl_->stats;
 }
 DebugBuffers WalrDenoiser::debug() const {
-    if (!impl_->debug || impl_->history.width == 0) return {};
-    return impl_->passes->debug(impl_->history.cur);
+    return impl_->debugBuffers();
 }
 
 ImageView WalrDenoiser::denoise(const FrameInput& frame) {
-    Impl& m = *impl_;
-    checkFrameInput(frame, 0);
-    if (m.settings.signal == WalrSignal::DiffuseIndirect && !frame.diffuseIndirect.data)
+    if (impl_->settings.signal == WalrSignal::DiffuseIndirect && !frame.diffuseIndirect.data)
         throw Error("input buffer 'diffuseIndirect' is missing: WALR's signal=diffuse-indirect "
                     "filters the demodulated diffuse indirect light (bmfr render writes it as "
                     "diffuse_indirect)");
-    TemporalHistory& h = m.history;
-    if (h.begin(frame)) m.passes->allocate(h.width, h.height);
-    const WalrPassContext ctx{m.settings, m.staging.stage(frame), frame, h, m.pool};
-    m.stats.times.clear();
-    m.stats.nonFiniteInputs = m.passes->run(ctx, m.stats.times);
-    if (m.debug) m.passes->captureDebug(h.cur);
-    h.end(frame);
-    return m.passes->output();
+    impl_->runFrame(frame);
+    return impl_->passes->output();
 }
 
 FilterEntry walrFilterEntry() {

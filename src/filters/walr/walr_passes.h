@@ -1,23 +1,15 @@
 // The interface a backend implements for WALR, and the host buffers both host backends use.
 #pragma once
 #include "core/image.h"
-#include "core/parallel.h"
+#include "filters/filter_core.h"
 #include "filters/walr/edge_tracing.h"
 #include "filters/walr/walr_temporal_kernels.h"
-#include "temporal/history.h"
 #include <bmfr/filters/walr_filter.h>
 #include <memory>
 
 namespace bmfr {
 
-/// Inputs of one frame's passes.
-struct WalrPassContext {
-    const WalrSettings& settings;
-    const InputPlanes& input;
-    const FrameInput& frame; ///< for the cameras
-    const TemporalHistory& history;
-    ThreadPool& pool;
-};
+using WalrPassContext = PassContext<WalrSettings>;
 
 /// WALR's per-pixel buffers in host memory: the history (double-buffered) and this frame's.
 struct WalrBuffers {

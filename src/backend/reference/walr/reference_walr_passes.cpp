@@ -52,31 +52,34 @@ void walrPostprocess(const WalrPassContext& ctx, WalrBuffers& b) {
     ctx.pool.forEachPixel(p.width, p.height, 4, [&](int x, int y) { walrPostPixel(p, x, y); });
 }
 
+int64_t HostWalrPipeline::run(const WalrPassContext& ctx, StageTimes& times) {
+    Stopwatch clock;
+    const int64_t bad = walrPreprocess(ctx, buffers);
+    times.add("preprocess", clock.lap());
+    if (ctx.settings.solver == WalrSolver::Refwlr)
+        walrSpatialRefwlr(ctx, buffers);
+    else
+        atrousAndSolve(ctx);
+    times.add("spatial", clock.lap());
+    walrPostprocess(ctx, buffers);
+    times.add("postprocess", clock.lap());
+    return bad;
+}
+
 namespace {
 
-class ReferenceWalrPasses final : public HostWalrPasses {
-  public:
-    int64_t run(const WalrPassContext& ctx, StageTimes& times) override {
+class ReferenceWalrPasses final : public HostWalrPipeline {
+  protected:
+    void atrousAndSolve(const WalrPassContext& ctx) override {
         const WalrSettings& s = ctx.settings;
-        Stopwatch clock;
-        const int64_t bad = walrPreprocess(ctx, buffers);
-        times.add("preprocess", clock.lap());
-        if (s.solver == WalrSolver::Refwlr) {
-            walrSpatialRefwlr(ctx, buffers);
-        } else {
-            const EdgeGuide g = buffers.guide(ctx);
-            for (int t = 0; t < s.iterations; ++t) {
-                const WalrLevel l = buffers.level(ctx, t, s.sampleWeights);
-                ctx.pool.forEachPixel(g.width, g.height, 2,
-                                      [&](int x, int y) { walrAtrousPixel(g, l, x, y); });
-            }
-            buffers.lastAverages = s.iterations % 2;
-            walrSolve(ctx, buffers);
+        const EdgeGuide g = buffers.guide(ctx);
+        for (int t = 0; t < s.iterations; ++t) {
+            const WalrLevel l = buffers.level(ctx, t, s.sampleWeights);
+            ctx.pool.forEachPixel(g.width, g.height, 2,
+                                  [&](int x, int y) { walrAtrousPixel(g, l, x, y); });
         }
-        times.add("spatial", clock.lap());
-        walrPostprocess(ctx, buffers);
-        times.add("postprocess", clock.lap());
-        return bad;
+        buffers.lastAverages = s.iterations % 2;
+        walrSolve(ctx, buffers);
     }
 };
 

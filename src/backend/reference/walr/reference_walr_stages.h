@@ -14,4 +14,15 @@ void walrSolve(const WalrPassContext& ctx, WalrBuffers& b);
 /// Pass 3: the variance-clipped post blend and the composition into b.output.
 void walrPostprocess(const WalrPassContext& ctx, WalrBuffers& b);
 
+/// A host backend's WALR: these stages, timed, around the backend's own a-trous iterations and
+/// solve (REFWLR when the settings ask for it).
+class HostWalrPipeline : public HostWalrPasses {
+  public:
+    int64_t run(const WalrPassContext& ctx, StageTimes& times) final;
+
+  protected:
+    /// The a-trous iterations from b.averages[0] and the solve into buffers.spatial.
+    virtual void atrousAndSolve(const WalrPassContext& ctx) = 0;
+};
+
 } // namespace bmfr::reference
