@@ -185,16 +185,18 @@ TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
 TEST(Cli, MovingObjectsRenderWithMotionAndDenoiseSaysHowItReprojects) {
     fs::path in = scratch("objects_in"), out = scratch("objects_out"), cam = scratch("objects_cam");
     ASSERT_EQ(run("render -s cornell-objects --width 40 --height 30 --frames 3 --no-reference -q "
-                  "-o " + in.string())
+                  "-o " +
+                  in.string())
                   .code,
               0);
-    for (const char* f : {"motion_0002.exr", "previous_position_0002.exr",
-                          "previous_normal_0002.exr"})
+    for (const char* f :
+         {"motion_0002.exr", "previous_position_0002.exr", "previous_normal_0002.exr"})
         EXPECT_TRUE(fs::exists(in / f)) << f;
     Result with = run("denoise " + in.string() + " -o " + out.string() + " --no-png");
     ASSERT_EQ(with.code, 0) << with.output;
     EXPECT_NE(with.output.find("reprojection: motion vectors"), std::string::npos) << with.output;
-    Result without = run("denoise " + in.string() + " -o " + cam.string() + " --no-png --no-motion");
+    Result without =
+        run("denoise " + in.string() + " -o " + cam.string() + " --no-png --no-motion");
     ASSERT_EQ(without.code, 0) << without.output;
     EXPECT_NE(without.output.find("motion vectors ignored: --no-motion"), std::string::npos);
     const bmfr::ImageF a = bmfr::readExr((out / "denoised_0002.exr").string(), 3),
@@ -209,7 +211,8 @@ TEST(Cli, MovingObjectsRenderWithMotionAndDenoiseSaysHowItReprojects) {
 TEST(Cli, WalrFiltersTheColourOrTheRenderedDiffuseIndirectLight) {
     fs::path in = scratch("walr_in"), out = scratch("walr_out"), synth = scratch("walr_synth");
     ASSERT_EQ(run("render -s cornell-moving --width 40 --height 30 --frames 2 --no-reference -q "
-                  "-o " + in.string())
+                  "-o " +
+                  in.string())
                   .code,
               0);
     EXPECT_TRUE(fs::exists(in / "diffuse_indirect_0001.exr"));

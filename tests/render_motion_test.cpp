@@ -102,8 +102,8 @@ TEST(RenderMotion, ObjectsCarryTheirPointsAndTheVectorsFindThemInThePreviousFram
             const Vec2 prev{float(x) + now.motion.data()[3 * i],
                             float(y) + now.motion.data()[3 * i + 1]};
             // The depth offset: the point's view depth by the previous camera minus now.
-            const float offset = transformPoint(was.viewProjection, pp).w -
-                                 transformPoint(now.viewProjection, p).w;
+            const float offset =
+                transformPoint(was.viewProjection, pp).w - transformPoint(now.viewProjection, p).w;
             ASSERT_NEAR(now.motion.data()[3 * i + 2], offset, 1e-4f * (1 + std::fabs(offset)));
             const BilinearFootprint fp = bilinearFootprint(prev);
             if (fp.x0 < 0 || fp.y0 < 0 || fp.x0 + 1 >= w || fp.y0 + 1 >= h) continue;

@@ -93,8 +93,9 @@ WalrRun runWalr(const Field& f, const EdgeGuide& g, int iterations, bool keepW =
         if (!eightWide)
             store3(r.out.data(), i,
                    walrSolvePixel(a.data(), layout, i, {f.feat[2 * i], f.feat[2 * i + 1]}, eps));
-        store3(r.means.data(), i,
-               {a[size_t(layout.at(5, i))], a[size_t(layout.at(8, i))], a[size_t(layout.at(11, i))]});
+        store3(
+            r.means.data(), i,
+            {a[size_t(layout.at(5, i))], a[size_t(layout.at(8, i))], a[size_t(layout.at(11, i))]});
     }
     return r;
 }
@@ -126,7 +127,8 @@ TEST(Walr, W1ReproducesASignalLinearInTheFeatures) {
     for (bool keepW : {false, true}) {
         const WalrRun r = runWalr(f, f.guide(true, true, 0.0f, 0.5f), 4, keepW);
         float worst = 0;
-        for (size_t k = 0; k < r.out.size(); ++k) worst = std::fmax(worst, std::fabs(r.out[k] - f.sig[k]));
+        for (size_t k = 0; k < r.out.size(); ++k)
+            worst = std::fmax(worst, std::fabs(r.out[k] - f.sig[k]));
         EXPECT_LT(worst, 2e-4f) << "keepW " << keepW;
     }
 }
@@ -139,7 +141,8 @@ TEST(Walr, W2W3FlatNormalsGiveTheEdgeAwareMean) {
     WalrRun r = runWalr(f, f.guide(), 4);
     for (float v : r.out) ASSERT_NEAR(v, 2.5f, 2e-5f);
     for (long i = 0; i < f.size(); ++i)
-        store3(f.sig.data(), i, {rnd(uint32_t(i), 1), rnd(uint32_t(i), 2), 3 * rnd(uint32_t(i), 3)});
+        store3(f.sig.data(), i,
+               {rnd(uint32_t(i), 1), rnd(uint32_t(i), 2), 3 * rnd(uint32_t(i), 3)});
     r = runWalr(f, f.guide(), 4);
     for (size_t k = 0; k < r.out.size(); ++k) ASSERT_NEAR(r.out[k], r.means[k], 2e-5f) << k;
 }
@@ -269,8 +272,8 @@ TEST(Walr, W8ClampedCholeskySolvesTheRidgedSystem) {
             xx += x * x.transpose() / samples;
         }
         const double eps = 1e-4;
-        const Cholesky3<double> c = choleskyClamped<double>(xx(0, 1), xx(0, 2), xx(1, 1),
-                                                            xx(1, 2), xx(2, 2), eps);
+        const Cholesky3<double> c =
+            choleskyClamped<double>(xx(0, 1), xx(0, 2), xx(1, 1), xx(1, 2), xx(2, 2), eps);
         // delta from the pivots as the algorithm meets them.
         const double p1 = xx(1, 1) - xx(0, 1) * xx(0, 1);
         const double d1 = std::max(0.0, eps - p1);
@@ -343,7 +346,8 @@ TEST(Walr, W11OctahedralFeaturesAreContinuousOverVisibleNormals) {
         }
     EXPECT_LT(worst, 3.0f); // a fold would give a jump, far above any Lipschitz bound
     // Back-facing normals are flipped towards the camera first.
-    const Vec2 a = walrNormalFeatures({0, 0, 1}, p, view), b = walrNormalFeatures({0, 0, -1}, p, view);
+    const Vec2 a = walrNormalFeatures({0, 0, 1}, p, view),
+               b = walrNormalFeatures({0, 0, -1}, p, view);
     EXPECT_EQ(a.x, b.x);
     EXPECT_EQ(a.y, b.y);
 }
@@ -366,7 +370,8 @@ TEST(Walr, EightWideIterationsMatchTheScalarKernelBitForBit) {
             const WalrRun a = runWalr(f, g, 4, keepW, 1e-4f, 3, false);
             const WalrRun b = runWalr(f, g, 4, keepW, 1e-4f, 3, true);
             for (size_t k = 0; k < a.means.size(); ++k) {
-                ASSERT_EQ(a.means[k], b.means[k]) << k << " keepW " << keepW << " tracing " << tracing;
+                ASSERT_EQ(a.means[k], b.means[k])
+                    << k << " keepW " << keepW << " tracing " << tracing;
                 ASSERT_EQ(a.out[k], b.out[k]) << k << " keepW " << keepW << " tracing " << tracing;
             }
         }
@@ -477,7 +482,8 @@ TEST(Walr, DiffuseIndirectSignalAddsTheRestBackUnfiltered) {
     f.diffuseIndirect = ImageF(w, h, 3);
     for (float& v : f.diffuseIndirect.pixels) v = 0.25f;
     const ImageView out = d.denoise(f.input());
-    for (long k = 0; k < 3L * w * h; ++k) ASSERT_NEAR(out.data[k], f.color.pixels[size_t(k)], 1e-5f);
+    for (long k = 0; k < 3L * w * h; ++k)
+        ASSERT_NEAR(out.data[k], f.color.pixels[size_t(k)], 1e-5f);
     // A non-finite value in the buffer is counted and replaced, never passed on.
     f.diffuseIndirect.pixels[7] = NAN;
     const ImageView poisoned = d.denoise(f.input());
@@ -515,11 +521,17 @@ TEST(Walr, PathTracedCornellErrorIsAtMostAQuarterOfNoisy) {
 }
 
 TEST(Walr, SettingsAreChecked) {
-    EXPECT_NE(errorOf([] { makeFilter("walr", {{"iterations", "6"}}); }).find("iterations"),
+    EXPECT_NE(errorOf([] {
+                  makeFilter("walr", {{"iterations", "6"}});
+              }).find("iterations"),
               std::string::npos);
-    EXPECT_NE(errorOf([] { makeFilter("walr", {{"edgeNear", "0.05"}}); }).find("edgeFar"),
+    EXPECT_NE(errorOf([] {
+                  makeFilter("walr", {{"edgeNear", "0.05"}});
+              }).find("edgeFar"),
               std::string::npos);
-    EXPECT_NE(errorOf([] { makeFilter("walr", {{"solver", "qr"}}); }).find("walr, refwlr"),
+    EXPECT_NE(errorOf([] {
+                  makeFilter("walr", {{"solver", "qr"}});
+              }).find("walr, refwlr"),
               std::string::npos);
 }
 

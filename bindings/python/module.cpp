@@ -227,7 +227,8 @@ class SequenceIterator {
 PYBIND11_MODULE(bmfr, m) {
     using namespace bmfr;
     using namespace bmfr::python;
-    m.doc() = "bmfr: real-time reconstruction of 1-spp path-traced frame sequences (BMFR, SVGF, WALR)";
+    m.doc() =
+        "bmfr: real-time reconstruction of 1-spp path-traced frame sequences (BMFR, SVGF, WALR)";
     m.attr("__version__") = BMFR_VERSION;
     // Every library error (bad input, unreadable files) is a bmfr.Error, a ValueError.
     py::register_exception<Error>(m, "Error", PyExc_ValueError);

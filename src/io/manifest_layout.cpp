@@ -38,8 +38,9 @@ class ManifestReader : public SequenceReader {
             for (size_t k = 0; k < manifest_.at("frames").size(); ++k)
                 requireKnownKeys(manifest_["frames"][k],
                                  {"color", "albedo", "normal", "position", "reference", "emission",
-                                  "motion", "previous_position", "previous_normal", "diffuse_indirect", "reset",
-                                  "extras", "aovs", "view_projection", "jitter"},
+                                  "motion", "previous_position", "previous_normal",
+                                  "diffuse_indirect", "reset", "extras", "aovs", "view_projection",
+                                  "jitter"},
                                  mp.string() + " frame " + std::to_string(k));
             if (!manifest_.contains("width") || !manifest_.contains("height"))
                 throw Error(mp.string() + ": needs \"width\" and \"height\"");
@@ -265,8 +266,7 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
     if (f.previousPosition.width)
         j["previous_position"] = put("previous_position", f.previousPosition);
     if (f.previousNormal.width) j["previous_normal"] = put("previous_normal", f.previousNormal);
-    if (f.diffuseIndirect.width)
-        j["diffuse_indirect"] = put("diffuse_indirect", f.diffuseIndirect);
+    if (f.diffuseIndirect.width) j["diffuse_indirect"] = put("diffuse_indirect", f.diffuseIndirect);
     if (f.reset) j["reset"] = true;
     if (!f.extras.empty()) {
         j["extras"] = json::array();

@@ -148,10 +148,10 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 out.motion.data()[3 * i] = prev.x - float(x);
                 out.motion.data()[3 * i + 1] = prev.y - float(y);
                 // The depth offset: view depth a frame ago minus now (WALR's depth test).
-                out.motion.data()[3 * i + 2] =
-                    hasPrevious ? dot(pp - previousPose.position, prevForward) -
-                                      out.aovs[0].second.data()[i]
-                                : 0.0f;
+                out.motion.data()[3 * i + 2] = hasPrevious
+                                                   ? dot(pp - previousPose.position, prevForward) -
+                                                         out.aovs[0].second.data()[i]
+                                                   : 0.0f;
             }
             rays += localRays;
         });

@@ -152,8 +152,7 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         requireKnownKeys(j,
                          {"mesh", "width", "height", "frames", "reference_spp", "bounces", "seed",
                           "jitter", "roughness_override", "sky", "sun", "lights", "camera",
-                          "diffuse_indirect_only",
-                          "animations", "gltf_animation"},
+                          "diffuse_indirect_only", "animations", "gltf_animation"},
                          where);
         d.mesh = j.at("mesh").get<std::string>();
         if (d.mesh.rfind("builtin:", 0) != 0 && fs::path(d.mesh).is_relative())

@@ -16,7 +16,8 @@ const float* InputStaging::packed(const ImageView& v, int channels, std::vector<
         const float* row = v.data + long(y) * stride;
         float* dst = copy.data() + size_t(y) * size_t(v.width) * size_t(channels);
         for (int x = 0; x < v.width; ++x)
-            for (int c = 0; c < channels; ++c) dst[x * channels + c] = row[x * v.channels + first + c];
+            for (int c = 0; c < channels; ++c)
+                dst[x * channels + c] = row[x * v.channels + first + c];
     }
     return copy.data();
 }

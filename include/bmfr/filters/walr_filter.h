@@ -33,21 +33,21 @@ enum class WalrHistoryTest {
 /// the shared taa switches the postprocess.
 struct WalrSettings : TemporalSettings {
     WalrSettings() { taaBlendAlpha = 0.1f; }
-    WalrSignal signal = WalrSignal::Color;
-    WalrSolver solver = WalrSolver::Walr;
-    int iterations = 4;              ///< a-trous iterations T: tap spacing 3^t, window 3^T
-    bool edgeTracing = true;         ///< test every pixel on a tap's segment, not only its end
-    bool averageReplacement = true;  ///< a discarded tap takes an average before the edge
-    bool sampleWeights = false;      ///< keep the sample-count weights W (the paper drops them)
-    float edgeNear = 0.005f;         ///< plane distance where the weight starts to fall, x depth
-    float edgeFar = 0.02f;           ///< plane distance where the weight reaches 0, x depth
-    float pivotEpsilon = 1e-4f;      ///< Cholesky pivot floor of the two normal features
-    float preAlpha = 0.2f;           ///< preprocess minimum new-frame weight
-    float depthTolerance = 0.02f;    ///< depth test: relative view-depth difference
-    WalrHistoryTest historyTest = WalrHistoryTest::Depth;
-    bool motionDilation = true;      ///< take the motion of the nearest pixel in the 3x3
-    float varianceGamma = 1.0f;      ///< postprocess clip box: mean +- gamma standard deviations
-    uint32_t seed = 0;               ///< the hashed choices of average replacement
+    WalrSignal signal = WalrSignal::Color; ///< what is filtered
+    WalrSolver solver = WalrSolver::Walr;  ///< the spatial solver
+    int iterations = 4;                    ///< a-trous iterations T: tap spacing 3^t, window 3^T
+    bool edgeTracing = true;        ///< test every pixel on a tap's segment, not only its end
+    bool averageReplacement = true; ///< a discarded tap takes an average before the edge
+    bool sampleWeights = false;     ///< keep the sample-count weights W (the paper drops them)
+    float edgeNear = 0.005f;        ///< plane distance where the weight starts to fall, x depth
+    float edgeFar = 0.02f;          ///< plane distance where the weight reaches 0, x depth
+    float pivotEpsilon = 1e-4f;     ///< Cholesky pivot floor of the two normal features
+    float preAlpha = 0.2f;          ///< preprocess minimum new-frame weight
+    float depthTolerance = 0.02f;   ///< depth test: relative view-depth difference
+    WalrHistoryTest historyTest = WalrHistoryTest::Depth; ///< the preprocess's history test
+    bool motionDilation = true; ///< take the motion of the nearest pixel in the 3x3
+    float varianceGamma = 1.0f; ///< postprocess clip box: mean +- gamma standard deviations
+    uint32_t seed = 0;          ///< the hashed choices of average replacement
 };
 
 /// Throws bmfr::Error naming the first setting out of range.

@@ -9,14 +9,11 @@
 namespace bmfr {
 
 /// Lower-triangular C with C C^T = XX (+ the floors), XX_00 = 1.
-template <class T> struct Cholesky3 {
-    T c00 = 1, c10 = 0, c20 = 0, c11 = 1, c21 = 0, c22 = 1;
-};
+template <class T> struct Cholesky3 { T c00 = 1, c10 = 0, c20 = 0, c11 = 1, c21 = 0, c22 = 1; };
 
 /// Factorises [[1, m01, m02], [m01, m11, m12], [m02, m12, m22]] with the pivots of the two
 /// normal features floored at eps (the constant feature's pivot is 1).
-template <class T>
-BMFR_HD Cholesky3<T> choleskyClamped(T m01, T m02, T m11, T m12, T m22, T eps) {
+template <class T> BMFR_HD Cholesky3<T> choleskyClamped(T m01, T m02, T m11, T m12, T m22, T eps) {
     Cholesky3<T> c;
     c.c00 = 1;
     c.c10 = m01;

@@ -13,8 +13,7 @@ namespace bmfr {
 BMFR_HD float refwlrTracedWeight(const EdgeGuide& g, const EdgeCentre& c, int x, int y, int dx,
                                  int dy) {
     const int steps = std::abs(dx) > std::abs(dy) ? std::abs(dx) : std::abs(dy);
-    if (!g.tracing)
-        return edgeWeight(c, load3(g.position, long(y + dy) * g.width + x + dx));
+    if (!g.tracing) return edgeWeight(c, load3(g.position, long(y + dy) * g.width + x + dx));
     float m = 1.0f;
     for (int k = 1; k <= steps && m > 0.0f; ++k) {
         const int qx = x + int(std::floor(double(k) * dx / steps + 0.5));

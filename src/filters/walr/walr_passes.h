@@ -25,9 +25,9 @@ struct WalrBuffers {
     /// cache line: what the CPU backend reads per tap).
     ImageF averages[2];
     bool interleaved = false;
-    ImageF weights[2];  ///< the sample-count weights W, when kept
-    ImageF spatial;     ///< the spatial filter's output (3)
-    ImageF output;      ///< final radiance (3)
+    ImageF weights[2]; ///< the sample-count weights W, when kept
+    ImageF spatial;    ///< the spatial filter's output (3)
+    ImageF output;     ///< final radiance (3)
     int lastAverages = 0;
     ImageF countF, acceptF; ///< debug copies, sized on first use
 

@@ -102,10 +102,9 @@ BMFR_SIMD_CLONES void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
                     replacementHash(i + lane, l.frame, l.iteration, tap, l.seed), edge[lane]);
                 int unused = 0;
                 // Steps traced by an earlier iteration are traced again for this one lane.
-                out.weight[tap][lane] =
-                    kr >= first ? running[kr][lane]
-                                : tracedWeight(g, edgeCentre(g, i + lane), x + lane, y, ux, uy,
-                                               kr, unused);
+                out.weight[tap][lane] = kr >= first ? running[kr][lane]
+                                                    : tracedWeight(g, edgeCentre(g, i + lane),
+                                                                   x + lane, y, ux, uy, kr, unused);
                 out.steps[tap][lane] = kr;
             }
         }
@@ -169,8 +168,7 @@ BMFR_SIMD_CLONES void solveBlock(const float* averages, const float* features, f
 
 } // namespace
 
-void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e,
-                         const WalrLevel& l) {
+void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l) {
     pool.parallelFor(g.height, 2, [&](long y0, long y1) {
         BlockTaps taps;
         for (int y = int(y0); y < int(y1); ++y)
