@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Builds the tests and the CLI with AddressSanitizer and UndefinedBehaviorSanitizer into
-# build-asan/ and runs the suites that cover the readers, the writers, both filters on every
+# build-asan/ and runs the suites that cover the readers, the writers, every filter on every
 # backend and the command line (FILTER overrides the ctest regex; "." runs everything).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-filter=${1:-'Hardening|SequenceIo|EndToEnd|Conformance|Svgf|Accumulation|Reprojection|MotionVectors\.|RenderMotion\.|Cli|Householder|Multilayer'}
+filter=${1:-'Hardening|SequenceIo|EndToEnd|Conformance|Svgf|Walr\.|Accumulation|Reprojection|MotionVectors\.|RenderMotion\.|Cli|Householder|Multilayer'}
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 # -O1: the sanitizers need no more, and it halves the build on two cores.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" \
