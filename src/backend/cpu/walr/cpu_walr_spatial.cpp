@@ -169,20 +169,18 @@ BMFR_SIMD_CLONES void solveBlock(const float* averages, const float* features, f
 } // namespace
 
 void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l) {
-    // Down columns of blocks rather than along rows: a trace's vertical and diagonal steps then
-    // revisit the rows the blocks above just read, which stay in cache, instead of touching
-    // 2 x 3 x 3^t rows at once that a row-major order evicts before they come round again.
-    const int columns = (g.width + 7) / 8;
-    pool.parallelFor(columns, 1, [&](long c0, long c1) {
+    // Plain row order: columns of single blocks (so that vertical steps revisit cached rows)
+    // measured 1.5x slower, and bands cut into strips no faster; the trace is bound by its
+    // arithmetic, not by memory.
+    pool.parallelFor(g.height, 2, [&](long y0, long y1) {
         BlockTaps taps;
-        for (long c = c0; c < c1; ++c) {
-            const int x = int(8 * c), count = g.width - x < 8 ? g.width - x : 8;
-            for (int y = 0; y < g.height; ++y) {
+        for (int y = int(y0); y < int(y1); ++y)
+            for (int x = 0; x < g.width; x += 8) {
                 traceBlock(g, e, l, x, y, taps);
+                const int count = g.width - x < 8 ? g.width - x : 8;
                 for (int lane = 0; lane < count; ++lane)
                     gatherPixel(g, l, taps, lane, long(y) * g.width + x + lane);
             }
-        }
     });
 }
 
