@@ -520,6 +520,20 @@ TEST(Walr, PathTracedCornellErrorIsAtMostAQuarterOfNoisy) {
     EXPECT_LE(out, 0.25 * in) << "mean RMSE denoised " << out / 7 << " noisy " << in / 7;
 }
 
+TEST(Walr, IterationsByImageSizeKeepThePapersShareOfTheFrame) {
+    WalrSettings s;
+    EXPECT_EQ(walrIterations(s, 1920, 1080), 4); // the paper's own configuration
+    EXPECT_EQ(walrIterations(s, 1280, 720), 4);
+    EXPECT_EQ(walrIterations(s, 640, 360), 3);
+    EXPECT_EQ(walrIterations(s, 320, 240), 3);
+    EXPECT_EQ(walrIterations(s, 3840, 2160), 5);
+    EXPECT_EQ(walrIterations(s, 160, 120), 2);
+    EXPECT_EQ(walrIterations(s, 8, 8), 1);
+    EXPECT_EQ(walrIterations(s, 1080, 1920), 4); // portrait: the shorter side
+    s.iterations = 2;
+    EXPECT_EQ(walrIterations(s, 1920, 1080), 2);
+}
+
 TEST(Walr, SettingsAreChecked) {
     EXPECT_NE(errorOf([] {
                   makeFilter("walr", {{"iterations", "6"}});

@@ -35,7 +35,7 @@ struct WalrSettings : TemporalSettings {
     WalrSettings() { taaBlendAlpha = 0.1f; }
     WalrSignal signal = WalrSignal::Color; ///< what is filtered
     WalrSolver solver = WalrSolver::Walr;  ///< the spatial solver
-    int iterations = 4;                    ///< a-trous iterations T: tap spacing 3^t, window 3^T
+    int iterations = 0; ///< a-trous iterations T (tap spacing 3^t, window 3^T); 0 = by image size
     bool edgeTracing = true;        ///< test every pixel on a tap's segment, not only its end
     bool averageReplacement = true; ///< a discarded tap takes an average before the edge
     bool sampleWeights = false;     ///< keep the sample-count weights W (the paper drops them)
@@ -52,6 +52,12 @@ struct WalrSettings : TemporalSettings {
 
 /// Throws bmfr::Error naming the first setting out of range.
 BMFR_API void validate(const WalrSettings& settings);
+
+/// The iterations T used for a width x height frame: settings.iterations, or when it is 0 the
+/// T whose 3^T window is nearest the share of the frame that the paper's 80x80 is of a
+/// 1080-pixel frame, by the shorter side: 5 from 1896 pixels, 4 from 632 (720p, 1080p), 3 from
+/// 211 (240p to 480p), 2 from 71, else 1.
+BMFR_API int walrIterations(const WalrSettings& settings, int width, int height);
 
 class BMFR_API WalrDenoiser final : public Filter {
   public:

@@ -1,6 +1,8 @@
 #include "filters/walr/walr_settings_table.h"
 #include "temporal/temporal_settings_table.h"
+#include <algorithm>
 #include <bmfr/error.h>
+#include <cmath>
 
 namespace bmfr {
 
@@ -40,8 +42,10 @@ SettingsTable<S> ownSettings() {
          "walr (a-trous averages) or refwlr (the paper's direct regression over the whole "
          "window, its oracle: some 200x slower at T = 3, 10x more at T = 4)",
          enumField<WalrSolver, &S::solver>(kSolvers)},
-        {"iterations", "walr-iterations", "iterations", {1, 5},
-         "a-trous iterations T: taps at spacing 3^t, a window of 3^T pixels (4: 81x81)",
+        {"iterations", "walr-iterations", "iterations", {0, 5},
+         "a-trous iterations T: taps at spacing 3^t, a window of 3^T pixels (4: 81x81, the "
+         "paper's); 0 = by size: 3^T nearest 80/1080 of the shorter side, the paper's share "
+         "(4 at 720p and 1080p, 3 at 240p to 480p)",
          BMFR_FIELD(S, iterations)},
         {"edgeTracing", "walr-edge-tracing", "", {},
          "a tap's weight is the smallest along its segment, not only at its end",
@@ -87,6 +91,13 @@ SettingsTable<S> ownSettings() {
 const SettingsTable<WalrSettings>& walrSettingsTable() {
     static const SettingsTable<WalrSettings> table = withTemporalSettings(ownSettings());
     return table;
+}
+
+int walrIterations(const WalrSettings& s, int width, int height) {
+    if (s.iterations > 0) return s.iterations;
+    const double side = std::min(width, height) * 80.0 / 1080.0;
+    const int t = int(std::lround(std::log(std::max(side, 1.0)) / std::log(3.0)));
+    return std::clamp(t, 1, 5);
 }
 
 void validate(const WalrSettings& s) {

@@ -19,9 +19,10 @@ class CpuWalrPasses final : public reference::HostWalrPipeline {
         const WalrSettings& s = ctx.settings;
         const EdgeGuide g = buffers.guide(ctx);
         planes_.fill(ctx.pool, g);
-        for (int t = 0; t < s.iterations; ++t)
+        const int iterations = walrIterations(s, g.width, g.height);
+        for (int t = 0; t < iterations; ++t)
             walrAtrousIteration(ctx.pool, g, planes_, buffers.level(ctx, t, s.sampleWeights));
-        buffers.lastAverages = s.iterations % 2;
+        buffers.lastAverages = iterations % 2;
         walrSolveImage(ctx.pool, g.width, g.height, buffers.averages[buffers.lastAverages].data(),
                        buffers.features.data(), s.pivotEpsilon, buffers.spatial.data());
     }

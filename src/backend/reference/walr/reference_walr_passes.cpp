@@ -27,7 +27,8 @@ void walrSpatialRefwlr(const WalrPassContext& ctx, WalrBuffers& b) {
     const WalrSettings& s = ctx.settings;
     const EdgeGuide g = b.guide(ctx);
     int window = 1;
-    for (int t = 0; t < s.iterations; ++t) window *= 3;
+    const int iterations = walrIterations(s, g.width, g.height);
+    for (int t = 0; t < iterations; ++t) window *= 3;
     const float* pre = b.pre[ctx.history.cur].data();
     ctx.pool.forEachPixel(g.width, g.height, 1, [&](int x, int y) {
         store3(b.spatial.data(), long(y) * g.width + x,
@@ -73,12 +74,13 @@ class ReferenceWalrPasses final : public HostWalrPipeline {
     void atrousAndSolve(const WalrPassContext& ctx) override {
         const WalrSettings& s = ctx.settings;
         const EdgeGuide g = buffers.guide(ctx);
-        for (int t = 0; t < s.iterations; ++t) {
+        const int iterations = walrIterations(s, g.width, g.height);
+        for (int t = 0; t < iterations; ++t) {
             const WalrLevel l = buffers.level(ctx, t, s.sampleWeights);
             ctx.pool.forEachPixel(g.width, g.height, 2,
                                   [&](int x, int y) { walrAtrousPixel(g, l, x, y); });
         }
-        buffers.lastAverages = s.iterations % 2;
+        buffers.lastAverages = iterations % 2;
         walrSolve(ctx, buffers);
     }
 };
