@@ -15,8 +15,8 @@ BMFR_HD void catmullRomWeights(float f, float w[4]) {
 }
 
 /// The 3-channel images `a` and `b` (packed, width x height) sampled at continuous pixel `p`
-/// (integers are pixel centres) with the same weights, taps clamped to the image's edge.
-/// Catmull-Rom overshoots next to steps, so the results are clamped to >= 0 (the filtered
+/// (integers are pixel centres) with the same weights (b may be null), taps clamped to the image's
+/// edge. Catmull-Rom overshoots next to steps, so the results are clamped to >= 0 (the filtered
 /// signals are radiance).
 BMFR_HD void sampleCatmullRom2(const float* a, const float* b, int width, int height, Vec2 p,
                                Vec3& outA, Vec3& outB) {
@@ -45,13 +45,6 @@ BMFR_HD void sampleCatmullRom2(const float* a, const float* b, int width, int he
     }
     outA = vmax(sumA, Vec3{0, 0, 0});
     outB = vmax(sumB, Vec3{0, 0, 0});
-}
-
-/// sampleCatmullRom2 of one image.
-BMFR_HD Vec3 sampleCatmullRom(const float* img, int width, int height, Vec2 p) {
-    Vec3 v, unused;
-    sampleCatmullRom2(img, nullptr, width, height, p, v, unused);
-    return v;
 }
 
 } // namespace bmfr

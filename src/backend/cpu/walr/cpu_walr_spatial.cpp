@@ -12,7 +12,10 @@ void EdgePlanes::fill(ThreadPool& pool, const EdgeGuide& g) {
     // step's three position loads then fall within one small stretch of memory.
     planeSize = g.width + 2 * kPad;
     rowStride = 7 * planeSize;
-    planes.assign(size_t(rowStride * g.height), 0.0f);
+    // Zeroed once per size: every frame writes the whole interior, and the padding is only
+    // ever read by lanes whose result is masked.
+    if (planes.size() != size_t(rowStride * g.height))
+        planes.assign(size_t(rowStride * g.height), 0.0f);
     blocksPerRow = (g.width + 7) / 8;
     tracedMin.resize(size_t(64 * blocksPerRow * g.height));
     tracedEdge.resize(tracedMin.size());
