@@ -165,16 +165,16 @@ int runDenoise(const DenoiseJob& job) {
     report["median_ms"]["total"] = stages.totalMedian();
     if (info.hasReference) {
         std::ostringstream csv;
-        csv << "frame,rmse,psnr_db,ssim,flip,relmse,temporal_error,noisy_rmse,reference_temporal_"
-               "error\n";
-        auto f6 = [](double v) {
-            return std::isfinite(v) ? fmt::format("{:.6f}", v) : std::string();
-        };
-        for (size_t k = 0; k < scores.size(); ++k)
-            csv << first + int(k) << "," << f6(scores[k].rmse) << "," << f6(scores[k].psnr) << ","
-                << f6(scores[k].ssim) << "," << f6(scores[k].flip) << "," << f6(scores[k].relmse)
-                << "," << f6(scores[k].temporal) << "," << f6(noisyScores[k].rmse) << ","
-                << f6(referenceTemporal[k]) << "\n";
+        // The metric columns and keys of `bmfr eval`'s per_frame.csv, then the input's own.
+        csv << "frame";
+        for (const MetricInfo& m : metricList()) csv << "," << m.key;
+        csv << ",noisy_rmse,noisy_temporal_error,reference_temporal_error\n";
+        for (size_t k = 0; k < scores.size(); ++k) {
+            csv << first + int(k);
+            for (const MetricInfo& m : metricList()) csv << "," << csvNumber(metricValue(scores[k], m.key));
+            csv << "," << csvNumber(noisyScores[k].rmse) << "," << csvNumber(noisyScores[k].temporal)
+                << "," << csvNumber(referenceTemporal[k]) << "\n";
+        }
         writeFileAtomically((fs::path(job.output) / "scores.csv").string(), csv.str());
         const FrameScores m = meanScores(scores), nm = meanScores(noisyScores);
         double refTemporal = 0;
@@ -185,16 +185,11 @@ int runDenoise(const DenoiseJob& job) {
         auto num = [](double v) {
             return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
         };
-        report["scores"] = {{"rmse", num(m.rmse)},
-                            {"psnr_db", num(m.psnr)},
-                            {"ssim", num(m.ssim)},
-                            {"flip", num(m.flip)},
-                            {"relmse", num(m.relmse)},
-                            {"temporal_error", num(m.temporal)},
-                            {"noisy_rmse", num(nm.rmse)},
-                            {"noisy_temporal_error", num(nm.temporal)},
-                            {"reference_temporal_error", num(refTemporal)},
-                            {"color_space", "tone-mapped: clamp(x^(1/2.2), 0, 1); relmse linear"}};
+        for (const MetricInfo& k : metricList()) report["scores"][k.key] = num(metricValue(m, k.key));
+        report["scores"]["noisy_rmse"] = num(nm.rmse);
+        report["scores"]["noisy_temporal_error"] = num(nm.temporal);
+        report["scores"]["reference_temporal_error"] = num(refTemporal);
+        report["scores"]["color_space"] = "tone-mapped: clamp(x^(1/2.2), 0, 1); relmse linear";
         summary = fmt::format(
             "\nScores vs reference (mean over frames; tone-mapped x^(1/2.2), relMSE linear):\n"
             "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13}\n"

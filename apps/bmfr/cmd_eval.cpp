@@ -8,7 +8,10 @@
 
 namespace bmfr::app {
 
-int runEval(const ComparisonOptions& o, bool quiet, bool json) {
+int runEval(const ComparisonOptions& options, bool quiet, bool json) {
+    ComparisonOptions o = options;
+    if (o.commandLine.empty()) o.commandLine = invocation();
+    if (o.programVersion.empty()) o.programVersion = versionText();
     std::unique_ptr<Progress> bar; // the frame count is known once the reference is open
     ComparisonResult r = runComparison(o, [&](int done, int total) {
         if (!bar) bar = std::make_unique<Progress>("eval", total, quiet);
@@ -20,6 +23,7 @@ int runEval(const ComparisonOptions& o, bool quiet, bool json) {
     } else if (!quiet) {
         fmt::print("\nScores, mean over frames {}:{} (tone-mapped; relMSE linear):\n\n{}\n",
                    r.first, r.last, markdownTable(r));
+        for (const std::string& v : r.videos) fmt::print("video: {}\n", v);
         fmt::print("report: {}\n", r.reportPath);
     }
     return 0;
@@ -45,15 +49,29 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
         ->required();
     cmd->add_option("-o,--output", job->options.output, "output folder")->required();
     cmd->add_option("--frames", job->options.frames, "frame range A:B (A..B-1)");
-    cmd->add_option("--crop", job->crops, "x,y,w,h inset (repeatable); default: largest error");
-    cmd->add_option("--crops", job->options.autoCrops, "automatic insets when no --crop")
-        ->default_val(2);
+    cmd->add_option("--crop", job->crops,
+                    "x,y,w,h inset (repeatable); default: where the methods differ most");
+    cmd->add_option("--crops", job->options.autoCrops,
+                    "automatic insets when no --crop, from distinct parts of the frame")
+        ->default_val(3);
     cmd->add_option("--crop-size", job->options.cropSize, "automatic inset size, pixels")
         ->default_val(48);
     cmd->add_option("--zoom", job->options.zoom, "inset enlargement")->default_val(4);
     cmd->add_option("--show-frame", job->options.showFrame,
                     "frame for pictures and heat maps (default: last)");
     cmd->add_flag("--no-flip", job->noFlip, "skip FLIP (the slowest metric)");
+    cmd->add_option("--log-plots", job->options.logPlots,
+                    "auto: a log y axis where a metric's values span more than 20x; on; off")
+        ->default_val("auto");
+    cmd->add_flag("--video", job->options.video,
+                  "also write methods.mp4 (side by side) and flicker.mp4 (frame-to-frame "
+                  "change) with ffmpeg (H.264)");
+    cmd->add_option("--video-fps", job->options.videoFps, "frames per second of the videos, 1-120")
+        ->default_val(24);
+    cmd->add_option("--viewer-width", job->options.viewerWidth,
+                    "pixels: wider frames are embedded downscaled in the viewer (full-size PNGs "
+                    "beside the report), 64-4096")
+        ->default_val(640);
     cmd->add_option("--channel", job->channels,
                     "BUFFER=LAYER: the reference sequence's layer for a buffer in multilayer "
                     "EXRs, as reference=ViewLayer.Combined; repeatable");
@@ -73,6 +91,9 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
         if (o.zoom < 1 || o.zoom > 16) throw Error("--zoom must be in [1, 16]");
         if (o.autoCrops < 0 || o.autoCrops > 16) throw Error("--crops must be in [0, 16]");
         if (o.cropSize < 4 || o.cropSize > 1024) throw Error("--crop-size must be in [4, 1024]");
+        if (o.videoFps < 1 || o.videoFps > 120) throw Error("--video-fps must be in [1, 120]");
+        if (o.viewerWidth < 64 || o.viewerWidth > 4096)
+            throw Error("--viewer-width must be in [64, 4096]");
         o.flip = !job->noFlip;
         exitCode = runEval(o, job->quiet, job->json);
     });

@@ -24,6 +24,11 @@ struct DenoiseJob {
 /// references). Returns the process exit code.
 int runDenoise(const DenoiseJob& job);
 
+/// The command line this process was started with, shell-quoted where needed.
+const std::string& invocation();
+/// "bmfr VERSION (commit ...; backends: ...)", as --version prints.
+std::string versionText();
+
 /// Runs `bmfr eval`; prints the table and the report path unless quiet, or with `json` the
 /// scores as JSON on stdout.
 int runEval(const ComparisonOptions& options, bool quiet, bool json = false);

@@ -8,15 +8,30 @@
 #include <fmt/format.h>
 
 namespace {
+std::string gInvocation;
+} // namespace
+
+namespace bmfr::app {
 
 std::string versionText() {
     return fmt::format("bmfr {} (commit {}; backends: {})", BMFR_VERSION, BMFR_GIT_COMMIT,
                        fmt::join(bmfr::compiledBackends(), ", "));
 }
 
-} // namespace
+const std::string& invocation() { return gInvocation; }
+
+} // namespace bmfr::app
+
+using bmfr::app::versionText;
 
 int main(int argc, char** argv) {
+    for (int i = 0; i < argc; ++i) {
+        const std::string a = argv[i];
+        const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_=.,:/+@%") == std::string::npos;
+        std::string quoted = "'";
+        for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+        gInvocation += (i ? " " : "") + (plain ? a : quoted + "'");
+    }
     CLI::App app{"bmfr: real-time reconstruction of 1-spp path-traced sequences "
                  "(Blockwise Multi-Order Feature Regression, Koskela et al. 2019)",
                  "bmfr"};

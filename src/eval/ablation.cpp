@@ -161,10 +161,14 @@ AblationResult runAblation(const std::string& input, const std::string& output,
     Series rmse{"RMSE", {}}, ssimSeries{"SSIM", {}};
     for (const AblationRow& a : r.greedy)
         rmse.values.push_back(a.rmse), ssimSeries.values.push_back(a.ssim);
-    writePng((fs::path(output) / "plot_greedy_rmse.png").string(),
-             linePlot("Greedy feature sets: RMSE (x: step)", {rmse}, 0));
-    writePng((fs::path(output) / "plot_greedy_ssim.png").string(),
-             linePlot("Greedy feature sets: SSIM (x: step)", {ssimSeries}, 0));
+    PlotSpec spec;
+    spec.xLabel = "step";
+    spec.title = "Greedy feature sets: RMSE (lower is better)";
+    spec.zeroBased = true;
+    writePlot((fs::path(output) / "plot_greedy_rmse").string(), linePlot(spec, {rmse}));
+    spec.title = "Greedy feature sets: SSIM (higher is better)";
+    spec.zeroBased = false;
+    writePlot((fs::path(output) / "plot_greedy_ssim").string(), linePlot(spec, {ssimSeries}));
     return r;
 }
 

@@ -1,6 +1,7 @@
 // The comparison behind `bmfr eval`: several result sequences scored against one reference
-// sequence, written as tables (Markdown, CSV, JSON), per-frame plots, side-by-side crops, error
-// heat maps and one self-contained HTML report.
+// sequence, written as tables (Markdown, CSV, JSON), per-frame plots (SVG and PNG), side-by-side
+// insets, error heat maps, optional videos, and one self-contained HTML report with an
+// interactive viewer and the run's metadata.
 #pragma once
 #include "eval/frame_scores.h"
 #include "io/range_parsers.h"
@@ -26,11 +27,17 @@ struct ComparisonOptions {
     std::string output;
     std::string frames;                    ///< "A:B" (A..B-1); empty = all
     std::vector<std::array<int, 4>> crops; ///< x, y, w, h in pixels; empty = chosen by error
-    int autoCrops = 2;                     ///< crops chosen by largest error when none are given
+    int autoCrops = 3;                     ///< insets chosen where methods differ, when none are given
     int cropSize = 48;                     ///< pixels, for automatic crops
     int zoom = 4;                          ///< crop enlargement
     int showFrame = -1;                    ///< frame for pictures and heat maps; -1 = the last
     bool flip = true;
+    std::string logPlots = "auto"; ///< "auto" (log y where values span > 20x), "on" or "off"
+    bool video = false;            ///< methods.mp4 and flicker.mp4 through ffmpeg
+    int videoFps = 24;             ///< frames per second of the videos
+    int viewerWidth = 640;         ///< pixels; wider frames are embedded downscaled
+    std::string commandLine;       ///< for the report's run section
+    std::string programVersion;    ///< for the report's run section
 };
 
 struct ComparisonResult {
@@ -42,16 +49,18 @@ struct ComparisonResult {
     double referenceTemporalMean = NAN;
     std::string reportPath;
     std::string scoresJson; ///< the scores as written to table.json
+    std::vector<std::array<int, 4>> crops; ///< the insets shown
+    std::vector<std::string> videos;       ///< the videos written
 };
 
-/// Scores every method, writes every output; progress(done, total) per frame.
+/// Scores every method, writes every output; progress(done, total) per frame. With `video` but
+/// no ffmpeg on PATH, everything else is written and then bmfr::Error says so.
 ComparisonResult runComparison(const ComparisonOptions& options,
                                const std::function<void(int, int)>& progress);
 
 /// The score table as Markdown (best per column in bold).
 std::string markdownTable(const ComparisonResult& r);
 
-/// "A:B", "A:" or ":B" against a frame count. Throws bmfr::Error.
 /// Text made safe for HTML element content and attribute values.
 std::string escapeHtml(const std::string& text);
 

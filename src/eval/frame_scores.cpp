@@ -2,33 +2,51 @@
 #include "metrics/basic_metrics.h"
 #include "metrics/flip.h"
 #include "metrics/ssim.h"
+#include <fmt/core.h>
 
 namespace bmfr {
 
 const std::vector<MetricInfo>& metricList() {
     static const std::vector<MetricInfo> list = {
-        {"rmse", "RMSE", true}, {"psnr", "PSNR dB", false}, {"ssim", "SSIM", false},
-        {"flip", "FLIP", true}, {"relmse", "relMSE", true}, {"temporal", "temporal error", true}};
+        {"rmse", "RMSE", true, true},         {"psnr_db", "PSNR dB", false, false},
+        {"ssim", "SSIM", false, false},       {"flip", "FLIP", true, true},
+        {"relmse", "relMSE", true, true},     {"temporal_error", "temporal error", true, true}};
     return list;
 }
 
-double metricValue(const FrameScores& s, const std::string& key) {
+namespace {
+template <class Scores> auto& metricRef(Scores& s, const std::string& key) {
     if (key == "rmse") return s.rmse;
-    if (key == "psnr") return s.psnr;
+    if (key == "psnr_db") return s.psnr;
     if (key == "ssim") return s.ssim;
     if (key == "flip") return s.flip;
     if (key == "relmse") return s.relmse;
     return s.temporal;
 }
+} // namespace
+
+double metricValue(const FrameScores& s, const std::string& key) {
+    return metricRef(s, key);
+}
+
+std::string csvNumber(double v) {
+    return std::isfinite(v) ? fmt::format("{:.6f}", v) : std::string();
+}
 
 FrameScores scoreFrame(const ImageF& result, const ImageF& reference, const ImageF* previous,
-                       bool withFlip) {
+                       bool withFlip, ImageF* flipMapOut) {
     FrameScores s;
     const ImageF a = toneMapped(result), r = toneMapped(reference);
     s.rmse = rmseLinear(a, r);
     s.psnr = psnr(a, r);
     s.ssim = ssim(a, r);
-    if (withFlip) s.flip = flip(r, a);
+    if (withFlip) {
+        ImageF map = flipMap(r, a);
+        double sum = 0;
+        for (float v : map.pixels) sum += v;
+        s.flip = sum / double(map.pixels.size());
+        if (flipMapOut) *flipMapOut = std::move(map);
+    }
     s.relmse = relMseLinear(result, reference);
     if (previous) s.temporal = temporalError(result, *previous);
     return s;
@@ -43,14 +61,7 @@ FrameScores meanScores(const std::vector<FrameScores>& frames) {
             double v = metricValue(f, info.key);
             if (std::isfinite(v)) sum += v, ++n;
         }
-        double mean = n ? sum / n : NAN;
-        std::string k = info.key;
-        (k == "rmse"     ? m.rmse
-         : k == "psnr"   ? m.psnr
-         : k == "ssim"   ? m.ssim
-         : k == "flip"   ? m.flip
-         : k == "relmse" ? m.relmse
-                         : m.temporal) = mean;
+        metricRef(m, info.key) = n ? sum / n : NAN;
     }
     return m;
 }

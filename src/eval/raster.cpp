@@ -39,6 +39,10 @@ void Raster::text(int x, int y, const std::string& s, Rgb8 c, int scale) {
     }
 }
 
+int textWidth(const std::string& s, int scale) {
+    return stb_easy_font_width(const_cast<char*>(s.c_str())) * scale;
+}
+
 void Raster::blit(const Raster& src, int x, int y) {
     for (int j = 0; j < src.height; ++j)
         for (int i = 0; i < src.width; ++i)
@@ -62,10 +66,15 @@ Raster rasterFromLinear(const ImageF& img, int x0, int y0, int w, int h, int zoo
     return r;
 }
 
-Raster heatMap(const ImageF& map, float vmax) {
+const std::array<std::array<float, 3>, 5>& heatStops() {
     // Magma-like ramp: black, purple, red-orange, light yellow.
-    static const float stops[5][3] = {
-        {0, 0, 4}, {81, 18, 124}, {183, 55, 121}, {252, 137, 97}, {252, 253, 191}};
+    static const std::array<std::array<float, 3>, 5> stops = {
+        {{0, 0, 4}, {81, 18, 124}, {183, 55, 121}, {252, 137, 97}, {252, 253, 191}}};
+    return stops;
+}
+
+Raster heatMap(const ImageF& map, float vmax) {
+    const auto& stops = heatStops();
     Raster r(map.width, map.height);
     for (size_t i = 0; i < r.pixels.size(); ++i) {
         float t =
@@ -74,7 +83,9 @@ Raster heatMap(const ImageF& map, float vmax) {
         int k = std::min(3, int(t));
         float f = t - float(k);
         auto mix = [&](int c) {
-            return uint8_t(stops[k][c] + f * (stops[k + 1][c] - stops[k][c]) + 0.5f);
+            return uint8_t(stops[size_t(k)][size_t(c)] +
+                           f * (stops[size_t(k + 1)][size_t(c)] - stops[size_t(k)][size_t(c)]) +
+                           0.5f);
         };
         r.pixels[i] = {mix(0), mix(1), mix(2)};
     }

@@ -1,6 +1,7 @@
 // Small 8-bit RGB raster for plots, crops and heat maps, with text (stb_easy_font) and PNG output.
 #pragma once
 #include "core/image.h"
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,9 +28,14 @@ struct Raster {
     void blit(const Raster& src, int x, int y);
 };
 
+/// Width in pixels of `s` drawn by Raster::text at `scale`.
+int textWidth(const std::string& s, int scale = 2);
+
 /// Tone-mapped linear image as a raster, optionally a crop enlarged by `zoom` (nearest).
 Raster rasterFromLinear(const ImageF& img, int x0 = 0, int y0 = 0, int w = -1, int h = -1,
                         int zoom = 1);
+/// The heat colour map's stops, evenly spaced from 0 to 1 (8-bit RGB), shared with the viewer.
+const std::array<std::array<float, 3>, 5>& heatStops();
 /// 1-channel map through a perceptual colour map (magma-like), value range [0, vmax].
 Raster heatMap(const ImageF& map, float vmax);
 /// PNG bytes, for embedding; writePng writes a file atomically.

@@ -12,21 +12,24 @@ namespace {
 
 using Plane = std::vector<double>;
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kWhite[3] = {0.950428545, 1.0, 1.088900371}; // D65
+// D65 white: the row sums of rgbToXyz.
+constexpr double kWhite[3] = {23359437.0 / 24577794, 1.0, 80288307.0 / 73733382};
 
 double srgbToLinear(double c) {
     return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
+// NVIDIA's FLIP takes sRGB to XYZ with the exact fractions of this matrix (image-engineering.de),
+// and its D65 white is the matrix's row sums; the rounded Lindbloom matrix moves FLIP by ~1e-4.
 std::array<double, 3> rgbToXyz(double r, double g, double b) {
-    return {0.4124564 * r + 0.3575761 * g + 0.1804375 * b,
-            0.2126729 * r + 0.7151522 * g + 0.0721750 * b,
-            0.0193339 * r + 0.1191920 * g + 0.9503041 * b};
+    return {10135552.0 / 24577794 * r + 8788810.0 / 24577794 * g + 4435075.0 / 24577794 * b,
+            2613072.0 / 12288897 * r + 8788810.0 / 12288897 * g + 887015.0 / 12288897 * b,
+            1425312.0 / 73733382 * r + 8788810.0 / 73733382 * g + 70074185.0 / 73733382 * b};
 }
 std::array<double, 3> xyzToRgb(double x, double y, double z) {
-    return {3.2404542 * x - 1.5371385 * y - 0.4985314 * z,
-            -0.9692660 * x + 1.8760108 * y + 0.0415560 * z,
-            0.0556434 * x - 0.2040259 * y + 1.0572252 * z};
+    return {3.241003232976358 * x - 1.537398969488785 * y - 0.498615881996363 * z,
+            -0.969224252202516 * x + 1.875929983695176 * y + 0.041554226340085 * z,
+            0.055639419851975 * x - 0.204011206123910 * y + 1.057148977187533 * z};
 }
 std::array<double, 3> xyzToYcxcz(const std::array<double, 3>& v) {
     double x = v[0] / kWhite[0], y = v[1] / kWhite[1], z = v[2] / kWhite[2];
@@ -52,7 +55,8 @@ double hyab(const std::array<double, 3>& a, const std::array<double, 3>& b) {
 
 Plane separable(const Plane& in, int w, int h, const std::vector<double>& kx,
                 const std::vector<double>& ky) {
-    return separableFilter(in, w, h, kx, ky);
+    // Clamp-to-edge borders, as NVIDIA's implementation (its Python port once mirrored).
+    return separableFilter(in, w, h, kx, ky, FilterBorder::Clamp);
 }
 
 /// The contrast sensitivity filter of one opponent channel: a normalised sum of two Gaussians.

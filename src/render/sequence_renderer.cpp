@@ -21,7 +21,8 @@ void add(std::string& s, Vec3 v) {
 
 /// Claims `dir` for this render, or refuses it. Returns false when the finished frames must be
 /// rendered again (a new or overwritten folder).
-bool claimFolder(const std::string& dir, const std::string& fingerprint, bool overwrite) {
+bool claimFolder(const std::string& dir, const std::string& fingerprint, bool overwrite,
+                 const nlohmann::json& about) {
     const fs::path marker = fs::path(dir) / kRenderFingerprintFile;
     std::error_code ec;
     const bool empty = !fs::exists(dir, ec) || fs::is_empty(dir, ec);
@@ -44,8 +45,9 @@ bool claimFolder(const std::string& dir, const std::string& fingerprint, bool ov
                     "); refusing to write into it. Use another folder, or --overwrite");
     }
     fs::create_directories(dir);
-    writeFileAtomically(marker.string(),
-                        nlohmann::json{{"fingerprint", fingerprint}}.dump(1) + "\n");
+    nlohmann::json record = about;
+    record["fingerprint"] = fingerprint;
+    writeFileAtomically(marker.string(), record.dump(1) + "\n");
     return false;
 }
 
@@ -157,7 +159,11 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     }
     if (o.layout != "manifest" && o.layout != "bmfr")
         throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
-    const bool resume = claimFolder(o.output, renderFingerprint(d, o.layout), o.overwrite);
+    // What `bmfr eval` reports about the input; the fingerprint alone decides resumption.
+    const nlohmann::json about{{"scene", d.name},       {"mesh", d.mesh},
+                               {"reference_spp", d.referenceSpp}, {"bounces", d.bounces},
+                               {"seed", d.seed},        {"jitter", d.jitter}};
+    const bool resume = claimFolder(o.output, renderFingerprint(d, o.layout), o.overwrite, about);
     SequenceInfo info;
     info.width = d.width, info.height = d.height, info.frameCount = d.frames;
     info.hasReference = d.referenceSpp > 0;
