@@ -126,16 +126,25 @@ TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
     EXPECT_NE(r.output.find("| bmfr |"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("report: " + (out / "report.html").string()), std::string::npos)
         << r.output;
-    for (const char* f : {"table.md", "table.csv", "table.json", "per_frame.csv", "plot_rmse.png",
-                          "plot_ssim.png", "plot_flip.png", "plot_temporal.png", "frames.png",
-                          "crop_0.png", "heatmap_0.png", "heatmap_2.png", "report.html"})
+    for (const char* f : {"table.md", "table.csv", "table.json", "per_frame.csv", "run.json",
+                          "plot_rmse.png", "plot_rmse.svg", "plot_ssim.png", "plot_flip.svg",
+                          "plot_temporal_error.png", "frames.png", "crop_0.png", "heatmap_0.png",
+                          "heatmap_2.png", "report.html", "viewer/0_reference_0003.png",
+                          "viewer/3_no-taa_0000.png"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
-    // The report is self-contained: images inline, no external references.
+    // The report is self-contained: every image inline; files beside it are only linked.
     std::ifstream html(out / "report.html");
     std::string text((std::istreambuf_iterator<char>(html)), {});
     EXPECT_NE(text.find("data:image/png;base64,"), std::string::npos);
-    EXPECT_EQ(text.find("src=\"http"), std::string::npos);
-    EXPECT_EQ(text.find(".png\""), std::string::npos);
+    for (size_t at = text.find("src=\""); at != std::string::npos; at = text.find("src=\"", at + 1))
+        EXPECT_EQ(text.compare(at + 5, 5, "data:"), 0) << text.substr(at, 60);
+    for (const char* external : {"src=\"http", "href=\"http", "url(http", "@import"})
+        EXPECT_EQ(text.find(external), std::string::npos) << external;
+    EXPECT_NE(text.find("<svg"), std::string::npos);
+    // The run section names the command, the machine and each method's settings.
+    EXPECT_NE(text.find("bmfr eval") , std::string::npos);
+    EXPECT_NE(text.find("hardware threads"), std::string::npos);
+    EXPECT_NE(text.find("taa=false"), std::string::npos) << "the no-TAA method's settings";
     // Denoised beats noisy, and the best RMSE is in bold.
     std::ifstream md(out / "table.md");
     std::string table((std::istreambuf_iterator<char>(md)), {});

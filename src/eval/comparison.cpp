@@ -242,10 +242,12 @@ struct ViewerFrames {
         j["flip"] = fl;
         j["full"] = files;
         j["magma"] = heatStops();
-        std::string text = j.dump();
-        // Inside <script>, "</" could end the element early.
-        for (size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 2))
-            text.replace(at, 2, "<\\/");
+        // Inside <script>, "</script" or "<!--" would end or confuse the element: write every
+        // '<', '>' and '&' as a JSON \u escape.
+        std::string text;
+        for (char c : j.dump())
+            text += c == '<' ? std::string("\\u003c") : c == '>' ? std::string("\\u003e")
+                    : c == '&' ? std::string("\\u0026") : std::string(1, c);
         return text;
     }
 };

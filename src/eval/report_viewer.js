@@ -224,7 +224,9 @@
       update();
     }, {passive: false});
     document.addEventListener('keydown', (e) => {
-      if (e.target.tagName === 'SELECT' || e.target.tagName === 'INPUT' && e.target.type !== 'range') return;
+      // Selects and sliders keep their own arrow and space keys; letters work everywhere.
+      const own = e.target.tagName === 'SELECT' || e.target.tagName === 'INPUT';
+      if (own && (e.key.startsWith('Arrow') || e.key === ' ')) return;
       const n = data.frames.length;
       const keys = {
         ArrowRight: () => { state.frame = (state.frame + 1) % n; },
@@ -236,7 +238,6 @@
         '+': () => { state.zoom = Math.min(32, state.zoom * 2); },
         '-': () => { state.zoom = Math.max(0.25, state.zoom / 2); },
       };
-      if (e.target.type === 'range' && (e.key === 'ArrowLeft' || e.key === 'ArrowRight')) return;
       if (!keys[e.key]) return;
       e.preventDefault();
       keys[e.key]();

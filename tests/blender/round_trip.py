@@ -78,7 +78,7 @@ def main():
     for name, m in table["methods"].items():
         mean = m["mean"]
         print(f"  {name:<6} rmse {mean['rmse']:.4f}  ssim {mean['ssim']:.4f}  "
-              f"flip {mean['flip']:.4f}  temporal {mean['temporal'] or 0:.4f}")
+              f"flip {mean['flip']:.4f}  temporal {mean['temporal_error'] or 0:.4f}")
     noisy = scores["bmfr"]["noisy_rmse"]
     for name, s in scores.items():
         assert s["rmse"] < 0.7 * noisy, f"{name} rmse {s['rmse']} vs noisy {noisy}"
