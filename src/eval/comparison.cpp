@@ -224,13 +224,17 @@ std::string fileStem(const std::string& name, size_t index) {
 
 /// Everything the viewer shows, gathered frame by frame.
 struct ViewerFrames {
-    int factor = 1, width = 0, height = 0;
+    int factor = 1, every = 1, width = 0, height = 0;
+    int shown = 0; ///< the frame the viewer opens on (the report's pictures' frame)
     std::vector<int> frames;
     std::vector<std::vector<std::string>> images, flips, files; ///< [method][frame]
     std::string json(const std::vector<std::string>& methods, int fullW, int fullH) const {
         nlohmann::json j;
         j["width"] = width, j["height"] = height, j["fullWidth"] = fullW, j["fullHeight"] = fullH;
         j["frames"] = frames;
+        j["every"] = every;
+        j["shown"] = shown;
+        j["factor"] = factor;
         j["methods"] = methods;
         j["images"] = images;
         nlohmann::json fl = nlohmann::json::array();
@@ -282,12 +286,22 @@ ComparisonResult runComparison(const ComparisonOptions& o,
     const fs::path out(o.output);
     fs::create_directories(out / "viewer");
 
-    // The viewer embeds frames at most viewerWidth wide and, in all, about 48 M pixels.
+    // The viewer embeds frames at most viewerWidth wide, and about 12 M pixels in all (a FLIP
+    // map counts half): first every k-th frame (at least 8 frames, the shown one always), then
+    // smaller frames. Every frame is written full size beside the report.
     ViewerFrames viewer;
-    const double budget = 48e6, perFramePixels = double(fullW) * fullH * double(sources.size() + 1) *
-                                                     double(r.last - r.first) * (o.flip ? 2 : 1);
+    viewer.shown = show;
+    const int frameCount = r.last - r.first;
+    const double budget = 12e6,
+                 columns = double(sources.size() + 1) + (o.flip ? 0.5 * double(sources.size()) : 0);
     viewer.factor = std::max(1, int(std::ceil(double(fullW) / std::max(16, o.viewerWidth))));
-    while (perFramePixels / (double(viewer.factor) * viewer.factor) > budget) ++viewer.factor;
+    auto pixels = [&](int factor, int every) {
+        return double(fullW / factor) * double(fullH / factor) * columns *
+               double((frameCount + every - 1) / every + 1);
+    };
+    while (pixels(viewer.factor, viewer.every) > budget && (frameCount + viewer.every) / (viewer.every + 1) >= 8)
+        ++viewer.every;
+    while (pixels(viewer.factor, viewer.every) > budget && viewer.factor < 64) ++viewer.factor;
     viewer.width = std::max(1, fullW / viewer.factor), viewer.height = std::max(1, fullH / viewer.factor);
     viewer.images.assign(sources.size() + 1, {});
     viewer.flips.assign(sources.size() + 1, {});
@@ -319,18 +333,20 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         FrameData f;
         reference->load(i, f);
         r.referenceTemporal.push_back(i > r.first ? temporalError(f.reference, previousRef) : NAN);
-        viewer.frames.push_back(i);
+        const bool embed = (i - r.first) % viewer.every == 0 || i == show;
+        if (embed) viewer.frames.push_back(i);
         std::vector<ImageF> images;
         auto addViewerImage = [&](size_t column, const ImageF& img, const ImageF* flipMap) {
             const Raster full = rasterFromLinear(img);
             const std::string file = fmt::format("viewer/{}_{:04d}.png", fileStem(viewerNames[column], column), i);
             writePng((out / file).string(), full);
+            if (!embed) return;
             viewer.files[column].push_back(file);
             viewer.images[column].push_back("data:image/png;base64," +
                                             base64(encodePng(downscale(full, viewer.factor))));
             viewer.flips[column].push_back(
                 flipMap ? "data:image/png;base64," +
-                              base64(encodePng(downscale(greyRaster(*flipMap), viewer.factor)))
+                              base64(encodePngGrey(downscale(greyRaster(*flipMap), viewer.factor)))
                         : std::string());
         };
         addViewerImage(0, f.reference, nullptr);

@@ -32,7 +32,7 @@ struct ComparisonOptions {
     int zoom = 4;                          ///< crop enlargement
     int showFrame = -1;                    ///< frame for pictures and heat maps; -1 = the last
     bool flip = true;
-    std::string logPlots = "auto"; ///< "auto" (log y where values span > 20x), "on" or "off"
+    std::string logPlots = "auto"; ///< "auto" (log y where values span > 10x), "on" or "off"
     bool video = false;            ///< methods.mp4 and flicker.mp4 through ffmpeg
     int videoFps = 24;             ///< frames per second of the videos
     int viewerWidth = 640;         ///< pixels; wider frames are embedded downscaled

@@ -92,14 +92,24 @@ Raster heatMap(const ImageF& map, float vmax) {
     return r;
 }
 
+namespace {
+void appendBytes(void* ctx, void* data, int size) {
+    auto* v = static_cast<std::vector<unsigned char>*>(ctx);
+    v->insert(v->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+}
+} // namespace
+
 std::vector<unsigned char> encodePng(const Raster& r) {
     std::vector<unsigned char> out;
-    auto sink = [](void* ctx, void* data, int size) {
-        auto* v = static_cast<std::vector<unsigned char>*>(ctx);
-        v->insert(v->end(), static_cast<unsigned char*>(data),
-                  static_cast<unsigned char*>(data) + size);
-    };
-    if (!stbi_write_png_to_func(sink, &out, r.width, r.height, 3, r.pixels.data(), r.width * 3))
+    if (!stbi_write_png_to_func(appendBytes, &out, r.width, r.height, 3, r.pixels.data(), r.width * 3))
+        throw Error("cannot encode PNG");
+    return out;
+}
+
+std::vector<unsigned char> encodePngGrey(const Raster& r) {
+    std::vector<unsigned char> grey(r.pixels.size()), out;
+    for (size_t i = 0; i < grey.size(); ++i) grey[i] = r.pixels[i].r;
+    if (!stbi_write_png_to_func(appendBytes, &out, r.width, r.height, 1, grey.data(), r.width))
         throw Error("cannot encode PNG");
     return out;
 }

@@ -40,6 +40,8 @@ const std::array<std::array<float, 3>, 5>& heatStops();
 Raster heatMap(const ImageF& map, float vmax);
 /// PNG bytes, for embedding; writePng writes a file atomically.
 std::vector<unsigned char> encodePng(const Raster& r);
+/// PNG bytes of the red channel alone, as 8-bit grey (a third of the bytes for grey maps).
+std::vector<unsigned char> encodePngGrey(const Raster& r);
 void writePng(const std::string& path, const Raster& r);
 std::string base64(const std::vector<unsigned char>& bytes);
 

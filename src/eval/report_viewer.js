@@ -14,7 +14,7 @@
   const cache = new Map();
   // A starts on the first method that is not the noisy input, B on the reference.
   const firstDenoised = data.methods.findIndex((m, i) => i > 0 && m !== 'noisy');
-  const state = {frame: 0, a: firstDenoised > 0 ? firstDenoised : Math.min(1, data.methods.length - 1), b: 0, mode: 'a', ev: 0,
+  const state = {frame: Math.max(0, data.frames.indexOf(data.shown)), a: firstDenoised > 0 ? firstDenoised : Math.min(1, data.methods.length - 1), b: 0, mode: 'a', ev: 0,
                  vmax: 0.5, zoom: 1, ox: 0, oy: 0, split: 0.5, fitted: true};
   const modes = {a: 'A', b: 'B', slider: 'slider', abs: 'absolute error',
                  rel: 'relative error', flip: 'FLIP error'};
@@ -140,7 +140,9 @@
   function update() {
     const frameIndex = data.frames[state.frame];
     $('v-frame').value = state.frame;
-    $('v-frame-label').textContent = 'frame ' + frameIndex;
+    $('v-frame-label').textContent = 'frame ' + frameIndex +
+        (data.every > 1 ? ' (every ' + data.every + ' frames embedded; all in viewer/)' : '') +
+        (data.factor > 1 ? ' (embedded at 1/' + data.factor + ' size)' : '');
     $('v-a').value = state.a;
     $('v-b').value = state.b;
     $('v-mode').value = state.mode;
