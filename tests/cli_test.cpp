@@ -126,11 +126,11 @@ TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
     EXPECT_NE(r.output.find("| bmfr |"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("report: " + (out / "report.html").string()), std::string::npos)
         << r.output;
-    for (const char* f : {"table.md", "table.csv", "table.json", "per_frame.csv", "run.json",
-                          "plot_rmse.png", "plot_rmse.svg", "plot_ssim.png", "plot_flip.svg",
-                          "plot_temporal_error.png", "frames.png", "crop_0.png", "heatmap_0.png",
-                          "heatmap_2.png", "report.html", "viewer/0_reference_0003.png",
-                          "viewer/3_no-taa_0000.png"})
+    for (const char* f :
+         {"table.md", "table.csv", "table.json", "per_frame.csv", "run.json", "plot_rmse.png",
+          "plot_rmse.svg", "plot_ssim.png", "plot_flip.svg", "plot_temporal_error.png",
+          "frames.png", "crop_0.png", "heatmap_0.png", "heatmap_2.png", "report.html",
+          "viewer/0_reference_0003.png", "viewer/3_no-taa_0000.png"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     // The report is self-contained: every image inline; files beside it are only linked.
     std::ifstream html(out / "report.html");
@@ -142,7 +142,7 @@ TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
         EXPECT_EQ(text.find(external), std::string::npos) << external;
     EXPECT_NE(text.find("<svg"), std::string::npos);
     // The run section names the command, the machine and each method's settings.
-    EXPECT_NE(text.find("bmfr eval") , std::string::npos);
+    EXPECT_NE(text.find("bmfr eval"), std::string::npos);
     EXPECT_NE(text.find("hardware threads"), std::string::npos);
     EXPECT_NE(text.find("taa=false"), std::string::npos) << "the no-TAA method's settings";
     // Denoised beats noisy, and the best RMSE is in bold.

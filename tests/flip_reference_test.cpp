@@ -52,7 +52,9 @@ V3 toXyz(V3 c) {
     for (int i = 0; i < 3; ++i) o[i] = m[i][0] * c[0] + m[i][1] * c[1] + m[i][2] * c[2];
     return o;
 }
-V3 white() { return toXyz({1, 1, 1}); }
+V3 white() {
+    return toXyz({1, 1, 1});
+}
 V3 toYcxcz(V3 xyz) {
     const V3 w = white();
     const double x = xyz[0] / w[0], y = xyz[1] / w[1], z = xyz[2] / w[2];
@@ -81,7 +83,9 @@ V3 huntLab(V3 linear) {
     const double L = 116 * fy - 16;
     return {L, 0.01 * L * 500 * (fx - fy), 0.01 * L * 200 * (fy - fz)};
 }
-double hyab(V3 a, V3 b) { return std::fabs(a[0] - b[0]) + std::hypot(a[1] - b[1], a[2] - b[2]); }
+double hyab(V3 a, V3 b) {
+    return std::fabs(a[0] - b[0]) + std::hypot(a[1] - b[1], a[2] - b[2]);
+}
 
 std::vector<double> flipMapDirect(const ImageF& ref, const ImageF& test, double ppd) {
     const int w = ref.width, h = ref.height;
@@ -162,10 +166,10 @@ std::vector<double> flipMapDirect(const ImageF& ref, const ImageF& test, double 
             double dc = std::pow(hyab(lab[0], lab[1]), 0.7);
             dc = dc < 0.4 * cmax ? 0.95 / (0.4 * cmax) * dc
                                  : 0.95 + (dc - 0.4 * cmax) / (0.6 * cmax) * 0.05;
-            const double de = std::fabs(std::hypot(feat[0][0], feat[0][1]) -
-                                        std::hypot(feat[1][0], feat[1][1]));
-            const double dp = std::fabs(std::hypot(feat[0][2], feat[0][3]) -
-                                        std::hypot(feat[1][2], feat[1][3]));
+            const double de =
+                std::fabs(std::hypot(feat[0][0], feat[0][1]) - std::hypot(feat[1][0], feat[1][1]));
+            const double dp =
+                std::fabs(std::hypot(feat[0][2], feat[0][3]) - std::hypot(feat[1][2], feat[1][3]));
             const double df = std::pow(std::max(de, dp) / std::sqrt(2.0), 0.5);
             out[size_t(y) * w + x] = std::pow(dc, 1 - df);
         }
@@ -179,9 +183,9 @@ ImageF textured(int w, int h, uint32_t seed) {
             for (int c = 0; c < 3; ++c) {
                 const float edge = (x > w / 2) == (y > h / 3) ? 0.7f : 0.2f;
                 img.at(x, y, c) = std::clamp(
-                    edge + 0.25f * (unitFloat(hashKeys(seed, uint32_t(x), uint32_t(y),
-                                                       uint32_t(c))) -
-                                    0.5f),
+                    edge +
+                        0.25f * (unitFloat(hashKeys(seed, uint32_t(x), uint32_t(y), uint32_t(c))) -
+                                 0.5f),
                     0.0f, 1.0f);
             }
     return img;

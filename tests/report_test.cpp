@@ -25,8 +25,13 @@ bool isNice(double step) {
 }
 
 TEST(ReportTicks, NiceValuesCoverTheRange) {
-    for (auto [lo, hi] : {std::pair{0.0123, 0.08255}, {20.9, 34.5}, {0.36, 0.89}, {-3.0, 7.0},
-                          {1.0, 1.0}, {1e-4, 3e-4}, {0.0, 0.0}}) {
+    for (auto [lo, hi] : {std::pair{0.0123, 0.08255},
+                          {20.9, 34.5},
+                          {0.36, 0.89},
+                          {-3.0, 7.0},
+                          {1.0, 1.0},
+                          {1e-4, 3e-4},
+                          {0.0, 0.0}}) {
         const Ticks t = niceTicks(lo, hi, 5);
         ASSERT_GE(t.values.size(), 2u) << lo << " " << hi;
         EXPECT_LE(t.lo, lo);
@@ -82,7 +87,8 @@ TEST(ReportPlots, SvgHasEveryNameInFullAndOneLinePerSeries) {
     EXPECT_NE(svg.find("RMSE &lt;lower&gt; &amp; better"), std::string::npos);
     // The NaN splits the first series in two.
     size_t lines = 0;
-    for (size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1))
+    for (size_t at = svg.find("<polyline"); at != std::string::npos;
+         at = svg.find("<polyline", at + 1))
         ++lines;
     EXPECT_EQ(lines, 4u);
     // The legend fits: every text starts inside the figure, and the longest name's estimated
@@ -104,14 +110,16 @@ ImageF spots(int w, int h, std::vector<std::array<int, 3>> centres) {
     for (auto [cx, cy, strength] : centres)
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x)
-                m.at(x, y) += float(strength) * std::exp(-float((x - cx) * (x - cx) + (y - cy) * (y - cy)) / 50.0f);
+                m.at(x, y) += float(strength) *
+                              std::exp(-float((x - cx) * (x - cx) + (y - cy) * (y - cy)) / 50.0f);
     return m;
 }
 
 TEST(ReportCrops, InsetsGoWhereMethodsDifferFromDistinctRegions) {
     // Both methods err strongly at the top left (where they agree); they differ at three places,
     // two of them close together at the bottom right.
-    const ImageF a = spots(192, 128, {{{20, 20, 10}}, {{170, 110, 4}}, {{150, 100, 4}}, {{90, 20, 3}}});
+    const ImageF a =
+        spots(192, 128, {{{20, 20, 10}}, {{170, 110, 4}}, {{150, 100, 4}}, {{90, 20, 3}}});
     const ImageF b = spots(192, 128, {{{20, 20, 10}}});
     const auto crops = chooseCrops({a, b}, 3, 24);
     ASSERT_EQ(crops.size(), 3u);
@@ -137,7 +145,8 @@ TEST(ReportCrops, InsetsGoWhereMethodsDifferFromDistinctRegions) {
 }
 
 fs::path scratch(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("bmfr_report_" + name + "_" + std::to_string(::getpid()));
+    const fs::path p =
+        fs::temp_directory_path() / ("bmfr_report_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(p);
     return p;
 }
@@ -221,7 +230,8 @@ TEST(ReportOutputs, VideosNeedFfmpegAndTheReportIsWrittenWithout) {
     EXPECT_TRUE(fs::exists(noFfmpeg / "report.html"));
     EXPECT_TRUE(fs::exists(noFfmpeg / "table.csv"));
     EXPECT_FALSE(fs::exists(noFfmpeg / "methods.mp4"));
-    EXPECT_NE(slurp(noFfmpeg / "report.html").find("No video: --video needs ffmpeg"), std::string::npos);
+    EXPECT_NE(slurp(noFfmpeg / "report.html").find("No video: --video needs ffmpeg"),
+              std::string::npos);
 
     // With ffmpeg (scripts/install-deps.sh --tests installs it): H.264 MP4s, one frame each.
     const auto ok = runCli(args + out.string());

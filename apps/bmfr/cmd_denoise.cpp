@@ -171,9 +171,11 @@ int runDenoise(const DenoiseJob& job) {
         csv << ",noisy_rmse,noisy_temporal_error,reference_temporal_error\n";
         for (size_t k = 0; k < scores.size(); ++k) {
             csv << first + int(k);
-            for (const MetricInfo& m : metricList()) csv << "," << csvNumber(metricValue(scores[k], m.key));
-            csv << "," << csvNumber(noisyScores[k].rmse) << "," << csvNumber(noisyScores[k].temporal)
-                << "," << csvNumber(referenceTemporal[k]) << "\n";
+            for (const MetricInfo& m : metricList())
+                csv << "," << csvNumber(metricValue(scores[k], m.key));
+            csv << "," << csvNumber(noisyScores[k].rmse) << ","
+                << csvNumber(noisyScores[k].temporal) << "," << csvNumber(referenceTemporal[k])
+                << "\n";
         }
         writeFileAtomically((fs::path(job.output) / "scores.csv").string(), csv.str());
         const FrameScores m = meanScores(scores), nm = meanScores(noisyScores);
@@ -185,7 +187,8 @@ int runDenoise(const DenoiseJob& job) {
         auto num = [](double v) {
             return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
         };
-        for (const MetricInfo& k : metricList()) report["scores"][k.key] = num(metricValue(m, k.key));
+        for (const MetricInfo& k : metricList())
+            report["scores"][k.key] = num(metricValue(m, k.key));
         report["scores"]["noisy_rmse"] = num(nm.rmse);
         report["scores"]["noisy_temporal_error"] = num(nm.temporal);
         report["scores"]["reference_temporal_error"] = num(refTemporal);

@@ -18,7 +18,9 @@ std::string versionText() {
                        fmt::join(bmfr::compiledBackends(), ", "));
 }
 
-const std::string& invocation() { return gInvocation; }
+const std::string& invocation() {
+    return gInvocation;
+}
 
 } // namespace bmfr::app
 
@@ -27,7 +29,11 @@ using bmfr::app::versionText;
 int main(int argc, char** argv) {
     for (int i = 0; i < argc; ++i) {
         const std::string a = argv[i];
-        const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_=.,:/+@%") == std::string::npos;
+        const bool plain =
+            !a.empty() &&
+            a.find_first_not_of(
+                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_=.,:/+@%") ==
+                std::string::npos;
         std::string quoted = "'";
         for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
         gInvocation += (i ? " " : "") + (plain ? a : quoted + "'");

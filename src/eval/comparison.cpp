@@ -127,7 +127,6 @@ std::string markdownTable(const ComparisonResult& r) {
     return md;
 }
 
-
 namespace {
 
 /// The tables: table.md, table.csv, per_frame.csv, table.json (keys of metricList()).
@@ -146,7 +145,8 @@ void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::str
     csv << "\n", pf << "\n";
     for (size_t i = 0; i < r.names.size(); ++i) {
         csv << csvText(r.names[i]);
-        for (const MetricInfo& m : metricList()) csv << "," << csvNumber(metricValue(r.means[i], m.key));
+        for (const MetricInfo& m : metricList())
+            csv << "," << csvNumber(metricValue(r.means[i], m.key));
         csv << "\n";
         for (size_t k = 0; k < r.perFrame[i].size(); ++k) {
             pf << csvText(r.names[i]) << "," << r.first + int(k);
@@ -158,12 +158,15 @@ void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::str
     // The reference's own temporal error, for scale; its other cells are empty.
     csv << "reference";
     for (const MetricInfo& m : metricList())
-        csv << "," << (std::string(m.key) == "temporal_error" ? csvNumber(r.referenceTemporalMean) : "");
+        csv << ","
+            << (std::string(m.key) == "temporal_error" ? csvNumber(r.referenceTemporalMean) : "");
     csv << "\n";
     writeFileAtomically((out / "table.csv").string(), csv.str());
     writeFileAtomically((out / "per_frame.csv").string(), pf.str());
 
-    auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    auto num = [](double v) {
+        return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+    };
     nlohmann::json j;
     j["reference"] = o.reference;
     j["frames"] = {r.first, r.last};
@@ -240,7 +243,8 @@ struct ViewerFrames {
         nlohmann::json fl = nlohmann::json::array();
         for (const auto& perMethod : flips) {
             nlohmann::json a = nlohmann::json::array();
-            for (const std::string& f : perMethod) a.push_back(f.empty() ? nlohmann::json(nullptr) : nlohmann::json(f));
+            for (const std::string& f : perMethod)
+                a.push_back(f.empty() ? nlohmann::json(nullptr) : nlohmann::json(f));
             fl.push_back(a);
         }
         j["flip"] = fl;
@@ -250,8 +254,10 @@ struct ViewerFrames {
         // '<', '>' and '&' as a JSON \u escape.
         std::string text;
         for (char c : j.dump())
-            text += c == '<' ? std::string("\\u003c") : c == '>' ? std::string("\\u003e")
-                    : c == '&' ? std::string("\\u0026") : std::string(1, c);
+            text += c == '<'   ? std::string("\\u003c")
+                    : c == '>' ? std::string("\\u003e")
+                    : c == '&' ? std::string("\\u0026")
+                               : std::string(1, c);
         return text;
     }
 };
@@ -299,10 +305,12 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         return double(fullW / factor) * double(fullH / factor) * columns *
                double((frameCount + every - 1) / every + 1);
     };
-    while (pixels(viewer.factor, viewer.every) > budget && (frameCount + viewer.every) / (viewer.every + 1) >= 8)
+    while (pixels(viewer.factor, viewer.every) > budget &&
+           (frameCount + viewer.every) / (viewer.every + 1) >= 8)
         ++viewer.every;
     while (pixels(viewer.factor, viewer.every) > budget && viewer.factor < 64) ++viewer.factor;
-    viewer.width = std::max(1, fullW / viewer.factor), viewer.height = std::max(1, fullH / viewer.factor);
+    viewer.width = std::max(1, fullW / viewer.factor),
+    viewer.height = std::max(1, fullH / viewer.factor);
     viewer.images.assign(sources.size() + 1, {});
     viewer.flips.assign(sources.size() + 1, {});
     viewer.files.assign(sources.size() + 1, {});
@@ -318,8 +326,10 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         if (ffmpeg.empty()) {
             videoNote = "No video: --video needs ffmpeg on PATH (Debian: apt-get install ffmpeg).";
         } else {
-            sideBySide = std::make_unique<VideoWriter>(ffmpeg, (out / "methods.mp4").string(), o.videoFps);
-            flicker = std::make_unique<VideoWriter>(ffmpeg, (out / "flicker.mp4").string(), o.videoFps);
+            sideBySide =
+                std::make_unique<VideoWriter>(ffmpeg, (out / "methods.mp4").string(), o.videoFps);
+            flicker =
+                std::make_unique<VideoWriter>(ffmpeg, (out / "flicker.mp4").string(), o.videoFps);
             // At most 1920 pixels wide in all.
             const int columns = int(sources.size()) + 1;
             while (columns * (fullW / videoFactor + 8) > 1920 && videoFactor < 16) ++videoFactor;
@@ -338,7 +348,8 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         std::vector<ImageF> images;
         auto addViewerImage = [&](size_t column, const ImageF& img, const ImageF* flipMap) {
             const Raster full = rasterFromLinear(img);
-            const std::string file = fmt::format("viewer/{}_{:04d}.png", fileStem(viewerNames[column], column), i);
+            const std::string file =
+                fmt::format("viewer/{}_{:04d}.png", fileStem(viewerNames[column], column), i);
             writePng((out / file).string(), full);
             if (!embed) return;
             viewer.files[column].push_back(file);
@@ -357,8 +368,9 @@ ComparisonResult runComparison(const ComparisonOptions& o,
                     "eval: method '{}' frame {} is {}x{}, the reference is {}x{}", r.names[m], i,
                     img.width, img.height, f.reference.width, f.reference.height));
             ImageF map;
-            r.perFrame[m].push_back(scoreFrame(img, f.reference, i > r.first ? &previous[m] : nullptr,
-                                               o.flip, o.flip ? &map : nullptr));
+            r.perFrame[m].push_back(scoreFrame(img, f.reference,
+                                               i > r.first ? &previous[m] : nullptr, o.flip,
+                                               o.flip ? &map : nullptr));
             addViewerImage(m + 1, img, o.flip ? &map : nullptr);
             if (i == show) shown[m] = img, shownFlip[m] = map;
             images.push_back(std::move(img));
@@ -374,7 +386,7 @@ ComparisonResult runComparison(const ComparisonOptions& o,
                     for (size_t k = 0; k < d.pixels.size(); ++k) {
                         // x4 so that flicker shows; stored linear, so undo the display encoding.
                         const float e = 4.0f * std::fabs(gammaEncode(images[m].pixels[k]) -
-                                                          gammaEncode(previous[m].pixels[k]));
+                                                         gammaEncode(previous[m].pixels[k]));
                         d.pixels[k] = std::pow(std::min(e, 1.0f), 2.2f);
                     }
                 diffs.push_back(std::move(d));
@@ -413,13 +425,17 @@ ComparisonResult runComparison(const ComparisonOptions& o,
             for (const FrameScores& f : r.perFrame[i]) line.values.push_back(metricValue(f, m.key));
             series.push_back(line);
         }
-        if (std::string(m.key) == "temporal_error") series.push_back({"reference", r.referenceTemporal});
+        if (std::string(m.key) == "temporal_error")
+            series.push_back({"reference", r.referenceTemporal});
         PlotSpec spec;
         spec.firstFrame = r.first;
         spec.zeroBased = m.nonNegative;
-        spec.logY = o.logPlots == "on" ? m.nonNegative : o.logPlots == "auto" && m.nonNegative && wantsLogAxis(series);
-        spec.title = fmt::format("{} ({} is better{})", m.label, m.lowerIsBetter ? "lower" : "higher",
-                                 spec.logY ? ", log scale" : "");
+        spec.logY = o.logPlots == "on"
+                        ? m.nonNegative
+                        : o.logPlots == "auto" && m.nonNegative && wantsLogAxis(series);
+        spec.title =
+            fmt::format("{} ({} is better{})", m.label, m.lowerIsBetter ? "lower" : "higher",
+                        spec.logY ? ", log scale" : "");
         const Figure fig = linePlot(spec, series);
         const std::string stem = fmt::format("plot_{}", m.key);
         writePlot((out / stem).string(), fig);
@@ -429,12 +445,14 @@ ComparisonResult runComparison(const ComparisonOptions& o,
     // Pictures of the shown frame.
     std::vector<const ImageF*> row{&shownRef};
     std::vector<std::string> labels{"reference"};
-    for (size_t m = 0; m < shown.size(); ++m) row.push_back(&shown[m]), labels.push_back(r.names[m]);
+    for (size_t m = 0; m < shown.size(); ++m)
+        row.push_back(&shown[m]), labels.push_back(r.names[m]);
     std::vector<std::array<int, 4>> crops = o.crops;
     if (crops.empty()) {
         std::vector<ImageF> errors;
         for (size_t m = 0; m < shown.size(); ++m)
-            if (r.names[m] != "noisy" || shown.size() == 1) errors.push_back(absoluteError(shown[m], shownRef));
+            if (r.names[m] != "noisy" || shown.size() == 1)
+                errors.push_back(absoluteError(shown[m], shownRef));
         crops = chooseCrops(errors, o.autoCrops, o.cropSize);
     }
     r.crops = crops;
@@ -445,11 +463,13 @@ ComparisonResult runComparison(const ComparisonOptions& o,
     };
     std::string names;
     for (const std::string& l : labels) names += (names.empty() ? "" : ", ") + l;
-    addPicture(fmt::format("Frame {}, left to right: {}", show, names), "frames.png", labelledRow(row, labels));
+    addPicture(fmt::format("Frame {}, left to right: {}", show, names), "frames.png",
+               labelledRow(row, labels));
     for (size_t k = 0; k < crops.size(); ++k) {
         const auto& c = crops[k];
         addPicture(fmt::format("Inset {} at ({}, {}), {}x{} pixels, zoom {}{}", k, c[0], c[1], c[2],
-                               c[3], o.zoom, o.crops.empty() ? ", where the methods differ most" : ""),
+                               c[3], o.zoom,
+                               o.crops.empty() ? ", where the methods differ most" : ""),
                    fmt::format("crop_{}.png", k), labelledRow(row, labels, c, o.zoom));
     }
     if (o.flip) {
@@ -458,12 +478,13 @@ ComparisonResult runComparison(const ComparisonOptions& o,
             if (r.names[m] != "noisy" || shown.size() == 1) maps.push_back(&shownFlip[m]);
         const float vmax = heatScale(maps);
         for (size_t m = 0; m < shown.size(); ++m)
-            addPicture(fmt::format("FLIP error of {} against the reference, frame {} (colour bar 0 "
-                                   "to {:g}; the scale is shared by all maps)",
-                                   r.names[m], show, vmax),
-                       fmt::format("heatmap_{}.png", m),
-                       heatMapWithBar(shownFlip[m], vmax, "FLIP, 0 to " + fmt::format("{:g}", vmax)),
-                       true);
+            addPicture(
+                fmt::format("FLIP error of {} against the reference, frame {} (colour bar 0 "
+                            "to {:g}; the scale is shared by all maps)",
+                            r.names[m], show, vmax),
+                fmt::format("heatmap_{}.png", m),
+                heatMapWithBar(shownFlip[m], vmax, "FLIP, 0 to " + fmt::format("{:g}", vmax)),
+                true);
     }
     report.viewerJson = viewer.json(viewerNames, fullW, fullH);
 
@@ -481,16 +502,18 @@ ComparisonResult runComparison(const ComparisonOptions& o,
         flicker->finish();
         r.videos = {(out / "methods.mp4").string(), (out / "flicker.mp4").string()};
         report.videos = {"methods.mp4", "flicker.mp4"};
-        videoNote = fmt::format("methods.mp4: reference and methods side by side; flicker.mp4: each "
-                                "method's absolute frame-to-frame change (tone-mapped, x4); {} fps.",
-                                o.videoFps);
+        videoNote =
+            fmt::format("methods.mp4: reference and methods side by side; flicker.mp4: each "
+                        "method's absolute frame-to-frame change (tone-mapped, x4); {} fps.",
+                        o.videoFps);
     }
     report.videoNote = videoNote;
     r.reportPath = (out / "report.html").string();
     writeFileAtomically(r.reportPath, reportHtml(report));
     if (o.video && ffmpeg.empty())
         throw Error("eval --video: ffmpeg was not found on PATH (Debian: apt-get install ffmpeg); "
-                    "the tables, plots and " + r.reportPath + " were written, without videos");
+                    "the tables, plots and " +
+                    r.reportPath + " were written, without videos");
     return r;
 }
 

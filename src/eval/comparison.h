@@ -27,10 +27,10 @@ struct ComparisonOptions {
     std::string output;
     std::string frames;                    ///< "A:B" (A..B-1); empty = all
     std::vector<std::array<int, 4>> crops; ///< x, y, w, h in pixels; empty = chosen by error
-    int autoCrops = 3;                     ///< insets chosen where methods differ, when none are given
-    int cropSize = 48;                     ///< pixels, for automatic crops
-    int zoom = 4;                          ///< crop enlargement
-    int showFrame = -1;                    ///< frame for pictures and heat maps; -1 = the last
+    int autoCrops = 3;  ///< insets chosen where methods differ, when none are given
+    int cropSize = 48;  ///< pixels, for automatic crops
+    int zoom = 4;       ///< crop enlargement
+    int showFrame = -1; ///< frame for pictures and heat maps; -1 = the last
     bool flip = true;
     std::string logPlots = "auto"; ///< "auto" (log y where values span > 10x), "on" or "off"
     bool video = false;            ///< methods.mp4 and flicker.mp4 through ffmpeg
@@ -48,7 +48,7 @@ struct ComparisonResult {
     std::vector<double> referenceTemporal; ///< [frame - first], NaN for the first
     double referenceTemporalMean = NAN;
     std::string reportPath;
-    std::string scoresJson; ///< the scores as written to table.json
+    std::string scoresJson;                ///< the scores as written to table.json
     std::vector<std::array<int, 4>> crops; ///< the insets shown
     std::vector<std::string> videos;       ///< the videos written
 };

@@ -63,8 +63,7 @@ std::vector<std::array<int, 4>> chooseCrops(const std::vector<ImageF>& errors, i
                             size_t(std::min(cells - 1, cx * cells / w));
         if (cellUsed[cell]) continue;
         bool near = false;
-        for (const auto& o : out)
-            near = near || std::hypot(o[0] - c.x, o[1] - c.y) < 1.5 * size;
+        for (const auto& o : out) near = near || std::hypot(o[0] - c.x, o[1] - c.y) < 1.5 * size;
         if (near) continue;
         cellUsed[cell] = 1;
         out.push_back({c.x, c.y, size, size});

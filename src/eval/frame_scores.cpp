@@ -8,9 +8,9 @@ namespace bmfr {
 
 const std::vector<MetricInfo>& metricList() {
     static const std::vector<MetricInfo> list = {
-        {"rmse", "RMSE", true, true},         {"psnr_db", "PSNR dB", false, false},
-        {"ssim", "SSIM", false, false},       {"flip", "FLIP", true, true},
-        {"relmse", "relMSE", true, true},     {"temporal_error", "temporal error", true, true}};
+        {"rmse", "RMSE", true, true},     {"psnr_db", "PSNR dB", false, false},
+        {"ssim", "SSIM", false, false},   {"flip", "FLIP", true, true},
+        {"relmse", "relMSE", true, true}, {"temporal_error", "temporal error", true, true}};
     return list;
 }
 

@@ -1,7 +1,7 @@
 #include "eval/plot.h"
+#include "io/atomic_file.h"
 #include <algorithm>
 #include <cmath>
-#include "io/atomic_file.h"
 #include <fmt/core.h>
 
 namespace bmfr {
@@ -28,22 +28,31 @@ const char* svgDash(int dash) {
     return d[dash % 6];
 }
 
-std::string hex(Rgb8 c) { return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b); }
+std::string hex(Rgb8 c) {
+    return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b);
+}
 
 std::string escapeXml(const std::string& s) {
     std::string o;
     for (char c : s) {
-        if (c == '&') o += "&amp;";
-        else if (c == '<') o += "&lt;";
-        else if (c == '>') o += "&gt;";
-        else if (c == '"') o += "&quot;";
-        else o += c;
+        if (c == '&')
+            o += "&amp;";
+        else if (c == '<')
+            o += "&lt;";
+        else if (c == '>')
+            o += "&gt;";
+        else if (c == '"')
+            o += "&quot;";
+        else
+            o += c;
     }
     return o;
 }
 
 /// Approximate advance of the SVG sans-serif text, for layout.
-double textWidthEstimate(const std::string& s, int size) { return 0.56 * size * double(s.size()); }
+double textWidthEstimate(const std::string& s, int size) {
+    return 0.56 * size * double(s.size());
+}
 
 } // namespace
 
@@ -72,7 +81,8 @@ Ticks niceTicks(double lo, double hi, int target, bool zeroBased) {
 Ticks logTicks(double lo, double hi) {
     Ticks t;
     if (!(lo > 0) || !(hi > 0)) return niceTicks(lo, hi);
-    const int e0 = int(std::floor(std::log10(lo) + 1e-9)), e1 = int(std::ceil(std::log10(hi) - 1e-9));
+    const int e0 = int(std::floor(std::log10(lo) + 1e-9)),
+              e1 = int(std::ceil(std::log10(hi) - 1e-9));
     const int decades = std::max(1, e1 - e0);
     t.lo = std::pow(10.0, e0), t.hi = std::pow(10.0, std::max(e1, e0 + 1));
     for (int e = e0; e <= e0 + decades; ++e)
@@ -105,7 +115,8 @@ Figure linePlot(const PlotSpec& spec, const std::vector<Series>& series) {
     for (const Series& s : series) {
         n = std::max(n, s.values.size());
         for (double v : s.values)
-            if (std::isfinite(v) && (!spec.logY || v > 0)) lo = std::min(lo, v), hi = std::max(hi, v);
+            if (std::isfinite(v) && (!spec.logY || v > 0))
+                lo = std::min(lo, v), hi = std::max(hi, v);
     }
     if (!std::isfinite(lo)) lo = 0, hi = 1;
     const Ticks yt = spec.logY ? logTicks(lo, hi) : niceTicks(lo, hi, 5, spec.zeroBased);
@@ -133,7 +144,8 @@ Figure linePlot(const PlotSpec& spec, const std::vector<Series>& series) {
         f.texts.push_back({x0 - 6, y + 4, yt.labels[k], 12, 1, ink});
     }
     // Frame ticks: a nice integer step.
-    const Ticks xt = niceTicks(spec.firstFrame, spec.firstFrame + double(std::max<size_t>(n, 1) - 1), 6);
+    const Ticks xt =
+        niceTicks(spec.firstFrame, spec.firstFrame + double(std::max<size_t>(n, 1) - 1), 6);
     const double xstep = std::max(1.0, xt.values.size() > 1 ? xt.values[1] - xt.values[0] : 1.0);
     for (double v = std::ceil(spec.firstFrame / xstep) * xstep;
          v <= spec.firstFrame + double(n) - 1 + 1e-9; v += xstep) {
@@ -197,7 +209,8 @@ std::string toSvg(const Figure& f) {
 }
 
 void writePlot(const std::string& stem, const Figure& f) {
-    writeFileAtomically(stem + ".svg", "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" + toSvg(f) + "\n");
+    writeFileAtomically(stem + ".svg",
+                        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" + toSvg(f) + "\n");
     writePng(stem + ".png", toRaster(f, 2));
 }
 
@@ -214,7 +227,8 @@ Raster toRaster(const Figure& f, int scale) {
                    thick);
         }
     };
-    for (const Figure::Line& l : f.lines) segment(l.x0, l.y0, l.x1, l.y1, l.colour, l.width, l.dash);
+    for (const Figure::Line& l : f.lines)
+        segment(l.x0, l.y0, l.x1, l.y1, l.colour, l.width, l.dash);
     for (const Figure::Path& p : f.paths)
         for (size_t i = 1; i < p.points.size(); ++i)
             segment(p.points[i - 1].first, p.points[i - 1].second, p.points[i].first,

@@ -27,7 +27,8 @@ Ticks niceTicks(double lo, double hi, int target = 5, bool zeroBased = false);
 /// Decade ticks covering [lo, hi], lo > 0, with 2 and 5 between when the range is under two
 /// decades.
 Ticks logTicks(double lo, double hi);
-/// Whether a log axis reads better: all values positive and spanning more than `ratio` (10: the noisy input beside denoised results).
+/// Whether a log axis reads better: all values positive and spanning more than `ratio` (10: the
+/// noisy input beside denoised results).
 bool wantsLogAxis(const std::vector<Series>& series, double ratio = 10);
 
 struct PlotSpec {

@@ -95,13 +95,15 @@ Raster heatMap(const ImageF& map, float vmax) {
 namespace {
 void appendBytes(void* ctx, void* data, int size) {
     auto* v = static_cast<std::vector<unsigned char>*>(ctx);
-    v->insert(v->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+    v->insert(v->end(), static_cast<unsigned char*>(data),
+              static_cast<unsigned char*>(data) + size);
 }
 } // namespace
 
 std::vector<unsigned char> encodePng(const Raster& r) {
     std::vector<unsigned char> out;
-    if (!stbi_write_png_to_func(appendBytes, &out, r.width, r.height, 3, r.pixels.data(), r.width * 3))
+    if (!stbi_write_png_to_func(appendBytes, &out, r.width, r.height, 3, r.pixels.data(),
+                                r.width * 3))
         throw Error("cannot encode PNG");
     return out;
 }

@@ -41,8 +41,9 @@ std::string reportHtml(const ReportContent& c) {
     h += c.tableHtml;
     h += "<h2>Per frame</h2><div class=\"plots\">";
     for (const ReportPlot& p : c.plots)
-        h += "<figure>" + p.svg + "<figcaption><a href=\"" + escapeHtml(p.stem) + ".svg\">SVG</a> " +
-             "<a href=\"" + escapeHtml(p.stem) + ".png\">PNG</a></figcaption></figure>";
+        h += "<figure>" + p.svg + "<figcaption><a href=\"" + escapeHtml(p.stem) +
+             ".svg\">SVG</a> " + "<a href=\"" + escapeHtml(p.stem) +
+             ".png\">PNG</a></figcaption></figure>";
     h += "</div>";
 
     h += "<h2>Viewer</h2><section id=\"viewer\"><div class=\"controls\">"
@@ -80,8 +81,8 @@ std::string reportHtml(const ReportContent& c) {
     h += "<h2>Pictures</h2><div class=\"pictures\">";
     for (const ReportPicture& p : c.pictures)
         h += std::string(p.tile ? "<figure class=\"tile\">" : "<figure>") + "<figcaption>" +
-             escapeHtml(p.title) + " (<a href=\"" + escapeHtml(p.file) +
-             "\">" + escapeHtml(p.file) + "</a>)</figcaption><img alt=\"" + escapeHtml(p.title) +
+             escapeHtml(p.title) + " (<a href=\"" + escapeHtml(p.file) + "\">" +
+             escapeHtml(p.file) + "</a>)</figcaption><img alt=\"" + escapeHtml(p.title) +
              "\" src=\"data:image/png;base64," + p.png + "\"></figure>";
     h += "</div><h2>Run</h2>" + c.metadataHtml;
     h += "<script>";

@@ -8,8 +8,8 @@ namespace bmfr {
 
 struct ReportPicture {
     std::string title;
-    std::string png; ///< PNG bytes, base64
-    std::string file; ///< the same picture's file beside the report
+    std::string png;   ///< PNG bytes, base64
+    std::string file;  ///< the same picture's file beside the report
     bool tile = false; ///< laid out side by side with its neighbours (heat maps)
 };
 
@@ -19,10 +19,10 @@ struct ReportPlot {
 };
 
 struct ReportContent {
-    std::string heading;       ///< one sentence: reference, frames, shown frame
-    std::string tableHtml;     ///< the score table
+    std::string heading;   ///< one sentence: reference, frames, shown frame
+    std::string tableHtml; ///< the score table
     std::vector<ReportPlot> plots;
-    std::string viewerJson;    ///< the viewer's data (see report_viewer.js)
+    std::string viewerJson; ///< the viewer's data (see report_viewer.js)
     std::vector<ReportPicture> pictures;
     std::vector<std::string> videos; ///< file names beside the report
     std::string videoNote;           ///< why there is no video, when one was asked for

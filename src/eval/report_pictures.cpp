@@ -77,7 +77,8 @@ Raster downscale(const Raster& r, int f) {
 Raster greyRaster(const ImageF& map) {
     Raster r(map.width, map.height);
     for (size_t i = 0; i < r.pixels.size(); ++i) {
-        const auto v = uint8_t(std::clamp(map.pixels[i * size_t(map.channels)], 0.0f, 1.0f) * 255.0f + 0.5f);
+        const auto v =
+            uint8_t(std::clamp(map.pixels[i * size_t(map.channels)], 0.0f, 1.0f) * 255.0f + 0.5f);
         r.pixels[i] = {v, v, v};
     }
     return r;

@@ -58,14 +58,15 @@ RunMetadata collectRunMetadata(const std::string& commandLine, const std::string
         MethodMetadata mm;
         mm.name = name;
         mm.path = path.empty() ? "(the reference sequence's noisy colour)" : path;
-        const nlohmann::json r = path.empty() ? nlohmann::json(nullptr)
-                                              : readJson(fs::path(path) / "report.json");
+        const nlohmann::json r =
+            path.empty() ? nlohmann::json(nullptr) : readJson(fs::path(path) / "report.json");
         if (r.is_object()) {
             mm.filter = r.value("filter", "");
             mm.backend = r.value("backend", "");
             mm.reprojection = r.value("reprojection", "");
             if (r.contains("settings") && r["settings"].is_object())
-                for (const auto& [k, v] : r["settings"].items()) mm.settings.emplace_back(k, text(v));
+                for (const auto& [k, v] : r["settings"].items())
+                    mm.settings.emplace_back(k, text(v));
             if (r.contains("median_ms") && r["median_ms"].is_object())
                 for (const auto& [k, v] : r["median_ms"].items())
                     if (v.is_number()) mm.stageMs.emplace_back(k, v.get<double>());
@@ -94,7 +95,8 @@ std::string metadataHtml(const RunMetadata& m) {
          "backend</th><th>settings</th><th>median ms per frame</th></tr>";
     for (const MethodMetadata& mm : m.methods) {
         std::string settings, stages;
-        for (const auto& [k, v] : mm.settings) settings += (settings.empty() ? "" : ", ") + k + "=" + v;
+        for (const auto& [k, v] : mm.settings)
+            settings += (settings.empty() ? "" : ", ") + k + "=" + v;
         for (const auto& [k, v] : mm.stageMs)
             stages += (stages.empty() ? "" : ", ") + fmt::format("{} {:.2f}", k, v);
         h += "<tr><td>" + escapeHtml(mm.name) + "</td><td>" + escapeHtml(mm.path) + "</td><td>" +

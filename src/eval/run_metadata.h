@@ -10,7 +10,7 @@ namespace bmfr {
 
 struct MethodMetadata {
     std::string name, path;
-    std::string filter, backend, reprojection;  ///< empty when the folder has no report.json
+    std::string filter, backend, reprojection; ///< empty when the folder has no report.json
     std::vector<std::pair<std::string, std::string>> settings;
     std::vector<std::pair<std::string, double>> stageMs; ///< median ms per frame, per stage
 };

@@ -14,7 +14,8 @@ constexpr double kFlipDefaultPpd = 0.7 * (3840.0 / 0.7) * 3.14159265358979323846
 
 /// Per-pixel FLIP error map (1 channel) of `test` against `reference`, both 3-channel sRGB
 /// values in [0, 1] (e.g. toneMapped() output).
-ImageF flipMap(const ImageF& reference, const ImageF& test, double pixelsPerDegree = kFlipDefaultPpd);
+ImageF flipMap(const ImageF& reference, const ImageF& test,
+               double pixelsPerDegree = kFlipDefaultPpd);
 /// Mean of flipMap.
 double flip(const ImageF& reference, const ImageF& test, double pixelsPerDegree = kFlipDefaultPpd);
 

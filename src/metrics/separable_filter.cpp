@@ -23,8 +23,7 @@ std::vector<double> separableFilter(const std::vector<double>& in, int w, int h,
                 const double* p = src + x - rx;
                 for (size_t t = 0; t < kx.size(); ++t) s += kx[t] * p[t];
             } else {
-                for (int t = -rx; t <= rx; ++t)
-                    s += kx[size_t(t + rx)] * src[edge(x + t, w)];
+                for (int t = -rx; t <= rx; ++t) s += kx[size_t(t + rx)] * src[edge(x + t, w)];
             }
             dst[x] = s;
         }

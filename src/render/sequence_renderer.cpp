@@ -160,9 +160,9 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     if (o.layout != "manifest" && o.layout != "bmfr")
         throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
     // What `bmfr eval` reports about the input; the fingerprint alone decides resumption.
-    const nlohmann::json about{{"scene", d.name},       {"mesh", d.mesh},
-                               {"reference_spp", d.referenceSpp}, {"bounces", d.bounces},
-                               {"seed", d.seed},        {"jitter", d.jitter}};
+    const nlohmann::json about{
+        {"scene", d.name},      {"mesh", d.mesh}, {"reference_spp", d.referenceSpp},
+        {"bounces", d.bounces}, {"seed", d.seed}, {"jitter", d.jitter}};
     const bool resume = claimFolder(o.output, renderFingerprint(d, o.layout), o.overwrite, about);
     SequenceInfo info;
     info.width = d.width, info.height = d.height, info.frameCount = d.frames;
