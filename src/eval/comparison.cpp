@@ -331,8 +331,9 @@ ComparisonResult runComparison(const ComparisonOptions& o,
             flicker =
                 std::make_unique<VideoWriter>(ffmpeg, (out / "flicker.mp4").string(), o.videoFps);
             // At most 1920 pixels wide in all.
-            const int columns = int(sources.size()) + 1;
-            while (columns * (fullW / videoFactor + 8) > 1920 && videoFactor < 16) ++videoFactor;
+            const int videoColumns = int(sources.size()) + 1;
+            while (videoColumns * (fullW / videoFactor + 8) > 1920 && videoFactor < 16)
+                ++videoFactor;
         }
     }
 
