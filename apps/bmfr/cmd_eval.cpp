@@ -1,5 +1,6 @@
 #include "commands.h"
 #include "eval/comparison.h"
+#include "eval/score_tables.h"
 #include "io/range_parsers.h"
 #include "progress.h"
 #include <bmfr/error.h>

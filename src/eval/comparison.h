@@ -58,9 +58,6 @@ struct ComparisonResult {
 ComparisonResult runComparison(const ComparisonOptions& options,
                                const std::function<void(int, int)>& progress);
 
-/// The score table as Markdown (best per column in bold).
-std::string markdownTable(const ComparisonResult& r);
-
 /// Text made safe for HTML element content and attribute values.
 std::string escapeHtml(const std::string& text);
 

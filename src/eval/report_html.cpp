@@ -69,7 +69,8 @@ std::string reportHtml(const ReportContent& c) {
          "with a slider (click to move it); e cycles the error views; +/- zoom, or the wheel; "
          "drag to pan. Pixels stay square at any zoom. Exposure acts on linear values: the "
          "frames are stored as clamp(x<sup>1/2.2</sup>) in 8 bits, and the viewer shows "
-         "clamp((2<sup>EV</sup> x)<sup>1/2.2</sup>).</small></p></section>";
+         "clamp((2<sup>EV</sup> x)<sup>1/2.2</sup>), so a negative EV cannot bring back what the "
+         "display clipped; the EXR outputs hold the HDR values.</small></p></section>";
     h += "<script type=\"application/json\" id=\"viewer-data\">" + c.viewerJson + "</script>";
 
     if (!c.videos.empty() || !c.videoNote.empty()) {

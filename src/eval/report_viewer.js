@@ -71,7 +71,7 @@
     $('v-bar-mid').textContent = (state.vmax / 2).toPrecision(2);
     $('v-bar-hi').textContent = state.vmax.toPrecision(2) + ' and above';
     $('v-bar-what').textContent = {abs: '|A - B| of displayed values, mean of RGB',
-      rel: '|A - B| / (B + 0.01) of linear values, mean of RGB',
+      rel: '|A - B| / (B + 0.01) of the decoded linear values (display range: clipped at 1), mean of RGB',
       flip: 'FLIP of A against the reference'}[state.mode];
   }
 

@@ -1,0 +1,17 @@
+// The comparison's scores as tables: Markdown, CSV (means and per frame), JSON and an HTML table,
+// all keyed by metricList(); missing values are empty cells or JSON null.
+#pragma once
+#include "eval/comparison.h"
+#include <string>
+
+namespace bmfr {
+
+/// The score table as Markdown (best per column in bold).
+std::string markdownTable(const ComparisonResult& r);
+/// Writes table.md, table.csv, per_frame.csv and table.json into o.output; `json` receives the
+/// JSON text.
+void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::string& json);
+/// The score table as HTML (names escaped, best per column in bold).
+std::string tableHtml(const ComparisonResult& r);
+
+} // namespace bmfr
