@@ -4,7 +4,7 @@
 # backend and the command line (FILTER overrides the ctest regex; "." runs everything).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-filter=${1:-'Hardening|SequenceIo|EndToEnd|Conformance|Svgf|Walr\.|Accumulation|Reprojection|MotionVectors\.|RenderMotion\.|Cli|Householder|Multilayer'}
+filter=${1:-'Hardening|SequenceIo|EndToEnd|Conformance|Svgf|Walr\.|Accumulation|Reprojection|MotionVectors\.|RenderMotion\.|Cli|Householder|Multilayer|Report|FlipReference|Metrics\.'}
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 # -O1: the sanitizers need no more, and it halves the build on two cores.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" \

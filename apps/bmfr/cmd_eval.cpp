@@ -38,8 +38,8 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
     };
     auto job = std::make_shared<Job>();
     CLI::App* cmd =
-        app.add_subcommand("eval", "score result sequences against a reference; tables, plots, "
-                                   "crops, heat maps and an HTML report");
+        app.add_subcommand("eval", "score result sequences against a reference: tables, plots, "
+                                   "insets, heat maps, videos and an HTML report with a viewer");
     cmd->add_option("-r,--reference", job->options.reference,
                     "sequence folder holding the reference frames")
         ->required();

@@ -2,6 +2,7 @@
 // Exit codes: 0 success, 1 a runtime error, 2 a usage error, 130 interrupted.
 #include "commands.h"
 #include "git_commit.h"
+#include "io/shell_quote.h"
 #include "usage.h"
 #include <bmfr/bmfr.h>
 #include <cstdio>
@@ -27,17 +28,7 @@ const std::string& invocation() {
 using bmfr::app::versionText;
 
 int main(int argc, char** argv) {
-    for (int i = 0; i < argc; ++i) {
-        const std::string a = argv[i];
-        const bool plain =
-            !a.empty() &&
-            a.find_first_not_of(
-                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_=.,:/+@%") ==
-                std::string::npos;
-        std::string quoted = "'";
-        for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-        gInvocation += (i ? " " : "") + (plain ? a : quoted + "'");
-    }
+    for (int i = 0; i < argc; ++i) gInvocation += (i ? " " : "") + bmfr::shellQuote(argv[i]);
     CLI::App app{"bmfr: real-time reconstruction of 1-spp path-traced sequences "
                  "(Blockwise Multi-Order Feature Regression, Koskela et al. 2019)",
                  "bmfr"};

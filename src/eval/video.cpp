@@ -1,4 +1,5 @@
 #include "eval/video.h"
+#include "io/shell_quote.h"
 #include <bmfr/error.h>
 #include <csignal>
 #include <cstdlib>
@@ -11,16 +12,6 @@
 namespace bmfr {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string shellQuote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-} // namespace
 
 std::string findFfmpeg() {
     const char* path = std::getenv("PATH");
