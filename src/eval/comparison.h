@@ -3,6 +3,7 @@
 // insets, error heat maps, optional videos, and one self-contained HTML report with an
 // interactive viewer and the run's metadata.
 #pragma once
+#include "eval/escape_html.h"
 #include "eval/frame_scores.h"
 #include "io/range_parsers.h"
 #include <array>
@@ -57,8 +58,5 @@ struct ComparisonResult {
 /// no ffmpeg on PATH, everything else is written and then bmfr::Error says so.
 ComparisonResult runComparison(const ComparisonOptions& options,
                                const std::function<void(int, int)>& progress);
-
-/// Text made safe for HTML element content and attribute values.
-std::string escapeHtml(const std::string& text);
 
 } // namespace bmfr

@@ -42,9 +42,7 @@ FrameScores scoreFrame(const ImageF& result, const ImageF& reference, const Imag
     s.ssim = ssim(a, r);
     if (withFlip) {
         ImageF map = flipMap(r, a);
-        double sum = 0;
-        for (float v : map.pixels) sum += v;
-        s.flip = sum / double(map.pixels.size());
+        s.flip = flipMean(map);
         if (flipMapOut) *flipMapOut = std::move(map);
     }
     s.relmse = relMseLinear(result, reference);

@@ -1,4 +1,5 @@
 #include "eval/plot.h"
+#include "eval/escape_html.h"
 #include "io/atomic_file.h"
 #include <algorithm>
 #include <cmath>
@@ -30,23 +31,6 @@ const char* svgDash(int dash) {
 
 std::string hex(Rgb8 c) {
     return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b);
-}
-
-std::string escapeXml(const std::string& s) {
-    std::string o;
-    for (char c : s) {
-        if (c == '&')
-            o += "&amp;";
-        else if (c == '<')
-            o += "&lt;";
-        else if (c == '>')
-            o += "&gt;";
-        else if (c == '"')
-            o += "&quot;";
-        else
-            o += c;
-    }
-    return o;
 }
 
 /// Approximate advance of the SVG sans-serif text, for layout.
@@ -204,7 +188,7 @@ std::string toSvg(const Figure& f) {
                          t.anchor < 0   ? ""
                          : t.anchor > 0 ? " text-anchor=\"end\""
                                         : " text-anchor=\"middle\"",
-                         escapeXml(t.text));
+                         escapeHtml(t.text));
     return s + "</svg>";
 }
 

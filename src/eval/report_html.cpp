@@ -1,5 +1,5 @@
 #include "eval/report_html.h"
-#include "eval/comparison.h"
+#include "eval/escape_html.h"
 #include "report_viewer_js.h"
 #include <fmt/core.h>
 

@@ -1,5 +1,5 @@
 #include "eval/run_metadata.h"
-#include "eval/comparison.h"
+#include "eval/escape_html.h"
 #include "render/sequence_renderer.h"
 #include <filesystem>
 #include <fmt/core.h>

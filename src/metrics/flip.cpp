@@ -166,11 +166,14 @@ ImageF flipMap(const ImageF& ref, const ImageF& test, double ppd) {
     return map;
 }
 
-double flip(const ImageF& ref, const ImageF& test, double ppd) {
-    ImageF m = flipMap(ref, test, ppd);
+double flipMean(const ImageF& map) {
     double s = 0;
-    for (float v : m.pixels) s += v;
-    return s / double(m.pixels.size());
+    for (float v : map.pixels) s += v;
+    return s / double(map.pixels.size());
+}
+
+double flip(const ImageF& ref, const ImageF& test, double ppd) {
+    return flipMean(flipMap(ref, test, ppd));
 }
 
 } // namespace bmfr

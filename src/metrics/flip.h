@@ -16,6 +16,8 @@ constexpr double kFlipDefaultPpd = 0.7 * (3840.0 / 0.7) * 3.14159265358979323846
 /// values in [0, 1] (e.g. toneMapped() output).
 ImageF flipMap(const ImageF& reference, const ImageF& test,
                double pixelsPerDegree = kFlipDefaultPpd);
+/// Mean of a flipMap.
+double flipMean(const ImageF& map);
 /// Mean of flipMap.
 double flip(const ImageF& reference, const ImageF& test, double pixelsPerDegree = kFlipDefaultPpd);
 
