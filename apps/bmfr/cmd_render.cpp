@@ -18,7 +18,8 @@ extern "C" void onInterrupt(int) {
 struct RenderJob {
     std::string output, scene = "cornell-moving", scenesDir = "../shared/scenes",
                         layout = "manifest";
-    std::optional<int> width, height, frames, referenceSpp, bounces;
+    std::optional<int> width, height, frames, referenceSpp, bounces, directSpp;
+    std::string paths;
     std::optional<uint32_t> seed;
     bool noReference = false, quiet = false, list = false, overwrite = false;
     bool diffuseIndirect = false;
@@ -64,6 +65,10 @@ int runRender(const RenderJob& job) {
     if (job.bounces) d.bounces = *job.bounces;
     if (job.seed) d.seed = *job.seed;
     if (job.diffuseIndirect) d.diffuseIndirectOnly = true;
+    if (job.paths == "mara") d.factoredDirectSpp = job.directSpp.value_or(16);
+    if (job.paths == "bmfr") d.factoredDirectSpp = 0;
+    if (job.directSpp && d.factoredDirectSpp == 0)
+        throw CLI::ValidationError("--direct-spp", "needs --paths mara");
     render::validate(d);
 
     gInterrupted = false;
@@ -126,6 +131,17 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("--diffuse-indirect-only", job->diffuseIndirect,
                   "colour and reference hold only the diffuse indirect light, no emission (the "
                   "signal WALR's paper filters: to compare filters on it)");
+    cmd->add_option("--paths", job->paths,
+                    "bmfr (the BMFR paper's 1-spp paths; default) or mara (Mara et al. 2017's "
+                    "factored paths: one matte and one glossy path, direct light from "
+                    "--direct-spp light samples standing in for their rasterised direct light; "
+                    "also writes matte_indirect, glossy_indirect, direct_light, specular_f0, "
+                    "roughness, glossy_hit_distance)")
+        ->check(CLI::IsMember({"bmfr", "mara"}));
+    cmd->add_option("--direct-spp", job->directSpp,
+                    "with --paths mara: light samples of the direct light at the first hit, "
+                    "[1, 4096] (default 16)")
+        ->check(CLI::Range(1, 4096));
     cmd->add_option("--layout", job->layout, "manifest (sequence.json) or bmfr (original dataset)")
         ->default_val("manifest");
     cmd->add_flag("--list-presets", job->list, "print the preset names");

@@ -77,6 +77,24 @@ struct FrameInput {
     /// only by WALR's `signal=diffuse-indirect`, the paper's own use, which filters this alone
     /// and adds the rest back unfiltered.
     ImageView diffuseIndirect;
+    /// Optional buffers of Mara et al. 2017's BRDF factorisation (`bmfr render --paths mara`
+    /// writes them; the mara2017 filter reads them, every other filter ignores them).
+    /// matteIndirect: M, the mean indirect radiance arriving at the first hit over
+    /// cosine-sampled directions, without albedo or Fresnel, 3 or 4 channels.
+    ImageView matteIndirect;
+    /// glossyIndirect: G, the GGX-sampled indirect light with the microfacet term g inside and
+    /// the Fresnel factor outside, 3 or 4 channels.
+    ImageView glossyIndirect;
+    /// directLight: the direct light reflected at the first hit (not filtered, assumed noise
+    /// free), without emission, 3 or 4 channels.
+    ImageView directLight;
+    /// specularF0: the normal-incidence Fresnel reflectance F0, [0, 1], 3 or 4 channels.
+    ImageView specularF0;
+    /// roughness: perceptual roughness (GGX alpha = roughness^2), [0, 1], 1 channel.
+    ImageView roughness;
+    /// glossyHitDistance: distance from the first hit to the glossy path's next hit, scene
+    /// units, 1 channel (escaped rays: a scene size or more).
+    ImageView glossyHitDistance;
     Mat4 viewProjection; ///< this frame's world-to-clip matrix
     /// Sub-pixel offset of this frame's primary rays from the pixel centre, pixels, [-0.5, 0.5].
     float jitter[2] = {0.0f, 0.0f};

@@ -11,11 +11,13 @@ namespace reference {
 std::unique_ptr<BmfrPasses> makeBmfrPasses();
 std::unique_ptr<SvgfPasses> makeSvgfPasses();
 std::unique_ptr<WalrPasses> makeWalrPasses();
+std::unique_ptr<MaraPasses> makeMaraPasses();
 } // namespace reference
 namespace cpu {
 std::unique_ptr<BmfrPasses> makeBmfrPasses();
 std::unique_ptr<SvgfPasses> makeSvgfPasses();
 std::unique_ptr<WalrPasses> makeWalrPasses();
+std::unique_ptr<MaraPasses> makeMaraPasses();
 } // namespace cpu
 
 const char* backendName(Backend b) {
@@ -76,6 +78,17 @@ std::unique_ptr<WalrPasses> makeWalrPasses(Backend b) {
         return reference::makeWalrPasses();
     case Backend::Cpu:
         return cpu::makeWalrPasses();
+    default:
+        unavailable(b);
+    }
+}
+
+std::unique_ptr<MaraPasses> makeMaraPasses(Backend b) {
+    switch (b) {
+    case Backend::Reference:
+        return reference::makeMaraPasses();
+    case Backend::Cpu:
+        return cpu::makeMaraPasses();
     default:
         unavailable(b);
     }

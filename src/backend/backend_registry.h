@@ -2,6 +2,7 @@
 #pragma once
 #include "filters/bmfr/bmfr_passes.h"
 #include "filters/svgf/svgf_passes.h"
+#include "filters/mara2017/mara_passes.h"
 #include "filters/walr/walr_passes.h"
 #include <memory>
 
@@ -11,5 +12,6 @@ namespace bmfr {
 std::unique_ptr<BmfrPasses> makeBmfrPasses(Backend backend);
 std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend backend);
 std::unique_ptr<WalrPasses> makeWalrPasses(Backend backend);
+std::unique_ptr<MaraPasses> makeMaraPasses(Backend backend);
 
 } // namespace bmfr

@@ -30,5 +30,6 @@ FilterEntry tableFilterEntry(const char* name, const char* title,
 FilterEntry bmfrFilterEntry();
 FilterEntry svgfFilterEntry();
 FilterEntry walrFilterEntry();
+FilterEntry mara2017FilterEntry();
 
 } // namespace bmfr

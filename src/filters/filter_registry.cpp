@@ -12,6 +12,7 @@ const std::vector<FilterEntry>& filters() {
         bmfrFilterEntry(),
         svgfFilterEntry(),
         walrFilterEntry(),
+        mara2017FilterEntry(),
     };
     return kFilters;
 }

@@ -39,7 +39,9 @@ class ManifestReader : public SequenceReader {
                 requireKnownKeys(manifest_["frames"][k],
                                  {"color", "albedo", "normal", "position", "reference", "emission",
                                   "motion", "previous_position", "previous_normal",
-                                  "diffuse_indirect", "reset", "extras", "aovs", "view_projection",
+                                  "diffuse_indirect", "matte_indirect", "glossy_indirect",
+                                  "direct_light", "specular_f0", "roughness",
+                                  "glossy_hit_distance", "reset", "extras", "aovs", "view_projection",
                                   "jitter"},
                                  mp.string() + " frame " + std::to_string(k));
             if (!manifest_.contains("width") || !manifest_.contains("height"))
@@ -93,7 +95,13 @@ class ManifestReader : public SequenceReader {
                                        {"motion", &f.motion, 0},
                                        {"previous_position", &f.previousPosition, 3},
                                        {"previous_normal", &f.previousNormal, 3},
-                                       {"diffuse_indirect", &f.diffuseIndirect, 3}};
+                                       {"diffuse_indirect", &f.diffuseIndirect, 3},
+                                       {"matte_indirect", &f.matteIndirect, 3},
+                                       {"glossy_indirect", &f.glossyIndirect, 3},
+                                       {"direct_light", &f.directLight, 3},
+                                       {"specular_f0", &f.specularF0, 3},
+                                       {"roughness", &f.roughness, 1},
+                                       {"glossy_hit_distance", &f.glossyHitDistance, 1}};
             f.reference = ImageF();
             if (info_.hasReference) buffers.push_back({"reference", &f.reference, 3});
             for (const Buffer& b : optional) {
@@ -267,6 +275,10 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
         j["previous_position"] = put("previous_position", f.previousPosition);
     if (f.previousNormal.width) j["previous_normal"] = put("previous_normal", f.previousNormal);
     if (f.diffuseIndirect.width) j["diffuse_indirect"] = put("diffuse_indirect", f.diffuseIndirect);
+    // "surface_roughness": the renderer's "roughness" extra already has the plain file name.
+    for (const auto& [img, key] : f.maraBuffers())
+        if (img->width)
+            j[key] = put(std::string(key) == "roughness" ? "surface_roughness" : key, *img);
     if (f.reset) j["reset"] = true;
     if (!f.extras.empty()) {
         j["extras"] = json::array();

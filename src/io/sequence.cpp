@@ -15,6 +15,12 @@ FrameInput FrameData::input(bool motionInput) const {
     in.position = view(position);
     if (emission.width) in.emission = view(emission);
     if (diffuseIndirect.width) in.diffuseIndirect = view(diffuseIndirect);
+    if (matteIndirect.width) in.matteIndirect = view(matteIndirect);
+    if (glossyIndirect.width) in.glossyIndirect = view(glossyIndirect);
+    if (directLight.width) in.directLight = view(directLight);
+    if (specularF0.width) in.specularF0 = view(specularF0);
+    if (roughness.width) in.roughness = view(roughness);
+    if (glossyHitDistance.width) in.glossyHitDistance = view(glossyHitDistance);
     for (const ImageF& e : extras) in.extras.push_back(view(e));
     if (motionInput) {
         if (motion.width) in.motion = view(motion);
@@ -40,6 +46,12 @@ const std::vector<DefaultPass> kDefaultPasses = {
     {"previous_position", {}},
     {"previous_normal", {}},
     {"diffuse_indirect", {}},
+    {"matte_indirect", {}},
+    {"glossy_indirect", {}},
+    {"direct_light", {}},
+    {"specular_f0", {}},
+    {"roughness", {}},
+    {"glossy_hit_distance", {}},
 };
 
 std::vector<std::string> layeredBufferNames() {
@@ -82,6 +94,8 @@ void SequenceReader::checkFrame(int index, const FrameData& f) const {
     if (f.previousPosition.width) check(f.previousPosition, "previous_position");
     if (f.previousNormal.width) check(f.previousNormal, "previous_normal");
     if (f.diffuseIndirect.width) check(f.diffuseIndirect, "diffuse_indirect");
+    for (const auto& [img, name] : f.maraBuffers())
+        if (img->width) check(*img, name);
 }
 
 std::unique_ptr<SequenceReader> SequenceReader::open(const std::string& directory) {

@@ -20,11 +20,20 @@ struct FrameData {
     /// FrameInput::motion (2 channels, or 3 with the depth offset), previousPosition,
     /// previousNormal and diffuseIndirect; empty when the sequence has none.
     ImageF motion, previousPosition, previousNormal, diffuseIndirect;
+    /// Mara et al. 2017's factorisation (FrameInput::matteIndirect ...); empty when absent.
+    ImageF matteIndirect, glossyIndirect, directLight, specularF0, roughness, glossyHitDistance;
     bool reset = false; ///< a camera cut: the history is dropped at this frame
     /// Further named outputs (depth, motion, direct/indirect, diffuse/glossy splits...).
     std::vector<std::pair<std::string, ImageF>> aovs;
     Mat4 viewProjection;
     float jitter[2] = {0, 0};
+
+    /// The factorisation's buffers with their sequence.json keys.
+    std::vector<std::pair<const ImageF*, const char*>> maraBuffers() const {
+        return {{&matteIndirect, "matte_indirect"}, {&glossyIndirect, "glossy_indirect"},
+                {&directLight, "direct_light"},     {&specularF0, "specular_f0"},
+                {&roughness, "roughness"},          {&glossyHitDistance, "glossy_hit_distance"}};
+    }
 
     /// A view for Denoiser::denoise (valid while this object lives). Without `motion`, the
     /// motion vectors and previous positions and normals are left out: the filters then

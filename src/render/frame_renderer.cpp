@@ -13,6 +13,34 @@ float halton(int i, int base) {
     return r;
 }
 
+/// Mara et al.'s sample at pixel i: writes the factorisation's buffers and returns the
+/// splits as the frame's AOVs hold them (direct and indirect; diffuse and glossy are the
+/// matte and glossy indirect terms; diffuse indirect the matte term).
+PathContribution factoredSplits(const Integrator& integrator, const PrimaryHit& ph, Rng& rng,
+                                long i, FrameData& out, uint64_t& rays, int directSpp,
+                                float skyDistance) {
+    const FactoredSample s = integrator.factoredSample(ph, directSpp, rng, rays);
+    const Vec3 one{1, 1, 1}, m = one - s.fresnel, base = ph.hit ? ph.surface.baseColor : Vec3{};
+    // albedo x M is the matte term: M is scaled by rho_L / albedo (1 - metallic in glTF).
+    const Vec3 scale{base.x > 0 ? s.matteReflectance.x / base.x : 0.0f,
+                     base.y > 0 ? s.matteReflectance.y / base.y : 0.0f,
+                     base.z > 0 ? s.matteReflectance.z / base.z : 0.0f};
+    store3(out.matteIndirect.data(), i, scale * s.matte);
+    store3(out.glossyIndirect.data(), i, s.glossy);
+    store3(out.directLight.data(), i, s.direct);
+    store3(out.specularF0.data(), i, ph.hit ? ph.surface.f0 : Vec3{});
+    out.roughness.data()[i] = ph.hit ? ph.surface.roughness : 1.0f;
+    out.glossyHitDistance.data()[i] = s.glossyDistance >= 0 ? s.glossyDistance : skyDistance;
+    PathContribution c;
+    c.total = s.total();
+    c.direct = s.emission + s.direct;
+    c.diffuse = m * m * s.matteReflectance * s.matte;
+    c.glossy = s.fresnel * s.glossy;
+    c.indirect = c.diffuse + c.glossy;
+    c.diffuseIndirect = c.diffuse;
+    return c;
+}
+
 } // namespace
 
 void frameJitter(int index, bool enabled, float jitter[2]) {
@@ -67,6 +95,11 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     out.previousNormal = objects ? ImageF(w, h, 3) : ImageF();
     out.reference = referenceSpp > 0 ? ImageF(w, h, 3) : ImageF();
     out.emission = ImageF(w, h, 3);
+    const bool factored = factoredDirectSpp_ > 0;
+    for (ImageF* img : {&out.matteIndirect, &out.glossyIndirect, &out.directLight, &out.specularF0,
+                        &out.roughness, &out.glossyHitDistance})
+        *img = factored ? ImageF(w, h, img == &out.roughness || img == &out.glossyHitDistance ? 1 : 3)
+                        : ImageF();
 
     const Integrator integrator(*scene_, *accel_, lights, bounces_);
     const float spread = 2.0f * std::tan(0.5f * pose.fovY) / float(h);
@@ -96,6 +129,10 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                     Vec3 sum{};
                     for (int s = 1; s <= referenceSpp; ++s) {
                         Rng rng(uint32_t(i), uint32_t(index), uint32_t(s), seed_);
+                        if (factored) {
+                            sum += integrator.factoredSample(ph, 1, rng, localRays).total();
+                            continue;
+                        }
                         const PathContribution c = integrator.sample(ph, rng, localRays);
                         sum += diffuseIndirectOnly_ ? c.diffuseIndirect : c.total;
                     }
@@ -103,7 +140,10 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                     continue;
                 }
                 Rng rng(uint32_t(i), uint32_t(index), 0u, seed_);
-                PathContribution c = integrator.sample(ph, rng, localRays);
+                PathContribution c =
+                    factored ? factoredSplits(integrator, ph, rng, i, out, localRays,
+                                             factoredDirectSpp_, skyDistance_)
+                             : integrator.sample(ph, rng, localRays);
                 store3(out.color.data(), i, diffuseIndirectOnly_ ? c.diffuseIndirect : c.total);
                 store3(out.aovs[1].second.data(), i, c.direct);
                 store3(out.aovs[2].second.data(), i, c.indirect);

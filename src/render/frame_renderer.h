@@ -48,6 +48,12 @@ class FrameRenderer {
     /// Colour and reference hold only the diffuse indirect light (SceneDescription).
     void setDiffuseIndirectOnly(bool on) { diffuseIndirectOnly_ = on; }
 
+    /// With directSpp > 0, Mara et al. 2017's paths: the colour is their factored estimate
+    /// (direct light from directSpp light samples, one matte and one glossy path), the frame
+    /// also holds M, G, the direct light, F0, roughness and the glossy hit distance, and the
+    /// reference averages the same estimator (one light sample each). 0 = the paper's paths.
+    void setFactoredPaths(int directSpp) { factoredDirectSpp_ = directSpp; }
+
     /// The world-to-clip matrix render() uses for `pose`.
     Mat4 viewProjectionOf(const CameraPose& pose) const;
 
@@ -61,6 +67,7 @@ class FrameRenderer {
     int width_, height_, bounces_;
     uint32_t seed_;
     bool diffuseIndirectOnly_ = false;
+    int factoredDirectSpp_ = 0;
     float zNear_, zFar_, skyDistance_;
 };
 

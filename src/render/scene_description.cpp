@@ -141,8 +141,11 @@ double estimatedRenderSeconds(const SceneDescription& d) {
     const bool builtin = d.mesh.rfind("builtin:", 0) == 0;
     const double input = builtin ? 0.6e-6 : 1.0e-6, reference = builtin ? 0.37e-6 : 0.65e-6;
     const double bounces = std::max(1, d.bounces); // the rates were measured at one bounce
+    // Factored paths: two paths per sample, and the light samples of the input's direct light.
+    const double paths = d.factoredDirectSpp > 0 ? 2.0 : 1.0;
+    const double lightSamples = d.factoredDirectSpp > 0 ? 0.1 * d.factoredDirectSpp : 0.0;
     return double(d.width) * d.height * d.frames * bounces *
-           (input + reference * double(d.referenceSpp));
+           (input * (paths + lightSamples) + reference * paths * double(d.referenceSpp));
 }
 
 SceneDescription parseSceneDescription(const json& j, const std::string& baseDir) {
@@ -152,7 +155,8 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         requireKnownKeys(j,
                          {"mesh", "width", "height", "frames", "reference_spp", "bounces", "seed",
                           "jitter", "roughness_override", "sky", "sun", "lights", "camera",
-                          "diffuse_indirect_only", "animations", "gltf_animation"},
+                          "diffuse_indirect_only", "animations", "gltf_animation", "paths",
+                          "direct_spp"},
                          where);
         d.mesh = j.at("mesh").get<std::string>();
         if (d.mesh.rfind("builtin:", 0) != 0 && fs::path(d.mesh).is_relative())
@@ -166,6 +170,13 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         d.seed = uint32_t(integerField(j, "seed", 0, 4294967295LL, d.seed, where));
         d.jitter = j.value("jitter", d.jitter);
         d.diffuseIndirectOnly = j.value("diffuse_indirect_only", d.diffuseIndirectOnly);
+        const std::string paths = j.value("paths", std::string("bmfr"));
+        if (paths != "bmfr" && paths != "mara")
+            throw Error(where + ": \"paths\" is '" + paths + "', expected bmfr or mara");
+        const int directSpp = int(integerField(j, "direct_spp", 1, 4096, 16, where));
+        if (j.contains("direct_spp") && paths != "mara")
+            throw Error(where + ": \"direct_spp\" needs \"paths\": \"mara\"");
+        d.factoredDirectSpp = paths == "mara" ? directSpp : 0;
         if (j.contains("sky")) {
             requireKnownKeys(j["sky"], {"radiance"}, "scene description 'sky'");
             d.environment.sky = vec3(j["sky"].at("radiance"), "sky.radiance");

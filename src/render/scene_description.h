@@ -30,6 +30,9 @@ struct SceneDescription {
     /// The colour and reference hold only the indirect light through the primary hit's diffuse
     /// lobe (the signal WALR's paper filters), with no emission: for comparing filters on it.
     bool diffuseIndirectOnly = false;
+    /// Mara et al. 2017's factored paths ("paths": "mara"): light samples of the direct light
+    /// at the first hit, [1, 4096]; 0 = the paper's paths ("paths": "bmfr").
+    int factoredDirectSpp = 0;
     Environment environment;
     std::vector<QuadLightSpec> quadLights;
     std::vector<CameraKey> cameraKeys;

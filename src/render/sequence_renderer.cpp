@@ -62,6 +62,7 @@ std::string renderFingerprint(const SceneDescription& d, const std::string& layo
     s += fmt::format("{}x{};{};{};{};{};{};", d.width, d.height, d.referenceSpp, d.bounces, d.seed,
                      d.jitter, d.roughnessOverride);
     if (d.diffuseIndirectOnly) s += "diffuse-indirect;";
+    if (d.factoredDirectSpp > 0) s += fmt::format("mara:{};", d.factoredDirectSpp);
     add(s, d.environment.sky);
     add(s, d.environment.sun.direction);
     add(s, d.environment.sun.irradiance);
@@ -133,6 +134,7 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     report.loadSeconds = clock.elapsed() / 1000.0;
     FrameRenderer renderer(scene, accel, d.width, d.height, d.bounces, d.seed);
     renderer.setDiffuseIndirectOnly(d.diffuseIndirectOnly);
+    renderer.setFactoredPaths(d.factoredDirectSpp);
     // Moving objects: each frame traces its own posed copy, with its own BVH.
     Scene posed;
     if (animator.animated()) posed = scene;
@@ -160,9 +162,11 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     if (o.layout != "manifest" && o.layout != "bmfr")
         throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
     // What `bmfr eval` reports about the input; the fingerprint alone decides resumption.
-    const nlohmann::json about{
+    nlohmann::json about{
         {"scene", d.name},      {"mesh", d.mesh}, {"reference_spp", d.referenceSpp},
-        {"bounces", d.bounces}, {"seed", d.seed}, {"jitter", d.jitter}};
+        {"bounces", d.bounces}, {"seed", d.seed}, {"jitter", d.jitter},
+        {"paths", d.factoredDirectSpp > 0 ? "mara" : "bmfr"}};
+    if (d.factoredDirectSpp > 0) about["direct_spp"] = d.factoredDirectSpp;
     const bool resume = claimFolder(o.output, renderFingerprint(d, o.layout), o.overwrite, about);
     SequenceInfo info;
     info.width = d.width, info.height = d.height, info.frameCount = d.frames;

@@ -49,6 +49,13 @@ void checkFrameInput(const FrameInput& f, int extrasNeeded) {
     if (f.previousPosition.data) checkImage(f.previousPosition, "previousPosition", kRgb, w, h);
     if (f.previousNormal.data) checkImage(f.previousNormal, "previousNormal", kRgb, w, h);
     if (f.diffuseIndirect.data) checkImage(f.diffuseIndirect, "diffuseIndirect", kRgb, w, h);
+    if (f.matteIndirect.data) checkImage(f.matteIndirect, "matteIndirect", kRgb, w, h);
+    if (f.glossyIndirect.data) checkImage(f.glossyIndirect, "glossyIndirect", kRgb, w, h);
+    if (f.directLight.data) checkImage(f.directLight, "directLight", kRgb, w, h);
+    if (f.specularF0.data) checkImage(f.specularF0, "specularF0", kRgb, w, h);
+    if (f.roughness.data) checkImage(f.roughness, "roughness", kScalar, w, h);
+    if (f.glossyHitDistance.data)
+        checkImage(f.glossyHitDistance, "glossyHitDistance", kScalar, w, h);
     if (f.extras.size() > 16) throw Error("at most 16 extra buffers");
     for (size_t e = 0; e < f.extras.size(); ++e)
         checkImage(f.extras[e], "extra" + std::to_string(e), kScalar, w, h);

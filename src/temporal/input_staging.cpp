@@ -36,6 +36,12 @@ const InputPlanes& InputStaging::stage(const FrameInput& f) {
     p.diffuseIndirect = packed(f.diffuseIndirect, 3, diffuseIndirect_);
     p.previousPosition = packed(f.previousPosition, 3, previousPosition_);
     p.previousNormal = packed(f.previousNormal, 3, previousNormal_);
+    p.matteIndirect = packed(f.matteIndirect, 3, matte_);
+    p.glossyIndirect = packed(f.glossyIndirect, 3, glossy_);
+    p.directLight = packed(f.directLight, 3, direct_);
+    p.specularF0 = packed(f.specularF0, 3, f0_);
+    p.roughness = packed(f.roughness, 1, roughness_);
+    p.glossyHitDistance = packed(f.glossyHitDistance, 1, hitDistance_);
     p.extraCount = int(f.extras.size());
     for (int e = 0; e < p.extraCount; ++e) p.extras[e] = packed(f.extras[size_t(e)], 1, extras_[e]);
     return p;

@@ -21,6 +21,7 @@ class InputStaging {
     std::vector<float> color_, albedo_, normal_, position_, emission_, sampleMask_, motion_;
     std::vector<float> motionDepth_, diffuseIndirect_;
     std::vector<float> previousPosition_, previousNormal_;
+    std::vector<float> matte_, glossy_, direct_, f0_, roughness_, hitDistance_;
     std::vector<float> extras_[InputPlanes::kMaxExtras];
 };
 

@@ -21,6 +21,13 @@ struct InputPlanes {
     const float* diffuseIndirect = nullptr;  ///< demodulated diffuse indirect, or null
     const float* previousPosition = nullptr; ///< null: the current position stands in
     const float* previousNormal = nullptr;   ///< null: the current normal stands in
+    // Mara et al. 2017's factorisation (FrameInput::matteIndirect ...); each null when absent.
+    const float* matteIndirect = nullptr;
+    const float* glossyIndirect = nullptr;
+    const float* directLight = nullptr;
+    const float* specularF0 = nullptr;
+    const float* roughness = nullptr;         ///< 1 float per pixel
+    const float* glossyHitDistance = nullptr; ///< 1 float per pixel
     const float* extras[kMaxExtras] = {};
     int extraCount = 0;
     int width = 0, height = 0;

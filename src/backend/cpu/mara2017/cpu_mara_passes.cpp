@@ -1,0 +1,68 @@
+// The CPU backend's Mara 2017: the reference stages, except stage 5, whose two 1D min passes
+// over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
+// comparisons per pixel whatever R, with the same minima bit for bit.
+#include "backend/reference/mara2017/reference_mara_stages.h"
+#include <algorithm>
+#include <cmath>
+
+namespace bmfr::cpu {
+
+namespace {
+
+/// out[k * outStride] = min of in over [k - r, k + r] inside [0, n), for k in [0, n); `g` and
+/// `h` hold n + 2r + (2r + 1) floats each.
+void runningMin(const float* in, long inStride, int n, int r, float* out, long outStride,
+                float* g, float* h) {
+    const int window = 2 * r + 1;
+    const int padded = n + 2 * r;
+    const int blocks = (padded + window - 1) / window;
+    const int total = blocks * window;
+    auto value = [&](int j) { return j >= r && j < r + n ? in[long(j - r) * inStride] : INFINITY; };
+    for (int b = 0; b < total; b += window) {
+        g[b] = value(b);
+        for (int j = b + 1; j < b + window; ++j) g[j] = std::fmin(g[j - 1], value(j));
+        h[b + window - 1] = value(b + window - 1);
+        for (int j = b + window - 2; j >= b; --j) h[j] = std::fmin(h[j + 1], value(j));
+    }
+    // Window [k, k + 2r] in padded coordinates: the suffix min of its first block and the
+    // prefix min of its last (the same block when k starts one).
+    for (int k = 0; k < n; ++k) out[long(k) * outStride] = std::fmin(h[k], g[k + 2 * r]);
+}
+
+class CpuMaraPasses final : public reference::HostMaraPipeline {
+  protected:
+    void disocclusion(const MaraPassContext& ctx, const MaraFrame& f) override {
+        const int r = f.maxRadius, w = f.width, hgt = f.height;
+        const long n = long(w) * hgt;
+        stage5_.resize(size_t(n));
+        for (long i = 0; i < n; ++i) stage5_[size_t(i)] = maraStage5Confidence(f, i);
+        const int longest = std::max(w, hgt) + 4 * r + 2;
+        const size_t perThread = 2 * size_t(longest);
+        scratch_.resize(perThread * size_t(ctx.pool.threadCount()));
+        ctx.pool.parallelFor(hgt, 8, [&](long y0, long y1) {
+            float* g = scratch_.data() + perThread * size_t(ThreadPool::currentThreadIndex());
+            for (long y = y0; y < y1; ++y)
+                runningMin(stage5_.data() + y * w, 1, w, r, f.rowMin + y * w, 1, g, g + longest);
+        });
+        ctx.pool.parallelFor(w, 16, [&](long x0, long x1) {
+            float* g = scratch_.data() + perThread * size_t(ThreadPool::currentThreadIndex());
+            for (long x = x0; x < x1; ++x)
+                runningMin(f.rowMin + x, w, hgt, r, f.radius + x, w, g, g + longest);
+        });
+        ctx.pool.parallelFor(hgt, 8, [&](long y0, long y1) {
+            for (long i = y0 * w; i < y1 * w; ++i)
+                f.radius[i] = maraDisocclusionRadius(f, i, f.radius[i]);
+        });
+    }
+
+  private:
+    std::vector<float> stage5_, scratch_;
+};
+
+} // namespace
+
+std::unique_ptr<MaraPasses> makeMaraPasses() {
+    return std::make_unique<CpuMaraPasses>();
+}
+
+} // namespace bmfr::cpu

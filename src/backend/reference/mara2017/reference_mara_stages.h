@@ -1,0 +1,27 @@
+// Mara 2017's host pipeline: every stage timed, each a plain parallel loop over the stage
+// bodies of filters/mara2017/mara_stages.h. The CPU backend replaces the stages it runs faster.
+#pragma once
+#include "filters/mara2017/mara_passes.h"
+
+namespace bmfr::reference {
+
+class HostMaraPipeline : public HostMaraPasses {
+  public:
+    int64_t run(const MaraPassContext& ctx, StageTimes& times) final;
+
+  protected:
+    /// Input and stage 3 (matte temporal); returns the non-finite input values replaced.
+    virtual int64_t matteTemporal(const MaraPassContext& ctx, const MaraFrame& f);
+    /// Stage 4 into f.matteHistory.
+    virtual void preBilateral(const MaraPassContext& ctx, const MaraFrame& f);
+    /// Stage 5 into f.radius.
+    virtual void disocclusion(const MaraPassContext& ctx, const MaraFrame& f);
+    /// Stage 6 into f.median.
+    virtual void median(const MaraPassContext& ctx, const MaraFrame& f);
+    /// Stage 7 of `src` into f.matteOut.
+    virtual void matteBilateral(const MaraPassContext& ctx, const MaraFrame& f, const float* src);
+    /// Stages 9 and 10 from f.glossyTemporal into f.glossyOut.
+    virtual void glossyBilateral(const MaraPassContext& ctx, const MaraFrame& f);
+};
+
+} // namespace bmfr::reference

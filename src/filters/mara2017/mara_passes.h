@@ -1,0 +1,63 @@
+// The interface a backend implements for Mara et al. 2017, and the host buffers both host
+// backends use.
+#pragma once
+#include "core/image.h"
+#include "filters/filter_core.h"
+#include "filters/mara2017/mara_stages.h"
+#include "temporal/taa.h"
+#include <bmfr/filters/mara2017_filter.h>
+#include <memory>
+
+namespace bmfr {
+
+using MaraPassContext = PassContext<Mara2017Settings>;
+
+/// Mara's per-pixel buffers in host memory: the history (double-buffered) and this frame's.
+struct MaraBuffers {
+    // History, [slot].
+    ImageF matteHistory[2], glossyHistory[2]; ///< 3
+    ImageF position[2], normal[2];            ///< sanitised features (3)
+    ImageU8 count[2];
+    ImageF output[2]; ///< final radiance (3); the previous one is TAA's history
+    // This frame.
+    ImageF matte, glossy, expected, previousPixel, temporal, confidence, glossyTemporal;
+    ImageF rowMin, radius, median, matteOut, glossyRow, glossyOut, composed, ycocg;
+    ImageU8 accept;
+    std::vector<float> preSpiral, finalSpiral;
+    std::vector<int> preOffsets;
+    ImageF countF, acceptF; ///< debug copies, sized on first use
+
+    void allocate(int w, int h);
+    /// The stages' view of this frame; builds this frame's spiral tables.
+    MaraFrame frame(const MaraPassContext& ctx);
+    TaaInputs taaInputs(const MaraPassContext& ctx) const;
+    DebugBuffers debug(int cur) const;
+    void captureDebug(int cur);
+};
+
+/// One backend's Mara passes.
+class MaraPasses {
+  public:
+    virtual ~MaraPasses() = default;
+    virtual void allocate(int w, int h) = 0;
+    /// Runs every stage, writing the histories to slot history.cur; returns the count of
+    /// non-finite input values replaced.
+    virtual int64_t run(const MaraPassContext& ctx, StageTimes& times) = 0;
+    virtual ImageView output(int slot) const = 0;
+    virtual void captureDebug(int cur) = 0;
+    virtual DebugBuffers debug(int cur) const = 0;
+};
+
+/// The part of a host backend's Mara passes that only reads MaraBuffers.
+class HostMaraPasses : public MaraPasses {
+  public:
+    void allocate(int w, int h) override { buffers.allocate(w, h); }
+    ImageView output(int slot) const override { return view(buffers.output[slot]); }
+    void captureDebug(int cur) override { buffers.captureDebug(cur); }
+    DebugBuffers debug(int cur) const override { return buffers.debug(cur); }
+
+  protected:
+    MaraBuffers buffers;
+};
+
+} // namespace bmfr
