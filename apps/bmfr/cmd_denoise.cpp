@@ -87,6 +87,12 @@ int runDenoise(const DenoiseJob& job) {
         reader->load(i, frame);
         tRead.push_back(clock.lap());
         FrameInput in = frame.input(job.motion);
+        if (i == first && job.filter == "mara2017" && !in.matteIndirect.data)
+            fmt::print(stderr,
+                       "bmfr: warning: {} has no matte_indirect (render it with --paths mara): "
+                       "mara2017 filters the whole demodulated colour as matte light, with no "
+                       "glossy term and no separate direct light, a deviation from the paper\n",
+                       job.input);
         motionFrames += frame.motion.width || frame.previousPosition.width ? 1 : 0;
         if (job.sampleFraction < 1.0f) {
             // Fewer than 1 spp, simulated: a fixed pseudo-random subset of pixels per frame.

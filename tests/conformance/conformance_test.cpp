@@ -43,6 +43,10 @@ const FilterCase kFilters[] = {
      {{"REFWLR over a 9x9 window", {{"solver", "refwlr"}, {"iterations", "2"}}},
       {"three iterations", {{"iterations", "3"}}},
       {"the world-space history test", {{"historyTest", "world"}}}}},
+    {"mara2017",
+     {{"the paper's first frames (no cumulative start)", {{"cumulativeStart", "false"}}},
+      {"c / h in stage 5, fewer taps", {{"normaliseConfidence", "true"}, {"preTaps", "8"}, {"finalTaps", "12"}}},
+      {"TAA on", {{"taa", "true"}}}}},
 };
 
 // The stated tolerance: |backend - reference| <= kAbs + kRel * |reference| per channel, and the
@@ -232,21 +236,26 @@ TEST_P(Conformance, PathTracedFrames) {
     RayAccel accel(box);
     LightSet lights(box, {}, {});
     const int w = 77, h = 61, n = 8;
-    FrameRenderer r(box, accel, w, h, 1, 11);
-    std::vector<FrameData> frames(n);
-    CameraPose previous;
-    for (int i = 0; i < n; ++i) {
-        CameraPose pose;
-        pose.position = {0.05f * float(i), 1.0f, 3.4f}, pose.target = {0, 1, 0};
-        pose.fovY = 0.69f;
-        FrameRenderStats stats;
-        ASSERT_TRUE(
-            r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)], stats, nullptr));
-        previous = pose;
+    // Our own paths, then Mara et al.'s factored ones (matte, glossy and direct apart).
+    for (int directSpp : {0, 4}) {
+        FrameRenderer r(box, accel, w, h, 1, 11);
+        if (directSpp) r.setFactoredPaths(directSpp);
+        std::vector<FrameData> frames(n);
+        CameraPose previous;
+        for (int i = 0; i < n; ++i) {
+            CameraPose pose;
+            pose.position = {0.05f * float(i), 1.0f, 3.4f}, pose.target = {0, 1, 0};
+            pose.fovY = 0.69f;
+            FrameRenderStats stats;
+            ASSERT_TRUE(r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)], stats,
+                                 nullptr));
+            previous = pose;
+        }
+        expectConformance(
+            filter().name, backend(), {}, n, [&](int i) { return frames[size_t(i)].input(); },
+            directSpp ? "path-traced Cornell box, 77x61, factored paths"
+                      : "path-traced Cornell box, 77x61");
     }
-    expectConformance(
-        filter().name, backend(), {}, n, [&](int i) { return frames[size_t(i)].input(); },
-        "path-traced Cornell box, 77x61");
 }
 
 std::vector<std::string> filterCases() {

@@ -22,6 +22,7 @@ struct Mara2017Settings : TemporalSettings {
     float hysteresis = 0.98f;     ///< h: the largest weight of the history
     float confidenceNear = 0.05f; ///< d0: reprojection distance where confidence starts to fall
     float confidenceFar = 0.07f;  ///< d1: reprojection distance where confidence reaches 0
+    bool cumulativeStart = true;  ///< history weight min(c, n/(n+1)) for n frames of history
     bool clampHistory = true;     ///< clamp the history to the new 3x3's min/max
     bool preBilateral = true;     ///< stage 4: filter the history before it is stored
     int preTaps = 50;             ///< stage 4 taps

@@ -18,10 +18,7 @@ void MaraBuffers::allocate(int w, int h) {
     accept.resize(w, h, 1);
 }
 
-namespace {
-
-/// Unit offsets of every rotation of a `taps`-tap spiral, turned by this frame's rotation.
-void spiralTable(int taps, float frameRotation, std::vector<float>& out) {
+void maraSpiralTable(int taps, float frameRotation, std::vector<float>& out) {
     out.resize(size_t(2 * taps * kMaraSpiralRotations));
     for (int r = 0; r < kMaraSpiralRotations; ++r)
         for (int k = 0; k < taps; ++k) {
@@ -31,13 +28,29 @@ void spiralTable(int taps, float frameRotation, std::vector<float>& out) {
         }
 }
 
-} // namespace
+MaraFrame maraFrameSettings(const Mara2017Settings& s, int width) {
+    MaraFrame f;
+    f.h = s.hysteresis, f.d0 = s.confidenceNear, f.d1 = s.confidenceFar;
+    f.cumulativeStart = s.cumulativeStart;
+    f.clampHistory = s.clampHistory, f.virtualReprojection = s.virtualReprojection;
+    f.normaliseConfidence = s.normaliseConfidence;
+    f.edges = {s.normalWeight, s.planeWeight, s.planeNear * s.planeNear};
+    f.preTaps = s.preTaps, f.finalTaps = s.finalTaps;
+    f.preRadius = 0.5f * s.preDiameter * float(width);
+    f.preSigma = s.preSigma * f.preRadius;
+    f.maxRadius = int(std::lround(s.maxRadius * float(width)));
+    f.lowConfidence = s.lowConfidence, f.radiusBoost = s.radiusBoost, f.finalSigma = s.finalSigma;
+    f.glossyScale = s.glossySigmaScale, f.glossyExponent = s.glossySigmaExponent;
+    f.glossyEpsilon = s.glossySigmaEpsilon, f.glossyTapSigmas = s.glossyTapSigmas;
+    f.seed = s.seed;
+    return f;
+}
 
 MaraFrame MaraBuffers::frame(const MaraPassContext& ctx) {
     const Mara2017Settings& s = ctx.settings;
     const TemporalHistory& hist = ctx.history;
     const int cur = hist.cur, prev = 1 - cur, w = hist.width;
-    MaraFrame f;
+    MaraFrame f = maraFrameSettings(s, w);
     f.in = ctx.input;
     f.modes = {s.colorIsDemodulated, true, s.albedoEpsilon};
     f.previous = hist.previous;
@@ -45,20 +58,9 @@ MaraFrame MaraBuffers::frame(const MaraPassContext& ctx) {
     f.width = w, f.height = hist.height;
     f.factored = f.in.matteIndirect != nullptr;
     f.glossy = f.factored && f.in.glossyIndirect != nullptr;
-    f.h = s.hysteresis, f.d0 = s.confidenceNear, f.d1 = s.confidenceFar;
-    f.clampHistory = s.clampHistory, f.virtualReprojection = s.virtualReprojection;
-    f.normaliseConfidence = s.normaliseConfidence;
-    f.edges = {s.normalWeight, s.planeWeight, s.planeNear * s.planeNear};
-    f.preTaps = s.preTaps, f.finalTaps = s.finalTaps;
-    f.preRadius = 0.5f * s.preDiameter * float(w);
-    f.preSigma = s.preSigma * f.preRadius;
-    f.maxRadius = int(std::lround(s.maxRadius * float(w)));
-    f.lowConfidence = s.lowConfidence, f.radiusBoost = s.radiusBoost, f.finalSigma = s.finalSigma;
-    f.glossyScale = s.glossySigmaScale, f.glossyExponent = s.glossySigmaExponent;
-    f.glossyEpsilon = s.glossySigmaEpsilon, f.glossyTapSigmas = s.glossyTapSigmas;
-    f.frame = uint32_t(hist.frameIndex), f.seed = s.seed;
-    spiralTable(s.preTaps, maraFrameRotation(f.frame, s.seed, 4), preSpiral);
-    spiralTable(s.finalTaps, maraFrameRotation(f.frame, s.seed, 7), finalSpiral);
+    f.frame = uint32_t(hist.frameIndex);
+    maraSpiralTable(s.preTaps, maraFrameRotation(f.frame, s.seed, 4), preSpiral);
+    maraSpiralTable(s.finalTaps, maraFrameRotation(f.frame, s.seed, 7), finalSpiral);
     preOffsets.resize(preSpiral.size());
     for (size_t k = 0; k < preSpiral.size(); ++k)
         preOffsets[k] = maraTapOffset(preSpiral[k], f.preRadius);

@@ -1,5 +1,5 @@
 // Mara et al. 2017's per-pixel maths, BMFR_HD, written once for every backend: the confidence
-// of Eq. 11, the bilateral edge weights, the sparse spiral taps, the clamp, the median, the
+// of Eq. 11, the bilateral edge weights, the sparse spiral taps, the median, the
 // glossy sigma and the composition. The stage bodies over a frame's buffers are in
 // mara_stages.h.
 #pragma once
@@ -88,11 +88,6 @@ BMFR_HD float maraGaussian(float d2, float sigma) {
 BMFR_HD float maraGlossySigma(float roughness, float scale, float exponent, float epsilon) {
     const float r = roughness > 0.0f ? (roughness < 1.0f ? roughness : 1.0f) : 0.0f;
     return scale * std::pow(r, exponent) + epsilon;
-}
-
-/// Per-channel clamp of v to [lo, hi].
-BMFR_HD Vec3 maraClamp(Vec3 v, Vec3 lo, Vec3 hi) {
-    return vmin(vmax(v, lo), hi);
 }
 
 /// Median of nine values (a partial sort network: only the middle is kept).

@@ -12,6 +12,14 @@ namespace bmfr {
 
 using MaraPassContext = PassContext<Mara2017Settings>;
 
+/// The settings in the units the stages use at an image `width` pixels wide (radii in pixels);
+/// no buffers.
+MaraFrame maraFrameSettings(const Mara2017Settings& settings, int width);
+
+/// Unit offsets of every one of the kMaraSpiralRotations rotations of a `taps`-tap spiral,
+/// turned by the frame's rotation (radians): rotation-major, 2 floats per tap.
+void maraSpiralTable(int taps, float frameRotation, std::vector<float>& out);
+
 /// Mara's per-pixel buffers in host memory: the history (double-buffered) and this frame's.
 struct MaraBuffers {
     // History, [slot].

@@ -21,6 +21,11 @@ SettingsTable<S> ownSettings() {
         {"confidenceFar", "mara-confidence-far", "scene units", {0, 1e6, true},
          "d1: reprojection mismatch from which the confidence is 0 (the paper: 0.07 m)",
          BMFR_FIELD(S, confidenceFar)},
+        {"cumulativeStart", "mara-cumulative-start", "", {},
+         "history weight min(c, n/(n+1)) with n frames of history: a plain average until h takes "
+         "over, so the first frame does not keep h^n of the weight (the paper is silent; false = "
+         "weight c from the first frame)",
+         BMFR_FIELD(S, cumulativeStart)},
         {"clampHistory", "mara-clamp-history", "", {},
          "clamp the matte and glossy histories to the new samples' 3x3 min/max",
          BMFR_FIELD(S, clampHistory)},

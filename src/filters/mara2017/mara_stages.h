@@ -19,7 +19,8 @@ struct MaraFrame {
     bool factored = false; ///< the frame has FrameInput::matteIndirect
     bool glossy = false;   ///< the frame has FrameInput::glossyIndirect
     float h = 0.98f, d0 = 0.05f, d1 = 0.07f;
-    bool clampHistory = true, virtualReprojection = true, normaliseConfidence = false;
+    bool cumulativeStart = true, clampHistory = true, virtualReprojection = true;
+    bool normaliseConfidence = false;
     MaraEdgeWeights edges;
     int preTaps = 50, finalTaps = 50;
     float preRadius = 1, preSigma = 0.5f; ///< pixels
@@ -87,6 +88,14 @@ BMFR_HD void maraBox3x3(const float* v, int w, int h, int x, int y, Vec3& lo, Ve
         }
 }
 
+/// The history's blend weight for confidence c and n frames of history: c, or with the
+/// cumulative start at most n / (n + 1), the running mean's.
+BMFR_HD float maraHistoryWeight(const MaraFrame& f, float c, int n) {
+    if (!f.cumulativeStart) return c;
+    const float mean = float(n) / float(n + 1);
+    return c < mean ? c : mean;
+}
+
 /// Stage 3 at (x, y): each bilinear tap of the previous frame weighted by its confidence (the
 /// world distance between where the point was and what that pixel saw), the history clamped
 /// to the new 3x3 and blended in with weight c, the bilinear sum of the taps' confidences.
@@ -121,11 +130,11 @@ BMFR_HD void maraMatteTemporalPixel(const MaraFrame& f, int x, int y) {
             if (f.clampHistory) {
                 Vec3 lo, hi;
                 maraBox3x3(f.matte, f.width, f.height, x, y, lo, hi);
-                hist = maraClamp(hist, lo, hi);
+                hist = clamp(hist, lo, hi);
             }
-            t = lerp(m, hist, c);
-            const int n = int(f.prevCount[nearest]) + 1;
-            samples = uint8_t(n < 255 ? n : 255);
+            const int n = int(f.prevCount[nearest]);
+            t = lerp(m, hist, maraHistoryWeight(f, c, n));
+            samples = uint8_t(n + 1 < 255 ? n + 1 : 255);
         }
     }
     store3(f.temporal, i, t);
@@ -261,7 +270,7 @@ BMFR_HD bool maraVirtualPreviousPixel(const MaraFrame& f, long i, Vec2& pixel) {
 }
 
 /// Stage 8 at (x, y): the glossy history at the virtual position's previous pixel, clamped to
-/// the new 3x3 and blended with the primary surface's confidence c.
+/// the new 3x3 and blended with the primary surface's confidence c (and stage 3's count).
 BMFR_HD void maraGlossyTemporalPixel(const MaraFrame& f, int x, int y) {
     const long i = long(y) * f.width + x;
     const Vec3 g = load3(f.glossySignal, i);
@@ -278,9 +287,9 @@ BMFR_HD void maraGlossyTemporalPixel(const MaraFrame& f, int x, int y) {
             if (f.clampHistory) {
                 Vec3 lo, hi;
                 maraBox3x3(f.glossySignal, f.width, f.height, x, y, lo, hi);
-                hist = maraClamp(hist, lo, hi);
+                hist = clamp(hist, lo, hi);
             }
-            t = lerp(g, hist, c);
+            t = lerp(g, hist, maraHistoryWeight(f, c, int(f.count[i]) - 1));
         }
     }
     store3(f.glossyTemporal, i, t);

@@ -1,6 +1,7 @@
 // The CPU backend's Mara 2017: the reference stages, except stage 5, whose two 1D min passes
 // over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
 // comparisons per pixel whatever R, with the same minima bit for bit.
+#include "backend/cpu/mara2017/cpu_running_min.h"
 #include "backend/reference/mara2017/reference_mara_stages.h"
 #include <algorithm>
 #include <cmath>
@@ -8,26 +9,6 @@
 namespace bmfr::cpu {
 
 namespace {
-
-/// out[k * outStride] = min of in over [k - r, k + r] inside [0, n), for k in [0, n); `g` and
-/// `h` hold n + 2r + (2r + 1) floats each.
-void runningMin(const float* in, long inStride, int n, int r, float* out, long outStride,
-                float* g, float* h) {
-    const int window = 2 * r + 1;
-    const int padded = n + 2 * r;
-    const int blocks = (padded + window - 1) / window;
-    const int total = blocks * window;
-    auto value = [&](int j) { return j >= r && j < r + n ? in[long(j - r) * inStride] : INFINITY; };
-    for (int b = 0; b < total; b += window) {
-        g[b] = value(b);
-        for (int j = b + 1; j < b + window; ++j) g[j] = std::fmin(g[j - 1], value(j));
-        h[b + window - 1] = value(b + window - 1);
-        for (int j = b + window - 2; j >= b; --j) h[j] = std::fmin(h[j + 1], value(j));
-    }
-    // Window [k, k + 2r] in padded coordinates: the suffix min of its first block and the
-    // prefix min of its last (the same block when k starts one).
-    for (int k = 0; k < n; ++k) out[long(k) * outStride] = std::fmin(h[k], g[k + 2 * r]);
-}
 
 class CpuMaraPasses final : public reference::HostMaraPipeline {
   protected:

@@ -1,0 +1,514 @@
+// Mara et al. 2017: tests M1 to M12 of the implementation notes on the stage kernels and the
+// whole filter, the CPU backend's running minimum against a brute-force one, and the filter end
+// to end on a Cornell box path traced with the paper's factored paths.
+#include "backend/cpu/mara2017/cpu_running_min.h"
+#include "filters/mara2017/mara_passes.h"
+#include "metrics/basic_metrics.h"
+#include "render/scene_description.h"
+#include "render/sequence_renderer.h"
+#include "test_scenes.h"
+#include "test_support.h"
+#include <bmfr/bmfr.h>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <random>
+#include <set>
+
+namespace bmfr {
+namespace {
+
+using testing::errorOf;
+
+/// One frame's stage buffers over a plane z = 0 facing +z, 1 cm per pixel, wired into a
+/// MaraFrame with the default settings at this width.
+struct Field {
+    int w, h;
+    std::vector<float> pos, nrm, matte, glossy, expected, prevPixel, temporal, conf, rowMin, radius,
+        median, matteOut, history, prevMatte, prevGlossy, prevPos, glossyTemporal, glossyHistory,
+        glossyRow, glossyOut, rough, hitDistance, preSpiral, finalSpiral;
+    std::vector<int> preOffsets;
+    std::vector<uint8_t> prevCount, count, accept;
+    MaraFrame f;
+
+    Field(int width, int height, const Mara2017Settings& s = {})
+        : w(width), h(height), f(maraFrameSettings(s, width)) {
+        const size_t n = size_t(w) * size_t(h);
+        for (auto* v : {&pos, &nrm, &matte, &glossy, &expected, &temporal, &median, &matteOut,
+                        &history, &prevMatte, &prevGlossy, &prevPos, &glossyTemporal,
+                        &glossyHistory, &glossyRow, &glossyOut})
+            v->assign(3 * n, 0.0f);
+        for (auto* v : {&conf, &rowMin, &radius, &rough, &hitDistance}) v->assign(n, 0.0f);
+        prevPixel.assign(2 * n, -1e6f);
+        prevCount.assign(n, 0), count.assign(n, 0), accept.assign(n, 0);
+        for (long i = 0; i < long(n); ++i) {
+            setPosition(i, {float(i % w) * 0.01f, float(i / w) * 0.01f, 0.0f});
+            store3(nrm.data(), i, {0, 0, 1});
+        }
+        maraSpiralTable(f.preTaps, 0.3f, preSpiral);
+        maraSpiralTable(f.finalTaps, 1.1f, finalSpiral);
+        for (float u : preSpiral) preOffsets.push_back(maraTapOffset(u, f.preRadius));
+        wire();
+    }
+    /// Points the frame at the buffers (again, after a test replaced one).
+    void wire() {
+        f.width = w, f.height = h;
+        f.position = pos.data(), f.normal = nrm.data(), f.matte = matte.data();
+        f.glossySignal = glossy.data(), f.expected = expected.data();
+        f.previousPixel = prevPixel.data(), f.temporal = temporal.data();
+        f.confidence = conf.data(), f.rowMin = rowMin.data(), f.radius = radius.data();
+        f.median = median.data(), f.matteOut = matteOut.data(), f.matteHistory = history.data();
+        f.prevMatte = prevMatte.data(), f.prevGlossy = prevGlossy.data();
+        f.prevPosition = prevPos.data(), f.prevCount = prevCount.data(), f.count = count.data();
+        f.accept = accept.data(), f.glossyTemporal = glossyTemporal.data();
+        f.glossyHistory = glossyHistory.data(), f.glossyRow = glossyRow.data();
+        f.glossyOut = glossyOut.data();
+        f.preSpiral = preSpiral.data(), f.finalSpiral = finalSpiral.data();
+        f.preOffsets = preOffsets.data();
+        f.in.roughness = rough.data(), f.in.glossyHitDistance = hitDistance.data();
+        f.in.width = w, f.in.height = h;
+    }
+    long size() const { return long(w) * h; }
+    void setPosition(long i, Vec3 p) { store3(pos.data(), i, p); }
+    /// Every pixel's history valid and perfectly reprojected: the previous frame saw the same
+    /// point through the same pixel, with `frames` of history.
+    void perfectHistory(int frames) {
+        for (long i = 0; i < size(); ++i) {
+            prevPixel[2 * size_t(i)] = float(i % w), prevPixel[2 * size_t(i) + 1] = float(i / w);
+            store3(expected.data(), i, load3(pos.data(), i));
+            store3(prevPos.data(), i, load3(pos.data(), i));
+            prevCount[size_t(i)] = uint8_t(frames);
+        }
+    }
+    template <class Fn> void each(Fn fn) {
+        wire();
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) fn(x, y);
+    }
+};
+
+std::vector<float> randomValues(size_t n, float lo, float hi, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(lo, hi);
+    std::vector<float> v(n);
+    for (float& x : v) x = u(rng);
+    return v;
+}
+
+TEST(Mara2017, M1ConfidenceFallsFromHAtD0ToZeroAtD1) {
+    const float h = 0.98f, d0 = 0.05f, d1 = 0.07f;
+    EXPECT_FLOAT_EQ(maraConfidence(0.0f, h, d0, d1), h);
+    EXPECT_FLOAT_EQ(maraConfidence(0.05f, h, d0, d1), h);
+    EXPECT_NEAR(maraConfidence(0.06f, h, d0, d1), h / 2, 1e-5f);
+    EXPECT_EQ(maraConfidence(0.07f, h, d0, d1), 0.0f);
+    EXPECT_EQ(maraConfidence(3.0f, h, d0, d1), 0.0f);
+    EXPECT_EQ(maraConfidence(NAN, h, d0, d1), 0.0f);
+    float last = h;
+    for (int k = 0; k <= 200; ++k) {
+        const float c = maraConfidence(0.0005f * float(k), h, d0, d1);
+        ASSERT_LE(c, last) << k;
+        last = c;
+    }
+}
+
+TEST(Mara2017, M3DisoccludedPixelTakesTheCurrentSample) {
+    Field a(12, 10);
+    a.matte = randomValues(a.matte.size(), 0, 1, 1);
+    a.prevMatte.assign(a.prevMatte.size(), 7.0f);
+    a.perfectHistory(20);
+    a.prevPixel[2 * 15] = -1e6f; // pixel 15: no previous pixel at all
+    // Pixel 40: the previous pixel saw a surface 8 cm from where the point was (beyond d1).
+    store3(a.prevPos.data(), 40, load3(a.pos.data(), 40) + Vec3{0.08f, 0, 0});
+    a.each([&](int x, int y) { maraMatteTemporalPixel(a.f, x, y); });
+    for (long i : {15L, 40L}) {
+        EXPECT_EQ(a.conf[size_t(i)], 0.0f) << i;
+        EXPECT_EQ(a.count[size_t(i)], 1) << i;
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(a.temporal[3 * size_t(i) + c], a.matte[3 * size_t(i) + c]);
+    }
+    EXPECT_FLOAT_EQ(a.conf[16], 0.98f);
+    EXPECT_EQ(a.count[16], 21);
+}
+
+TEST(Mara2017, M4ClampedHistoryLiesInTheNew3x3) {
+    for (bool clamp : {true, false}) {
+        Mara2017Settings s;
+        s.hysteresis = 1.0f, s.cumulativeStart = false, s.clampHistory = clamp;
+        Field a(16, 12, s);
+        a.matte = randomValues(a.matte.size(), 0, 1, 2);
+        a.prevMatte = randomValues(a.prevMatte.size(), -1, 3, 3);
+        a.perfectHistory(30);
+        a.each([&](int x, int y) { maraMatteTemporalPixel(a.f, x, y); });
+        int clamped = 0;
+        a.each([&](int x, int y) {
+            const long i = long(y) * a.w + x;
+            Vec3 lo, hi;
+            maraBox3x3(a.matte.data(), a.w, a.h, x, y, lo, hi);
+            const Vec3 t = load3(a.temporal.data(), i), was = load3(a.prevMatte.data(), i);
+            for (int c = 0; c < 3; ++c) {
+                if (!clamp) {
+                    ASSERT_EQ(t[c], was[c]);
+                    continue;
+                }
+                ASSERT_GE(t[c], lo[c]) << x << "," << y;
+                ASSERT_LE(t[c], hi[c]) << x << "," << y;
+                clamped += t[c] != was[c];
+            }
+        });
+        if (clamp) {
+            EXPECT_GT(clamped, a.w * a.h); // most of a history out of range is clamped
+        }
+    }
+}
+
+TEST(Mara2017, CumulativeStartAveragesUntilTheHysteresisTakesOver) {
+    for (bool cumulative : {true, false}) {
+        Mara2017Settings s;
+        s.cumulativeStart = cumulative, s.clampHistory = false;
+        Field a(4, 4, s);
+        a.matte.assign(a.matte.size(), 1.0f);
+        a.perfectHistory(3); // three frames of history averaging 0
+        a.each([&](int x, int y) { maraMatteTemporalPixel(a.f, x, y); });
+        // The fourth sample's share: 1/4 as a running mean, 1 - h without the cumulative start.
+        EXPECT_FLOAT_EQ(a.temporal[0], cumulative ? 0.25f : 1.0f - 0.98f);
+        a.perfectHistory(200);
+        a.each([&](int x, int y) { maraMatteTemporalPixel(a.f, x, y); });
+        EXPECT_NEAR(a.temporal[0], 1.0f - 0.98f, 1e-6f); // h once the history is long
+    }
+}
+
+/// Stage 5 by brute force: the min of c over the (2R + 1)^2 box inside the image.
+float bruteRadius(Field& a, int x, int y) {
+    float m = INFINITY;
+    for (int qy = std::max(0, y - a.f.maxRadius); qy <= std::min(a.h - 1, y + a.f.maxRadius); ++qy)
+        for (int qx = std::max(0, x - a.f.maxRadius); qx <= std::min(a.w - 1, x + a.f.maxRadius);
+             ++qx)
+            m = std::fmin(m, a.conf[size_t(qy) * size_t(a.w) + size_t(qx)]);
+    float r = (1.0f - m) * float(a.f.maxRadius);
+    return a.conf[size_t(y) * size_t(a.w) + size_t(x)] < 0.5f ? 6.0f * r : r;
+}
+
+void runStage5(Field& a) {
+    a.each([&](int x, int y) { maraRowMinPixel(a.f, x, y); });
+    a.each([&](int x, int y) { maraColumnMinPixel(a.f, x, y); });
+}
+
+TEST(Mara2017, M5DisocclusionRadiusIsTheSeparableMinOfTheBox) {
+    Field a(60, 40); // R = W/20 = 3
+    ASSERT_EQ(a.f.maxRadius, 3);
+    const int R = a.f.maxRadius;
+    // All confident: r = (1 - h) R everywhere.
+    a.conf.assign(a.conf.size(), 0.98f);
+    runStage5(a);
+    for (float r : a.radius) ASSERT_FLOAT_EQ(r, (1.0f - 0.98f) * float(R));
+    // One pixel with c = 0: R within R of it (Chebyshev), 6R on it, (1 - h) R beyond.
+    const int px = 20, py = 15;
+    a.conf[size_t(py * a.w + px)] = 0.0f;
+    runStage5(a);
+    a.each([&](int x, int y) {
+        const float r = a.radius[size_t(y * a.w + x)];
+        if (x == px && y == py)
+            ASSERT_FLOAT_EQ(r, 6.0f * float(R));
+        else if (std::abs(x - px) <= R && std::abs(y - py) <= R)
+            ASSERT_FLOAT_EQ(r, float(R)) << x << "," << y;
+        else
+            ASSERT_FLOAT_EQ(r, (1.0f - 0.98f) * float(R)) << x << "," << y;
+    });
+    // Random confidences: the two 1D passes equal the brute-force 2D min bit for bit.
+    a.conf = randomValues(a.conf.size(), 0, 0.98f, 4);
+    runStage5(a);
+    a.each([&](int x, int y) { ASSERT_EQ(a.radius[size_t(y * a.w + x)], bruteRadius(a, x, y)); });
+}
+
+TEST(Mara2017, CpuRunningMinEqualsTheBruteForceMin) {
+    for (int n : {1, 2, 7, 64, 129})
+        for (int r : {0, 1, 3, 31, 64, 200}) {
+            const std::vector<float> in = randomValues(size_t(n), 0, 1, unsigned(n * 1000 + r));
+            std::vector<float> out(static_cast<size_t>(n));
+            std::vector<float> g(size_t(2 * (n + 4 * r + 2))), h(g.size());
+            cpu::runningMin(in.data(), 1, n, r, out.data(), 1, g.data(), h.data());
+            for (int k = 0; k < n; ++k) {
+                float m = INFINITY;
+                for (int j = std::max(0, k - r); j <= std::min(n - 1, k + r); ++j)
+                    m = std::fmin(m, in[size_t(j)]);
+                ASSERT_EQ(out[size_t(k)], m) << "n " << n << " r " << r << " k " << k;
+            }
+        }
+}
+
+TEST(Mara2017, M6MedianRemovesAFireflyAndKeepsAStep) {
+    Field a(9, 9);
+    a.temporal.assign(a.temporal.size(), 0.5f);
+    store3(a.temporal.data(), 4 * 9 + 4, {100, 100, 100});
+    a.each([&](int x, int y) { maraMedianPixel(a.f, x, y); });
+    for (float v : a.median) ASSERT_EQ(v, 0.5f);
+    a.each([&](int x, int y) {
+        store3(a.temporal.data(), y * 9 + x, Vec3{1, 1, 1} * (x < 4 ? 0.2f : 0.8f));
+    });
+    a.each([&](int x, int y) { maraMedianPixel(a.f, x, y); });
+    EXPECT_EQ(a.median, a.temporal);
+}
+
+/// A static camera looking down -z at a plane at z = -2, colour `c` (albedo 1).
+std::vector<FrameData> planeFrames(int w, int h, int n, Vec3 c, float dx = 0) {
+    std::vector<FrameData> frames;
+    for (int k = 0; k < n; ++k) {
+        const Mat4 vp = test::cameraAt({dx * float(k), 0, 0}, w, h);
+        frames.push_back(test::planeFrame(vp, w, h, c, [](int, int) { return -2.0f; }));
+    }
+    return frames;
+}
+
+TEST(Mara2017, M6FireflyIsNotShownButEntersTheHistory) {
+    const int w = 32, h = 24;
+    std::vector<FrameData> frames = planeFrames(w, h, 6, {0.5f, 0.5f, 0.5f});
+    const long p = 12L * w + 16;
+    store3(frames[5].color.data(), p, {100, 100, 100});
+    Mara2017Denoiser d;
+    d.setDebugOutputs(true);
+    for (int k = 0; k < 6; ++k) {
+        const ImageView out = d.denoise(frames[size_t(k)].input());
+        const ImageView t = d.debug().accumulatedNoisy; // stage 3's T, the history loop
+        if (k == 5) {
+            EXPECT_NEAR(out.data[3 * p], 0.5f, 1e-4f) << "the firefly is shown";
+            EXPECT_GT(t.data[3 * p], 10.0f) << "the firefly left the loop";
+        }
+    }
+}
+
+TEST(Mara2017, M7SparseTapsStayInTheDiskAndTurnEveryFrame) {
+    const Mara2017Settings s;
+    const MaraFrame f = maraFrameSettings(s, 1280);
+    ASSERT_FLOAT_EQ(f.preRadius, 6.4f); // 1% of the width across
+    std::vector<float> spiral;
+    maraSpiralTable(f.preTaps, 0.0f, spiral);
+    ASSERT_EQ(spiral.size(), size_t(2 * 50 * kMaraSpiralRotations));
+    for (size_t k = 0; k < spiral.size(); k += 2) {
+        const float r = std::hypot(spiral[k], spiral[k + 1]);
+        ASSERT_LT(r, 1.0f);
+        const int dx = maraTapOffset(spiral[k], f.preRadius),
+                  dy = maraTapOffset(spiral[k + 1], f.preRadius);
+        ASSERT_LE(std::hypot(float(dx), float(dy)), f.preRadius + 0.7072f);
+    }
+    EXPECT_NE(maraFrameRotation(0, 0, 4), maraFrameRotation(1, 0, 4));
+    int differ = 0;
+    for (int x = 0; x < 64; ++x) differ += maraPixelRotation(x, 0, 0, 0, 4) != maraPixelRotation(x + 1, 0, 0, 0, 4);
+    EXPECT_GT(differ, 48);
+    // Over many frames the taps cover the whole disk: the time average is a dense filter.
+    std::set<std::pair<int, int>> hit;
+    for (uint32_t frame = 0; frame < 64; ++frame) {
+        maraSpiralTable(f.preTaps, maraFrameRotation(frame, 0, 4), spiral);
+        for (size_t k = 0; k < spiral.size(); k += 2)
+            hit.insert({maraTapOffset(spiral[k], f.preRadius),
+                        maraTapOffset(spiral[k + 1], f.preRadius)});
+    }
+    int inside = 0, missed = 0;
+    for (int dy = -6; dy <= 6; ++dy)
+        for (int dx = -6; dx <= 6; ++dx)
+            if (std::hypot(float(dx), float(dy)) <= f.preRadius - 0.5f && (dx || dy))
+                ++inside, missed += !hit.count({dx, dy});
+    EXPECT_EQ(missed, 0) << "of " << inside;
+}
+
+TEST(Mara2017, M8GlossySigmaLimitsAndSeparability) {
+    EXPECT_FLOAT_EQ(maraGlossySigma(1.0f, 7, 0.1f, 1e-4f), 7.0f + 1e-4f);
+    EXPECT_FLOAT_EQ(maraGlossySigma(0.0f, 7, 0.1f, 1e-4f), 1e-4f);
+    EXPECT_NEAR(maraGlossySigma(0.01f, 7, 0.1f, 1e-4f), 4.4f, 0.05f); // the notes' table
+    EXPECT_NEAR(maraGlossySigma(0.5f, 7, 0.1f, 1e-4f), 6.5f, 0.05f);
+    // Roughness 0: the identity.
+    Field a(20, 10);
+    a.glossy = randomValues(a.glossy.size(), 0, 1, 5);
+    a.each([&](int x, int y) { maraGlossyPassPixel(a.f, a.glossy.data(), a.glossyRow.data(), x, y, 1, 0); });
+    EXPECT_EQ(a.glossyRow, a.glossy);
+    // H then V of an impulse with unit edge weights is the normalised 2D Gaussian.
+    Field b(81, 81);
+    b.rough.assign(b.rough.size(), 0.5f);
+    const float sigma = maraGlossySigma(0.5f, 7, 0.1f, 1e-4f);
+    store3(b.glossy.data(), 40L * 81 + 40, {1, 1, 1});
+    b.each([&](int x, int y) { maraGlossyPassPixel(b.f, b.glossy.data(), b.glossyRow.data(), x, y, 1, 0); });
+    b.each([&](int x, int y) { maraGlossyPassPixel(b.f, b.glossyRow.data(), b.glossyOut.data(), x, y, 0, 1); });
+    double total = 0;
+    const int reach = int(std::ceil(3.0f * sigma));
+    for (int dy = -reach; dy <= reach; ++dy)
+        for (int dx = -reach; dx <= reach; ++dx)
+            total += std::exp(-double(dx * dx + dy * dy) / (2.0 * sigma * sigma));
+    for (int dy = -10; dy <= 10; ++dy)
+        for (int dx = -10; dx <= 10; ++dx) {
+            const double want = std::exp(-double(dx * dx + dy * dy) / (2.0 * sigma * sigma)) / total;
+            ASSERT_NEAR(b.glossyOut[3 * size_t((40 + dy) * 81 + 40 + dx)], want, 1e-6) << dx << "," << dy;
+        }
+}
+
+TEST(Mara2017, M9NoBilateralStageCrossesAPlaneStep) {
+    Field a(40, 30);
+    a.each([&](int x, int y) {
+        a.setPosition(long(y) * a.w + x, {float(x) * 0.01f, float(y) * 0.01f, x < 20 ? 0.0f : 1.0f});
+    });
+    a.f.preRadius = 4, a.f.preSigma = 2;
+    for (size_t k = 0; k < a.preSpiral.size(); ++k) a.preOffsets[k] = maraTapOffset(a.preSpiral[k], 4);
+    a.radius.assign(a.radius.size(), 6.0f);
+    a.rough.assign(a.rough.size(), 1.0f);
+    auto run = [&](std::vector<float> input) {
+        a.temporal = input, a.glossy = input;
+        a.each([&](int x, int y) { maraPreBilateralPixel(a.f, x, y); });
+        a.each([&](int x, int y) { maraFinalBilateralPixel(a.f, input.data(), x, y); });
+        a.each([&](int x, int y) { maraGlossyPassPixel(a.f, input.data(), a.glossyRow.data(), x, y, 1, 0); });
+        return std::vector<std::vector<float>>{a.history, a.matteOut, a.glossyRow};
+    };
+    std::vector<float> in = randomValues(a.temporal.size(), 0, 1, 6);
+    const auto before = run(in);
+    a.each([&](int x, int y) {
+        if (x >= 20)
+            for (int c = 0; c < 3; ++c) in[3 * size_t(y * a.w + x) + c] += 5.0f;
+    });
+    const auto after = run(in);
+    for (size_t s = 0; s < before.size(); ++s) {
+        int blurred = 0;
+        a.each([&](int x, int y) {
+            for (int c = 0; c < 3; ++c) {
+                const size_t k = 3 * size_t(y * a.w + x) + c;
+                if (x < 20) {
+                    ASSERT_EQ(before[s][k], after[s][k]) << "stage " << s << " " << x << "," << y;
+                }
+                blurred += before[s][k] != in[k] - (x >= 20 ? 5.0f : 0.0f);
+            }
+        });
+        EXPECT_GT(blurred, a.w * a.h) << "stage " << s << " filters within each side";
+    }
+}
+
+TEST(Mara2017, M10VirtualPositionLandsOnThePreviousReflection) {
+    const int w = 256, h = 192;
+    Field a(w, h);
+    // A mirror at z = 0 seen from z = 3; the reflected point P = (0.4, 0.3, 1), mirror image P'.
+    const Vec3 eye{0, 0, 3}, was{-0.5f, 0.3f, 3}, image{0.4f, 0.3f, -1};
+    const Vec3 x = eye + 0.75f * (image - eye); // where the ray to P' crosses the mirror
+    a.setPosition(100, x);
+    a.hitDistance[100] = length(Vec3{0.4f, 0.3f, 1} - x);
+    a.f.eye = eye;
+    a.f.previous.viewProjection = test::cameraAt(was, w, h);
+    Vec2 virt, surface, expected;
+    ASSERT_TRUE(maraVirtualPreviousPixel(a.f, 100, virt));
+    // The previous camera saw P through the mirror point on its own ray to P'.
+    const float t = 3.0f / (3.0f - image.z);
+    const Vec3 xPrev = was + t * (image - was);
+    ASSERT_TRUE(projectToPixel(a.f.previous.viewProjection, xPrev, a.f.previous.jitter, w, h, expected));
+    ASSERT_TRUE(projectToPixel(a.f.previous.viewProjection, x, a.f.previous.jitter, w, h, surface));
+    EXPECT_NEAR(virt.x, expected.x, 1e-3f);
+    EXPECT_NEAR(virt.y, expected.y, 1e-3f);
+    EXPECT_GT(std::hypot(surface.x - expected.x, surface.y - expected.y), 2.0f)
+        << "the primary surface would reproject elsewhere";
+}
+
+TEST(Mara2017, M2ConstantInputStaysConstantWithAMovingCamera) {
+    const int w = 40, h = 30;
+    for (bool factored : {false, true}) {
+        std::vector<FrameData> frames = planeFrames(w, h, 6, {0.3f, 0.5f, 0.7f}, 0.02f);
+        for (FrameData& f : frames) {
+            if (!factored) continue;
+            f.matteIndirect = f.color;
+            f.directLight = ImageF(w, h, 3);
+            for (float& v : f.directLight.pixels) v = 0.1f;
+            for (float& v : f.albedo.pixels) v = 0.5f;
+            for (float& v : f.color.pixels) v *= 1.7f; // ignored with the factorisation
+        }
+        Mara2017Denoiser d;
+        for (size_t k = 0; k < frames.size(); ++k) {
+            const ImageView out = d.denoise(frames[k].input());
+            for (long i = 0; i < long(w) * h; ++i)
+                for (int c = 0; c < 3; ++c) {
+                    const float want = factored ? 0.1f + 0.5f * (0.3f + 0.2f * float(c)) : 0.3f + 0.2f * float(c);
+                    ASSERT_NEAR(out.data[3 * i + c], want, 1e-5f) << factored << " frame " << k << " " << i;
+                }
+        }
+    }
+}
+
+TEST(Mara2017, M11CompositionOnAFlatSurface) {
+    const int w = 24, h = 18;
+    std::vector<FrameData> frames = planeFrames(w, h, 3, {1, 1, 1});
+    const Vec3 M{0.4f, 0.3f, 0.2f}, G{0.6f, 0.6f, 0.5f}, D{0.05f, 0.1f, 0.15f}, rho{0.7f, 0.5f, 0.3f},
+        F0{0.04f, 0.5f, 0.9f}, E{0.01f, 0, 0};
+    for (FrameData& f : frames) {
+        auto fill3 = [&](ImageF& img, Vec3 v) {
+            img = ImageF(w, h, 3);
+            for (long i = 0; i < long(w) * h; ++i) store3(img.data(), i, v);
+        };
+        fill3(f.matteIndirect, M), fill3(f.glossyIndirect, G), fill3(f.directLight, D);
+        fill3(f.albedo, rho), fill3(f.specularF0, F0), fill3(f.emission, E);
+        f.roughness = ImageF(w, h, 1), f.glossyHitDistance = ImageF(w, h, 1);
+        for (float& v : f.roughness.pixels) v = 0.3f;
+        for (float& v : f.glossyHitDistance.pixels) v = 1.0f;
+    }
+    Mara2017Denoiser d;
+    for (FrameData& f : frames) {
+        const ImageView out = d.denoise(f.input());
+        for (long i = 0; i < long(w) * h; ++i) {
+            const Vec3 p = load3(f.position.data(), i);
+            const double cosine = 2.0 / std::sqrt(double(p.x) * p.x + double(p.y) * p.y + 4.0);
+            for (int c = 0; c < 3; ++c) {
+                const double F = F0[c] + (1 - F0[c]) * std::pow(1 - cosine, 5);
+                const double want = D[c] + (1 - F) * (1 - F) * rho[c] * M[c] + F * G[c] + E[c];
+                ASSERT_NEAR(out.data[3 * i + c], want, 1e-5) << i << " " << c;
+            }
+        }
+    }
+}
+
+TEST(Mara2017, M12MatteRadiiFollowTheWidthAndTheGlossySigmaDoesNot) {
+    const Mara2017Settings s;
+    const MaraFrame a = maraFrameSettings(s, 1280), b = maraFrameSettings(s, 640);
+    EXPECT_FLOAT_EQ(a.preRadius, 6.4f);
+    EXPECT_FLOAT_EQ(b.preRadius, 3.2f);
+    EXPECT_EQ(a.maxRadius, 64);
+    EXPECT_EQ(b.maxRadius, 32);
+    EXPECT_FLOAT_EQ(a.preSigma, 2 * b.preSigma);
+    EXPECT_EQ(a.glossyScale, b.glossyScale);
+    EXPECT_EQ(a.glossyEpsilon, b.glossyEpsilon);
+}
+
+TEST(Mara2017, SettingsAndBuffersAreChecked) {
+    EXPECT_NE(errorOf([] { makeFilter("mara2017", {{"confidenceFar", "0.01"}}); }).find("confidenceNear"),
+              std::string::npos);
+    EXPECT_NE(errorOf([] { makeFilter("mara2017", {{"hysteresis", "1.5"}}); }).find("hysteresis"),
+              std::string::npos);
+    std::vector<FrameData> frames = planeFrames(16, 12, 1, {1, 1, 1});
+    frames[0].matteIndirect = ImageF(8, 12, 3);
+    Mara2017Denoiser d;
+    EXPECT_NE(errorOf([&] { d.denoise(frames[0].input()); }).find("matteIndirect"), std::string::npos);
+    frames[0].matteIndirect = ImageF(16, 12, 3);
+    frames[0].matteIndirect.pixels[5] = NAN;
+    const ImageView out = d.denoise(frames[0].input());
+    EXPECT_EQ(d.lastStats().nonFiniteInputs, 1);
+    for (long k = 0; k < 3L * 16 * 12; ++k) ASSERT_TRUE(std::isfinite(out.data[k]));
+}
+
+// End to end on a path-traced Cornell box with a moving camera, rendered with the paper's
+// factored paths (one matte and one glossy path, 16 light samples standing in for its
+// rasterised direct light): the error is at most a quarter of the noisy input's.
+TEST(Mara2017, PathTracedCornellErrorIsAtMostAQuarterOfNoisy) {
+    render::SceneDescription d = render::loadSceneDescription("cornell-moving", ".");
+    d.width = 160, d.height = 120, d.frames = 12, d.referenceSpp = 128;
+    d.factoredDirectSpp = 16;
+    const std::string dir = testing::freshDir("Mara2017", "cornell").string();
+    render::SequenceRenderOptions o;
+    o.output = dir, o.quiet = true;
+    render::renderSequence(
+        d, o, nullptr, [](int, int) {}, [](const std::string&) {});
+    auto reader = SequenceReader::open(dir);
+    Mara2017Denoiser mara;
+    double out = 0, in = 0;
+    FrameData f;
+    for (int i = 0; i < d.frames; ++i) {
+        reader->load(i, f);
+        ASSERT_FALSE(f.matteIndirect.pixels.empty());
+        const ImageView v = mara.denoise(f.input());
+        ImageF img(v.width, v.height, 3);
+        std::copy(v.data, v.data + 3 * v.width * v.height, img.data());
+        if (i < 4) continue; // the first frames have little history
+        out += rmseToneMapped(img, f.reference);
+        in += rmseToneMapped(f.color, f.reference);
+    }
+    EXPECT_LE(out, 0.25 * in) << "mean RMSE denoised " << out / 8 << " noisy " << in / 8;
+}
+
+} // namespace
+} // namespace bmfr
