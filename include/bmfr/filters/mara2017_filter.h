@@ -23,7 +23,8 @@ struct Mara2017Settings : TemporalSettings {
     float confidenceNear = 0.05f; ///< d0: reprojection distance where confidence starts to fall
     float confidenceFar = 0.07f;  ///< d1: reprojection distance where confidence reaches 0
     bool cumulativeStart = true;  ///< history weight min(c, n/(n+1)) for n frames of history
-    bool clampHistory = true;     ///< clamp the history to the new 3x3's min/max
+    bool clampHistory = true;     ///< clamp the history to the new samples' box min/max
+    int clampRadius = 1;          ///< the clamp's box is (2 clampRadius + 1)^2 pixels
     bool preBilateral = true;     ///< stage 4: filter the history before it is stored
     int preTaps = 50;             ///< stage 4 taps
     float preDiameter = 0.01f;    ///< stage 4 disk diameter, x screen width

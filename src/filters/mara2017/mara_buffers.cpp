@@ -31,7 +31,7 @@ void maraSpiralTable(int taps, float frameRotation, std::vector<float>& out) {
 MaraFrame maraFrameSettings(const Mara2017Settings& s, int width) {
     MaraFrame f;
     f.h = s.hysteresis, f.d0 = s.confidenceNear, f.d1 = s.confidenceFar;
-    f.cumulativeStart = s.cumulativeStart;
+    f.cumulativeStart = s.cumulativeStart, f.clampRadius = s.clampRadius;
     f.clampHistory = s.clampHistory, f.virtualReprojection = s.virtualReprojection;
     f.normaliseConfidence = s.normaliseConfidence;
     f.edges = {s.normalWeight, s.planeWeight, s.planeNear * s.planeNear};

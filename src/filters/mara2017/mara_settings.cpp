@@ -27,8 +27,12 @@ SettingsTable<S> ownSettings() {
          "weight c from the first frame)",
          BMFR_FIELD(S, cumulativeStart)},
         {"clampHistory", "mara-clamp-history", "", {},
-         "clamp the matte and glossy histories to the new samples' 3x3 min/max",
+         "clamp the matte and glossy histories to the new samples' min/max box",
          BMFR_FIELD(S, clampHistory)},
+        {"clampRadius", "mara-clamp-radius", "pixels", {1, 8},
+         "the clamp's box reaches this far: 1 = the paper's 3x3, 2 = 5x5 (wider boxes bound a "
+         "1-spp history's mean less often below it)",
+         BMFR_FIELD(S, clampRadius)},
         {"preBilateral", "mara-pre-bilateral", "", {},
          "stage 4: filter the matte history with the sparse pre-bilateral before storing it",
          BMFR_FIELD(S, preBilateral)},

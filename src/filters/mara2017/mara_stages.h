@@ -21,6 +21,7 @@ struct MaraFrame {
     float h = 0.98f, d0 = 0.05f, d1 = 0.07f;
     bool cumulativeStart = true, clampHistory = true, virtualReprojection = true;
     bool normaliseConfidence = false;
+    int clampRadius = 1; ///< the clamp's box is (2 clampRadius + 1)^2
     MaraEdgeWeights edges;
     int preTaps = 50, finalTaps = 50;
     float preRadius = 1, preSigma = 0.5f; ///< pixels
@@ -76,11 +77,11 @@ BMFR_HD void maraInputPixel(const MaraFrame& f, long i, int64_t& bad) {
     f.previousPixel[2 * i + 1] = found ? was.pixel.y : -1e6f;
 }
 
-/// Per-channel min and max of v's 3x3 around (x, y), inside the image.
-BMFR_HD void maraBox3x3(const float* v, int w, int h, int x, int y, Vec3& lo, Vec3& hi) {
+/// Per-channel min and max of v's (2r + 1)^2 box around (x, y), inside the image.
+BMFR_HD void maraBox(const float* v, int w, int h, int x, int y, int r, Vec3& lo, Vec3& hi) {
     lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx) {
             const int qx = x + dx, qy = y + dy;
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             const Vec3 q = load3(v, long(qy) * w + qx);
@@ -129,7 +130,7 @@ BMFR_HD void maraMatteTemporalPixel(const MaraFrame& f, int x, int y) {
             Vec3 hist = sum / c;
             if (f.clampHistory) {
                 Vec3 lo, hi;
-                maraBox3x3(f.matte, f.width, f.height, x, y, lo, hi);
+                maraBox(f.matte, f.width, f.height, x, y, f.clampRadius, lo, hi);
                 hist = clamp(hist, lo, hi);
             }
             const int n = int(f.prevCount[nearest]);
@@ -286,7 +287,7 @@ BMFR_HD void maraGlossyTemporalPixel(const MaraFrame& f, int x, int y) {
         if (maraBilinear(f.prevGlossy, f.width, f.height, pp, hist)) {
             if (f.clampHistory) {
                 Vec3 lo, hi;
-                maraBox3x3(f.glossySignal, f.width, f.height, x, y, lo, hi);
+                maraBox(f.glossySignal, f.width, f.height, x, y, f.clampRadius, lo, hi);
                 hist = clamp(hist, lo, hi);
             }
             t = lerp(g, hist, maraHistoryWeight(f, c, int(f.count[i]) - 1));
