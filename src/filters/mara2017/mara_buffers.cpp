@@ -64,8 +64,13 @@ MaraFrame MaraBuffers::frame(const MaraPassContext& ctx) {
     preOffsets.resize(preSpiral.size());
     for (size_t k = 0; k < preSpiral.size(); ++k)
         preOffsets[k] = maraTapOffset(preSpiral[k], f.preRadius);
+    preGauss.resize(preSpiral.size() / 2);
+    for (size_t k = 0; k < preGauss.size(); ++k) {
+        const int dx = preOffsets[2 * k], dy = preOffsets[2 * k + 1];
+        preGauss[k] = maraGaussian(float(dx * dx + dy * dy), f.preSigma);
+    }
     f.preSpiral = preSpiral.data(), f.finalSpiral = finalSpiral.data();
-    f.preOffsets = preOffsets.data();
+    f.preOffsets = preOffsets.data(), f.preGauss = preGauss.data();
     f.prevMatte = matteHistory[prev].data(), f.prevGlossy = glossyHistory[prev].data();
     f.prevPosition = position[prev].data(), f.prevNormal = normal[prev].data();
     f.prevCount = count[prev].data();

@@ -33,6 +33,7 @@ struct MaraBuffers {
     ImageU8 accept;
     std::vector<float> preSpiral, finalSpiral;
     std::vector<int> preOffsets;
+    std::vector<float> preGauss;
     ImageF countF, acceptF; ///< debug copies, sized on first use
 
     void allocate(int w, int h);

@@ -29,9 +29,10 @@ struct MaraFrame {
     float lowConfidence = 0.5f, radiusBoost = 6, finalSigma = 0.5f;
     float glossyScale = 7, glossyExponent = 0.1f, glossyEpsilon = 1e-4f, glossyTapSigmas = 3;
     /// Unit spiral offsets, kMaraSpiralRotations x taps x 2, already turned by the frame's
-    /// rotation; preOffsets holds stage 4's as whole pixels.
+    /// rotation; preOffsets holds stage 4's as whole pixels and preGauss their Gaussian weights.
     const float *preSpiral = nullptr, *finalSpiral = nullptr;
     const int* preOffsets = nullptr;
+    const float* preGauss = nullptr;
     uint32_t frame = 0, seed = 0;
     // History.
     const float *prevMatte = nullptr, *prevGlossy = nullptr;
@@ -146,10 +147,11 @@ BMFR_HD void maraMatteTemporalPixel(const MaraFrame& f, int x, int y) {
 
 /// A sparse cross-bilateral at (x, y) of `src` (3 floats per pixel): the centre and `taps`
 /// spiral taps (unit offsets `spiral`, scaled by `radius` pixels), Gaussian weights of sigma
-/// pixels times the edge weight. Taps outside the image are skipped.
+/// pixels times the edge weight. Taps outside the image are skipped. `offsets` and `gauss`,
+/// when given, hold the taps' whole-pixel offsets and Gaussian weights already.
 BMFR_HD Vec3 maraSparseBilateral(const MaraFrame& f, const float* src, int x, int y,
-                                 const float* spiral, const int* offsets, int taps, float radius,
-                                 float sigma) {
+                                 const float* spiral, const int* offsets, const float* gauss,
+                                 int taps, float radius, float sigma) {
     const long i = long(y) * f.width + x;
     const Vec3 centre = load3(src, i);
     if (!(radius >= 0.5f)) return centre;
@@ -162,8 +164,8 @@ BMFR_HD Vec3 maraSparseBilateral(const MaraFrame& f, const float* src, int x, in
         const int qx = x + dx, qy = y + dy;
         if (qx < 0 || qy < 0 || qx >= f.width || qy >= f.height) continue;
         const long j = long(qy) * f.width + qx;
-        const float w = maraGaussian(float(dx * dx + dy * dy), sigma) *
-                        maraEdgeWeight(nc, pc, load3(f.normal, j), load3(f.position, j), f.edges);
+        const float g = gauss ? gauss[k] : maraGaussian(float(dx * dx + dy * dy), sigma);
+        const float w = g * maraEdgeWeight(nc, pc, load3(f.normal, j), load3(f.position, j), f.edges);
         if (!(w > 0)) continue;
         sum += w * load3(src, j);
         total += w;
@@ -178,8 +180,8 @@ BMFR_HD void maraPreBilateralPixel(const MaraFrame& f, int x, int y) {
     const long i = long(y) * f.width + x;
     store3(f.matteHistory, i,
            maraSparseBilateral(f, f.temporal, x, y, f.preSpiral + 2 * f.preTaps * r,
-                               f.preOffsets + 2 * f.preTaps * r, f.preTaps, f.preRadius,
-                               f.preSigma));
+                               f.preOffsets + 2 * f.preTaps * r, f.preGauss ? f.preGauss + f.preTaps * r : nullptr,
+                               f.preTaps, f.preRadius, f.preSigma));
 }
 
 /// The confidence stage 5 reads at pixel i.
@@ -238,7 +240,7 @@ BMFR_HD void maraFinalBilateralPixel(const MaraFrame& f, const float* src, int x
     const int rot = maraPixelRotation(x, y, f.frame, f.seed, 7);
     store3(f.matteOut, i,
            maraSparseBilateral(f, src, x, y, f.finalSpiral + 2 * f.finalTaps * rot, nullptr,
-                               f.finalTaps, r, f.finalSigma * r));
+                               nullptr, f.finalTaps, r, f.finalSigma * r));
 }
 
 /// Bilinear sample of `history` (3 floats per pixel) at a continuous pixel, over the taps
@@ -309,16 +311,19 @@ BMFR_HD void maraGlossyPassPixel(const MaraFrame& f, const float* src, float* ds
     const Vec3 pc = load3(f.position, i), nc = load3(f.normal, i);
     Vec3 sum = load3(src, i);
     float total = 1.0f;
-    for (int k = -reach; k <= reach; ++k) {
-        if (k == 0) continue;
-        const int qx = x + k * dx, qy = y + k * dy;
-        if (qx < 0 || qy < 0 || qx >= f.width || qy >= f.height) continue;
-        const long j = long(qy) * f.width + qx;
-        const float w = maraGaussian(float(k * k), sigma) *
-                        maraEdgeWeight(nc, pc, load3(f.normal, j), load3(f.position, j), f.edges);
-        if (!(w > 0)) continue;
-        sum += w * load3(src, j);
-        total += w;
+    for (int k = 1; k <= reach; ++k) {
+        const float g = maraGaussian(float(k * k), sigma); // once for both sides
+        if (!(g > 0)) break;
+        for (int side = -1; side <= 1; side += 2) {
+            const int qx = x + side * k * dx, qy = y + side * k * dy;
+            if (qx < 0 || qy < 0 || qx >= f.width || qy >= f.height) continue;
+            const long j = long(qy) * f.width + qx;
+            const float w =
+                g * maraEdgeWeight(nc, pc, load3(f.normal, j), load3(f.position, j), f.edges);
+            if (!(w > 0)) continue;
+            sum += w * load3(src, j);
+            total += w;
+        }
     }
     store3(dst, i, sum / total);
 }
