@@ -245,30 +245,34 @@ TEST(Cli, WalrFiltersTheColourOrTheRenderedDiffuseIndirectLight) {
 TEST(Cli, Mara2017FiltersTheFactoredPathsOrWarnsOnceWithoutThem) {
     fs::path in = scratch("mara_in"), out = scratch("mara_out"), plain = scratch("mara_plain");
     Result rendered = run("render -s cornell-moving --width 40 --height 30 --frames 2 "
-                          "--no-reference -q --paths mara --direct-spp 4 -o " + in.string());
+                          "--no-reference -q --paths mara --direct-spp 4 -o " +
+                          in.string());
     ASSERT_EQ(rendered.code, 0) << rendered.output;
     for (const char* stem : {"matte_indirect", "glossy_indirect", "direct_light", "specular_f0",
                              "surface_roughness", "glossy_hit_distance"})
         EXPECT_TRUE(fs::exists(in / (std::string(stem) + "_0001.exr"))) << stem;
     const std::string warning = "has no matte_indirect";
-    Result r = run("denoise " + in.string() + " -o " + out.string() + " --no-png --filter mara2017");
+    Result r =
+        run("denoise " + in.string() + " -o " + out.string() + " --no-png --filter mara2017");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("bmfr denoise (mara2017, cpu backend)"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("glossy bilateral"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find(warning), std::string::npos) << r.output;
     // Our own paths: the documented fallback, said once.
-    ASSERT_EQ(run("render -s cornell-moving --width 40 --height 30 --frames 3 --no-reference -q -o " +
-                  plain.string())
-                  .code,
-              0);
-    Result fallback = run("denoise " + plain.string() + " -o " + out.string() +
-                          " --no-png -q --filter mara2017");
+    ASSERT_EQ(
+        run("render -s cornell-moving --width 40 --height 30 --frames 3 --no-reference -q -o " +
+            plain.string())
+            .code,
+        0);
+    Result fallback =
+        run("denoise " + plain.string() + " -o " + out.string() + " --no-png -q --filter mara2017");
     ASSERT_EQ(fallback.code, 0) << fallback.output;
     const size_t at = fallback.output.find(warning);
     EXPECT_NE(at, std::string::npos) << fallback.output;
     EXPECT_EQ(fallback.output.find(warning, at + 1), std::string::npos) << fallback.output;
     Result bad = run("render -s cornell-moving --width 8 --height 8 --frames 1 --no-reference -q "
-                     "--direct-spp 4 -o " + (plain / "x").string());
+                     "--direct-spp 4 -o " +
+                     (plain / "x").string());
     EXPECT_EQ(bad.code, 2) << bad.output; // a usage error
     EXPECT_NE(bad.output.find("--paths mara"), std::string::npos) << bad.output;
     for (const fs::path& p : {in, out, plain}) fs::remove_all(p);

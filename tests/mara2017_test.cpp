@@ -123,7 +123,8 @@ TEST(Mara2017, M3DisoccludedPixelTakesTheCurrentSample) {
     for (long i : {15L, 40L}) {
         EXPECT_EQ(a.conf[size_t(i)], 0.0f) << i;
         EXPECT_EQ(a.count[size_t(i)], 1) << i;
-        for (int c = 0; c < 3; ++c) EXPECT_EQ(a.temporal[3 * size_t(i) + c], a.matte[3 * size_t(i) + c]);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(a.temporal[3 * size_t(i) + c], a.matte[3 * size_t(i) + c]);
     }
     EXPECT_FLOAT_EQ(a.conf[16], 0.98f);
     EXPECT_EQ(a.count[16], 21);
@@ -291,15 +292,16 @@ TEST(Mara2017, M7SparseTapsStayInTheDiskAndTurnEveryFrame) {
     }
     EXPECT_NE(maraFrameRotation(0, 0, 4), maraFrameRotation(1, 0, 4));
     int differ = 0;
-    for (int x = 0; x < 64; ++x) differ += maraPixelRotation(x, 0, 0, 0, 4) != maraPixelRotation(x + 1, 0, 0, 0, 4);
+    for (int x = 0; x < 64; ++x)
+        differ += maraPixelRotation(x, 0, 0, 0, 4) != maraPixelRotation(x + 1, 0, 0, 0, 4);
     EXPECT_GT(differ, 48);
     // Over many frames the taps cover the whole disk: the time average is a dense filter.
     std::set<std::pair<int, int>> hit;
     for (uint32_t frame = 0; frame < 64; ++frame) {
         maraSpiralTable(f.preTaps, maraFrameRotation(frame, 0, 4), spiral);
         for (size_t k = 0; k < spiral.size(); k += 2)
-            hit.insert({maraTapOffset(spiral[k], f.preRadius),
-                        maraTapOffset(spiral[k + 1], f.preRadius)});
+            hit.insert(
+                {maraTapOffset(spiral[k], f.preRadius), maraTapOffset(spiral[k + 1], f.preRadius)});
     }
     int inside = 0, missed = 0;
     for (int dy = -6; dy <= 6; ++dy)
@@ -317,15 +319,21 @@ TEST(Mara2017, M8GlossySigmaLimitsAndSeparability) {
     // Roughness 0: the identity.
     Field a(20, 10);
     a.glossy = randomValues(a.glossy.size(), 0, 1, 5);
-    a.each([&](int x, int y) { maraGlossyPassPixel(a.f, a.glossy.data(), a.glossyRow.data(), x, y, 1, 0); });
+    a.each([&](int x, int y) {
+        maraGlossyPassPixel(a.f, a.glossy.data(), a.glossyRow.data(), x, y, 1, 0);
+    });
     EXPECT_EQ(a.glossyRow, a.glossy);
     // H then V of an impulse with unit edge weights is the normalised 2D Gaussian.
     Field b(81, 81);
     b.rough.assign(b.rough.size(), 0.5f);
     const float sigma = maraGlossySigma(0.5f, 7, 0.1f, 1e-4f);
     store3(b.glossy.data(), 40L * 81 + 40, {1, 1, 1});
-    b.each([&](int x, int y) { maraGlossyPassPixel(b.f, b.glossy.data(), b.glossyRow.data(), x, y, 1, 0); });
-    b.each([&](int x, int y) { maraGlossyPassPixel(b.f, b.glossyRow.data(), b.glossyOut.data(), x, y, 0, 1); });
+    b.each([&](int x, int y) {
+        maraGlossyPassPixel(b.f, b.glossy.data(), b.glossyRow.data(), x, y, 1, 0);
+    });
+    b.each([&](int x, int y) {
+        maraGlossyPassPixel(b.f, b.glossyRow.data(), b.glossyOut.data(), x, y, 0, 1);
+    });
     double total = 0;
     const int reach = int(std::ceil(3.0f * sigma));
     for (int dy = -reach; dy <= reach; ++dy)
@@ -333,25 +341,31 @@ TEST(Mara2017, M8GlossySigmaLimitsAndSeparability) {
             total += std::exp(-double(dx * dx + dy * dy) / (2.0 * sigma * sigma));
     for (int dy = -10; dy <= 10; ++dy)
         for (int dx = -10; dx <= 10; ++dx) {
-            const double want = std::exp(-double(dx * dx + dy * dy) / (2.0 * sigma * sigma)) / total;
-            ASSERT_NEAR(b.glossyOut[3 * size_t((40 + dy) * 81 + 40 + dx)], want, 1e-6) << dx << "," << dy;
+            const double want =
+                std::exp(-double(dx * dx + dy * dy) / (2.0 * sigma * sigma)) / total;
+            ASSERT_NEAR(b.glossyOut[3 * size_t((40 + dy) * 81 + 40 + dx)], want, 1e-6)
+                << dx << "," << dy;
         }
 }
 
 TEST(Mara2017, M9NoBilateralStageCrossesAPlaneStep) {
     Field a(40, 30);
     a.each([&](int x, int y) {
-        a.setPosition(long(y) * a.w + x, {float(x) * 0.01f, float(y) * 0.01f, x < 20 ? 0.0f : 1.0f});
+        a.setPosition(long(y) * a.w + x,
+                      {float(x) * 0.01f, float(y) * 0.01f, x < 20 ? 0.0f : 1.0f});
     });
     a.f.preRadius = 4, a.f.preSigma = 2;
-    for (size_t k = 0; k < a.preSpiral.size(); ++k) a.preOffsets[k] = maraTapOffset(a.preSpiral[k], 4);
+    for (size_t k = 0; k < a.preSpiral.size(); ++k)
+        a.preOffsets[k] = maraTapOffset(a.preSpiral[k], 4);
     a.radius.assign(a.radius.size(), 6.0f);
     a.rough.assign(a.rough.size(), 1.0f);
     auto run = [&](std::vector<float> input) {
         a.temporal = input, a.glossy = input;
         a.each([&](int x, int y) { maraPreBilateralPixel(a.f, x, y); });
         a.each([&](int x, int y) { maraFinalBilateralPixel(a.f, input.data(), x, y); });
-        a.each([&](int x, int y) { maraGlossyPassPixel(a.f, input.data(), a.glossyRow.data(), x, y, 1, 0); });
+        a.each([&](int x, int y) {
+            maraGlossyPassPixel(a.f, input.data(), a.glossyRow.data(), x, y, 1, 0);
+        });
         return std::vector<std::vector<float>>{a.history, a.matteOut, a.glossyRow};
     };
     std::vector<float> in = randomValues(a.temporal.size(), 0, 1, 6);
@@ -391,7 +405,8 @@ TEST(Mara2017, M10VirtualPositionLandsOnThePreviousReflection) {
     // The previous camera saw P through the mirror point on its own ray to P'.
     const float t = 3.0f / (3.0f - image.z);
     const Vec3 xPrev = was + t * (image - was);
-    ASSERT_TRUE(projectToPixel(a.f.previous.viewProjection, xPrev, a.f.previous.jitter, w, h, expected));
+    ASSERT_TRUE(
+        projectToPixel(a.f.previous.viewProjection, xPrev, a.f.previous.jitter, w, h, expected));
     ASSERT_TRUE(projectToPixel(a.f.previous.viewProjection, x, a.f.previous.jitter, w, h, surface));
     EXPECT_NEAR(virt.x, expected.x, 1e-3f);
     EXPECT_NEAR(virt.y, expected.y, 1e-3f);
@@ -416,8 +431,10 @@ TEST(Mara2017, M2ConstantInputStaysConstantWithAMovingCamera) {
             const ImageView out = d.denoise(frames[k].input());
             for (long i = 0; i < long(w) * h; ++i)
                 for (int c = 0; c < 3; ++c) {
-                    const float want = factored ? 0.1f + 0.5f * (0.3f + 0.2f * float(c)) : 0.3f + 0.2f * float(c);
-                    ASSERT_NEAR(out.data[3 * i + c], want, 1e-5f) << factored << " frame " << k << " " << i;
+                    const float want =
+                        factored ? 0.1f + 0.5f * (0.3f + 0.2f * float(c)) : 0.3f + 0.2f * float(c);
+                    ASSERT_NEAR(out.data[3 * i + c], want, 1e-5f)
+                        << factored << " frame " << k << " " << i;
                 }
         }
     }
@@ -426,8 +443,8 @@ TEST(Mara2017, M2ConstantInputStaysConstantWithAMovingCamera) {
 TEST(Mara2017, M11CompositionOnAFlatSurface) {
     const int w = 24, h = 18;
     std::vector<FrameData> frames = planeFrames(w, h, 3, {1, 1, 1});
-    const Vec3 M{0.4f, 0.3f, 0.2f}, G{0.6f, 0.6f, 0.5f}, D{0.05f, 0.1f, 0.15f}, rho{0.7f, 0.5f, 0.3f},
-        F0{0.04f, 0.5f, 0.9f}, E{0.01f, 0, 0};
+    const Vec3 M{0.4f, 0.3f, 0.2f}, G{0.6f, 0.6f, 0.5f}, D{0.05f, 0.1f, 0.15f},
+        rho{0.7f, 0.5f, 0.3f}, F0{0.04f, 0.5f, 0.9f}, E{0.01f, 0, 0};
     for (FrameData& f : frames) {
         auto fill3 = [&](ImageF& img, Vec3 v) {
             img = ImageF(w, h, 3);
@@ -467,14 +484,19 @@ TEST(Mara2017, M12MatteRadiiFollowTheWidthAndTheGlossySigmaDoesNot) {
 }
 
 TEST(Mara2017, SettingsAndBuffersAreChecked) {
-    EXPECT_NE(errorOf([] { makeFilter("mara2017", {{"confidenceFar", "0.01"}}); }).find("confidenceNear"),
+    EXPECT_NE(errorOf([] {
+                  makeFilter("mara2017", {{"confidenceFar", "0.01"}});
+              }).find("confidenceNear"),
               std::string::npos);
-    EXPECT_NE(errorOf([] { makeFilter("mara2017", {{"hysteresis", "1.5"}}); }).find("hysteresis"),
+    EXPECT_NE(errorOf([] {
+                  makeFilter("mara2017", {{"hysteresis", "1.5"}});
+              }).find("hysteresis"),
               std::string::npos);
     std::vector<FrameData> frames = planeFrames(16, 12, 1, {1, 1, 1});
     frames[0].matteIndirect = ImageF(8, 12, 3);
     Mara2017Denoiser d;
-    EXPECT_NE(errorOf([&] { d.denoise(frames[0].input()); }).find("matteIndirect"), std::string::npos);
+    EXPECT_NE(errorOf([&] { d.denoise(frames[0].input()); }).find("matteIndirect"),
+              std::string::npos);
     frames[0].matteIndirect = ImageF(16, 12, 3);
     frames[0].matteIndirect.pixels[5] = NAN;
     const ImageView out = d.denoise(frames[0].input());

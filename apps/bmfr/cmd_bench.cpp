@@ -1,8 +1,8 @@
 #include "commands.h"
+#include "core/vec.h"
 #include "progress.h"
 #include "stage_log.h"
 #include "stream_floor.h"
-#include "core/vec.h"
 #include "synth/procedural_scene.h"
 #include <algorithm>
 #include <bmfr/bmfr.h>

@@ -5,8 +5,8 @@
 #include <bmfr/features.h>
 #include <bmfr/filter.h>
 #include <bmfr/filters/bmfr_filter.h>
-#include <bmfr/filters/svgf_filter.h>
 #include <bmfr/filters/mara2017_filter.h>
+#include <bmfr/filters/svgf_filter.h>
 #include <bmfr/filters/walr_filter.h>
 #include <bmfr/frame.h>
 #include <bmfr/temporal_settings.h>

@@ -1,8 +1,8 @@
 // The backends' passes by filter: the one place that maps a Backend to its implementation.
 #pragma once
 #include "filters/bmfr/bmfr_passes.h"
-#include "filters/svgf/svgf_passes.h"
 #include "filters/mara2017/mara_passes.h"
+#include "filters/svgf/svgf_passes.h"
 #include "filters/walr/walr_passes.h"
 #include <memory>
 

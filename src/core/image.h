@@ -30,6 +30,13 @@ template <typename T> struct Image {
 using ImageF = Image<float>;
 using ImageU8 = Image<uint8_t>;
 
+/// `out` = the single-channel `in` as floats, resized when its size differs (the debug views
+/// of history counts and accept masks; no allocation once sized).
+inline void widenToFloat(const ImageU8& in, ImageF& out) {
+    if (out.width != in.width || out.height != in.height) out.resize(in.width, in.height, 1);
+    for (long i = 0; i < in.pixelCount(); ++i) out.data()[i] = in.data()[i];
+}
+
 inline ImageView view(const ImageF& img) {
     return ImageView{img.data(), img.width, img.height, img.channels};
 }

@@ -36,14 +36,15 @@ class ManifestReader : public SequenceReader {
                               "frames", "generator"},
                              mp.string());
             for (size_t k = 0; k < manifest_.at("frames").size(); ++k)
-                requireKnownKeys(manifest_["frames"][k],
-                                 {"color", "albedo", "normal", "position", "reference", "emission",
-                                  "motion", "previous_position", "previous_normal",
-                                  "diffuse_indirect", "matte_indirect", "glossy_indirect",
-                                  "direct_light", "specular_f0", "roughness",
-                                  "glossy_hit_distance", "reset", "extras", "aovs", "view_projection",
-                                  "jitter"},
-                                 mp.string() + " frame " + std::to_string(k));
+                requireKnownKeys(
+                    manifest_["frames"][k],
+                    {"color",           "albedo",           "normal",         "position",
+                     "reference",       "emission",         "motion",         "previous_position",
+                     "previous_normal", "diffuse_indirect", "matte_indirect", "glossy_indirect",
+                     "direct_light",    "specular_f0",      "roughness",      "glossy_hit_distance",
+                     "reset",           "extras",           "aovs",           "view_projection",
+                     "jitter"},
+                    mp.string() + " frame " + std::to_string(k));
             if (!manifest_.contains("width") || !manifest_.contains("height"))
                 throw Error(mp.string() + ": needs \"width\" and \"height\"");
             info_.width = int(integerField(manifest_, "width", 0, 65536, 0, mp.string()));

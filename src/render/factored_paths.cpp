@@ -46,8 +46,8 @@ FactoredSample Integrator::factoredSample(const PrimaryHit& first, int directSam
     s.emission = sp.emission;
     s.matteReflectance = sp.diffuse;
     const float cosO = dot(sp.ns, sp.wo);
-    if (cosO <= 0 || (sp.diffuse.x <= 0 && sp.diffuse.y <= 0 && sp.diffuse.z <= 0 &&
-                      sp.f0.x <= 0 && sp.f0.y <= 0 && sp.f0.z <= 0))
+    if (cosO <= 0 || (sp.diffuse.x <= 0 && sp.diffuse.y <= 0 && sp.diffuse.z <= 0 && sp.f0.x <= 0 &&
+                      sp.f0.y <= 0 && sp.f0.z <= 0))
         return s;
     s.fresnel = schlick(sp.f0, cosO);
     const Vec3 origin = sp.p + offsetScale(sp.p) * sp.ng;

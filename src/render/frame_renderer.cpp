@@ -98,8 +98,9 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     const bool factored = factoredDirectSpp_ > 0;
     for (ImageF* img : {&out.matteIndirect, &out.glossyIndirect, &out.directLight, &out.specularF0,
                         &out.roughness, &out.glossyHitDistance})
-        *img = factored ? ImageF(w, h, img == &out.roughness || img == &out.glossyHitDistance ? 1 : 3)
-                        : ImageF();
+        *img = factored
+                   ? ImageF(w, h, img == &out.roughness || img == &out.glossyHitDistance ? 1 : 3)
+                   : ImageF();
 
     const Integrator integrator(*scene_, *accel_, lights, bounces_);
     const float spread = 2.0f * std::tan(0.5f * pose.fovY) / float(h);
@@ -140,10 +141,10 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                     continue;
                 }
                 Rng rng(uint32_t(i), uint32_t(index), 0u, seed_);
-                PathContribution c =
-                    factored ? factoredSplits(integrator, ph, rng, i, out, localRays,
-                                             factoredDirectSpp_, skyDistance_)
-                             : integrator.sample(ph, rng, localRays);
+                PathContribution c = factored
+                                         ? factoredSplits(integrator, ph, rng, i, out, localRays,
+                                                          factoredDirectSpp_, skyDistance_)
+                                         : integrator.sample(ph, rng, localRays);
                 store3(out.color.data(), i, diffuseIndirectOnly_ ? c.diffuseIndirect : c.total);
                 store3(out.aovs[1].second.data(), i, c.direct);
                 store3(out.aovs[2].second.data(), i, c.indirect);

@@ -35,7 +35,7 @@ struct FactoredSample {
     Vec3 matte;    ///< M: indirect radiance along the cosine-sampled direction
     Vec3 glossy;   ///< G: indirect radiance along the GGX direction times g cos / pdf
     Vec3 fresnel;  ///< F_s = Schlick(F0, n . wo), the Fresnel factor at the mirror direction
-    Vec3 matteReflectance; ///< rho_L, the diffuse reflectance
+    Vec3 matteReflectance;     ///< rho_L, the diffuse reflectance
     float glossyDistance = -1; ///< to the glossy path's next hit; -1 when it escaped
     /// The estimate: emission + direct + (1 - F_s)^2 rho_L M + F_s G.
     Vec3 total() const;

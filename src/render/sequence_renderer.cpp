@@ -162,10 +162,13 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     if (o.layout != "manifest" && o.layout != "bmfr")
         throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
     // What `bmfr eval` reports about the input; the fingerprint alone decides resumption.
-    nlohmann::json about{
-        {"scene", d.name},      {"mesh", d.mesh}, {"reference_spp", d.referenceSpp},
-        {"bounces", d.bounces}, {"seed", d.seed}, {"jitter", d.jitter},
-        {"paths", d.factoredDirectSpp > 0 ? "mara" : "bmfr"}};
+    nlohmann::json about{{"scene", d.name},
+                         {"mesh", d.mesh},
+                         {"reference_spp", d.referenceSpp},
+                         {"bounces", d.bounces},
+                         {"seed", d.seed},
+                         {"jitter", d.jitter},
+                         {"paths", d.factoredDirectSpp > 0 ? "mara" : "bmfr"}};
     if (d.factoredDirectSpp > 0) about["direct_spp"] = d.factoredDirectSpp;
     const bool resume = claimFolder(o.output, renderFingerprint(d, o.layout), o.overwrite, about);
     SequenceInfo info;

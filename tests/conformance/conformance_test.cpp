@@ -45,7 +45,8 @@ const FilterCase kFilters[] = {
       {"the world-space history test", {{"historyTest", "world"}}}}},
     {"mara2017",
      {{"the paper's first frames (no cumulative start)", {{"cumulativeStart", "false"}}},
-      {"c / h in stage 5, fewer taps", {{"normaliseConfidence", "true"}, {"preTaps", "8"}, {"finalTaps", "12"}}},
+      {"c / h in stage 5, fewer taps",
+       {{"normaliseConfidence", "true"}, {"preTaps", "8"}, {"finalTaps", "12"}}},
       {"TAA on", {{"taa", "true"}}}}},
 };
 
@@ -247,8 +248,8 @@ TEST_P(Conformance, PathTracedFrames) {
             pose.position = {0.05f * float(i), 1.0f, 3.4f}, pose.target = {0, 1, 0};
             pose.fovY = 0.69f;
             FrameRenderStats stats;
-            ASSERT_TRUE(r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)], stats,
-                                 nullptr));
+            ASSERT_TRUE(r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)],
+                                 stats, nullptr));
             previous = pose;
         }
         expectConformance(

@@ -19,19 +19,19 @@ namespace bmfr {
 /// `taa` is off by default (the paper has no TAA stage).
 struct Mara2017Settings : TemporalSettings {
     Mara2017Settings() { taa = false; }
-    float hysteresis = 0.98f;     ///< h: the largest weight of the history
-    float confidenceNear = 0.05f; ///< d0: reprojection distance where confidence starts to fall
-    float confidenceFar = 0.07f;  ///< d1: reprojection distance where confidence reaches 0
-    bool cumulativeStart = true;  ///< history weight min(c, n/(n+1)) for n frames of history
-    bool clampHistory = true;     ///< clamp the history to the new samples' box min/max
-    int clampRadius = 1;          ///< the clamp's box is (2 clampRadius + 1)^2 pixels
-    bool preBilateral = true;     ///< stage 4: filter the history before it is stored
-    int preTaps = 50;             ///< stage 4 taps
-    float preDiameter = 0.01f;    ///< stage 4 disk diameter, x screen width
-    float preSigma = 0.5f;        ///< stage 4 Gaussian sigma, x disk radius
-    float maxRadius = 0.05f;      ///< stage 5 R, x screen width
-    float lowConfidence = 0.5f;   ///< stage 5: below this confidence the radius is boosted
-    float radiusBoost = 6.0f;     ///< stage 5 boost of low-confidence pixels
+    float hysteresis = 0.98f;         ///< h: the largest weight of the history
+    float confidenceNear = 0.05f;     ///< d0: reprojection distance where confidence starts to fall
+    float confidenceFar = 0.07f;      ///< d1: reprojection distance where confidence reaches 0
+    bool cumulativeStart = true;      ///< history weight min(c, n/(n+1)) for n frames of history
+    bool clampHistory = true;         ///< clamp the history to the new samples' box min/max
+    int clampRadius = 1;              ///< the clamp's box is (2 clampRadius + 1)^2 pixels
+    bool preBilateral = true;         ///< stage 4: filter the history before it is stored
+    int preTaps = 50;                 ///< stage 4 taps
+    float preDiameter = 0.01f;        ///< stage 4 disk diameter, x screen width
+    float preSigma = 0.5f;            ///< stage 4 Gaussian sigma, x disk radius
+    float maxRadius = 0.05f;          ///< stage 5 R, x screen width
+    float lowConfidence = 0.5f;       ///< stage 5: below this confidence the radius is boosted
+    float radiusBoost = 6.0f;         ///< stage 5 boost of low-confidence pixels
     bool normaliseConfidence = false; ///< stage 5 reads c / h instead of c
     bool median = true;               ///< stage 6, the 3x3 firefly median
     int finalTaps = 50;               ///< stage 7 taps

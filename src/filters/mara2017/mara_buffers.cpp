@@ -87,19 +87,13 @@ MaraFrame MaraBuffers::frame(const MaraPassContext& ctx) {
 
 TaaInputs MaraBuffers::taaInputs(const MaraPassContext& ctx) const {
     const TemporalHistory& h = ctx.history;
-    return {composed.data(), nullptr,  output[1 - h.cur].data(), previousPixel.data(),
+    return {composed.data(), nullptr,  output[1 - h.cur].data(),  previousPixel.data(),
             h.width,         h.height, ctx.settings.taaBlendAlpha};
 }
 
 void MaraBuffers::captureDebug(int cur) {
-    if (countF.width != matte.width || countF.height != matte.height) {
-        countF.resize(matte.width, matte.height, 1);
-        acceptF.resize(matte.width, matte.height, 1);
-    }
-    for (long i = 0; i < matte.pixelCount(); ++i) {
-        countF.data()[i] = count[cur].data()[i];
-        acceptF.data()[i] = accept.data()[i];
-    }
+    widenToFloat(count[cur], countF);
+    widenToFloat(accept, acceptF);
 }
 
 DebugBuffers MaraBuffers::debug(int) const {

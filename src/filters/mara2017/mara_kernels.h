@@ -26,8 +26,8 @@ BMFR_HD float maraConfidence(float distance, float h, float d0, float d1) {
 /// The cross-bilateral edge terms every stage shares (the G3D lineage of the paper's "camera-
 /// space plane distance in normals and depth").
 struct MaraEdgeWeights {
-    float normal = 1.0f;          ///< k_n
-    float plane = 1.0f;           ///< k_p
+    float normal = 1.0f;            ///< k_n
+    float plane = 1.0f;             ///< k_p
     float planeNearSquared = 1e-3f; ///< taps nearer than this (squared) keep full plane weight
 };
 

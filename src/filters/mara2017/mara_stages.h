@@ -51,7 +51,7 @@ struct MaraFrame {
     float* rowMin = nullptr; ///< 1: stage 5's first (horizontal) min
     float* radius = nullptr; ///< 1: stage 5's r, pixels
     float* median = nullptr; ///< 3: stage 6
-    float* matteOut = nullptr, *glossyRow = nullptr, *glossyOut = nullptr;
+    float *matteOut = nullptr, *glossyRow = nullptr, *glossyOut = nullptr;
     float* composed = nullptr;
     uint8_t* accept = nullptr; ///< bilinear taps with confidence > 0 (bit i = tap i)
 };
@@ -63,7 +63,8 @@ BMFR_HD void maraInputPixel(const MaraFrame& f, long i, int64_t& bad) {
     const PixelInput px = readPixel(f.in, i, f.modes, bad);
     const Vec3 m = f.in.matteIndirect ? finiteOrZero(load3(f.in.matteIndirect, i), bad) : px.color;
     store3(f.matte, i, vmax(m, Vec3{}));
-    if (f.glossy) store3(f.glossySignal, i, vmax(finiteOrZero(load3(f.in.glossyIndirect, i), bad), {}));
+    if (f.glossy)
+        store3(f.glossySignal, i, vmax(finiteOrZero(load3(f.in.glossyIndirect, i), bad), {}));
     store3(f.position, i, px.position);
     store3(f.normal, i, px.normal);
     // The buffers read later are counted here, once.
@@ -72,7 +73,8 @@ BMFR_HD void maraInputPixel(const MaraFrame& f, long i, int64_t& bad) {
     if (f.in.roughness) finiteOrZero(f.in.roughness[i], bad);
     if (f.in.glossyHitDistance) finiteOrZero(f.in.glossyHitDistance[i], bad);
     PreviousSurface was;
-    const bool found = findPreviousSurface(f.in, i, x, y, px.position, px.normal, f.previous, bad, was);
+    const bool found =
+        findPreviousSurface(f.in, i, x, y, px.position, px.normal, f.previous, bad, was);
     store3(f.expected, i, was.position);
     f.previousPixel[2 * i] = found ? was.pixel.x : -1e6f;
     f.previousPixel[2 * i + 1] = found ? was.pixel.y : -1e6f;
@@ -119,7 +121,8 @@ BMFR_HD void maraMatteTemporalPixel(const MaraFrame& f, int x, int y) {
             if (qx < 0 || qy < 0 || qx >= f.width || qy >= f.height) continue;
             const long j = long(qy) * f.width + qx;
             if (f.prevCount[j] == 0) continue;
-            const float ck = maraConfidence(length(load3(f.prevPosition, j) - expected), f.h, f.d0, f.d1);
+            const float ck =
+                maraConfidence(length(load3(f.prevPosition, j) - expected), f.h, f.d0, f.d1);
             if (!(ck > 0)) continue;
             const float wk = fp.weight[k] * ck;
             accept |= uint8_t(1u << k);
@@ -165,7 +168,8 @@ BMFR_HD Vec3 maraSparseBilateral(const MaraFrame& f, const float* src, int x, in
         if (qx < 0 || qy < 0 || qx >= f.width || qy >= f.height) continue;
         const long j = long(qy) * f.width + qx;
         const float g = gauss ? gauss[k] : maraGaussian(float(dx * dx + dy * dy), sigma);
-        const float w = g * maraEdgeWeight(nc, pc, load3(f.normal, j), load3(f.position, j), f.edges);
+        const float w =
+            g * maraEdgeWeight(nc, pc, load3(f.normal, j), load3(f.position, j), f.edges);
         if (!(w > 0)) continue;
         sum += w * load3(src, j);
         total += w;
@@ -180,8 +184,9 @@ BMFR_HD void maraPreBilateralPixel(const MaraFrame& f, int x, int y) {
     const long i = long(y) * f.width + x;
     store3(f.matteHistory, i,
            maraSparseBilateral(f, f.temporal, x, y, f.preSpiral + 2 * f.preTaps * r,
-                               f.preOffsets + 2 * f.preTaps * r, f.preGauss ? f.preGauss + f.preTaps * r : nullptr,
-                               f.preTaps, f.preRadius, f.preSigma));
+                               f.preOffsets + 2 * f.preTaps * r,
+                               f.preGauss ? f.preGauss + f.preTaps * r : nullptr, f.preTaps,
+                               f.preRadius, f.preSigma));
 }
 
 /// The confidence stage 5 reads at pixel i.
@@ -346,7 +351,8 @@ BMFR_HD void maraComposePixel(const MaraFrame& f, long i) {
         fresnel = maraFresnel(vmax(finiteOrZero(load3(f.in.specularF0, i), unused), {}), cosine);
     }
     const Vec3 g = f.glossy ? load3(f.glossyOut, i) : Vec3{};
-    const Vec3 direct = f.in.directLight ? finiteOrZero(load3(f.in.directLight, i), unused) : Vec3{};
+    const Vec3 direct =
+        f.in.directLight ? finiteOrZero(load3(f.in.directLight, i), unused) : Vec3{};
     const Vec3 emission = f.in.emission ? finiteOrZero(load3(f.in.emission, i), unused) : Vec3{};
     store3(f.composed, i, maraCompose(direct, albedo, fresnel, m, g, emission));
 }

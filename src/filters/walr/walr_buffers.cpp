@@ -79,14 +79,8 @@ WalrPost WalrBuffers::postInputs(const WalrPassContext& ctx) {
 }
 
 void WalrBuffers::captureDebug(int cur) {
-    if (countF.width != signal.width || countF.height != signal.height) {
-        countF.resize(signal.width, signal.height, 1);
-        acceptF.resize(signal.width, signal.height, 1);
-    }
-    for (long i = 0; i < signal.pixelCount(); ++i) {
-        countF.data()[i] = count[cur].data()[i];
-        acceptF.data()[i] = accept.data()[i];
-    }
+    widenToFloat(count[cur], countF);
+    widenToFloat(accept, acceptF);
 }
 
 DebugBuffers WalrBuffers::debug(int cur) const {

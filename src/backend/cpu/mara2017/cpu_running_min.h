@@ -8,7 +8,7 @@ namespace bmfr::cpu {
 /// out[k * outStride] = min of in over [k - r, k + r] inside [0, n), for k in [0, n); `g` and
 /// `h` hold n + 2r + (2r + 1) floats each.
 inline void runningMin(const float* in, long inStride, int n, int r, float* out, long outStride,
-                float* g, float* h) {
+                       float* g, float* h) {
     const int window = 2 * r + 1;
     const int padded = n + 2 * r;
     const int blocks = (padded + window - 1) / window;

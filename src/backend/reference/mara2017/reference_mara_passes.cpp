@@ -26,8 +26,7 @@ void HostMaraPipeline::preBilateral(const MaraPassContext& ctx, const MaraFrame&
 
 void HostMaraPipeline::disocclusion(const MaraPassContext& ctx, const MaraFrame& f) {
     ctx.pool.forEachPixel(f.width, f.height, 4, [&](int x, int y) { maraRowMinPixel(f, x, y); });
-    ctx.pool.forEachPixel(f.width, f.height, 4,
-                          [&](int x, int y) { maraColumnMinPixel(f, x, y); });
+    ctx.pool.forEachPixel(f.width, f.height, 4, [&](int x, int y) { maraColumnMinPixel(f, x, y); });
 }
 
 void HostMaraPipeline::median(const MaraPassContext& ctx, const MaraFrame& f) {
