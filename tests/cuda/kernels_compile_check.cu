@@ -3,6 +3,7 @@
 // Kernels.CompileForCuda) where the toolkit exists; needs no GPU. Not a CUDA backend.
 #include "filters/bmfr/accumulation_kernels.h"
 #include "filters/bmfr/fitting_kernel.h"
+#include "filters/mara2017/mara_stages.h"
 #include "filters/svgf/svgf_kernels.h"
 #include "filters/walr/refwlr.h"
 #include "filters/walr/walr_temporal_kernels.h"
@@ -49,5 +50,20 @@ __global__ void walr(WalrFrame f, EdgeGuide g, WalrLevel l, WalrPost p, float* o
     store3(out, x, walrSolvePixel(l.out, l.layout, x, {0.5f, 0.5f}, 1e-4f));
     store3(out, x, refwlrPixel(g, out, out, 4, 1e-4, x, y));
     walrPostPixel(p, x, y);
+}
+__global__ void mara(MaraFrame f) {
+    int64_t bad = 0;
+    const int x = threadIdx.x, y = blockIdx.x;
+    const long i = long(y) * f.width + x;
+    maraInputPixel(f, i, bad);
+    maraMatteTemporalPixel(f, x, y);
+    maraPreBilateralPixel(f, x, y);
+    maraRowMinPixel(f, x, y);
+    maraColumnMinPixel(f, x, y);
+    maraMedianPixel(f, x, y);
+    maraFinalBilateralPixel(f, f.median, x, y);
+    maraGlossyTemporalPixel(f, x, y);
+    maraGlossyPassPixel(f, f.glossyTemporal, f.glossyRow, x, y, 1, 0);
+    maraComposePixel(f, i);
 }
 } // namespace bmfr
