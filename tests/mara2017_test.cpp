@@ -1,6 +1,7 @@
 // Mara et al. 2017: tests M1 to M12 of the implementation notes on the stage kernels and the
 // whole filter, the CPU backend's running minimum against a brute-force one, and the filter end
 // to end on a Cornell box path traced with the paper's factored paths.
+#include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/mara2017/cpu_running_min.h"
 #include "filters/mara2017/mara_passes.h"
 #include "metrics/basic_metrics.h"
@@ -234,6 +235,51 @@ TEST(Mara2017, CpuRunningMinEqualsTheBruteForceMin) {
                 ASSERT_EQ(out[size_t(k)], m) << "n " << n << " r " << r << " k " << k;
             }
         }
+}
+
+TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
+    const int w = 101, h = 23; // tails and borders on both sides
+    Field a(w, h);
+    std::vector<float> bump = randomValues(size_t(w * h), -0.02f, 0.02f, 7);
+    std::vector<float> tilt = randomValues(size_t(2 * w * h), -0.3f, 0.3f, 8);
+    a.temporal = randomValues(a.temporal.size(), 0, 2, 9);
+    a.glossy = randomValues(a.glossy.size(), 0, 2, 10);
+    for (long i = 0; i < a.size(); ++i) {
+        a.setPosition(i, {float(i % w) * 0.01f, float(i / w) * 0.01f, bump[size_t(i)]});
+        const Vec3 n{tilt[2 * size_t(i)], tilt[2 * size_t(i) + 1], 1.0f};
+        store3(a.nrm.data(), i, n / length(n));
+        // Mostly shared roughness in runs, some pixels of their own, one NaN.
+        a.rough[size_t(i)] = (i / 40) % 3 == 0 ? 0.01f : (i % 17 == 0 ? 0.7f : 0.4f);
+    }
+    a.rough[333] = NAN;
+    // Stage 4 with a 3-pixel disk and its Gaussian table; stage 7 with radii from 0 to 12.
+    a.f.preRadius = 3, a.f.preSigma = 1.5f;
+    for (size_t k = 0; k < a.preSpiral.size(); ++k) a.preOffsets[k] = maraTapOffset(a.preSpiral[k], 3);
+    std::vector<float> gauss(a.preOffsets.size() / 2);
+    for (size_t k = 0; k < gauss.size(); ++k) {
+        const int dx = a.preOffsets[2 * k], dy = a.preOffsets[2 * k + 1];
+        gauss[k] = maraGaussian(float(dx * dx + dy * dy), a.f.preSigma);
+    }
+    a.f.preGauss = gauss.data();
+    a.radius = randomValues(a.radius.size(), -2, 12, 11);
+    a.f.frame = 5;
+    Field b = a;
+    a.each([&](int x, int y) { maraPreBilateralPixel(a.f, x, y); });
+    a.each([&](int x, int y) { maraFinalBilateralPixel(a.f, a.glossy.data(), x, y); });
+    b.wire();
+    cpu::maraSparseRows(b.f, b.temporal.data(), false, 0, h);
+    cpu::maraSparseRows(b.f, b.glossy.data(), true, 0, h);
+    EXPECT_EQ(a.history, b.history);
+    EXPECT_EQ(a.matteOut, b.matteOut);
+    a.each([&](int x, int y) { maraMedianPixel(a.f, x, y); });
+    a.each([&](int x, int y) { maraGlossyPassPixel(a.f, a.glossy.data(), a.glossyRow.data(), x, y, 1, 0); });
+    a.each([&](int x, int y) { maraGlossyPassPixel(a.f, a.glossyRow.data(), a.glossyOut.data(), x, y, 0, 1); });
+    cpu::maraMedianRows(b.f, 0, h);
+    cpu::maraGlossyRows(b.f, b.glossy.data(), b.glossyRow.data(), 0, h, 1, 0);
+    cpu::maraGlossyRows(b.f, b.glossyRow.data(), b.glossyOut.data(), 0, h, 0, 1);
+    EXPECT_EQ(a.median, b.median);
+    EXPECT_EQ(a.glossyRow, b.glossyRow);
+    EXPECT_EQ(a.glossyOut, b.glossyOut);
 }
 
 TEST(Mara2017, M6MedianRemovesAFireflyAndKeepsAStep) {

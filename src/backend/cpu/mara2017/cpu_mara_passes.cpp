@@ -1,6 +1,8 @@
 // The CPU backend's Mara 2017: the reference stages, except stage 5, whose two 1D min passes
 // over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
-// comparisons per pixel whatever R, with the same minima bit for bit.
+// comparisons per pixel whatever R, with the same minima bit for bit; and stages 4, 6, 7, 9 and
+// 10, eight pixels at a time (cpu_mara_rows.h).
+#include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/mara2017/cpu_running_min.h"
 #include "backend/reference/mara2017/reference_mara_stages.h"
 #include <algorithm>
@@ -33,6 +35,30 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         ctx.pool.parallelFor(hgt, 8, [&](long y0, long y1) {
             for (long i = y0 * w; i < y1 * w; ++i)
                 f.radius[i] = maraDisocclusionRadius(f, i, f.radius[i]);
+        });
+    }
+
+    void preBilateral(const MaraPassContext& ctx, const MaraFrame& f) override {
+        ctx.pool.parallelFor(f.height, 2, [&](long y0, long y1) {
+            maraSparseRows(f, f.temporal, false, y0, y1);
+        });
+    }
+
+    void matteBilateral(const MaraPassContext& ctx, const MaraFrame& f, const float* src) override {
+        ctx.pool.parallelFor(f.height, 2,
+                             [&](long y0, long y1) { maraSparseRows(f, src, true, y0, y1); });
+    }
+
+    void median(const MaraPassContext& ctx, const MaraFrame& f) override {
+        ctx.pool.parallelFor(f.height, 4, [&](long y0, long y1) { maraMedianRows(f, y0, y1); });
+    }
+
+    void glossyBilateral(const MaraPassContext& ctx, const MaraFrame& f) override {
+        ctx.pool.parallelFor(f.height, 4, [&](long y0, long y1) {
+            maraGlossyRows(f, f.glossyTemporal, f.glossyRow, y0, y1, 1, 0);
+        });
+        ctx.pool.parallelFor(f.height, 4, [&](long y0, long y1) {
+            maraGlossyRows(f, f.glossyRow, f.glossyOut, y0, y1, 0, 1);
         });
     }
 
