@@ -1,6 +1,12 @@
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/simd.h"
 #include <cstring>
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#define BMFR_MARA_HW_GATHER 1
+#else
+#define BMFR_MARA_HW_GATHER 0
+#endif
 
 namespace bmfr::cpu {
 
@@ -46,68 +52,30 @@ BMFR_SIMD_INLINE f8 edgeWeight8(const f8 nc[3], const f8 pc[3], const f8 nq[3], 
     return d2 >= k.planeNearSquared ? w * (wp * wp) : w;
 }
 
-/// Lane l of v at the packed xyz records index[l].
-BMFR_SIMD_INLINE void gatherXyz(const float* base, i8 index, f8 out[3]) {
-    const i8 k = index * 3;
-    out[0] = gather8(base, k), out[1] = gather8(base + 1, k), out[2] = gather8(base + 2, k);
-}
+// The sparse rows twice: AVX2 (chosen at run time, once, so the bits repeat on one machine)
+// and the baseline.
+namespace lanes {
+#define BMFR_MARA_GATHER_AVX2 0
+#include "backend/cpu/mara2017/cpu_mara_sparse_row.inc"
+#undef BMFR_MARA_GATHER_AVX2
+} // namespace lanes
+#if BMFR_MARA_HW_GATHER
+#pragma GCC push_options
+#pragma GCC target("arch=x86-64-v3")
+namespace avx2 {
+#define BMFR_MARA_GATHER_AVX2 1
+#include "backend/cpu/mara2017/cpu_mara_sparse_row.inc"
+#undef BMFR_MARA_GATHER_AVX2
+} // namespace avx2
+#pragma GCC pop_options
+#endif
 
-BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* src, bool final, int y) {
-    const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
-    const long row = long(y) * w;
-    float* dst = final ? f.matteOut : f.matteHistory;
-    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-    for (int x = 0; x < w; x += 8) {
-        const int n = w - x < 8 ? w - x : 8;
-        const long i = row + x;
-        f8 pc[3], nc[3], sum[3];
-        loadXyz8(f.position + 3 * i, n, pc);
-        loadXyz8(f.normal + 3 * i, n, nc);
-        loadXyz8(src + 3 * i, n, sum);
-        f8 radius, sigma;
-        const float* spiral[8];
-        const int* offsets[8] = {};
-        const float* gauss[8] = {};
-        for (int l = 0; l < 8; ++l) {
-            const int r = maraPixelRotation(x + (l < n ? l : 0), y, f.frame, f.seed, final ? 7 : 4);
-            radius[l] = l >= n ? 0.0f : final ? f.radius[i + l] : f.preRadius;
-            sigma[l] = final ? f.finalSigma * radius[l] : f.preSigma;
-            spiral[l] = (final ? f.finalSpiral : f.preSpiral) + 2 * taps * r;
-            if (!final) offsets[l] = f.preOffsets + 2 * taps * r;
-            if (!final && f.preGauss) gauss[l] = f.preGauss + taps * r;
-        }
-        const i8 live = (radius >= 0.5f) & (lane < n);
-        if (!anyLane(live)) {
-            storeXyz8(dst + 3 * i, n, sum);
-            continue;
-        }
-        f8 total = f8{} + 1.0f;
-        for (int k = 0; k < taps; ++k) {
-            i8 dx, dy;
-            f8 g;
-            for (int l = 0; l < 8; ++l) {
-                dx[l] = offsets[l] ? offsets[l][2 * k] : maraTapOffset(spiral[l][2 * k], radius[l]);
-                dy[l] = offsets[l] ? offsets[l][2 * k + 1]
-                                   : maraTapOffset(spiral[l][2 * k + 1], radius[l]);
-                g[l] = gauss[l] ? gauss[l][k]
-                                : maraGaussian(float(dx[l] * dx[l] + dy[l] * dy[l]), sigma[l]);
-            }
-            const i8 qx = x + lane + dx, qy = y + dy;
-            const i8 inside = live & (qx >= 0) & (qy >= 0) & (qx < w) & (qy < f.height);
-            if (!anyLane(inside)) continue;
-            const i8 j = inside ? qy * w + qx : i8{} + int(i);
-            f8 pq[3], nq[3], s[3];
-            gatherXyz(f.position, j, pq);
-            gatherXyz(f.normal, j, nq);
-            gatherXyz(src, j, s);
-            f8 wt = g * edgeWeight8(nc, pc, nq, pq, f.edges);
-            wt = inside & (wt > 0.0f) ? wt : 0.0f;
-            for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
-            total = total + wt;
-        }
-        const f8 out[3] = {sum[0] / total, sum[1] / total, sum[2] / total};
-        storeXyz8(dst + 3 * i, n, out);
-    }
+void sparseRow(const MaraFrame& f, const float* src, bool final, int y) {
+#if BMFR_MARA_HW_GATHER
+    static const bool hasAvx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    if (hasAvx2) return avx2::sparseRow(f, src, final, y);
+#endif
+    lanes::sparseRow(f, src, final, y);
 }
 
 BMFR_SIMD_CLONES void medianRow(const MaraFrame& f, int y) {
