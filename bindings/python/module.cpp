@@ -74,14 +74,17 @@ class PyFilter {
                                const py::handle& emission, bool reset, const py::handle& extras,
                                const py::handle& motion, const py::handle& previousPosition,
                                const py::handle& previousNormal,
-                               const py::handle& diffuseIndirect) {
+                               const py::handle& diffuseIndirect, const py::handle& matteIndirect,
+                               const py::handle& glossyIndirect, const py::handle& directLight,
+                               const py::handle& specularF0, const py::handle& roughness,
+                               const py::handle& glossyHitDistance) {
         int h = -1, w = -1;
         const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
                        n = imageArg(normal, "normal", h, w),
                        p = imageArg(position, "position", h, w);
         FrameInput in;
         // The optional images: None leaves the view empty; the arrays live in `kept`.
-        ImageArg kept[5];
+        ImageArg kept[9];
         const struct {
             const py::handle& object;
             const char* name;
@@ -91,14 +94,23 @@ class PyFilter {
                         {motion, "motion", 2, in.motion},
                         {previousPosition, "previous_position", 3, in.previousPosition},
                         {previousNormal, "previous_normal", 3, in.previousNormal},
-                        {diffuseIndirect, "diffuse_indirect", 3, in.diffuseIndirect}};
-        for (size_t k = 0; k < 5; ++k)
+                        {diffuseIndirect, "diffuse_indirect", 3, in.diffuseIndirect},
+                        {matteIndirect, "matte_indirect", 3, in.matteIndirect},
+                        {glossyIndirect, "glossy_indirect", 3, in.glossyIndirect},
+                        {directLight, "direct_light", 3, in.directLight},
+                        {specularF0, "specular_f0", 3, in.specularF0}};
+        for (size_t k = 0; k < 9; ++k)
             if (!optional[k].object.is_none()) {
                 kept[k] =
                     imageArg(optional[k].object, optional[k].name, h, w, optional[k].minChannels);
                 optional[k].view = kept[k].view;
             }
         in.color = c.view, in.albedo = a.view, in.normal = n.view, in.position = p.view;
+        ImageArg rough, hit; // single-channel (height, width)
+        if (!roughness.is_none()) in.roughness = (rough = channelArg(roughness, "roughness", h, w)).view;
+        if (!glossyHitDistance.is_none())
+            in.glossyHitDistance =
+                (hit = channelArg(glossyHitDistance, "glossy_hit_distance", h, w)).view;
         std::vector<ImageArg> extraArgs;
         if (!extras.is_none()) {
             if (!py::isinstance<py::sequence>(extras) || py::isinstance<py::array>(extras))
@@ -196,6 +208,8 @@ class SequenceIterator {
             d["previous_normal"] = toArray(view(frame_.previousNormal));
         if (frame_.diffuseIndirect.width)
             d["diffuse_indirect"] = toArray(view(frame_.diffuseIndirect));
+        for (const auto& [img, key] : frame_.maraBuffers())
+            if (img->width) d[key] = toArray(view(*img));
         d["reset"] = frame_.reset;
         if (frame_.reference.width) d["reference"] = toArray(view(frame_.reference));
         py::list extras;
@@ -228,7 +242,8 @@ PYBIND11_MODULE(bmfr, m) {
     using namespace bmfr;
     using namespace bmfr::python;
     m.doc() =
-        "bmfr: real-time reconstruction of 1-spp path-traced frame sequences (BMFR, SVGF, WALR)";
+        "bmfr: real-time reconstruction of 1-spp path-traced frame sequences (BMFR, SVGF, WALR, "
+        "Mara 2017)";
     m.attr("__version__") = BMFR_VERSION;
     // Every library error (bad input, unreadable files) is a bmfr.Error, a ValueError.
     py::register_exception<Error>(m, "Error", PyExc_ValueError);
@@ -245,7 +260,10 @@ Filter(name="bmfr", backend="cpu", **settings): settings by their flag name with
              py::arg("emission") = py::none(), py::arg("reset") = false,
              py::arg("extras") = py::none(), py::arg("motion") = py::none(),
              py::arg("previous_position") = py::none(), py::arg("previous_normal") = py::none(),
-             py::arg("diffuse_indirect") = py::none(),
+             py::arg("diffuse_indirect") = py::none(), py::arg("matte_indirect") = py::none(),
+             py::arg("glossy_indirect") = py::none(), py::arg("direct_light") = py::none(),
+             py::arg("specular_f0") = py::none(), py::arg("roughness") = py::none(),
+             py::arg("glossy_hit_distance") = py::none(),
              R"(Denoises one frame; returns a new (height, width, 3) float32 array.
 
 Images are float32 (height, width, 3) or (height, width, 4) arrays, viewed without a copy when
@@ -256,7 +274,9 @@ a list of float32 (height, width) feature buffers for BMFR's extraK features. mo
 (x right, y down, both frames' jitter included); previous_position and previous_normal: that
 surface's previous world position and normal, for moving objects; a third motion channel is the
 depth offset. diffuse_indirect: the demodulated diffuse indirect light, for WALR's
-signal="diffuse-indirect" (bmfr::FrameInput).)")
+signal="diffuse-indirect". matte_indirect, glossy_indirect, direct_light, specular_f0 and the
+single-channel roughness and glossy_hit_distance: Mara et al. 2017's factorisation, for
+"mara2017" (bmfr::FrameInput).)")
         .def("reset", &PyFilter::reset, "Drops all history (a camera cut).")
         .def_property_readonly("stats", &PyFilter::stats,
                                "Facts about the last frame: stage_ms, total_ms, "

@@ -39,7 +39,7 @@ def frame_args(fr):
     return (fr["color"], fr["albedo"], fr["normal"], fr["position"], fr["view_projection"])
 
 
-@pytest.mark.parametrize("name,extra", [("bmfr", []), ("svgf", []), ("walr", []),
+@pytest.mark.parametrize("name,extra", [("bmfr", []), ("svgf", []), ("walr", []), ("mara2017", []),
                                          ("bmfr", ["--block-size", 16, "--taa", "false"]),
                                          ("bmfr", ["--features", "1,n.x,n.y,n.z,extra0"])])
 def test_same_bits_as_the_cli(sequence, tmp_path, name, extra):
@@ -193,3 +193,24 @@ def test_motion_vectors_give_the_cli_bits_on_moving_objects(tmp_path, name, sett
     with pytest.raises(ValueError, match=r"motion: shape \(30, 40, 1\), expected \(height, "
                                          r"width, C\) with C 2 to 4"):
         f.denoise(*frame_args(fr), motion=np.zeros((30, 40, 1), np.float32))
+
+
+MARA_BUFFERS = ("matte_indirect", "glossy_indirect", "direct_light", "specular_f0", "roughness",
+                "glossy_hit_distance")
+
+
+def test_mara_factorisation_gives_the_cli_bits(tmp_path):
+    seq_dir = tmp_path / "mara"
+    cli("render", "-s", "cornell-moving", "--width", 40, "--height", 30, "--frames", 3,
+        "--no-reference", "-q", "--paths", "mara", "--direct-spp", 2, "-o", seq_dir)
+    cli("denoise", seq_dir, "-o", tmp_path / "cli", "--no-png", "-q", "--filter", "mara2017")
+    seq = bmfr.read_sequence(str(seq_dir))
+    f = bmfr.Filter("mara2017", **sequence_settings(seq.info))
+    for fr in seq:
+        assert fr["roughness"].shape == (30, 40, 1) and fr["matte_indirect"].shape == (30, 40, 3)
+        out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"),
+                        **{k: fr[k] for k in MARA_BUFFERS})
+        expected = bmfr.read_exr(str(tmp_path / "cli" / f"denoised_{fr['index']:04d}.exr"))
+        assert np.array_equal(out, expected), f"frame {fr['index']} differs from the CLI"
+    with pytest.raises(ValueError, match="roughness"):
+        f.denoise(*frame_args(fr), roughness=np.zeros((30, 41), np.float32))
