@@ -39,14 +39,11 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     }
 
     void preBilateral(const MaraPassContext& ctx, const MaraFrame& f) override {
-        ctx.pool.parallelFor(f.height, 2, [&](long y0, long y1) {
-            maraSparseRows(f, f.temporal, false, y0, y1);
-        });
+        sparse(ctx, f, f.temporal, false);
     }
 
     void matteBilateral(const MaraPassContext& ctx, const MaraFrame& f, const float* src) override {
-        ctx.pool.parallelFor(f.height, 2,
-                             [&](long y0, long y1) { maraSparseRows(f, src, true, y0, y1); });
+        sparse(ctx, f, src, true);
     }
 
     void median(const MaraPassContext& ctx, const MaraFrame& f) override {
@@ -63,7 +60,24 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     }
 
   private:
-    std::vector<float> stage5_, scratch_;
+    /// Stage 4 or 7 from tap records: a tap reads one cache line, not three.
+    void sparse(const MaraPassContext& ctx, const MaraFrame& f, const float* src, bool final) {
+        const size_t floats = size_t(kMaraTapRecord) * size_t(f.width) * size_t(f.height);
+        if (records_.size() != floats + kMaraTapRecord) records_.assign(floats + kMaraTapRecord, 0);
+        float* taps = records_.data();
+        taps += (kMaraTapRecord - (reinterpret_cast<uintptr_t>(taps) / sizeof(float)) %
+                                      kMaraTapRecord) %
+                kMaraTapRecord; // 64-byte aligned
+        ctx.pool.parallelFor(f.height, 8,
+                             [&](long y0, long y1) { maraPackTaps(f, src, taps, y0, y1); });
+        if (final) tables_.build(f);
+        ctx.pool.parallelFor(f.height, 2, [&](long y0, long y1) {
+            maraSparseRows(f, taps, final, y0, y1, &tables_);
+        });
+    }
+
+    std::vector<float> stage5_, scratch_, records_;
+    MaraTapTables tables_;
 };
 
 } // namespace

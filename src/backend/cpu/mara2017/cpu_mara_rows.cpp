@@ -1,12 +1,6 @@
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/simd.h"
 #include <cstring>
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#include <immintrin.h>
-#define BMFR_MARA_HW_GATHER 1
-#else
-#define BMFR_MARA_HW_GATHER 0
-#endif
 
 namespace bmfr::cpu {
 
@@ -52,30 +46,126 @@ BMFR_SIMD_INLINE f8 edgeWeight8(const f8 nc[3], const f8 pc[3], const f8 nq[3], 
     return d2 >= k.planeNearSquared ? w * (wp * wp) : w;
 }
 
-// The sparse rows twice: AVX2 (chosen at run time, once, so the bits repeat on one machine)
-// and the baseline.
-namespace lanes {
-#define BMFR_MARA_GATHER_AVX2 0
-#include "backend/cpu/mara2017/cpu_mara_sparse_row.inc"
-#undef BMFR_MARA_GATHER_AVX2
-} // namespace lanes
-#if BMFR_MARA_HW_GATHER
-#pragma GCC push_options
-#pragma GCC target("arch=x86-64-v3")
-namespace avx2 {
-#define BMFR_MARA_GATHER_AVX2 1
-#include "backend/cpu/mara2017/cpu_mara_sparse_row.inc"
-#undef BMFR_MARA_GATHER_AVX2
-} // namespace avx2
-#pragma GCC pop_options
-#endif
+/// Lane l's quantity q (0 position, 1 normal, 2 colour) of the tap records index[l]: eight
+/// 16-byte loads and a transpose.
+BMFR_SIMD_INLINE void loadTaps(const float* taps, i8 index, int q, f8 out[3]) {
+    f4 r[8];
+    for (int l = 0; l < 8; ++l)
+        std::memcpy(&r[l], taps + kMaraTapRecord * long(index[l]) + 4 * q, sizeof(f4));
+    const f8 a0 = __builtin_shufflevector(r[0], r[4], 0, 1, 2, 3, 4, 5, 6, 7),
+             a1 = __builtin_shufflevector(r[1], r[5], 0, 1, 2, 3, 4, 5, 6, 7),
+             a2 = __builtin_shufflevector(r[2], r[6], 0, 1, 2, 3, 4, 5, 6, 7),
+             a3 = __builtin_shufflevector(r[3], r[7], 0, 1, 2, 3, 4, 5, 6, 7);
+    const f8 t0 = __builtin_shuffle(a0, a1, i8{0, 8, 1, 9, 4, 12, 5, 13}), // x0 x1 y0 y1
+        t1 = __builtin_shuffle(a2, a3, i8{0, 8, 1, 9, 4, 12, 5, 13}),      // x2 x3 y2 y3
+        t2 = __builtin_shuffle(a0, a1, i8{2, 10, 3, 11, 6, 14, 7, 15}),    // z0 z1 . .
+        t3 = __builtin_shuffle(a2, a3, i8{2, 10, 3, 11, 6, 14, 7, 15});    // z2 z3 . .
+    out[0] = __builtin_shuffle(t0, t1, i8{0, 1, 8, 9, 4, 5, 12, 13});
+    out[1] = __builtin_shuffle(t0, t1, i8{2, 3, 10, 11, 6, 7, 14, 15});
+    out[2] = __builtin_shuffle(t2, t3, i8{0, 1, 8, 9, 4, 5, 12, 13});
+}
 
-void sparseRow(const MaraFrame& f, const float* src, bool final, int y) {
-#if BMFR_MARA_HW_GATHER
-    static const bool hasAvx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    if (hasAvx2) return avx2::sparseRow(f, src, final, y);
-#endif
-    lanes::sparseRow(f, src, final, y);
+BMFR_SIMD_CLONES void packRow(const MaraFrame& f, const float* src, float* taps, int y) {
+    for (long i = long(y) * f.width, end = i + f.width; i < end; ++i) {
+        float* r = taps + kMaraTapRecord * i;
+        const float* from[3] = {f.position + 3 * i, f.normal + 3 * i, src + 3 * i};
+        for (int q = 0; q < 3; ++q)
+            r[4 * q] = from[q][0], r[4 * q + 1] = from[q][1], r[4 * q + 2] = from[q][2],
+                  r[4 * q + 3] = 0.0f;
+    }
+}
+
+/// The most taps of a sparse stage (the settings' range).
+constexpr int kMaxTaps = 256;
+
+BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, bool final,
+                                int y, const MaraTapTables* tables) {
+    const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
+    const long row = long(y) * w;
+    float* dst = final ? f.matteOut : f.matteHistory;
+    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    for (int x = 0; x < w; x += 8) {
+        const int n = w - x < 8 ? w - x : 8;
+        const long i = row + x;
+        f8 pc[3], nc[3], sum[3];
+        const i8 centre = i8{} + int(i) + (lane < n ? lane : 0);
+        loadTaps(tapRecords, centre, 0, pc);
+        loadTaps(tapRecords, centre, 1, nc);
+        loadTaps(tapRecords, centre, 2, sum);
+        // Every lane's taps, tap-major, so that the tap loop reads them as vectors.
+        alignas(32) int ox[kMaxTaps * 8], oy[kMaxTaps * 8];
+        alignas(32) float og[kMaxTaps * 8], ux[kMaxTaps * 8], uy[kMaxTaps * 8];
+        f8 radius, sigma;
+        bool computed = false; // some lane's stage 7 taps are not in the tables
+        for (int l = 0; l < 8; ++l) {
+            const int r = maraPixelRotation(x + (l < n ? l : 0), y, f.frame, f.seed, final ? 7 : 4);
+            radius[l] = l >= n ? 0.0f : final ? f.radius[i + l] : f.preRadius;
+            sigma[l] = final ? f.finalSigma * radius[l] : f.preSigma;
+            int t = -1;
+            for (int k = 0; final && tables && k < MaraTapTables::kRadii; ++k)
+                if (radius[l] == tables->radius[k]) t = k;
+            if (final) { // all lanes' units: if one lane computes its taps, every lane does
+                const float* spiral = f.finalSpiral + 2 * taps * r;
+                for (int k = 0; k < taps; ++k)
+                    ux[8 * k + l] = spiral[2 * k], uy[8 * k + l] = spiral[2 * k + 1];
+                computed |= t < 0;
+            }
+            if (final && t >= 0) {
+                const int* offsets = tables->offsets[t].data() + 2 * taps * r;
+                const float* gauss = tables->gauss[t].data() + taps * r;
+                for (int k = 0; k < taps; ++k)
+                    ox[8 * k + l] = offsets[2 * k], oy[8 * k + l] = offsets[2 * k + 1],
+                               og[8 * k + l] = gauss[k];
+            } else if (!final) {
+                const int* offsets = f.preOffsets + 2 * taps * r;
+                for (int k = 0; k < taps; ++k)
+                    ox[8 * k + l] = offsets[2 * k], oy[8 * k + l] = offsets[2 * k + 1];
+                if (f.preGauss)
+                    for (int k = 0; k < taps; ++k) og[8 * k + l] = f.preGauss[taps * r + k];
+            }
+        }
+        const i8 live = (radius >= 0.5f) & (lane < n);
+        if (!anyLane(live)) {
+            storeXyz8(dst + 3 * i, n, sum);
+            continue;
+        }
+        if ((final && computed) || (!final && !f.preGauss))
+            for (int k = 0; k < taps; ++k) {
+                i8 dx, dy;
+                if (final) {
+                    // maraTapOffset: unit x radius rounded half to even, as nearbyint, by adding
+                    // and taking away 1.5 x 2^23 (exact below 2^22 pixels).
+                    const f8 magic = f8{} + 12582912.0f;
+                    dx = __builtin_convertvector((load8(ux + 8 * k) * radius + magic) - magic, i8);
+                    dy = __builtin_convertvector((load8(uy + 8 * k) * radius + magic) - magic, i8);
+                    std::memcpy(ox + 8 * k, &dx, sizeof dx), std::memcpy(oy + 8 * k, &dy, sizeof dy);
+                } else {
+                    std::memcpy(&dx, ox + 8 * k, sizeof dx), std::memcpy(&dy, oy + 8 * k, sizeof dy);
+                }
+                const f8 d2 = __builtin_convertvector(dx * dx + dy * dy, f8);
+                for (int l = 0; l < 8; ++l) og[8 * k + l] = maraGaussian(d2[l], sigma[l]);
+            }
+        f8 total = f8{} + 1.0f;
+        for (int k = 0; k < taps; ++k) {
+            i8 dx, dy;
+            std::memcpy(&dx, ox + 8 * k, sizeof dx), std::memcpy(&dy, oy + 8 * k, sizeof dy);
+            const f8 g = load8(og + 8 * k);
+            const i8 qx = x + lane + dx, qy = y + dy;
+            const i8 inside = live & (qx >= 0) & (qy >= 0) & (qx < w) & (qy < f.height);
+            if (!anyLane(inside)) continue;
+            const i8 j = inside ? qy * w + qx : i8{} + int(i);
+            f8 pq[3], nq[3], s[3];
+            loadTaps(tapRecords, j, 0, pq);
+            loadTaps(tapRecords, j, 1, nq);
+            loadTaps(tapRecords, j, 2, s);
+            f8 wt = g * edgeWeight8(nc, pc, nq, pq, f.edges);
+            wt = inside & (wt > 0.0f) ? wt : 0.0f;
+            for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
+            total = total + wt;
+        }
+        const f8 out[3] = {sum[0] / total, sum[1] / total, sum[2] / total};
+        storeXyz8(dst + 3 * i, n, out);
+    }
 }
 
 BMFR_SIMD_CLONES void medianRow(const MaraFrame& f, int y) {
@@ -152,8 +242,32 @@ BMFR_SIMD_CLONES void glossyRow(const MaraFrame& f, const float* src, float* dst
 
 } // namespace
 
-void maraSparseRows(const MaraFrame& f, const float* src, bool final, long y0, long y1) {
-    for (long y = y0; y < y1; ++y) sparseRow(f, src, final, int(y));
+void maraPackTaps(const MaraFrame& f, const float* src, float* taps, long y0, long y1) {
+    for (long y = y0; y < y1; ++y) packRow(f, src, taps, int(y));
+}
+
+void maraSparseRows(const MaraFrame& f, const float* taps, bool final, long y0, long y1,
+                    const MaraTapTables* tables) {
+    for (long y = y0; y < y1; ++y) sparseRow(f, taps, final, int(y), tables);
+}
+
+void MaraTapTables::build(const MaraFrame& f) {
+    // As maraDisocclusionRadius gives them for a box min of h (or 1, normalised) and of 0.
+    const float confident = f.normaliseConfidence ? 0.0f : (1.0f - f.h) * float(f.maxRadius);
+    const float candidates[kRadii] = {confident, float(f.maxRadius), confident * f.radiusBoost,
+                                      float(f.maxRadius) * f.radiusBoost};
+    const int taps = f.finalTaps;
+    for (int t = 0; t < kRadii; ++t) {
+        radius[t] = candidates[t];
+        offsets[t].resize(size_t(2 * taps * kMaraSpiralRotations));
+        gauss[t].resize(size_t(taps * kMaraSpiralRotations));
+        for (int k = 0; k < taps * kMaraSpiralRotations; ++k) {
+            const int dx = maraTapOffset(f.finalSpiral[2 * k], radius[t]),
+                      dy = maraTapOffset(f.finalSpiral[2 * k + 1], radius[t]);
+            offsets[t][size_t(2 * k)] = dx, offsets[t][size_t(2 * k + 1)] = dy;
+            gauss[t][size_t(k)] = maraGaussian(float(dx * dx + dy * dy), f.finalSigma * radius[t]);
+        }
+    }
 }
 
 void maraMedianRows(const MaraFrame& f, long y0, long y1) {

@@ -4,15 +4,37 @@
 // fused multiply-adds.
 #pragma once
 #include "filters/mara2017/mara_stages.h"
+#include <vector>
 
 namespace bmfr::cpu {
 
 /// Stage 6 on rows [y0, y1) into f.median.
 void maraMedianRows(const MaraFrame& f, long y0, long y1);
 
-/// Stage 4 (`final` false: f.temporal into f.matteHistory) or stage 7 (`final` true: src into
-/// f.matteOut) on rows [y0, y1), eight pixels at a time, each with its own taps.
-void maraSparseRows(const MaraFrame& f, const float* src, bool final, long y0, long y1);
+/// Floats per pixel of the sparse stages' tap records: position, normal and the filtered
+/// colour, four floats each (the fourth 0), one 64-byte cache line with the padding.
+inline constexpr int kMaraTapRecord = 16;
+
+/// The tap records of rows [y0, y1): f.position, f.normal and src into `taps`
+/// (kMaraTapRecord floats per pixel, 64-byte aligned for one line a tap).
+void maraPackTaps(const MaraFrame& f, const float* src, float* taps, long y0, long y1);
+
+/// Stage 7's taps for the radii most pixels share: (1 - h) R where the history is confident,
+/// R beside a disocclusion, and both boosted. Per rotation, the whole-pixel offsets and
+/// Gaussian weights, as the stage computes them.
+struct MaraTapTables {
+    static constexpr int kRadii = 4;
+    float radius[kRadii] = {};
+    std::vector<int> offsets[kRadii]; ///< rotations x taps x 2
+    std::vector<float> gauss[kRadii]; ///< rotations x taps
+    void build(const MaraFrame& f);
+};
+
+/// Stage 4 (`final` false: into f.matteHistory) or stage 7 (`final` true: into f.matteOut) of
+/// the colour packed in `taps` on rows [y0, y1), eight pixels at a time, each with its own taps;
+/// stage 7 looks its taps up in `tables` (may be null) where a pixel's radius is one of theirs.
+void maraSparseRows(const MaraFrame& f, const float* taps, bool final, long y0, long y1,
+                    const MaraTapTables* tables = nullptr);
 
 /// One glossy pass (stage 9 with (dx, dy) = (1, 0), stage 10 with (0, 1)) of src into dst on
 /// rows [y0, y1). Eight pixels sharing one roughness run together; the others one by one.
