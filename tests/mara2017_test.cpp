@@ -258,7 +258,8 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     a.rough[333] = NAN;
     // Stage 4 with a 3-pixel disk and its Gaussian table; stage 7 with radii from 0 to 12.
     a.f.preRadius = 3, a.f.preSigma = 1.5f;
-    for (size_t k = 0; k < a.preSpiral.size(); ++k) a.preOffsets[k] = maraTapOffset(a.preSpiral[k], 3);
+    for (size_t k = 0; k < a.preSpiral.size(); ++k)
+        a.preOffsets[k] = maraTapOffset(a.preSpiral[k], 3);
     std::vector<float> gauss(a.preOffsets.size() / 2);
     for (size_t k = 0; k < gauss.size(); ++k) {
         const int dx = a.preOffsets[2 * k], dy = a.preOffsets[2 * k + 1];
@@ -283,8 +284,12 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     EXPECT_EQ(a.history, b.history);
     EXPECT_EQ(a.matteOut, b.matteOut);
     a.each([&](int x, int y) { maraMedianPixel(a.f, x, y); });
-    a.each([&](int x, int y) { maraGlossyPassPixel(a.f, a.glossy.data(), a.glossyRow.data(), x, y, 1, 0); });
-    a.each([&](int x, int y) { maraGlossyPassPixel(a.f, a.glossyRow.data(), a.glossyOut.data(), x, y, 0, 1); });
+    a.each([&](int x, int y) {
+        maraGlossyPassPixel(a.f, a.glossy.data(), a.glossyRow.data(), x, y, 1, 0);
+    });
+    a.each([&](int x, int y) {
+        maraGlossyPassPixel(a.f, a.glossyRow.data(), a.glossyOut.data(), x, y, 0, 1);
+    });
     cpu::maraMedianRows(b.f, 0, h);
     cpu::maraGlossyRows(b.f, b.glossy.data(), b.glossyRow.data(), 0, h, 1, 0);
     cpu::maraGlossyRows(b.f, b.glossyRow.data(), b.glossyOut.data(), 0, h, 0, 1);

@@ -73,11 +73,10 @@ class PyFilter {
                                const py::handle& viewProjection, std::pair<float, float> jitter,
                                const py::handle& emission, bool reset, const py::handle& extras,
                                const py::handle& motion, const py::handle& previousPosition,
-                               const py::handle& previousNormal,
-                               const py::handle& diffuseIndirect, const py::handle& matteIndirect,
-                               const py::handle& glossyIndirect, const py::handle& directLight,
-                               const py::handle& specularF0, const py::handle& roughness,
-                               const py::handle& glossyHitDistance) {
+                               const py::handle& previousNormal, const py::handle& diffuseIndirect,
+                               const py::handle& matteIndirect, const py::handle& glossyIndirect,
+                               const py::handle& directLight, const py::handle& specularF0,
+                               const py::handle& roughness, const py::handle& glossyHitDistance) {
         int h = -1, w = -1;
         const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
                        n = imageArg(normal, "normal", h, w),
@@ -107,7 +106,8 @@ class PyFilter {
             }
         in.color = c.view, in.albedo = a.view, in.normal = n.view, in.position = p.view;
         ImageArg rough, hit; // single-channel (height, width)
-        if (!roughness.is_none()) in.roughness = (rough = channelArg(roughness, "roughness", h, w)).view;
+        if (!roughness.is_none())
+            in.roughness = (rough = channelArg(roughness, "roughness", h, w)).view;
         if (!glossyHitDistance.is_none())
             in.glossyHitDistance =
                 (hit = channelArg(glossyHitDistance, "glossy_hit_distance", h, w)).view;

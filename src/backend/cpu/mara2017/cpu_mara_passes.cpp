@@ -65,8 +65,8 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         const size_t floats = size_t(kMaraTapRecord) * size_t(f.width) * size_t(f.height);
         if (records_.size() != floats + kMaraTapRecord) records_.assign(floats + kMaraTapRecord, 0);
         float* taps = records_.data();
-        taps += (kMaraTapRecord - (reinterpret_cast<uintptr_t>(taps) / sizeof(float)) %
-                                      kMaraTapRecord) %
+        taps += (kMaraTapRecord -
+                 (reinterpret_cast<uintptr_t>(taps) / sizeof(float)) % kMaraTapRecord) %
                 kMaraTapRecord; // 64-byte aligned
         ctx.pool.parallelFor(f.height, 8,
                              [&](long y0, long y1) { maraPackTaps(f, src, taps, y0, y1); });

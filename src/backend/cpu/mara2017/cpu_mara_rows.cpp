@@ -78,8 +78,8 @@ BMFR_SIMD_CLONES void packRow(const MaraFrame& f, const float* src, float* taps,
 /// The most taps of a sparse stage (the settings' range).
 constexpr int kMaxTaps = 256;
 
-BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, bool final,
-                                int y, const MaraTapTables* tables) {
+BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, bool final, int y,
+                                const MaraTapTables* tables) {
     const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
     const long row = long(y) * w;
     float* dst = final ? f.matteOut : f.matteHistory;
@@ -138,9 +138,11 @@ BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, boo
                     const f8 magic = f8{} + 12582912.0f;
                     dx = __builtin_convertvector((load8(ux + 8 * k) * radius + magic) - magic, i8);
                     dy = __builtin_convertvector((load8(uy + 8 * k) * radius + magic) - magic, i8);
-                    std::memcpy(ox + 8 * k, &dx, sizeof dx), std::memcpy(oy + 8 * k, &dy, sizeof dy);
+                    std::memcpy(ox + 8 * k, &dx, sizeof dx),
+                        std::memcpy(oy + 8 * k, &dy, sizeof dy);
                 } else {
-                    std::memcpy(&dx, ox + 8 * k, sizeof dx), std::memcpy(&dy, oy + 8 * k, sizeof dy);
+                    std::memcpy(&dx, ox + 8 * k, sizeof dx),
+                        std::memcpy(&dy, oy + 8 * k, sizeof dy);
                 }
                 const f8 d2 = __builtin_convertvector(dx * dx + dy * dy, f8);
                 for (int l = 0; l < 8; ++l) og[8 * k + l] = maraGaussian(d2[l], sigma[l]);
@@ -171,7 +173,8 @@ BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, boo
 BMFR_SIMD_CLONES void medianRow(const MaraFrame& f, int y) {
     const int w = f.width;
     int rows[3];
-    for (int d = -1; d <= 1; ++d) rows[d + 1] = y + d < 0 ? 0 : y + d >= f.height ? f.height - 1 : y + d;
+    for (int d = -1; d <= 1; ++d)
+        rows[d + 1] = y + d < 0 ? 0 : y + d >= f.height ? f.height - 1 : y + d;
     int x = 0;
     if (w >= 10) {
         maraMedianPixel(f, 0, y);
