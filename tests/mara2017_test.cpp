@@ -278,9 +278,11 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     b.wire();
     std::vector<float> taps(size_t(cpu::kMaraTapRecord * w * h));
     cpu::maraPackTaps(b.f, b.temporal.data(), taps.data(), 0, h);
-    cpu::maraSparseRows(b.f, taps.data(), false, 0, h);
+    cpu::maraSparseTile(b.f, taps.data(), false, 0, 48, 0, h);
+    cpu::maraSparseTile(b.f, taps.data(), false, 48, w, 0, h);
     cpu::maraPackTaps(b.f, b.glossy.data(), taps.data(), 0, h);
-    cpu::maraSparseRows(b.f, taps.data(), true, 0, h, &tables);
+    cpu::maraSparseTile(b.f, taps.data(), true, 0, w, 0, 9, &tables);
+    cpu::maraSparseTile(b.f, taps.data(), true, 0, w, 9, h, &tables);
     EXPECT_EQ(a.history, b.history);
     EXPECT_EQ(a.matteOut, b.matteOut);
     a.each([&](int x, int y) { maraMedianPixel(a.f, x, y); });

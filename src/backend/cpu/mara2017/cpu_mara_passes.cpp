@@ -71,8 +71,15 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         ctx.pool.parallelFor(f.height, 8,
                              [&](long y0, long y1) { maraPackTaps(f, src, taps, y0, y1); });
         if (final) tables_.build(f);
-        ctx.pool.parallelFor(f.height, 2, [&](long y0, long y1) {
-            maraSparseRows(f, taps, final, y0, y1, &tables_);
+        // Tiles, not rows: a 64-pixel radius reaches 129 rows, and a tile's taps stay in cache.
+        const int tile = 64, across = (f.width + tile - 1) / tile;
+        const long tiles = long(across) * ((f.height + tile - 1) / tile);
+        ctx.pool.parallelFor(tiles, 1, [&](long t0, long t1) {
+            for (long t = t0; t < t1; ++t) {
+                const int x0 = int(t % across) * tile, y0 = int(t / across) * tile;
+                maraSparseTile(f, taps, final, x0, std::min(f.width, x0 + tile), y0,
+                               std::min(f.height, y0 + tile), &tables_);
+            }
         });
     }
 

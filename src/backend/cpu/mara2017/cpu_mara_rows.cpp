@@ -79,13 +79,13 @@ BMFR_SIMD_CLONES void packRow(const MaraFrame& f, const float* src, float* taps,
 constexpr int kMaxTaps = 256;
 
 BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, bool final, int y,
-                                const MaraTapTables* tables) {
+                                int x0, int x1, const MaraTapTables* tables) {
     const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
     const long row = long(y) * w;
     float* dst = final ? f.matteOut : f.matteHistory;
     const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-    for (int x = 0; x < w; x += 8) {
-        const int n = w - x < 8 ? w - x : 8;
+    for (int x = x0; x < x1; x += 8) {
+        const int n = x1 - x < 8 ? x1 - x : 8;
         const long i = row + x;
         f8 pc[3], nc[3], sum[3];
         const i8 centre = i8{} + int(i) + (lane < n ? lane : 0);
@@ -249,9 +249,9 @@ void maraPackTaps(const MaraFrame& f, const float* src, float* taps, long y0, lo
     for (long y = y0; y < y1; ++y) packRow(f, src, taps, int(y));
 }
 
-void maraSparseRows(const MaraFrame& f, const float* taps, bool final, long y0, long y1,
-                    const MaraTapTables* tables) {
-    for (long y = y0; y < y1; ++y) sparseRow(f, taps, final, int(y), tables);
+void maraSparseTile(const MaraFrame& f, const float* taps, bool final, int x0, int x1, long y0,
+                    long y1, const MaraTapTables* tables) {
+    for (long y = y0; y < y1; ++y) sparseRow(f, taps, final, int(y), x0, x1, tables);
 }
 
 void MaraTapTables::build(const MaraFrame& f) {

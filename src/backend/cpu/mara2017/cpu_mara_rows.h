@@ -31,10 +31,11 @@ struct MaraTapTables {
 };
 
 /// Stage 4 (`final` false: into f.matteHistory) or stage 7 (`final` true: into f.matteOut) of
-/// the colour packed in `taps` on rows [y0, y1), eight pixels at a time, each with its own taps;
-/// stage 7 looks its taps up in `tables` (may be null) where a pixel's radius is one of theirs.
-void maraSparseRows(const MaraFrame& f, const float* taps, bool final, long y0, long y1,
-                    const MaraTapTables* tables = nullptr);
+/// the colour packed in `taps` on the pixels [x0, x1) x [y0, y1) (x0 a multiple of 8), eight at
+/// a time, each with its own taps; stage 7 looks its taps up in `tables` (may be null) where a
+/// pixel's radius is one of theirs.
+void maraSparseTile(const MaraFrame& f, const float* taps, bool final, int x0, int x1, long y0,
+                    long y1, const MaraTapTables* tables = nullptr);
 
 /// One glossy pass (stage 9 with (dx, dy) = (1, 0), stage 10 with (0, 1)) of src into dst on
 /// rows [y0, y1). Eight pixels sharing one roughness run together; the others one by one.
