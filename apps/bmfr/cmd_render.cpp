@@ -134,9 +134,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--paths", job->paths,
                     "bmfr (the BMFR paper's 1-spp paths; default) or mara (Mara et al. 2017's "
                     "factored paths: one matte and one glossy path, direct light from "
-                    "--direct-spp light samples standing in for their rasterised direct light; "
-                    "also writes matte_indirect, glossy_indirect, direct_light, specular_f0, "
-                    "roughness, glossy_hit_distance)")
+                    "--direct-spp light samples and the paths' first rays, by multiple "
+                    "importance sampling, standing in for their rasterised direct light; also "
+                    "writes matte_indirect, glossy_indirect, direct_light, specular_f0, "
+                    "surface_roughness, glossy_hit_distance)")
         ->check(CLI::IsMember({"bmfr", "mara"}));
     cmd->add_option("--direct-spp", job->directSpp,
                     "with --paths mara: light samples of the direct light at the first hit, "

@@ -3,17 +3,6 @@
 
 namespace bmfr::render {
 
-namespace {
-
-float offsetScale(Vec3 p) {
-    return 1e-4f * (1.0f + std::fmax(std::fabs(p.x), std::fmax(std::fabs(p.y), std::fabs(p.z))));
-}
-bool isBlack(Vec3 v) {
-    return v.x <= 0 && v.y <= 0 && v.z <= 0;
-}
-
-} // namespace
-
 Integrator::Integrator(const Scene& scene, const RayAccel& accel, const LightSet& lights,
                        int bounces)
     : scene_(scene), accel_(accel), lights_(lights), bounces_(bounces) {}

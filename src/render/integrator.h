@@ -22,16 +22,26 @@ struct PrimaryHit {
 
 /// One sample's radiance and its splits (direct + indirect = diffuse + glossy = total), and
 /// the indirect light through the primary hit's diffuse lobe (part of indirect and of diffuse).
+/// How far a ray leaving p starts from it, scene units: relative to p's magnitude, so that
+/// float positions far from the origin do not hit their own surface.
+inline float offsetScale(Vec3 p) {
+    return 1e-4f * (1.0f + std::fmax(std::fabs(p.x), std::fmax(std::fabs(p.y), std::fabs(p.z))));
+}
+inline bool isBlack(Vec3 v) {
+    return v.x <= 0 && v.y <= 0 && v.z <= 0;
+}
+
 struct PathContribution {
     Vec3 total, direct, indirect, diffuse, glossy, diffuseIndirect;
 };
 
-/// One sample of Mara et al. 2017's factored estimator (their Eq. 9 and 10): direct light by
-/// light sampling alone, one cosine-sampled matte path and one GGX-sampled glossy path. The
-/// sky and the sun are direct light, so paths that escape add nothing to M or G.
+/// One sample of Mara et al. 2017's factored estimator (their Eq. 9 and 10): one cosine-sampled
+/// matte path, one GGX-sampled glossy path and the direct light apart. The sky, the sun and
+/// emitters are direct light: the light samples and the two paths' first rays, combined by
+/// multiple importance sampling (balance heuristic), so M and G hold indirect light only.
 struct FactoredSample {
     Vec3 emission; ///< seen at the first hit (or the sky and sun for a miss)
-    Vec3 direct;   ///< reflected direct light, the full BRDF, mean of the light samples
+    Vec3 direct;   ///< reflected direct light, the full BRDF (light samples and both paths)
     Vec3 matte;    ///< M: indirect radiance along the cosine-sampled direction
     Vec3 glossy;   ///< G: indirect radiance along the GGX direction times g cos / pdf
     Vec3 fresnel;  ///< F_s = Schlick(F0, n . wo), the Fresnel factor at the mirror direction
@@ -64,10 +74,17 @@ class Integrator {
     /// width: ray-cone footprint at o; spread: its growth per unit distance (radians).
     bool trace(Vec3 o, Vec3 d, float width, float spread, SurfacePoint& sp, int& quad, float& t,
                uint64_t& rays) const;
-    /// Light arriving at sp along wi from the next surface, its emission left out (that is
-    /// direct light): the next surface's reflected light with bounces_ - 1 further BSDF rays.
-    Vec3 indirectAlong(const SurfacePoint& sp, Vec3 wi, Rng& rng, float& distance,
-                       uint64_t& rays) const;
+    /// What a ray from sp along wi brings: the next surface's reflected light with bounces_ - 1
+    /// further BSDF rays (indirect), and apart what it emits or the sky and sun (direct).
+    struct Along {
+        Vec3 indirect;
+        Vec3 emitted;         ///< the next surface's emission towards sp, or the sky's
+        float emittedPdf = 0; ///< the light sampler's pdf of that direction
+        Vec3 sun;             ///< the sun disk, when the ray escaped
+        float sunPdf = 0;
+        float distance = -1; ///< to the next hit; -1 when the ray escaped
+    };
+    Along along(const SurfacePoint& sp, Vec3 wi, Rng& rng, uint64_t& rays) const;
     void shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidth, SurfacePoint& sp) const;
 };
 
