@@ -197,13 +197,19 @@ TEST(Render, WorldPositionReprojectsToThePixelItsMotionVectorNames) {
 namespace bmfr::render {
 namespace {
 
-TEST(Render, LambertianPlaneUnderAConstantSkyReflectsAlbedoTimesSky) {
-    // Irradiance pi L from the whole upper hemisphere: radiance a / pi * pi L = a L.
+/// A Lambertian plane y = 0, 2 km across, facing up.
+Scene openPlane(float albedo) {
     Scene plane;
-    const float albedo = 0.7f;
     int m = addMaterial(plane, {albedo, albedo, albedo}, {0, 0, 0});
     addQuad(plane, {-1000, 0, -1000}, {-1000, 0, 1000}, {1000, 0, 1000}, {1000, 0, -1000}, m,
             {0, 1, 0});
+    return plane;
+}
+
+TEST(Render, LambertianPlaneUnderAConstantSkyReflectsAlbedoTimesSky) {
+    // Irradiance pi L from the whole upper hemisphere: radiance a / pi * pi L = a L.
+    const float albedo = 0.7f;
+    const Scene plane = openPlane(albedo);
     Environment env;
     env.sky = {0.5f, 1.0f, 2.0f};
     CameraPose pose;
@@ -237,11 +243,8 @@ Scene glossyFloorAndWall(Environment& env) {
 // (Elsewhere the factored BRDF, m (1 - F_s)^2 + g F_s, is not our material's, so the two
 // estimators' references differ by design: 5 to 15% darker in the Cornell box's corners.)
 TEST(Render, FactoredPathsOnAnOpenPlaneGiveTheAnalyticRadianceAsDirectLight) {
-    Scene plane;
     const float albedo = 0.7f;
-    int m = addMaterial(plane, {albedo, albedo, albedo}, {0, 0, 0});
-    addQuad(plane, {-1000, 0, -1000}, {-1000, 0, 1000}, {1000, 0, 1000}, {1000, 0, -1000}, m,
-            {0, 1, 0});
+    const Scene plane = openPlane(albedo);
     Environment sky, sun;
     sky.sky = {0.5f, 1.0f, 2.0f};
     const float theta = 1.0471976f;
