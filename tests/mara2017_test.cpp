@@ -261,13 +261,9 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     a.rough[333] = NAN;
     // Stage 4 with a 3-pixel disk and its Gaussian table; stage 7 with radii from 0 to 12.
     a.f.preRadius = 3, a.f.preSigma = 1.5f;
-    for (size_t k = 0; k < a.preSpiral.size(); ++k)
-        a.preOffsets[k] = maraTapOffset(a.preSpiral[k], 3);
-    std::vector<float> gauss(a.preOffsets.size() / 2);
-    for (size_t k = 0; k < gauss.size(); ++k) {
-        const int dx = a.preOffsets[2 * k], dy = a.preOffsets[2 * k + 1];
-        gauss[k] = maraGaussian(float(dx * dx + dy * dy), a.f.preSigma);
-    }
+    std::vector<float> gauss;
+    maraTapTable(a.preSpiral.data(), a.f.preTaps * kMaraSpiralRotations, 3, a.f.preSigma,
+                 a.preOffsets, gauss);
     a.f.preGauss = gauss.data();
     a.radius = randomValues(a.radius.size(), -2, 12, 11);
     a.f.frame = 5;

@@ -28,6 +28,17 @@ void maraSpiralTable(int taps, float frameRotation, std::vector<float>& out) {
         }
 }
 
+void maraTapTable(const float* spiral, int count, float radius, float sigma,
+                  std::vector<int>& offsets, std::vector<float>& gauss) {
+    offsets.resize(2 * size_t(count)), gauss.resize(size_t(count));
+    for (size_t k = 0; k < size_t(count); ++k) {
+        const int dx = maraTapOffset(spiral[2 * k], radius),
+                  dy = maraTapOffset(spiral[2 * k + 1], radius);
+        offsets[2 * k] = dx, offsets[2 * k + 1] = dy;
+        gauss[k] = maraGaussian(float(dx * dx + dy * dy), sigma);
+    }
+}
+
 MaraFrame maraFrameSettings(const Mara2017Settings& s, int width) {
     MaraFrame f;
     f.h = s.hysteresis, f.d0 = s.confidenceNear, f.d1 = s.confidenceFar;
@@ -61,14 +72,8 @@ MaraFrame MaraBuffers::frame(const MaraPassContext& ctx) {
     f.frame = uint32_t(hist.frameIndex);
     maraSpiralTable(s.preTaps, maraFrameRotation(f.frame, s.seed, 4), preSpiral);
     maraSpiralTable(s.finalTaps, maraFrameRotation(f.frame, s.seed, 7), finalSpiral);
-    preOffsets.resize(preSpiral.size());
-    for (size_t k = 0; k < preSpiral.size(); ++k)
-        preOffsets[k] = maraTapOffset(preSpiral[k], f.preRadius);
-    preGauss.resize(preSpiral.size() / 2);
-    for (size_t k = 0; k < preGauss.size(); ++k) {
-        const int dx = preOffsets[2 * k], dy = preOffsets[2 * k + 1];
-        preGauss[k] = maraGaussian(float(dx * dx + dy * dy), f.preSigma);
-    }
+    maraTapTable(preSpiral.data(), s.preTaps * kMaraSpiralRotations, f.preRadius, f.preSigma,
+                 preOffsets, preGauss);
     f.preSpiral = preSpiral.data(), f.finalSpiral = finalSpiral.data();
     f.preOffsets = preOffsets.data(), f.preGauss = preGauss.data();
     f.prevMatte = matteHistory[prev].data(), f.prevGlossy = glossyHistory[prev].data();

@@ -20,6 +20,11 @@ MaraFrame maraFrameSettings(const Mara2017Settings& settings, int width);
 /// turned by the frame's rotation (radians): rotation-major, 2 floats per tap.
 void maraSpiralTable(int taps, float frameRotation, std::vector<float>& out);
 
+/// The `count` unit taps of a spiral table at `radius` pixels, as the sparse bilateral computes
+/// them: whole-pixel offsets (2 per tap) and Gaussian weights of `sigma` pixels (1 per tap).
+void maraTapTable(const float* spiral, int count, float radius, float sigma,
+                  std::vector<int>& offsets, std::vector<float>& gauss);
+
 /// Mara's per-pixel buffers in host memory: the history (double-buffered) and this frame's.
 struct MaraBuffers {
     // History, [slot].

@@ -1,5 +1,6 @@
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/simd.h"
+#include "filters/mara2017/mara_passes.h"
 #include <cstring>
 
 namespace bmfr::cpu {
@@ -96,27 +97,30 @@ BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, boo
         alignas(32) int ox[kMaxTaps * 8], oy[kMaxTaps * 8];
         alignas(32) float og[kMaxTaps * 8], ux[kMaxTaps * 8], uy[kMaxTaps * 8];
         f8 radius, sigma;
+        int rotation[8], table[8];
         bool computed = false; // some lane's stage 7 taps are not in the tables
         for (int l = 0; l < 8; ++l) {
-            const int r = maraPixelRotation(x + (l < n ? l : 0), y, f.frame, f.seed, final ? 7 : 4);
+            rotation[l] = maraPixelRotation(x + (l < n ? l : 0), y, f.frame, f.seed, final ? 7 : 4);
             radius[l] = l >= n ? 0.0f : final ? f.radius[i + l] : f.preRadius;
             sigma[l] = final ? f.finalSigma * radius[l] : f.preSigma;
-            int t = -1;
+            table[l] = -1;
             for (int k = 0; final && tables && k < MaraTapTables::kRadii; ++k)
-                if (radius[l] == tables->radius[k]) t = k;
-            if (final) { // all lanes' units: if one lane computes its taps, every lane does
+                if (radius[l] == tables->radius[k]) table[l] = k;
+            computed |= final && table[l] < 0;
+        }
+        for (int l = 0; l < 8; ++l) {
+            const int r = rotation[l], t = table[l];
+            if (computed) { // then every lane computes its taps, from the spiral's units
                 const float* spiral = f.finalSpiral + 2 * taps * r;
                 for (int k = 0; k < taps; ++k)
                     ux[8 * k + l] = spiral[2 * k], uy[8 * k + l] = spiral[2 * k + 1];
-                computed |= t < 0;
-            }
-            if (final && t >= 0) {
+            } else if (final) {
                 const int* offsets = tables->offsets[t].data() + 2 * taps * r;
                 const float* gauss = tables->gauss[t].data() + taps * r;
                 for (int k = 0; k < taps; ++k)
                     ox[8 * k + l] = offsets[2 * k], oy[8 * k + l] = offsets[2 * k + 1],
                                og[8 * k + l] = gauss[k];
-            } else if (!final) {
+            } else {
                 const int* offsets = f.preOffsets + 2 * taps * r;
                 for (int k = 0; k < taps; ++k)
                     ox[8 * k + l] = offsets[2 * k], oy[8 * k + l] = offsets[2 * k + 1];
@@ -129,7 +133,7 @@ BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, boo
             storeXyz8(dst + 3 * i, n, sum);
             continue;
         }
-        if ((final && computed) || (!final && !f.preGauss))
+        if (computed || (!final && !f.preGauss))
             for (int k = 0; k < taps; ++k) {
                 i8 dx, dy;
                 if (final) {
@@ -259,17 +263,10 @@ void MaraTapTables::build(const MaraFrame& f) {
     const float confident = f.normaliseConfidence ? 0.0f : (1.0f - f.h) * float(f.maxRadius);
     const float candidates[kRadii] = {confident, float(f.maxRadius), confident * f.radiusBoost,
                                       float(f.maxRadius) * f.radiusBoost};
-    const int taps = f.finalTaps;
     for (int t = 0; t < kRadii; ++t) {
         radius[t] = candidates[t];
-        offsets[t].resize(size_t(2 * taps * kMaraSpiralRotations));
-        gauss[t].resize(size_t(taps * kMaraSpiralRotations));
-        for (int k = 0; k < taps * kMaraSpiralRotations; ++k) {
-            const int dx = maraTapOffset(f.finalSpiral[2 * k], radius[t]),
-                      dy = maraTapOffset(f.finalSpiral[2 * k + 1], radius[t]);
-            offsets[t][size_t(2 * k)] = dx, offsets[t][size_t(2 * k + 1)] = dy;
-            gauss[t][size_t(k)] = maraGaussian(float(dx * dx + dy * dy), f.finalSigma * radius[t]);
-        }
+        maraTapTable(f.finalSpiral, f.finalTaps * kMaraSpiralRotations, radius[t],
+                     f.finalSigma * radius[t], offsets[t], gauss[t]);
     }
 }
 
