@@ -276,10 +276,10 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     a.each([&](int x, int y) { maraFinalBilateralPixel(a.f, a.glossy.data(), x, y); });
     b.wire();
     std::vector<float> taps(size_t(cpu::kMaraTapRecord * w * h));
-    cpu::maraPackTaps(b.f, b.temporal.data(), taps.data(), 0, h);
+    cpu::maraPackTaps(b.f, b.temporal.data(), true, taps.data(), 0, h);
     cpu::maraSparseTile(b.f, taps.data(), false, 0, 48, 0, h);
     cpu::maraSparseTile(b.f, taps.data(), false, 48, w, 0, h);
-    cpu::maraPackTaps(b.f, b.glossy.data(), taps.data(), 0, h);
+    cpu::maraPackTaps(b.f, b.glossy.data(), false, taps.data(), 0, h);
     cpu::maraSparseTile(b.f, taps.data(), true, 0, w, 0, 9, &tables);
     cpu::maraSparseTile(b.f, taps.data(), true, 0, w, 9, h, &tables);
     EXPECT_EQ(a.history, b.history);

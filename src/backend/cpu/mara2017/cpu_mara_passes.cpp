@@ -63,13 +63,19 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     /// Stage 4 or 7 from tap records: a tap reads one cache line, not three.
     void sparse(const MaraPassContext& ctx, const MaraFrame& f, const float* src, bool final) {
         const size_t floats = size_t(kMaraTapRecord) * size_t(f.width) * size_t(f.height);
-        if (records_.size() != floats + kMaraTapRecord) records_.assign(floats + kMaraTapRecord, 0);
+        if (records_.size() != floats + kMaraTapRecord) {
+            records_.assign(floats + kMaraTapRecord, 0);
+            guidePacked_ = false;
+        }
         float* taps = records_.data();
         taps += (kMaraTapRecord -
                  (reinterpret_cast<uintptr_t>(taps) / sizeof(float)) % kMaraTapRecord) %
                 kMaraTapRecord; // 64-byte aligned
+        // Stage 7 reuses stage 4's positions and normals, packed this frame.
+        const bool guide = !(final && guidePacked_);
+        guidePacked_ = !final;
         ctx.pool.parallelFor(f.height, 8,
-                             [&](long y0, long y1) { maraPackTaps(f, src, taps, y0, y1); });
+                             [&](long y0, long y1) { maraPackTaps(f, src, guide, taps, y0, y1); });
         if (final) tables_.build(f);
         // Tiles, not rows: a 64-pixel radius reaches 129 rows, and a tile's taps stay in cache.
         const int tile = 64, across = (f.width + tile - 1) / tile;
@@ -85,6 +91,7 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
 
     std::vector<float> stage5_, scratch_, records_;
     MaraTapTables tables_;
+    bool guidePacked_ = false; ///< stage 4 packed this frame's guide into records_
 };
 
 } // namespace

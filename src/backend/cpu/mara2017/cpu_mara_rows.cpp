@@ -66,11 +66,12 @@ BMFR_SIMD_INLINE void loadTaps(const float* taps, i8 index, int q, f8 out[3]) {
     out[2] = __builtin_shuffle(t2, t3, i8{0, 1, 8, 9, 4, 5, 12, 13});
 }
 
-BMFR_SIMD_CLONES void packRow(const MaraFrame& f, const float* src, float* taps, int y) {
+BMFR_SIMD_CLONES void packRow(const MaraFrame& f, const float* src, bool guide, float* taps,
+                              int y) {
     for (long i = long(y) * f.width, end = i + f.width; i < end; ++i) {
         float* r = taps + kMaraTapRecord * i;
         const float* from[3] = {f.position + 3 * i, f.normal + 3 * i, src + 3 * i};
-        for (int q = 0; q < 3; ++q)
+        for (int q = guide ? 0 : 2; q < 3; ++q)
             r[4 * q] = from[q][0], r[4 * q + 1] = from[q][1], r[4 * q + 2] = from[q][2],
                   r[4 * q + 3] = 0.0f;
     }
@@ -249,8 +250,8 @@ BMFR_SIMD_CLONES void glossyRow(const MaraFrame& f, const float* src, float* dst
 
 } // namespace
 
-void maraPackTaps(const MaraFrame& f, const float* src, float* taps, long y0, long y1) {
-    for (long y = y0; y < y1; ++y) packRow(f, src, taps, int(y));
+void maraPackTaps(const MaraFrame& f, const float* src, bool guide, float* taps, long y0, long y1) {
+    for (long y = y0; y < y1; ++y) packRow(f, src, guide, taps, int(y));
 }
 
 void maraSparseTile(const MaraFrame& f, const float* taps, bool final, int x0, int x1, long y0,

@@ -15,9 +15,10 @@ void maraMedianRows(const MaraFrame& f, long y0, long y1);
 /// colour, four floats each (the fourth 0), one 64-byte cache line with the padding.
 inline constexpr int kMaraTapRecord = 16;
 
-/// The tap records of rows [y0, y1): f.position, f.normal and src into `taps`
-/// (kMaraTapRecord floats per pixel, 64-byte aligned for one line a tap).
-void maraPackTaps(const MaraFrame& f, const float* src, float* taps, long y0, long y1);
+/// The tap records of rows [y0, y1): f.position, f.normal (with `guide`; without, they are
+/// already there) and src into `taps` (kMaraTapRecord floats per pixel, 64-byte aligned for one
+/// line a tap).
+void maraPackTaps(const MaraFrame& f, const float* src, bool guide, float* taps, long y0, long y1);
 
 /// Stage 7's taps for the radii most pixels share: (1 - h) R where the history is confident,
 /// R beside a disocclusion, and both boosted. Per rotation, the whole-pixel offsets and
