@@ -1,6 +1,9 @@
 // The eight-wide helpers of the fast passes against plain index arithmetic.
 #include "backend/cpu/simd.h"
+#include <algorithm>
+#include <cmath>
 #include <gtest/gtest.h>
+#include <vector>
 
 using namespace bmfr::simd;
 
@@ -52,4 +55,53 @@ TEST(Simd, SplatAndReductions) {
     EXPECT_TRUE(allLanes(firstLanes(8)));
     EXPECT_FALSE(allLanes(firstLanes(7)));
     EXPECT_EQ(countLanes(firstLanes(5)), 5);
+}
+
+// Half planes: the integer conversions against the compiler's own _Float16 (libgcc's software
+// conversion on this baseline build, the same rounding as F16C).
+TEST(Simd, HalfLoadsAreExactForEveryFiniteHalf) {
+    for (uint32_t bits = 0; bits < 65536; bits += 8) {
+        uint16_t raw[8];
+        _Float16 h[8];
+        for (int l = 0; l < 8; ++l) raw[l] = uint16_t(bits + uint32_t(l));
+        std::memcpy(h, raw, sizeof h);
+        const f8 v = load8(h);
+        for (int l = 0; l < 8; ++l) {
+            const uint16_t b = raw[l];
+            if ((b & 0x7c00) == 0x7c00) continue; // infinities and NaNs are never stored
+            ASSERT_EQ(v[l], float(h[l])) << "half bits " << b;
+        }
+    }
+}
+
+TEST(Simd, HalfStoresRoundToNearestEvenAndSaturate) {
+    std::vector<float> values = {0.0f,     -0.0f,         1.0f,   -1.0f,    65504.0f, 65519.0f,
+                                 65520.0f, 1e9f,          -1e9f,  6.1e-5f,  6.0e-5f,  5.96e-8f,
+                                 2.98e-8f, 2.9802322e-8f, 1e-30f, 0.33333f, 255.0f,   254.5f};
+    // Ties: the midpoints between neighbouring halves in every binade, both signs.
+    for (int e = -24; e < 16; ++e)
+        for (int m : {1, 2, 3, 1023, 1024}) {
+            const float step = std::ldexp(1.0f, e - 10);
+            values.push_back(std::ldexp(1.0f, e) + (float(m) - 0.5f) * step);
+        }
+    uint32_t state = 12345;
+    for (int i = 0; i < 200000; ++i) {
+        state = state * 1664525u + 1013904223u;
+        float f;
+        const uint32_t bits = (state & 0x807fffffu) | (((state >> 23) % 48u + 100u) << 23);
+        std::memcpy(&f, &bits, sizeof f);
+        values.push_back(f);
+    }
+    while (values.size() % 8) values.push_back(0.5f);
+    for (size_t i = 0; i < values.size(); i += 8) {
+        _Float16 got[8];
+        store8(got, load8(values.data() + i));
+        for (int l = 0; l < 8; ++l) {
+            const float x = std::clamp(values[i + size_t(l)], -65504.0f, 65504.0f);
+            const _Float16 want = _Float16(x);
+            uint16_t a, b;
+            std::memcpy(&a, &got[l], 2), std::memcpy(&b, &want, 2);
+            ASSERT_EQ(a, b) << "float " << values[i + size_t(l)];
+        }
+    }
 }

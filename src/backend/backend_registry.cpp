@@ -1,6 +1,7 @@
 // The only file that names the backends. A new backend adds its factories here (and one line
 // to tests/conformance/conformance_test.cpp).
 #include "backend/backend_registry.h"
+#include "backend/cpu/isa.h"
 #include <bmfr/error.h>
 #include <cstring>
 #include <string>
@@ -55,6 +56,7 @@ std::unique_ptr<BmfrPasses> makeBmfrPasses(Backend b) {
     case Backend::Reference:
         return reference::makeBmfrPasses();
     case Backend::Cpu:
+        cpu::activeIsa(); // a bad BMFR_CPU_ISA is an error here, not inside a pass
         return cpu::makeBmfrPasses();
     default:
         unavailable(b);
@@ -66,6 +68,7 @@ std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend b) {
     case Backend::Reference:
         return reference::makeSvgfPasses();
     case Backend::Cpu:
+        cpu::activeIsa(); // a bad BMFR_CPU_ISA is an error here, not inside a pass
         return cpu::makeSvgfPasses();
     default:
         unavailable(b);
@@ -77,6 +80,7 @@ std::unique_ptr<WalrPasses> makeWalrPasses(Backend b) {
     case Backend::Reference:
         return reference::makeWalrPasses();
     case Backend::Cpu:
+        cpu::activeIsa(); // a bad BMFR_CPU_ISA is an error here, not inside a pass
         return cpu::makeWalrPasses();
     default:
         unavailable(b);
@@ -88,6 +92,7 @@ std::unique_ptr<MaraPasses> makeMaraPasses(Backend b) {
     case Backend::Reference:
         return reference::makeMaraPasses();
     case Backend::Cpu:
+        cpu::activeIsa(); // a bad BMFR_CPU_ISA is an error here, not inside a pass
         return cpu::makeMaraPasses();
     default:
         unavailable(b);

@@ -1,7 +1,9 @@
 // The conformance suite: every backend against the reference backend, for every filter, on the
 // same frames. Outputs must agree within the stated tolerance; discard masks, history lengths
 // and the non-finite and discarded counts must be identical. A new backend joins with one line
-// in kBackends, a new filter with one entry in kFilters.
+// in kBackends, a new filter with one entry in kFilters. The CPU backend is held to it on each of
+// its instruction-set paths; a path this processor lacks is reported skipped.
+#include "backend/cpu/isa.h"
 #include "core/image.h"
 #include "render/frame_renderer.h"
 #include "render/lights.h"
@@ -18,8 +20,8 @@
 namespace bmfr {
 namespace {
 
-/// The backends held to the reference backend.
-const std::vector<std::string> kBackends = {"cpu"};
+/// The backends held to the reference backend, as "backend" or "backend_path".
+const std::vector<std::string> kBackends = {"cpu_baseline", "cpu_avx2", "cpu_avx512"};
 
 /// Each filter with the configurations beyond the common ones (defaults and every switch).
 struct FilterCase {
@@ -176,7 +178,20 @@ struct PaddedRgba {
 
 /// Parameters: (backend, filter name).
 struct Conformance : testing::TestWithParam<std::tuple<std::string, std::string>> {
-    std::string backend() const { return std::get<0>(GetParam()); }
+    std::string backend() const {
+        const std::string b = std::get<0>(GetParam());
+        return b.substr(0, b.find('_'));
+    }
+    void SetUp() override {
+        const std::string b = std::get<0>(GetParam());
+        if (b.find('_') == std::string::npos) return;
+        const cpu::Isa isa = cpu::parseIsa(b.substr(b.find('_') + 1));
+        if (int(isa) > int(cpu::bestIsa()))
+            GTEST_SKIP() << "this processor lacks the " << cpu::isaName(isa)
+                         << " path (best: " << cpu::isaName(cpu::bestIsa()) << ")";
+        cpu::setActiveIsa(isa);
+    }
+    void TearDown() override { cpu::setActiveIsa(cpu::bestIsa()); }
     const FilterCase& filter() const {
         for (const FilterCase& f : kFilters)
             if (f.name == std::get<1>(GetParam())) return f;

@@ -12,8 +12,10 @@ size_t rowFloats(int w) {
     return ResolvedRows::rowFloats(w) + 2 * ResolvedRows::pitch(w);
 }
 
-BMFR_SIMD_CLONES void resolveRows(const float* current, const float* previousPixel, float* scratch,
-                                  int w, long y0, long y1) {
+BMFR_SIMD_DISPATCH(void, resolveRows,
+                   (const float* current, const float* previousPixel, float* scratch, int w,
+                    long y0, long y1),
+                   (current, previousPixel, scratch, w, y0, y1)) {
     const size_t pitch = ResolvedRows::pitch(w);
     for (long y = y0; y < y1; ++y) {
         float* row = scratch + size_t(y) * rowFloats(w);
@@ -33,8 +35,10 @@ BMFR_SIMD_CLONES void resolveRows(const float* current, const float* previousPix
     }
 }
 
-BMFR_SIMD_CLONES void taaRows(const float* history, float* scratch, float* out, int w, int h,
-                              float alpha, bool enabled, long y0, long y1) {
+BMFR_SIMD_DISPATCH(void, taaRows,
+                   (const float* history, float* scratch, float* out, int w, int h, float alpha,
+                    bool enabled, long y0, long y1),
+                   (history, scratch, out, w, h, alpha, enabled, y0, y1)) {
     const size_t pitch = ResolvedRows::pitch(w), stride = rowFloats(w);
     for (long y = y0; y < y1; ++y) {
         const float* mid = scratch + size_t(y) * stride;

@@ -130,11 +130,11 @@ BMFR_SIMD_INLINE Taps8 taps8(const Footprint8& f, int width, int height, simd::i
     return t;
 }
 
-/// Tap k of the eight lanes from a plane of one float per pixel.
-BMFR_SIMD_INLINE simd::f8 tapPlane(const Taps8& t, const float* plane, int k) {
+/// Tap k of the eight lanes from a plane of one float (or half) per pixel.
+template <class T> BMFR_SIMD_INLINE simd::f8 tapPlane(const Taps8& t, const T* plane, int k) {
     using namespace simd;
     if (!t.coherent) return gather8(plane, t.index[k]);
-    const float* p = plane + t.at[k];
+    const T* p = plane + t.at[k];
     return t.split ? (t.upper ? load8(p + 1) : load8(p)) : load8(p);
 }
 

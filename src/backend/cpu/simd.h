@@ -1,6 +1,7 @@
 // Eight-wide float vectors (GCC/Clang vector extensions) for the fast CPU passes.
 // Portable source: the compiler lowers them to SSE, AVX2 or NEON for each target clone.
 #pragma once
+#include "backend/cpu/isa.h"
 #include <cstdint>
 #include <cstring>
 
@@ -11,15 +12,43 @@ typedef int32_t i8 __attribute__((vector_size(32)));
 
 #define BMFR_SIMD_INLINE [[gnu::always_inline]] inline
 
-// Hot kernels are compiled twice, for x86-64-v3 (AVX2 + FMA) and the baseline, and the loader
-// picks one at run time. Within one machine the choice is fixed, so output bits are repeatable.
+// Hot kernels are compiled three times, for x86-64-v4 (AVX-512), x86-64-v3 (AVX2 + FMA + F16C)
+// and the baseline, and called through the path isa.h chose at run time. Within one machine and
+// path the code is fixed, so output bits are repeatable.
+//
+//   BMFR_SIMD_DISPATCH(void, rows, (const Args& a, long y0), (a, y0)) { ...body... }
+//
+// defines rows(a, y0), which calls the body compiled for the active path. The body is written
+// once, as an always-inline function (rowsBody) that each path's copy inlines.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-// Give cloned functions internal linkage: GCC gives an external clone's resolver default
-// visibility, which a shared libbmfr would export.
-#define BMFR_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#define BMFR_SIMD_TARGET_AVX512 [[gnu::target("arch=x86-64-v4")]]
+#define BMFR_SIMD_TARGET_AVX2 [[gnu::target("arch=x86-64-v3")]]
 #else
-#define BMFR_SIMD_CLONES
+#define BMFR_SIMD_TARGET_AVX512
+#define BMFR_SIMD_TARGET_AVX2
 #endif
+#define BMFR_SIMD_DISPATCH(Ret, name, Params, Args)                                                \
+    BMFR_SIMD_INLINE Ret name##Body Params;                                                        \
+    BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] Ret name##Avx512 Params {                            \
+        return name##Body Args;                                                                    \
+    }                                                                                              \
+    BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] Ret name##Avx2 Params {                                \
+        return name##Body Args;                                                                    \
+    }                                                                                              \
+    [[gnu::noinline]] Ret name##Baseline Params {                                                  \
+        return name##Body Args;                                                                    \
+    }                                                                                              \
+    Ret name Params {                                                                              \
+        switch (::bmfr::cpu::activeIsa()) {                                                        \
+        case ::bmfr::cpu::Isa::Avx512:                                                             \
+            return name##Avx512 Args;                                                              \
+        case ::bmfr::cpu::Isa::Avx2:                                                               \
+            return name##Avx2 Args;                                                                \
+        default:                                                                                   \
+            return name##Baseline Args;                                                            \
+        }                                                                                          \
+    }                                                                                              \
+    BMFR_SIMD_INLINE Ret name##Body Params
 
 BMFR_SIMD_INLINE f8 load8(const float* p) {
     f8 v;
@@ -28,6 +57,44 @@ BMFR_SIMD_INLINE f8 load8(const float* p) {
 }
 BMFR_SIMD_INLINE void store8(float* p, f8 v) {
     std::memcpy(p, &v, sizeof v);
+}
+/// Half planes (history stored as 16-bit floats). The conversions are integer arithmetic, the
+/// same instructions on every path: GCC 12 splits a vector conversion to _Float16 into one
+/// conversion per lane, and F16C cannot be called from a body compiled for every path.
+typedef uint16_t u16x8 __attribute__((vector_size(16)));
+typedef uint32_t u32x8 __attribute__((vector_size(32)));
+
+/// Eight halves as floats, exactly (normal, subnormal and zero halves; a half plane holds no
+/// infinity or NaN).
+BMFR_SIMD_INLINE f8 load8(const _Float16* p) {
+    u16x8 h;
+    std::memcpy(&h, p, sizeof h);
+    const u32x8 w = __builtin_convertvector(h, u32x8);
+    // The magnitude's bits land in a float's exponent and mantissa 112 binades too low; one
+    // multiply rebiases normals and normalises subnormals alike.
+    const f8 magnitude = f8((w & 0x7fffu) << 13) * 0x1p112f;
+    return f8(u32x8(magnitude) | ((w & 0x8000u) << 16));
+}
+/// Stores roundToHalf (core/half.h) of each lane: saturated to the largest half, then rounded
+/// to nearest, ties to even, as F16C and the C++ conversion do (tested bit for bit).
+BMFR_SIMD_INLINE void store8(_Float16* p, f8 v) {
+    f8 big{};
+    for (int l = 0; l < 8; ++l) big[l] = 65504.0f;
+    v = v > big ? big : (v < -big ? -big : v);
+    u32x8 u = u32x8(v);
+    const u32x8 sign = u & 0x80000000u;
+    u ^= sign;
+    // Below 2^-14 the half is subnormal: adding 0.5 aligns its 10 bits at the bottom of the
+    // float's mantissa, and the float addition rounds them to nearest even.
+    f8 magic{};
+    for (int l = 0; l < 8; ++l) magic[l] = 0.5f;
+    const u32x8 small = u32x8(f8(u) + magic) - u32x8(magic);
+    // Otherwise rebias the exponent and round the 13 dropped bits to nearest even.
+    const u32x8 odd = (u >> 13) & 1u;
+    const u32x8 normal = (u + (0xC8000000u + 0xfffu) + odd) >> 13;
+    const u32x8 bits = (i8(u) < (113 << 23) ? small : normal) | (sign >> 16);
+    const u16x8 h = __builtin_convertvector(bits, u16x8);
+    std::memcpy(p, &h, sizeof h);
 }
 /// (1 - t) a + t b per lane, as bmfr::lerp.
 BMFR_SIMD_INLINE f8 lerp8(f8 a, f8 b, f8 t) {
@@ -147,17 +214,19 @@ BMFR_SIMD_INLINE void storeXyz8(float* p, int n, const f8 v[3]) {
     interleave3(v[0], v[1], v[2], staged);
     std::memcpy(p, staged, sizeof(float) * 3 * size_t(n));
 }
-/// Stores the first n (1 to 8) lanes.
-BMFR_SIMD_INLINE void storeFirst(float* p, f8 v, int n) {
+/// Stores the first n (1 to 8) lanes to a float or half plane.
+template <class T> BMFR_SIMD_INLINE void storeFirst(T* p, f8 v, int n) {
     if (n == 8) return store8(p, v);
-    std::memcpy(p, &v, sizeof(float) * size_t(n));
+    T staged[8];
+    store8(staged, v);
+    std::memcpy(p, staged, sizeof(T) * size_t(n));
 }
-/// The first n (1 to 8) lanes; lanes n to 7 read as 0.
-BMFR_SIMD_INLINE f8 loadFirst(const float* p, int n) {
+/// The first n (1 to 8) lanes of a float or half plane; lanes n to 7 read as 0.
+template <class T> BMFR_SIMD_INLINE f8 loadFirst(const T* p, int n) {
     if (n == 8) return load8(p);
-    f8 v{};
-    std::memcpy(&v, p, sizeof(float) * size_t(n));
-    return v;
+    T staged[8] = {};
+    std::memcpy(staged, p, sizeof(T) * size_t(n));
+    return load8(staged);
 }
 /// The low byte of the first n (1 to 8) lanes, as n bytes.
 BMFR_SIMD_INLINE void storeBytes(uint8_t* p, i8 v, int n) {
@@ -181,9 +250,9 @@ BMFR_SIMD_INLINE i8 loadBytes(const uint8_t* p, int n) {
         u8{w[0], w[0], w[0], w[0], w[1], w[1], w[1], w[1]} >> u8{0, 8, 16, 24, 0, 8, 16, 24};
     return i8(r & 255u);
 }
-/// base[index[l]] for each lane.
-BMFR_SIMD_INLINE f8 gather8(const float* base, i8 index) {
-    float lanes[8];
+/// base[index[l]] for each lane, of a float or half plane.
+template <class T> BMFR_SIMD_INLINE f8 gather8(const T* base, i8 index) {
+    T lanes[8];
     for (int l = 0; l < 8; ++l) lanes[l] = base[index[l]];
     return load8(lanes);
 }

@@ -3,6 +3,7 @@
 // for the fitted colour. BMFR_HD: the reference backend loops over these; the CPU backend's
 // eight-wide versions (backend/cpu/bmfr/) mirror them.
 #pragma once
+#include "core/half.h"
 #include "temporal/blend_weights.h"
 #include "temporal/history.h"
 #include "temporal/modulation.h"
@@ -18,8 +19,9 @@ struct NoisyAccumulation {
     InputModes modes;
     PreviousFrame previous;
     DiscardLimits limits;
-    float minAlpha = 0.2f;  ///< BmfrSettings::firstBlendAlpha
-    bool accumulate = true; ///< StageSwitches::firstAccumulation
+    float minAlpha = 0.2f;   ///< BmfrSettings::firstBlendAlpha
+    bool accumulate = true;  ///< StageSwitches::firstAccumulation
+    bool halfHistory = false; ///< BmfrSettings::halfHistory: normals and colour stored as half
     int width = 0, height = 0;
     float* normal = nullptr; ///< sanitised features, for the next frame's discard test
     float* position = nullptr;
@@ -38,7 +40,7 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
     const PixelInput px = readPixel(a.in, i, a.modes, bad);
     const Vec3 n = px.normal, p = px.position;
     Vec3 c = px.color;
-    store3(a.normal, i, n);
+    store3(a.normal, i, a.halfHistory ? roundToHalf(n) : n);
     store3(a.position, i, p);
 
     uint8_t accept = 0;
@@ -63,7 +65,7 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
     }
     a.length[i] = blend < 1.0f ? nextHistoryLength(samples) : 1;
     if (a.accumulate && blend < 1.0f) c = lerp(old, c, blend);
-    store3(a.noisy, i, c);
+    store3(a.noisy, i, a.halfHistory ? roundToHalf(c) : c);
     a.previousPixel[2 * i] = was.pixel.x;
     a.previousPixel[2 * i + 1] = was.pixel.y;
     a.accept[i] = accept;
@@ -76,7 +78,8 @@ struct FittedAccumulation {
     bool accumulate = true; ///< a history exists and StageSwitches::secondAccumulation
     bool remodulate = true; ///< demodulated on input (by us or by the renderer)
     float albedoEpsilon = 0.001f;
-    float minAlpha = 0.1f; ///< BmfrSettings::secondBlendAlpha
+    float minAlpha = 0.1f;   ///< BmfrSettings::secondBlendAlpha
+    bool halfHistory = false; ///< BmfrSettings::halfHistory: the history stored as half
     int width = 0;
     const float* fitted = nullptr;
     const float* prevAccumulated = nullptr;
@@ -99,7 +102,7 @@ BMFR_HD Vec3 accumulateFittedPixel(const FittedAccumulation& a, long i) {
                            [&](long j, float wt) { old += wt * load3(a.prevAccumulated, j); });
         if (total > 0.0f) c = lerp(old / total, c, secondBlendWeight(a.length[i], a.minAlpha));
     }
-    store3(a.accumulated, i, c);
+    store3(a.accumulated, i, a.halfHistory ? roundToHalf(c) : c);
     return remodulatePixel(c, a.in, i, a.remodulate, a.albedoEpsilon);
 }
 

@@ -65,15 +65,16 @@ BMFR_SIMD_INLINE f8 nextHistoryLength8(f8 samples) {
 
 /// Phase I of the n <= 8 pixels from column x of row y: accumulateNoisyPixel
 /// (filters/bmfr/accumulation_kernels.h) eight pixels at a time.
-BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl, int x, int y,
+template <class T>
+BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& pl, int x, int y,
                                       int n, int64_t& bad, int64_t& lost) {
     const long i = long(y) * a.t.width + x;
     const BmfrSettings& s = a.s;
     const TemporalHistory& t = a.t;
     const Inputs8 px = readInputs(a, i, n, bad);
     for (int c = 0; c < 3; ++c) {
-        storeFirst(pl.surface[c] + i, px.position[c], n);
-        storeFirst(pl.surface[3 + c] + i, px.normal[c], n);
+        storeFirst(pl.position[c] + i, px.position[c], n);
+        storeFirst(pl.normal[c] + i, px.normal[c], n);
     }
     f8 color[3] = {px.color[0], px.color[1], px.color[2]};
     f8 length = splat8(1.0f);
@@ -90,8 +91,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl,
             for (int k = 0; k < 4; ++k) {
                 f8 d[6];
                 for (int c = 0; c < 3; ++c) {
-                    d[c] = tapPlane(taps, pl.prevSurface[c], k) - was.position[c];
-                    d[3 + c] = tapPlane(taps, pl.prevSurface[3 + c], k) - was.normal[c];
+                    d[c] = tapPlane(taps, pl.prevPosition[c], k) - was.position[c];
+                    d[3 + c] = tapPlane(taps, pl.prevNormal[c], k) - was.normal[c];
                 }
                 // dot(d, d) in Vec3's order, so the decisions match the reference bit for bit.
                 const f8 dp = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
@@ -124,13 +125,17 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes& pl,
     storeBytes(pl.accept + i, accept, n);
 }
 
-BMFR_SIMD_CLONES void accumulateRows(const FrameArgs& a, long y0, long y1, int64_t& bad,
-                                     int64_t& lost) {
+BMFR_SIMD_DISPATCH(void, accumulateRows,
+                   (const FrameArgs& a, long y0, long y1, int64_t& bad, int64_t& lost),
+                   (a, y0, y1, bad, lost)) {
     const int w = a.t.width;
-    const FramePlanes pl(a.b, a.t.cur);
-    for (long y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += 8)
-            accumulateGroup(a, pl, x, int(y), std::min(8, w - x), bad, lost);
+    auto rows = [&] [[gnu::always_inline]] (auto storage) {
+        const FramePlanes<decltype(storage)> pl(a.b, a.t.cur);
+        for (long y = y0; y < y1; ++y)
+            for (int x = 0; x < w; x += 8)
+                accumulateGroup(a, pl, x, int(y), std::min(8, w - x), bad, lost);
+    };
+    a.s.halfHistory ? rows(_Float16{}) : rows(float{});
 }
 
 } // namespace

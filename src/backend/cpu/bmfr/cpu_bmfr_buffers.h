@@ -5,6 +5,7 @@
 #include "core/image.h"
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/bmfr_passes.h"
+#include <cstddef>
 #include <vector>
 
 namespace bmfr::cpu {
@@ -19,18 +20,48 @@ struct Scratch {
     std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
 };
 
-/// Per-pixel buffers are planes, one float per pixel and channel (structure of arrays), so
-/// eight neighbouring pixels are one load. Planes are `stride` floats apart; the stride leaves
-/// at least 8 floats after the last pixel, so an 8-float load at any pixel stays inside.
+/// Planes of one value per pixel, stored as float or, with BmfrSettings::halfHistory, as half
+/// (16-bit float). Planes are `stride` values apart.
+struct PlaneSet {
+    std::vector<std::byte> bytes;
+    size_t stride = 0;
+    bool half = false;
+
+    void assign(int channels, size_t planeStride, bool asHalf) {
+        stride = planeStride, half = asHalf;
+        bytes.assign(size_t(channels) * stride * (half ? sizeof(_Float16) : sizeof(float)),
+                     std::byte{0});
+    }
+    template <class T> T* plane(int channel) {
+        return reinterpret_cast<T*>(bytes.data()) + size_t(channel) * stride;
+    }
+    template <class T> const T* plane(int channel) const {
+        return reinterpret_cast<const T*>(bytes.data()) + size_t(channel) * stride;
+    }
+    const void* address(int channel) const {
+        return bytes.data() + size_t(channel) * stride * (half ? sizeof(_Float16) : sizeof(float));
+    }
+    /// Value i of a channel as float, whatever the storage.
+    float at(int channel, size_t i) const {
+        return half ? float(plane<_Float16>(channel)[i]) : plane<float>(channel)[i];
+    }
+};
+
+/// Per-pixel buffers are planes, one value per pixel and channel (structure of arrays), so
+/// eight neighbouring pixels are one load. Planes are `stride` values apart; the stride leaves
+/// at least 8 values after the last pixel, so an 8-value load at any pixel stays inside.
+/// Positions, the previous pixel and the fitted frame stay float; normals, the phase I colour
+/// and history length, and the phase III colour are half under BmfrSettings::halfHistory.
 struct Buffers {
     int width = 0, height = 0;
     size_t stride = 0;
 
     // History, [slot].
-    std::vector<float> surface[2]; ///< 6 planes: position xyz, normal xyz (sanitised)
-    std::vector<float> noisy[2];   ///< 4 planes: phase I colour (demodulated), history length
-    std::vector<float> accumulatedFitted[2]; ///< 3 planes: phase III colour
-    std::vector<float> output[2]; ///< 3 floats per pixel (the public image), +24 of padding
+    std::vector<float> position[2]; ///< 3 planes: position xyz (sanitised), always float
+    PlaneSet normal[2];             ///< 3 planes: normal xyz (sanitised)
+    PlaneSet noisy[2];              ///< 4 planes: phase I colour (demodulated), history length
+    PlaneSet accumulatedFitted[2];  ///< 3 planes: phase III colour
+    std::vector<float> output[2];   ///< 3 floats per pixel (the public image), +24 of padding
 
     // This frame only.
     std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame
@@ -48,32 +79,37 @@ struct Buffers {
     }
 };
 
-/// One frame's planes as raw pointers, taken once per task. Row kernels read them from this
-/// local copy: a pointer inside a std::vector would be reloaded after every byte store (the
-/// accept mask), since a byte store may alias anything.
-struct FramePlanes {
-    const float* prevSurface[6];
-    float* surface[6];
-    const float* prevNoisy[4];
-    float* noisy[4];
-    const float* prevAccumulated[3];
-    float* accumulated[3];
+/// One frame's planes as raw pointers, taken once per task, with T (float or _Float16) the
+/// storage of the history planes. Row kernels read them from this local copy: a pointer inside
+/// a std::vector would be reloaded after every byte store (the accept mask), since a byte store
+/// may alias anything.
+template <class T> struct FramePlanes {
+    const float* prevPosition[3];
+    float* position[3];
+    const T* prevNormal[3];
+    T* normal[3];
+    const T* prevNoisy[4];
+    T* noisy[4];
+    const T* prevAccumulated[3];
+    T* accumulated[3];
     float* previousPixel[2];
     float* fitted[3];
     uint8_t* accept;
 
     FramePlanes(Buffers& b, int cur) {
-        for (int c = 0; c < 6; ++c) {
-            prevSurface[c] = b.plane(b.surface[1 - cur], c);
-            surface[c] = b.plane(b.surface[cur], c);
+        for (int c = 0; c < 3; ++c) {
+            prevPosition[c] = b.plane(b.position[1 - cur], c);
+            position[c] = b.plane(b.position[cur], c);
+            prevNormal[c] = b.normal[1 - cur].plane<T>(c);
+            normal[c] = b.normal[cur].plane<T>(c);
         }
         for (int c = 0; c < 4; ++c) {
-            prevNoisy[c] = b.plane(b.noisy[1 - cur], c);
-            noisy[c] = b.plane(b.noisy[cur], c);
+            prevNoisy[c] = b.noisy[1 - cur].plane<T>(c);
+            noisy[c] = b.noisy[cur].plane<T>(c);
         }
         for (int c = 0; c < 3; ++c) {
-            prevAccumulated[c] = b.plane(b.accumulatedFitted[1 - cur], c);
-            accumulated[c] = b.plane(b.accumulatedFitted[cur], c);
+            prevAccumulated[c] = b.accumulatedFitted[1 - cur].plane<T>(c);
+            accumulated[c] = b.accumulatedFitted[cur].plane<T>(c);
             fitted[c] = b.plane(b.fitted, c);
         }
         for (int c = 0; c < 2; ++c) previousPixel[c] = b.plane(b.previousPixel, c);

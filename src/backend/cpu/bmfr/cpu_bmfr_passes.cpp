@@ -15,9 +15,10 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.width = w, b_.height = h;
         b_.stride = (n + 7) / 8 * 8 + 8; // an 8-float load at any pixel stays in its plane
         for (int k = 0; k < 2; ++k) {
-            b_.surface[k].assign(6 * b_.stride, 0.0f);
-            b_.noisy[k].assign(4 * b_.stride, 0.0f);
-            b_.accumulatedFitted[k].assign(3 * b_.stride, 0.0f);
+            b_.position[k].assign(3 * b_.stride, 0.0f);
+            b_.normal[k].assign(3, b_.stride, s.halfHistory);
+            b_.noisy[k].assign(4, b_.stride, s.halfHistory);
+            b_.accumulatedFitted[k].assign(3, b_.stride, s.halfHistory);
             b_.output[k].assign(3 * n + 24, 0.0f);
         }
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
@@ -65,10 +66,10 @@ class CpuBmfrPasses final : public BmfrPasses {
         const long n = long(t.width) * t.height;
         for (long i = 0; i < n; ++i) {
             for (int c = 0; c < 3; ++c) {
-                b_.debugNoisy.data()[3 * i + c] = b_.plane(b_.noisy[t.cur], c)[i];
+                b_.debugNoisy.data()[3 * i + c] = b_.noisy[t.cur].at(c, size_t(i));
                 b_.debugFitted.data()[3 * i + c] = b_.plane(b_.fitted, c)[i];
             }
-            b_.debugLength.data()[i] = b_.plane(b_.noisy[t.cur], 3)[i];
+            b_.debugLength.data()[i] = b_.noisy[t.cur].at(3, size_t(i));
             b_.debugAccept.data()[i] = b_.acceptMask[size_t(i)];
         }
     }

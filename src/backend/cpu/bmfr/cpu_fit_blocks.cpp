@@ -15,17 +15,31 @@ struct Phase2 {
     const BmfrPassContext& ctx;
     Buffers& b;
     BlockGrid grid;
-    /// The fitter's sources: normal xyz, position xyz, phase I colour.
-    const float* planes[9];
+    /// The fitter's sources: normal xyz, position xyz, phase I colour; float, or half where
+    /// `half` (BmfrSettings::halfHistory: the normals and the colour).
+    const void* planes[9];
+    bool half[9] = {};
+    bool anyHalf = false;
 
     Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g)
         : ctx(c), b(buffers), grid(g) {
         const int cur = c.timeline.history.cur;
         for (int ch = 0; ch < 3; ++ch) {
-            planes[ch] = b.plane(b.surface[cur], 3 + ch);
-            planes[3 + ch] = b.plane(b.surface[cur], ch);
-            planes[6 + ch] = b.plane(b.noisy[cur], ch);
+            planes[ch] = b.normal[cur].address(ch);
+            planes[3 + ch] = b.plane(b.position[cur], ch);
+            planes[6 + ch] = b.noisy[cur].address(ch);
+            half[ch] = b.normal[cur].half, half[6 + ch] = b.noisy[cur].half;
         }
+        anyHalf = half[0] || half[6];
+    }
+    const float* floatPlane(int ch) const { return static_cast<const float*>(planes[ch]); }
+    const _Float16* halfPlane(int ch) const { return static_cast<const _Float16*>(planes[ch]); }
+    /// Address of value i of a source, for prefetching.
+    const void* address(int ch, long i) const {
+        return static_cast<const std::byte*>(planes[ch]) + i * (half[ch] ? 2 : 4);
+    }
+    float value(int ch, long i) const {
+        return half[ch] ? float(halfPlane(ch)[i]) : floatPlane(ch)[i];
     }
 };
 
@@ -57,26 +71,30 @@ BMFR_SIMD_INLINE void gatherExtras(const Phase2& a, int ox, int oy, bool inside,
     }
 }
 
-/// Copies n floats, eight at a time while they last.
-BMFR_SIMD_INLINE void copyRun(float* dst, const float* src, int n) {
+/// Copies n values of a float or half plane as floats, eight at a time while they last.
+template <class T> BMFR_SIMD_INLINE void copyRun(float* dst, const T* src, int n) {
     int k = 0;
     for (; k + 8 <= n; k += 8) store8(dst + k, load8(src + k));
-    for (; k < n; ++k) dst[k] = src[k];
+    for (; k < n; ++k) dst[k] = float(src[k]);
+}
+BMFR_SIMD_INLINE void copySourceRun(const Phase2& a, int ch, float* dst, long from, int n) {
+    if (a.half[ch]) return copyRun(dst, a.halfPlane(ch) + from, n);
+    copyRun(dst, a.floatPlane(ch) + from, n);
 }
 
-/// The rows of block (ox, oy). A block inside the image reads the planes in place; a border
-/// block is copied into scratch with the image mirrored in, and marks the pixels it owns.
+/// The rows of block (ox, oy). A block inside the image reads float planes in place; a border
+/// block, or any block of half planes, is copied into scratch as floats with the image mirrored
+/// in, and marks the pixels it owns.
 BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B;
-    const float* const* plane = a.planes;
     BlockRows r;
     r.inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     gatherExtras(a, ox, oy, r.inside, sc);
-    if (r.inside) {
+    if (r.inside && !a.anyHalf) {
         const long first = long(oy) * g.width + ox;
-        for (int ch = 0; ch < 6; ++ch) r.source[ch] = plane[ch] + first;
-        for (int ch = 0; ch < 3; ++ch) r.colour[ch] = plane[6 + ch] + first;
+        for (int ch = 0; ch < 6; ++ch) r.source[ch] = a.floatPlane(ch) + first;
+        for (int ch = 0; ch < 3; ++ch) r.colour[ch] = a.floatPlane(6 + ch) + first;
         r.pitch = g.width;
         return r;
     }
@@ -90,12 +108,13 @@ BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& s
         const long row = long(iy) * g.width;
         const int k = ly * B;
         for (int ch = 0; ch < 9; ++ch)
-            copyRun(copy[ch] + k + xa, plane[ch] + row + ox + xa, xb - xa);
+            copySourceRun(a, ch, copy[ch] + k + xa, row + ox + xa, xb - xa);
+        if (r.inside) continue;
         for (int lx = 0; lx < B; ++lx) {
             const bool in = lx >= xa && lx < xb;
             if (!in) {
                 const long idx = row + mirrorIndex(ox + lx, g.width);
-                for (int ch = 0; ch < 9; ++ch) copy[ch][k + lx] = plane[ch][idx];
+                for (int ch = 0; ch < 9; ++ch) copy[ch][k + lx] = a.value(ch, idx);
             }
             sc.imageIndex[size_t(k + lx)] = rowInside && in ? int(row + ox + lx) : -1;
         }
@@ -117,14 +136,15 @@ BMFR_SIMD_INLINE void prefetchBlock(const Phase2& a, int bx, int by) {
     if (ox >= x1 || oy >= y1) return;
     const bool narrow = x1 - ox <= 32; // three lines cover a run of up to 32 floats
     for (int y = oy; y < y1; ++y)
-        for (const float* p : a.planes) {
-            const float* row = p + long(y) * g.width;
+        for (int ch = 0; ch < 9; ++ch) {
+            const long row = long(y) * g.width;
             if (narrow) {
-                __builtin_prefetch(row + ox), __builtin_prefetch(row + ox + 16);
+                __builtin_prefetch(a.address(ch, row + ox));
+                __builtin_prefetch(a.address(ch, row + ox + 16));
             } else {
-                for (int x = ox; x < x1; x += 16) __builtin_prefetch(row + x);
+                for (int x = ox; x < x1; x += 16) __builtin_prefetch(a.address(ch, row + x));
             }
-            __builtin_prefetch(row + x1 - 1);
+            __builtin_prefetch(a.address(ch, row + x1 - 1));
         }
 }
 
@@ -251,7 +271,8 @@ BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch&
     }
 }
 
-BMFR_SIMD_CLONES void fitBlock(const Phase2& a, int bx, int by, Scratch& sc) {
+BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc),
+                   (a, bx, by, sc)) {
     const BmfrSettings& s = a.ctx.settings;
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B, M = int(s.features.size());

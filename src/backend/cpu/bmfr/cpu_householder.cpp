@@ -103,9 +103,9 @@ BMFR_SIMD_INLINE void updateGroup(const float* v, float* a, int count, int rows,
     }
 }
 
-// Internal linkage: GCC would give an external clone's resolver default visibility.
-BMFR_SIMD_CLONES int solveHouseholderClones(float* columns, int featureCount, int rows, long stride,
-                                            float* coeffs) {
+BMFR_SIMD_DISPATCH(int, solveHouseholderPaths,
+                   (float* columns, int featureCount, int rows, long stride, float* coeffs),
+                   (columns, featureCount, rows, stride, coeffs)) {
     const int M = featureCount, total = featureCount + 3;
     auto column = [&](int j) { return columns + long(j) * stride; };
     HouseholderSteps q;
@@ -143,11 +143,11 @@ BMFR_SIMD_CLONES int solveHouseholderClones(float* columns, int featureCount, in
 } // namespace
 
 int solveHouseholderFast(float* columns, int featureCount, int rows, long stride, float* coeffs) {
-    return solveHouseholderClones(columns, featureCount, rows, stride, coeffs);
+    return solveHouseholderPaths(columns, featureCount, rows, stride, coeffs);
 }
 
 int solveHouseholderFast(float* columns, int featureCount, int rows, float* coeffs) {
-    return solveHouseholderClones(columns, featureCount, rows, rows, coeffs);
+    return solveHouseholderPaths(columns, featureCount, rows, rows, coeffs);
 }
 
 } // namespace bmfr::cpu

@@ -18,8 +18,9 @@ BMFR_SIMD_INLINE f8 secondBlendWeight8(f8 length, float minAlpha) {
 /// Phase III of pixels [i, i + n) into the resolved row at x: accumulateFittedPixel
 /// (filters/bmfr/accumulation_kernels.h) eight pixels at a time. The history is stored only when
 /// `owned`.
-BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes& pl, long i, int x, int n,
-                                  bool owned, float* row, size_t pitch) {
+template <class T>
+BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes<T>& pl, long i, int x,
+                                  int n, bool owned, float* row, size_t pitch) {
     const BmfrSettings& s = a.s;
     const TemporalHistory& t = a.t;
     f8 c[3];
@@ -52,7 +53,8 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes& pl, lon
 
 /// Phase III of image row y into a resolved row. The halo rows a neighbouring task owns are
 /// recomputed, not shared (owned = false).
-BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, const FramePlanes& pl, long y, bool owned,
+template <class T>
+BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, const FramePlanes<T>& pl, long y, bool owned,
                                 float* row) {
     const int w = a.t.width;
     const size_t pitch = ResolvedRows::pitch(w);
@@ -63,24 +65,28 @@ BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, const FramePlanes& pl, long 
 
 constexpr int kRowsPerTask = 32;
 
-BMFR_SIMD_CLONES void resolveRows(const FrameArgs& a, long y0, long y1, float* ring) {
+BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, float* ring),
+                   (a, y0, y1, ring)) {
     const int w = a.t.width, h = a.t.height;
     const size_t pitch = ResolvedRows::pitch(w);
     const bool taa = a.s.taa && a.t.hasHistory();
-    const FramePlanes pl(a.b, a.t.cur);
     const float* history = a.b.output[1 - a.t.cur].data();
     float* out = a.b.output[a.t.cur].data();
     auto row = [&](long y) { return ring + size_t(y % 3) * ResolvedRows::rowFloats(w); };
-    if (taa && y0 > 0) phase3Row(a, pl, y0 - 1, false, row(y0 - 1));
-    phase3Row(a, pl, y0, true, row(y0));
-    for (long y = y0; y < y1; ++y) {
-        if (y + 1 < h && (taa || y + 1 < y1)) phase3Row(a, pl, y + 1, y + 1 < y1, row(y + 1));
-        const float* mid = row(y);
-        const float* up = y > 0 ? row(y - 1) : mid;
-        const float* down = y + 1 < h ? row(y + 1) : mid;
-        taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w, pl.previousPixel[1] + y * w,
-               history, out + 3 * y * w, w, h, a.s.taaBlendAlpha, taa);
-    }
+    auto rows = [&] [[gnu::always_inline]] (auto storage) {
+        const FramePlanes<decltype(storage)> pl(a.b, a.t.cur);
+        if (taa && y0 > 0) phase3Row(a, pl, y0 - 1, false, row(y0 - 1));
+        phase3Row(a, pl, y0, true, row(y0));
+        for (long y = y0; y < y1; ++y) {
+            if (y + 1 < h && (taa || y + 1 < y1)) phase3Row(a, pl, y + 1, y + 1 < y1, row(y + 1));
+            const float* mid = row(y);
+            const float* up = y > 0 ? row(y - 1) : mid;
+            const float* down = y + 1 < h ? row(y + 1) : mid;
+            taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w, pl.previousPixel[1] + y * w,
+                   history, out + 3 * y * w, w, h, a.s.taaBlendAlpha, taa);
+        }
+    };
+    a.s.halfHistory ? rows(_Float16{}) : rows(float{});
 }
 
 } // namespace

@@ -66,8 +66,9 @@ BMFR_SIMD_INLINE void loadTaps(const float* taps, i8 index, int q, f8 out[3]) {
     out[2] = __builtin_shuffle(t2, t3, i8{0, 1, 8, 9, 4, 5, 12, 13});
 }
 
-BMFR_SIMD_CLONES void packRow(const MaraFrame& f, const float* src, bool guide, float* taps,
-                              int y) {
+BMFR_SIMD_DISPATCH(void, packRow,
+                   (const MaraFrame& f, const float* src, bool guide, float* taps, int y),
+                   (f, src, guide, taps, y)) {
     for (long i = long(y) * f.width, end = i + f.width; i < end; ++i) {
         float* r = taps + kMaraTapRecord * i;
         const float* from[3] = {f.position + 3 * i, f.normal + 3 * i, src + 3 * i};
@@ -80,8 +81,10 @@ BMFR_SIMD_CLONES void packRow(const MaraFrame& f, const float* src, bool guide, 
 /// The most taps of a sparse stage (the settings' range).
 constexpr int kMaxTaps = 256;
 
-BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, bool final, int y,
-                                int x0, int x1, const MaraTapTables* tables) {
+BMFR_SIMD_DISPATCH(void, sparseRow,
+                   (const MaraFrame& f, const float* tapRecords, bool final, int y, int x0, int x1,
+                    const MaraTapTables* tables),
+                   (f, tapRecords, final, y, x0, x1, tables)) {
     const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
     const long row = long(y) * w;
     float* dst = final ? f.matteOut : f.matteHistory;
@@ -175,7 +178,7 @@ BMFR_SIMD_CLONES void sparseRow(const MaraFrame& f, const float* tapRecords, boo
     }
 }
 
-BMFR_SIMD_CLONES void medianRow(const MaraFrame& f, int y) {
+BMFR_SIMD_DISPATCH(void, medianRow, (const MaraFrame& f, int y), (f, y)) {
     const int w = f.width;
     int rows[3];
     for (int d = -1; d <= 1; ++d)
@@ -198,8 +201,9 @@ BMFR_SIMD_CLONES void medianRow(const MaraFrame& f, int y) {
     for (; x < w; ++x) maraMedianPixel(f, x, y);
 }
 
-BMFR_SIMD_CLONES void glossyRow(const MaraFrame& f, const float* src, float* dst, int y, int dx,
-                                int dy) {
+BMFR_SIMD_DISPATCH(void, glossyRow,
+                   (const MaraFrame& f, const float* src, float* dst, int y, int dx, int dy),
+                   (f, src, dst, y, dx, dy)) {
     const int w = f.width;
     const long row = long(y) * w;
     float g[64];

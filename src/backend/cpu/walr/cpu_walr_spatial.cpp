@@ -43,8 +43,10 @@ struct BlockTaps {
     int steps[8][8];
 };
 
-BMFR_SIMD_CLONES void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int x,
-                                 int y, BlockTaps& out) {
+BMFR_SIMD_DISPATCH(void, traceBlock,
+                   (const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int x, int y,
+                    BlockTaps& out),
+                   (g, e, l, x, y, out)) {
     const long o = long(y) * e.rowStride + x;
     const float *px = e.plane(0), *py = e.plane(1), *pz = e.plane(2);
     const f8 p[3] = {load8(px + o), load8(py + o), load8(pz + o)};
@@ -115,8 +117,9 @@ BMFR_SIMD_CLONES void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
 }
 
 /// The averages of one pixel from its traced taps, 14 channels as two eight-wide halves.
-BMFR_SIMD_CLONES void gatherPixel(const EdgeGuide& g, const WalrLevel& l, const BlockTaps& t,
-                                  int lane, long i) {
+BMFR_SIMD_DISPATCH(void, gatherPixel,
+                   (const EdgeGuide& g, const WalrLevel& l, const BlockTaps& t, int lane, long i),
+                   (g, l, t, lane, i)) {
     float total = l.weightIn ? l.weightIn[i] : 1.0f;
     f8 lo = total * load8(l.in + 16 * i), hi = total * load8(l.in + 16 * i + 8);
     for (int tap = 0; tap < 8; ++tap) {
@@ -135,8 +138,10 @@ BMFR_SIMD_CLONES void gatherPixel(const EdgeGuide& g, const WalrLevel& l, const 
 }
 
 /// choleskyClamped, choleskySolve and the prediction of walrPredict<float>, eight pixels wide.
-BMFR_SIMD_CLONES void solveBlock(const float* averages, const float* features, float eps, long i,
-                                 int count, float* out) {
+BMFR_SIMD_DISPATCH(void, solveBlock,
+                   (const float* averages, const float* features, float eps, long i, int count,
+                    float* out),
+                   (averages, features, eps, i, count, out)) {
     f8 a[kWalrAverages], fx{}, fy{};
     for (int lane = 0; lane < count; ++lane) {
         for (int k = 0; k < kWalrAverages; ++k) a[k][lane] = averages[16 * (i + lane) + k];

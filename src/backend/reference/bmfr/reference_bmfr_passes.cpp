@@ -52,6 +52,7 @@ InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
     a.previous = t.previous;
     a.limits = {s.positionLimitSquared, s.normalLimitSquared};
     a.minAlpha = s.firstBlendAlpha, a.accumulate = s.stages.firstAccumulation;
+    a.halfHistory = s.halfHistory;
     a.width = t.width, a.height = t.height;
     a.normal = b.normal[cur].data(), a.position = b.position[cur].data();
     a.prevNormal = b.normal[prev].data(), a.prevPosition = b.position[prev].data();
@@ -100,6 +101,7 @@ void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
     a.accumulate = t.hasHistory() && s.stages.secondAccumulation;
     a.remodulate = s.stages.demodulate || s.colorIsDemodulated;
     a.albedoEpsilon = s.albedoEpsilon, a.minAlpha = s.secondBlendAlpha, a.width = t.width;
+    a.halfHistory = s.halfHistory;
     a.fitted = b.fitted.data(), a.prevAccumulated = b.accumulatedFitted[1 - t.cur].data();
     a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
     a.length = b.historyLength[t.cur].data(), a.accumulated = b.accumulatedFitted[t.cur].data();
