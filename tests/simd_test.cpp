@@ -105,3 +105,35 @@ TEST(Simd, HalfStoresRoundToNearestEvenAndSaturate) {
         }
     }
 }
+
+#if BMFR_SIMD_F16C
+// The F16C loads and stores (inline assembly, AVX2 and AVX-512 paths) give the bits of the
+// integer conversions above, which are tested against _Float16.
+BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] void roundTripF16c(const float* in, F16cHalf* half,
+                                                           float* back) {
+    store8(half, load8(in));
+    store8(back, load8(static_cast<const F16cHalf*>(half)));
+}
+
+TEST(Simd, F16cHalvesMatchTheIntegerConversions) {
+    if (bmfr::cpu::bestIsa() < bmfr::cpu::Isa::Avx2) GTEST_SKIP() << "this processor lacks F16C";
+    uint32_t state = 777;
+    for (int i = 0; i < 20000; ++i) {
+        float in[8];
+        for (float& f : in) {
+            state = state * 1664525u + 1013904223u;
+            const uint32_t bits = (state & 0x807fffffu) | (((state >> 23) % 50u + 98u) << 23);
+            std::memcpy(&f, &bits, sizeof f);
+        }
+        in[0] = i == 0 ? 1e9f : in[0]; // saturates
+        F16cHalf hw[8];
+        _Float16 sw[8];
+        float back[8];
+        roundTripF16c(in, hw, back);
+        store8(sw, load8(in));
+        ASSERT_EQ(std::memcmp(hw, sw, sizeof hw), 0) << "float " << in[0] << " ...";
+        const f8 soft = load8(sw);
+        for (int l = 0; l < 8; ++l) ASSERT_EQ(back[l], soft[l]);
+    }
+}
+#endif

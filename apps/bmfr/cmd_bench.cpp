@@ -1,3 +1,4 @@
+#include "backend/cpu/isa.h"
 #include "commands.h"
 #include "core/vec.h"
 #include "progress.h"
@@ -96,9 +97,14 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     // The memory baselines, measured in this run on buffers freed before the passes start: the
     // BMFR fast passes' own traffic, and (any filter) the inputs and a float history once.
     const bool floors = job.filter == "bmfr" && job.backend == "cpu";
-    const double floor = floors ? streamFloorMs(w, h, job.threads, 5, fastPassTraffic()) : 0.0;
+    const auto* bmfrFilter = dynamic_cast<const BmfrDenoiser*>(d.get());
+    const bool half = bmfrFilter && bmfrFilter->settings().halfHistory;
+    const double floor = floors ? streamFloorMs(w, h, job.threads, 5, fastPassTraffic(half)) : 0.0;
     const double single =
         job.backend == "cpu" ? streamFloorMs(w, h, job.threads, 5, singlePassTraffic()) : 0.0;
+    const double singleHalf = job.backend == "cpu" && half
+                                  ? streamFloorMs(w, h, job.threads, 5, singlePassTraffic(true))
+                                  : 0.0;
     StageLog log, refLog;
     for (int i = 0; i < job.warmup + job.frames; ++i) {
         // Cycle forwards then backwards so the camera motion stays continuous.
@@ -120,6 +126,9 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
         {"total_ms", log.totalMedian()}, {"stages", log.medians()}, {"line", log.line()}};
     if (floors) r["stream_floor_ms"] = floor;
     if (single > 0) r["single_pass_floor_ms"] = single;
+    if (singleHalf > 0) r["single_pass_floor_half_ms"] = singleHalf;
+    if (bmfrFilter) r["history"] = half ? "half" : "float";
+    if (job.backend == "cpu") r["cpu_path"] = cpu::isaName(cpu::activeIsa());
     if (ref) {
         r["baseline_backend"] = job.motion ? job.backend + ", camera path" : baseline;
         r["baseline_filter"] = job.referenceFilter();
@@ -176,8 +185,13 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
             nlohmann::json r = benchOne(*job, w, h, [&] { progress.step(++done); });
             if (!job->json) {
                 progress.pause();
-                fmt::print("{:>10} {} on {}: {} ms   (median of {} frames)\n", size, job->filter,
-                           job->backend, r["line"].get<std::string>(), job->frames);
+                std::string how;
+                if (r.contains("cpu_path")) how = r["cpu_path"].get<std::string>() + " path";
+                if (r.contains("history"))
+                    how += (how.empty() ? "" : ", ") + r["history"].get<std::string>() + " history";
+                fmt::print("{:>10} {} on {}{}: {} ms   (median of {} frames)\n", size, job->filter,
+                           job->backend, how.empty() ? "" : " (" + how + ")",
+                           r["line"].get<std::string>(), job->frames);
                 if (r.contains("baseline_line") && job->motion)
                     fmt::print("{:>10} camera path: {} ms   -> motion vectors cost {:+.1f}%\n", "",
                                r["baseline_line"].get<std::string>(),
@@ -202,6 +216,12 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                                "", r["single_pass_floor_ms"].get<double>(),
                                r["total_ms"].get<double>() /
                                    r["single_pass_floor_ms"].get<double>());
+                if (r.contains("single_pass_floor_half_ms"))
+                    fmt::print("{:>10} single-pass floor, half history: inputs and the half "
+                               "history once, {:.2f} ms -> measured is {:.1f}x that\n",
+                               "", r["single_pass_floor_half_ms"].get<double>(),
+                               r["total_ms"].get<double>() /
+                                   r["single_pass_floor_half_ms"].get<double>());
                 std::fflush(stdout);
             }
             r.erase("line");

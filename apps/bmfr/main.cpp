@@ -1,5 +1,6 @@
 // bmfr: denoise 1-spp path-traced sequences with BMFR; benchmark; demo on a built-in scene.
 // Exit codes: 0 success, 1 a runtime error, 2 a usage error, 130 interrupted.
+#include "backend/cpu/isa.h"
 #include "commands.h"
 #include "git_commit.h"
 #include "io/shell_quote.h"
@@ -15,8 +16,15 @@ std::string gInvocation;
 namespace bmfr::app {
 
 std::string versionText() {
-    return fmt::format("bmfr {} (commit {}; backends: {})", BMFR_VERSION, BMFR_GIT_COMMIT,
-                       fmt::join(bmfr::compiledBackends(), ", "));
+    std::string path;
+    try {
+        path = bmfr::cpu::isaName(bmfr::cpu::activeIsa());
+    } catch (const bmfr::Error&) {
+        path = "none (BMFR_CPU_ISA is invalid)";
+    }
+    return fmt::format("bmfr {} (commit {}; backends: {}; cpu path: {} of {})", BMFR_VERSION,
+                       BMFR_GIT_COMMIT, fmt::join(bmfr::compiledBackends(), ", "), path,
+                       bmfr::cpu::isaName(bmfr::cpu::bestIsa()));
 }
 
 const std::string& invocation() {

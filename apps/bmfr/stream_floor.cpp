@@ -20,12 +20,20 @@ constexpr PassTraffic kFast[] = {{22, 13}, {9, 3}, {16, 6}};
 // and length 4, phase III output 3, output 3), and writes the new history and the output (16).
 constexpr PassTraffic kSinglePass[] = {{28, 16}};
 
+// The same with half normals, phase I colour and length, and phase III colour: accumulate
+// reads 18.5 and writes 9.5, the fit reads 6, resolve reads 14 and writes 4.5 planes.
+constexpr PassTraffic kFastHalf[] = {{18, 9}, {6, 3}, {14, 4}};
+// Half normals (1.5), colour and length (2) and phase III colour (1.5), read and written.
+constexpr PassTraffic kSinglePassHalf[] = {{23, 11}};
+
 } // namespace
 
-std::span<const PassTraffic> fastPassTraffic() {
+std::span<const PassTraffic> fastPassTraffic(bool halfHistory) {
+    if (halfHistory) return kFastHalf;
     return kFast;
 }
-std::span<const PassTraffic> singlePassTraffic() {
+std::span<const PassTraffic> singlePassTraffic(bool halfHistory) {
+    if (halfHistory) return kSinglePassHalf;
     return kSinglePass;
 }
 

@@ -10,11 +10,13 @@ struct PassTraffic {
     int reads, writes;
 };
 
-/// What the fast passes stream, pass by pass (see stream_floor.cpp for the count).
-std::span<const PassTraffic> fastPassTraffic();
-/// The least any implementation with float history must stream: one pass over the inputs and
-/// the history, everything else kept in cache.
-std::span<const PassTraffic> singlePassTraffic();
+/// What the fast passes stream, pass by pass (see stream_floor.cpp for the count), with float
+/// or half history planes (BmfrSettings::halfHistory; two half planes count as one float plane,
+/// rounded down, so the figure stays a floor).
+std::span<const PassTraffic> fastPassTraffic(bool halfHistory = false);
+/// The least any implementation must stream: one pass over the inputs and the history (float or
+/// half as BmfrSettings::halfHistory stores it), everything else kept in cache.
+std::span<const PassTraffic> singlePassTraffic(bool halfHistory = false);
 
 /// Median ms (over `repeats`) to stream, for a width x height frame, the planes of `passes` in
 /// turn, with `threads` workers (0 = all cores). No arithmetic beyond one add per plane read;

@@ -4,6 +4,7 @@
 #include "backend/cpu/isa.h"
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 namespace bmfr::simd {
 
@@ -19,24 +20,27 @@ typedef int32_t i8 __attribute__((vector_size(32)));
 //   BMFR_SIMD_DISPATCH(void, rows, (const Args& a, long y0), (a, y0)) { ...body... }
 //
 // defines rows(a, y0), which calls the body compiled for the active path. The body is written
-// once, as an always-inline function (rowsBody) that each path's copy inlines.
+// once, as an always-inline function template (rowsBody<kIsa>) that each path's copy inlines;
+// `kIsa` lets it choose what only some paths may execute (F16C, sixteen-wide vectors).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define BMFR_SIMD_TARGET_AVX512 [[gnu::target("arch=x86-64-v4")]]
 #define BMFR_SIMD_TARGET_AVX2 [[gnu::target("arch=x86-64-v3")]]
+#define BMFR_SIMD_F16C 1
 #else
 #define BMFR_SIMD_TARGET_AVX512
 #define BMFR_SIMD_TARGET_AVX2
+#define BMFR_SIMD_F16C 0
 #endif
 #define BMFR_SIMD_DISPATCH(Ret, name, Params, Args)                                                \
-    BMFR_SIMD_INLINE Ret name##Body Params;                                                        \
+    template <::bmfr::cpu::Isa kIsa> BMFR_SIMD_INLINE Ret name##Body Params;                       \
     BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] Ret name##Avx512 Params {                            \
-        return name##Body Args;                                                                    \
+        return name##Body<::bmfr::cpu::Isa::Avx512> Args;                                          \
     }                                                                                              \
     BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] Ret name##Avx2 Params {                                \
-        return name##Body Args;                                                                    \
+        return name##Body<::bmfr::cpu::Isa::Avx2> Args;                                            \
     }                                                                                              \
     [[gnu::noinline]] Ret name##Baseline Params {                                                  \
-        return name##Body Args;                                                                    \
+        return name##Body<::bmfr::cpu::Isa::Baseline> Args;                                        \
     }                                                                                              \
     Ret name Params {                                                                              \
         switch (::bmfr::cpu::activeIsa()) {                                                        \
@@ -48,7 +52,7 @@ typedef int32_t i8 __attribute__((vector_size(32)));
             return name##Baseline Args;                                                            \
         }                                                                                          \
     }                                                                                              \
-    BMFR_SIMD_INLINE Ret name##Body Params
+    template <::bmfr::cpu::Isa kIsa> BMFR_SIMD_INLINE Ret name##Body Params
 
 BMFR_SIMD_INLINE f8 load8(const float* p) {
     f8 v;
@@ -96,6 +100,36 @@ BMFR_SIMD_INLINE void store8(_Float16* p, f8 v) {
     const u16x8 h = __builtin_convertvector(bits, u16x8);
     std::memcpy(p, &h, sizeof h);
 }
+/// A half stored by F16C. A type of its own, so that only bodies compiled for a path that has
+/// F16C (kIsa >= Isa::Avx2, with BMFR_SIMD_F16C) instantiate its loads and stores: inline
+/// assembly, since a body shared by every path cannot call the F16C intrinsics.
+struct F16cHalf {
+    uint16_t bits;
+};
+typedef int16_t s16x8 __attribute__((vector_size(16)));
+#if BMFR_SIMD_F16C
+BMFR_SIMD_INLINE f8 load8(const F16cHalf* p) {
+    s16x8 h;
+    std::memcpy(&h, p, sizeof h);
+    f8 v;
+    asm("vcvtph2ps %1, %0" : "=x"(v) : "x"(h));
+    return v;
+}
+/// The same as store8(_Float16*, f8): saturate, then round to nearest even (imm 4: MXCSR's
+/// rounding, which bmfr never changes from nearest even).
+BMFR_SIMD_INLINE void store8(F16cHalf* p, f8 v) {
+    f8 big{};
+    for (int l = 0; l < 8; ++l) big[l] = 65504.0f;
+    v = v > big ? big : (v < -big ? -big : v);
+    s16x8 h;
+    asm("vcvtps2ph $4, %1, %0" : "=x"(h) : "x"(v));
+    std::memcpy(p, &h, sizeof h);
+}
+#endif
+/// The half type a body compiled for `isa` stores.
+template <cpu::Isa isa>
+using HalfOf = std::conditional_t<BMFR_SIMD_F16C && isa >= cpu::Isa::Avx2, F16cHalf, _Float16>;
+
 /// (1 - t) a + t b per lane, as bmfr::lerp.
 BMFR_SIMD_INLINE f8 lerp8(f8 a, f8 b, f8 t) {
     return (1.0f - t) * a + t * b;

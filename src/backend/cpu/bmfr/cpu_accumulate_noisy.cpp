@@ -135,7 +135,7 @@ BMFR_SIMD_DISPATCH(void, accumulateRows,
             for (int x = 0; x < w; x += 8)
                 accumulateGroup(a, pl, x, int(y), std::min(8, w - x), bad, lost);
     };
-    a.s.halfHistory ? rows(_Float16{}) : rows(float{});
+    a.s.halfHistory ? rows(HalfOf<kIsa>{}) : rows(float{});
 }
 
 } // namespace

@@ -75,16 +75,19 @@ BMFR_SIMD_INLINE void gatherExtras(const Phase2& a, int ox, int oy, bool inside,
 template <class T> BMFR_SIMD_INLINE void copyRun(float* dst, const T* src, int n) {
     int k = 0;
     for (; k + 8 <= n; k += 8) store8(dst + k, load8(src + k));
-    for (; k < n; ++k) dst[k] = float(src[k]);
+    if (k < n) storeFirst(dst + k, loadFirst(src + k, n - k), n - k);
 }
+template <Isa kIsa>
 BMFR_SIMD_INLINE void copySourceRun(const Phase2& a, int ch, float* dst, long from, int n) {
-    if (a.half[ch]) return copyRun(dst, a.halfPlane(ch) + from, n);
+    using Half = HalfOf<kIsa>;
+    if (a.half[ch]) return copyRun(dst, static_cast<const Half*>(a.planes[ch]) + from, n);
     copyRun(dst, a.floatPlane(ch) + from, n);
 }
 
 /// The rows of block (ox, oy). A block inside the image reads float planes in place; a border
 /// block, or any block of half planes, is copied into scratch as floats with the image mirrored
 /// in, and marks the pixels it owns.
+template <Isa kIsa>
 BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B;
@@ -108,7 +111,7 @@ BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& s
         const long row = long(iy) * g.width;
         const int k = ly * B;
         for (int ch = 0; ch < 9; ++ch)
-            copySourceRun(a, ch, copy[ch] + k + xa, row + ox + xa, xb - xa);
+            copySourceRun<kIsa>(a, ch, copy[ch] + k + xa, row + ox + xa, xb - xa);
         if (r.inside) continue;
         for (int lx = 0; lx < B; ++lx) {
             const bool in = lx >= xa && lx < xb;
@@ -279,7 +282,7 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
     const int ox = g.originX(bx), oy = g.originY(by);
     // Blocks that own no pixel (entirely outside the image after the offset) are skipped.
     if (ox + B <= 0 || oy + B <= 0 || ox >= g.width || oy >= g.height) return;
-    const BlockRows rows = blockRows(a, ox, oy, sc);
+    const BlockRows rows = blockRows<kIsa>(a, ox, oy, sc);
     buildColumns(a, rows, sc);
     prefetchBlock(a, bx + 1, by); // the next block of this row (none after the last)
 

@@ -3,6 +3,7 @@
 #include "filters/bmfr/householder_qr.h"
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace bmfr::cpu {
 
@@ -12,35 +13,69 @@ namespace {
 
 constexpr int kGroup = 4; // columns per sweep: four accumulators plus v stay in registers
 
+/// The sweeps work on V, eight floats (f8) or, on the AVX-512 path, sixteen (f16v).
+typedef float f16v __attribute__((vector_size(64)));
+template <class V> constexpr int kLanes = int(sizeof(V) / sizeof(float));
+template <class V> BMFR_SIMD_INLINE V loadV(const float* p) {
+    V v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+template <class V> BMFR_SIMD_INLINE void storeV(float* p, V v) {
+    std::memcpy(p, &v, sizeof v);
+}
+template <class V> BMFR_SIMD_INLINE V splatV(float a) {
+    V v{};
+    for (int l = 0; l < kLanes<V>; ++l) v[l] = a;
+    return v;
+}
+/// Sum of the lanes as a fixed tree (repeatable): halves added until eight remain, then hsum8.
+template <class V> BMFR_SIMD_INLINE float hsumV(V v) {
+    if constexpr (kLanes<V> == 8) {
+        return hsum8(v);
+    } else {
+        f8 lo, hi;
+        std::memcpy(&lo, &v, sizeof lo);
+        std::memcpy(&hi, reinterpret_cast<const char*>(&v) + sizeof lo, sizeof hi);
+        return hsum8(lo + hi);
+    }
+}
+/// The first row at or after `row` where whole vectors start.
+template <class V> BMFR_SIMD_INLINE int alignedRow(int row, int rows) {
+    return std::min((row + kLanes<V> - 1) & ~(kLanes<V> - 1), rows);
+}
+
 /// d[g] = v . a_g over rows [begin, rows) for `count` columns a_g, `stride` floats apart.
-template <int count>
+template <class V, int count>
 BMFR_SIMD_INLINE void dotGroupOf(const float* v, const float* a, int rows, long stride, int begin,
                                  float* d) {
-    const int body = std::min((begin + 7) & ~7, rows), tail = body + (rows - body) / 8 * 8;
+    constexpr int L = kLanes<V>;
+    const int body = alignedRow<V>(begin, rows), tail = body + (rows - body) / L * L;
     float head[count] = {};
     for (int i = begin; i < body; ++i)
         for (int g = 0; g < count; ++g) head[g] += v[i] * a[long(g) * stride + i];
     for (int i = tail; i < rows; ++i)
         for (int g = 0; g < count; ++g) head[g] += v[i] * a[long(g) * stride + i];
-    f8 acc[kGroup] = {};
-    for (int i = body; i < tail; i += 8) {
-        const f8 x = load8(v + i);
-        for (int g = 0; g < count; ++g) acc[g] += x * load8(a + long(g) * stride + i);
+    V acc[kGroup] = {};
+    for (int i = body; i < tail; i += L) {
+        const V x = loadV<V>(v + i);
+        for (int g = 0; g < count; ++g) acc[g] += x * loadV<V>(a + long(g) * stride + i);
     }
-    for (int g = 0; g < count; ++g) d[g] = head[g] + hsum8(acc[g]);
+    for (int g = 0; g < count; ++g) d[g] = head[g] + hsumV(acc[g]);
 }
 
+template <class V>
 BMFR_SIMD_INLINE void dotGroup(const float* v, const float* a, int count, int rows, long stride,
                                int begin, float* d) {
     switch (count) {
     case 1:
-        return dotGroupOf<1>(v, a, rows, stride, begin, d);
+        return dotGroupOf<V, 1>(v, a, rows, stride, begin, d);
     case 2:
-        return dotGroupOf<2>(v, a, rows, stride, begin, d);
+        return dotGroupOf<V, 2>(v, a, rows, stride, begin, d);
     case 3:
-        return dotGroupOf<3>(v, a, rows, stride, begin, d);
+        return dotGroupOf<V, 3>(v, a, rows, stride, begin, d);
     default:
-        return dotGroupOf<kGroup>(v, a, rows, stride, begin, d);
+        return dotGroupOf<V, kGroup>(v, a, rows, stride, begin, d);
     }
 }
 
@@ -48,10 +83,11 @@ BMFR_SIMD_INLINE void dotGroup(const float* v, const float* a, int count, int ro
 /// `next` (column k + 1, the next step's reflector) it also forms the next step's dot products
 /// in the same sweep: d[g] = next . a_g over rows > k, after the update. When a_0 is `next`
 /// itself, d[0] is instead the next step's sum of squares below its diagonal (rows > k + 1).
-template <int count, bool look, bool self>
+template <class V, int count, bool look, bool self>
 BMFR_SIMD_INLINE void updateGroupOf(const float* v, float* a, int rows, long stride, int k,
                                     const float* f, const float* next, float* d) {
-    const int body = std::min((k + 2 + 7) & ~7, rows), tail = body + (rows - body) / 8 * 8;
+    constexpr int L = kLanes<V>;
+    const int body = alignedRow<V>(k + 2, rows), tail = body + (rows - body) / L * L;
     auto scalarRows = [&](int i0, int i1, float* sum) {
         for (int i = i0; i < i1; ++i)
             for (int g = 0; g < count; ++g) a[long(g) * stride + i] -= f[g] * v[i];
@@ -63,49 +99,50 @@ BMFR_SIMD_INLINE void updateGroupOf(const float* v, float* a, int rows, long str
     float head[count] = {}, rest[count] = {};
     scalarRows(k, body, head);
     scalarRows(tail, rows, rest);
-    f8 fs[count], acc[count] = {};
-    for (int g = 0; g < count; ++g) fs[g] = splat8(f[g]);
-    for (int i = body; i < tail; i += 8) {
-        const f8 x = load8(v + i);
-        f8 col[count];
+    V fs[count], acc[count] = {};
+    for (int g = 0; g < count; ++g) fs[g] = splatV<V>(f[g]);
+    for (int i = body; i < tail; i += L) {
+        const V x = loadV<V>(v + i);
+        V col[count];
         for (int g = 0; g < count; ++g) {
             float* p = a + long(g) * stride + i;
-            col[g] = load8(p) - fs[g] * x;
-            store8(p, col[g]);
+            col[g] = loadV<V>(p) - fs[g] * x;
+            storeV(p, col[g]);
         }
         if (!look) continue;
-        const f8 u = self ? col[0] : load8(next + i);
+        const V u = self ? col[0] : loadV<V>(next + i);
         for (int g = 0; g < count; ++g) acc[g] += u * col[g];
     }
     if (look)
-        for (int g = 0; g < count; ++g) d[g] = head[g] + hsum8(acc[g]) + rest[g];
+        for (int g = 0; g < count; ++g) d[g] = head[g] + hsumV(acc[g]) + rest[g];
 }
 
-template <int count>
+template <class V, int count>
 BMFR_SIMD_INLINE void updateGroupOf(const float* v, float* a, int rows, long stride, int k,
                                     const float* f, const float* next, float* d) {
-    if (!next) return updateGroupOf<count, false, false>(v, a, rows, stride, k, f, next, d);
-    if (next == a) return updateGroupOf<count, true, true>(v, a, rows, stride, k, f, next, d);
-    updateGroupOf<count, true, false>(v, a, rows, stride, k, f, next, d);
+    if (!next) return updateGroupOf<V, count, false, false>(v, a, rows, stride, k, f, next, d);
+    if (next == a) return updateGroupOf<V, count, true, true>(v, a, rows, stride, k, f, next, d);
+    updateGroupOf<V, count, true, false>(v, a, rows, stride, k, f, next, d);
 }
 
+template <class V>
 BMFR_SIMD_INLINE void updateGroup(const float* v, float* a, int count, int rows, long stride, int k,
                                   const float* f, const float* next, float* d) {
     switch (count) {
     case 1:
-        return updateGroupOf<1>(v, a, rows, stride, k, f, next, d);
+        return updateGroupOf<V, 1>(v, a, rows, stride, k, f, next, d);
     case 2:
-        return updateGroupOf<2>(v, a, rows, stride, k, f, next, d);
+        return updateGroupOf<V, 2>(v, a, rows, stride, k, f, next, d);
     case 3:
-        return updateGroupOf<3>(v, a, rows, stride, k, f, next, d);
+        return updateGroupOf<V, 3>(v, a, rows, stride, k, f, next, d);
     default:
-        return updateGroupOf<kGroup>(v, a, rows, stride, k, f, next, d);
+        return updateGroupOf<V, kGroup>(v, a, rows, stride, k, f, next, d);
     }
 }
 
-BMFR_SIMD_DISPATCH(int, solveHouseholderPaths,
-                   (float* columns, int featureCount, int rows, long stride, float* coeffs),
-                   (columns, featureCount, rows, stride, coeffs)) {
+template <class V>
+BMFR_SIMD_INLINE int solveHouseholderBody(float* columns, int featureCount, int rows, long stride,
+                                          float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
     auto column = [&](int j) { return columns + long(j) * stride; };
     HouseholderSteps q;
@@ -118,7 +155,7 @@ BMFR_SIMD_DISPATCH(int, solveHouseholderPaths,
         const bool fromAhead = haveAhead;
         haveAhead = false;
         float below = fromAhead ? ahead[k] : 0.0f;
-        if (!fromAhead) dotGroup(v, v, 1, rows, stride, k + 1, &below);
+        if (!fromAhead) dotGroup<V>(v, v, 1, rows, stride, k + 1, &below);
         const float vtv = q.reflect(columns, k, total, stride, below);
         if (q.dead[k]) continue;
         if (fromAhead) {
@@ -126,18 +163,43 @@ BMFR_SIMD_DISPATCH(int, solveHouseholderPaths,
             for (int j = k + 1; j < total; ++j) dots[j] = ahead[j] - q.R[k][k] * column(j)[k];
         } else {
             for (int j = k + 1; j < total; j += kGroup)
-                dotGroup(v, column(j), std::min(kGroup, total - j), rows, stride, k, dots + j);
+                dotGroup<V>(v, column(j), std::min(kGroup, total - j), rows, stride, k, dots + j);
         }
         for (int j = k + 1; j < total; ++j) f[j] = 2.0f * dots[j] / vtv;
         const float* next = k + 1 < M ? column(k + 1) : nullptr;
         for (int j = k + 1; j < total; j += kGroup)
-            updateGroup(v, column(j), std::min(kGroup, total - j), rows, stride, k, f + j, next,
-                        ahead + j);
+            updateGroup<V>(v, column(j), std::min(kGroup, total - j), rows, stride, k, f + j, next,
+                           ahead + j);
         for (int j = k + 1; j < total; ++j) q.R[k][j] = column(j)[k];
         haveAhead = next != nullptr;
     }
 
     return q.solve(M, coeffs);
+}
+
+// Dispatched by hand, not by BMFR_SIMD_DISPATCH: the AVX-512 path sweeps sixteen rows at a time.
+BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] int solveAvx512(float* columns, int featureCount,
+                                                          int rows, long stride, float* coeffs) {
+    return solveHouseholderBody<f16v>(columns, featureCount, rows, stride, coeffs);
+}
+BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] int solveAvx2(float* columns, int featureCount, int rows,
+                                                      long stride, float* coeffs) {
+    return solveHouseholderBody<f8>(columns, featureCount, rows, stride, coeffs);
+}
+[[gnu::noinline]] int solveBaseline(float* columns, int featureCount, int rows, long stride,
+                                    float* coeffs) {
+    return solveHouseholderBody<f8>(columns, featureCount, rows, stride, coeffs);
+}
+
+int solveHouseholderPaths(float* columns, int featureCount, int rows, long stride, float* coeffs) {
+    switch (activeIsa()) {
+    case Isa::Avx512:
+        return solveAvx512(columns, featureCount, rows, stride, coeffs);
+    case Isa::Avx2:
+        return solveAvx2(columns, featureCount, rows, stride, coeffs);
+    default:
+        return solveBaseline(columns, featureCount, rows, stride, coeffs);
+    }
 }
 
 } // namespace

@@ -86,7 +86,7 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
                    history, out + 3 * y * w, w, h, a.s.taaBlendAlpha, taa);
         }
     };
-    a.s.halfHistory ? rows(_Float16{}) : rows(float{});
+    a.s.halfHistory ? rows(HalfOf<kIsa>{}) : rows(float{});
 }
 
 } // namespace
