@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bmfr/bmfr.h>
 #include <fmt/core.h>
+#include <fmt/format.h>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -26,7 +27,8 @@ struct BenchJob {
     std::string filter = "bmfr", backend = "cpu", baselineBackend = "reference";
     /// Another filter as the baseline (on baselineBackend), as WALR beside BMFR; "" = the same.
     std::string baselineFilter;
-    std::vector<std::string> sets; ///< "key=value" settings of the measured filter
+    std::vector<std::string> sets;         ///< "key=value" settings of the measured filter
+    std::vector<std::string> baselineSets; ///< "key=value" settings of the baseline
     const std::string& referenceFilter() const {
         return baselineFilter.empty() ? filter : baselineFilter;
     }
@@ -82,18 +84,25 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
             for (FrameData& f : *set) addFactorisation(f);
     const std::string threads = std::to_string(job.threads);
     SettingValues values = {{"threads", threads}, {"backend", job.backend}};
-    for (const std::string& kv : job.sets) {
-        const size_t eq = kv.find('=');
-        if (eq == std::string::npos || eq == 0) throw Error("--set: '" + kv + "' is not key=value");
-        values.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
-    }
+    auto addSets = [](SettingValues& v, const std::vector<std::string>& sets, const char* flag) {
+        for (const std::string& kv : sets) {
+            const size_t eq = kv.find('=');
+            if (eq == std::string::npos || eq == 0)
+                throw Error(std::string(flag) + ": '" + kv + "' is not key=value");
+            v.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
+        }
+    };
+    addSets(values, job.sets, "--set");
     std::unique_ptr<Filter> d = makeFilter(job.filter, values);
     // The baseline backend runs on the same frames, interleaved frame by frame with the
     // measured one, so both see the same machine load.
     std::unique_ptr<Filter> ref;
     const std::string baseline = job.motion ? job.backend : job.baselineBackend;
-    if (job.baseline)
-        ref = makeFilter(job.referenceFilter(), {{"threads", threads}, {"backend", baseline}});
+    if (job.baseline) {
+        SettingValues baseValues = {{"threads", threads}, {"backend", baseline}};
+        addSets(baseValues, job.baselineSets, "--baseline-set");
+        ref = makeFilter(job.referenceFilter(), baseValues);
+    }
     // The memory baselines, measured in this run on buffers freed before the passes start: the
     // BMFR fast passes' own traffic, and (any filter) the inputs and a float history once.
     const bool floors = job.filter == "bmfr" && job.backend == "cpu";
@@ -165,6 +174,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--baseline-filter", job->baselineFilter,
                     "another filter as the baseline, on --baseline-backend (walr beside bmfr: "
                     "--filter walr --baseline-filter bmfr --baseline-backend cpu)");
+    cmd->add_option("--baseline-set", job->baselineSets,
+                    "key=value: a setting of the baseline, repeatable (half against float "
+                    "history: --set halfHistory=true --baseline-backend cpu --baseline-set "
+                    "halfHistory=false)");
     cmd->add_option("--set", job->sets,
                     "key=value: a setting of the measured filter (bmfr settings NAME), repeatable");
     cmd->add_flag("--motion", job->motion,
@@ -196,9 +209,13 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     fmt::print("{:>10} camera path: {} ms   -> motion vectors cost {:+.1f}%\n", "",
                                r["baseline_line"].get<std::string>(),
                                100.0 * (1.0 / r["speedup"].get<double>() - 1.0));
-                else if (r.contains("baseline_line") && !job->baselineFilter.empty())
-                    fmt::print("{:>10} {} on {}: {} ms   -> {} takes {:.2f}x its time\n", "",
-                               job->baselineFilter, job->baselineBackend,
+                else if (r.contains("baseline_line") &&
+                         (!job->baselineFilter.empty() || !job->baselineSets.empty()))
+                    fmt::print("{:>10} {} on {}{}: {} ms   -> {} takes {:.2f}x its time\n", "",
+                               job->referenceFilter(), job->baselineBackend,
+                               job->baselineSets.empty()
+                                   ? ""
+                                   : fmt::format(" ({})", fmt::join(job->baselineSets, ", ")),
                                r["baseline_line"].get<std::string>(), job->filter,
                                1.0 / r["speedup"].get<double>());
                 else if (r.contains("baseline_line"))

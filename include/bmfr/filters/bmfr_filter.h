@@ -27,7 +27,7 @@ struct BmfrSettings : TemporalSettings {
     float firstBlendAlpha = 0.2f;  ///< phase I minimum new-frame weight (CMA, then EMA)
     float secondBlendAlpha = 0.1f; ///< phase III minimum new-frame weight
     uint32_t seed = 0;             ///< regularisation noise seed
-    bool halfHistory = false;      ///< normals and colour history as 16-bit floats (else float32)
+    bool halfHistory = true;       ///< normals and colour history as 16-bit floats (else float32)
     StageSwitches stages{};
 };
 

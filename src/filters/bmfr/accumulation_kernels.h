@@ -21,7 +21,7 @@ struct NoisyAccumulation {
     DiscardLimits limits;
     float minAlpha = 0.2f;   ///< BmfrSettings::firstBlendAlpha
     bool accumulate = true;  ///< StageSwitches::firstAccumulation
-    bool halfHistory = false; ///< BmfrSettings::halfHistory: normals and colour stored as half
+    bool halfHistory = true; ///< BmfrSettings::halfHistory: normals and colour stored as half
     int width = 0, height = 0;
     float* normal = nullptr; ///< sanitised features, for the next frame's discard test
     float* position = nullptr;
@@ -79,7 +79,7 @@ struct FittedAccumulation {
     bool remodulate = true; ///< demodulated on input (by us or by the renderer)
     float albedoEpsilon = 0.001f;
     float minAlpha = 0.1f;   ///< BmfrSettings::secondBlendAlpha
-    bool halfHistory = false; ///< BmfrSettings::halfHistory: the history stored as half
+    bool halfHistory = true; ///< BmfrSettings::halfHistory: the history stored as half
     int width = 0;
     const float* fitted = nullptr;
     const float* prevAccumulated = nullptr;
