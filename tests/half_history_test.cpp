@@ -6,10 +6,7 @@
 #include "core/half.h"
 #include "core/image.h"
 #include "metrics/basic_metrics.h"
-#include "render/frame_renderer.h"
-#include "render/lights.h"
-#include "render/ray_accel.h"
-#include "render/scene.h"
+#include "path_traced_box.h"
 #include "synth/procedural_scene.h"
 #include <bmfr/bmfr.h>
 #include <cmath>
@@ -81,23 +78,8 @@ TEST(HalfHistory, ProceduralTruthKeepsItsQuality) {
 }
 
 TEST(HalfHistory, PathTracedBoxKeepsItsQualityWithAndWithoutAnEmissionBuffer) {
-    using namespace render;
-    Scene box = builtinCornellBox();
-    RayAccel accel(box);
-    LightSet lights(box, {}, {});
-    const int w = 96, h = 72, n = 16;
-    FrameRenderer r(box, accel, w, h, 1, 5);
-    std::vector<FrameData> frames{size_t(n)};
-    CameraPose previous;
-    for (int i = 0; i < n; ++i) {
-        CameraPose pose; // the ceiling light is in view
-        pose.position = {0.03f * float(i), 1.0f, 3.4f}, pose.target = {0, 1, 0};
-        pose.fovY = 0.69f;
-        FrameRenderStats stats;
-        ASSERT_TRUE(r.render(i, pose, previous, i > 0, lights, true, 64, frames[size_t(i)], stats,
-                             nullptr));
-        previous = pose;
-    }
+    // The ceiling light is in view: without the emission buffer it is in the colour.
+    const std::vector<FrameData> frames = test::pathTracedBox(96, 72, 16, 5, 0.03f, 64);
     expectQualityRule(frames, 1, "path-traced box, emission buffer",
                       [](const FrameData& f) { return f.input(); });
     expectQualityRule(frames, 1, "path-traced box, no emission buffer", [](const FrameData& f) {

@@ -3,12 +3,9 @@
 // and the non-finite and discarded counts must be identical. A new backend joins with one line
 // in kBackends, a new filter with one entry in kFilters. The CPU backend is held to it on each of
 // its instruction-set paths; a path this processor lacks is reported skipped.
+#include "../path_traced_box.h"
 #include "backend/cpu/isa.h"
 #include "core/image.h"
-#include "render/frame_renderer.h"
-#include "render/lights.h"
-#include "render/ray_accel.h"
-#include "render/scene.h"
 #include "synth/procedural_scene.h"
 #include <bmfr/bmfr.h>
 #include <cmath>
@@ -247,26 +244,11 @@ TEST_P(Conformance, RgbaInputWithRowPaddingGivesThePackedResult) {
 }
 
 TEST_P(Conformance, PathTracedFrames) {
-    using namespace render;
-    Scene box = builtinCornellBox();
-    RayAccel accel(box);
-    LightSet lights(box, {}, {});
-    const int w = 77, h = 61, n = 8;
+    const int n = 8;
     // Our own paths, then Mara et al.'s factored ones (matte, glossy and direct apart).
     for (int directSpp : {0, 4}) {
-        FrameRenderer r(box, accel, w, h, 1, 11);
-        if (directSpp) r.setFactoredPaths(directSpp);
-        std::vector<FrameData> frames(n);
-        CameraPose previous;
-        for (int i = 0; i < n; ++i) {
-            CameraPose pose;
-            pose.position = {0.05f * float(i), 1.0f, 3.4f}, pose.target = {0, 1, 0};
-            pose.fovY = 0.69f;
-            FrameRenderStats stats;
-            ASSERT_TRUE(r.render(i, pose, previous, i > 0, lights, true, 0, frames[size_t(i)],
-                                 stats, nullptr));
-            previous = pose;
-        }
+        const std::vector<FrameData> frames =
+            test::pathTracedBox(77, 61, n, 11, 0.05f, 0, directSpp);
         expectConformance(
             filter().name, backend(), {}, n, [&](int i) { return frames[size_t(i)].input(); },
             directSpp ? "path-traced Cornell box, 77x61, factored paths"
