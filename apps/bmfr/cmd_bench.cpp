@@ -222,23 +222,17 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     fmt::print("{:>10} {} backend: {} ms   -> {} is {:.1f}x faster\n", "",
                                job->baselineBackend, r["baseline_line"].get<std::string>(),
                                job->backend, r["speedup"].get<double>());
-                if (r.contains("stream_floor_ms"))
-                    fmt::print("{:>10} memory floor: streaming the same bytes takes {:.2f} ms -> "
-                               "measured is {:.1f}x that\n",
-                               "", r["stream_floor_ms"].get<double>(),
-                               r["total_ms"].get<double>() / r["stream_floor_ms"].get<double>());
-                if (r.contains("single_pass_floor_ms"))
-                    fmt::print("{:>10} single-pass floor: inputs and float history once, {:.2f} "
-                               "ms -> measured is {:.1f}x that\n",
-                               "", r["single_pass_floor_ms"].get<double>(),
-                               r["total_ms"].get<double>() /
-                                   r["single_pass_floor_ms"].get<double>());
-                if (r.contains("single_pass_floor_half_ms"))
-                    fmt::print("{:>10} single-pass floor, half history: inputs and the half "
-                               "history once, {:.2f} ms -> measured is {:.1f}x that\n",
-                               "", r["single_pass_floor_half_ms"].get<double>(),
-                               r["total_ms"].get<double>() /
-                                   r["single_pass_floor_half_ms"].get<double>());
+                auto floorLine = [&r](const char* key, const char* what) {
+                    if (!r.contains(key)) return;
+                    const double ms = r[key].get<double>();
+                    fmt::print("{:>10} {}: {:.2f} ms -> measured is {:.1f}x that\n", "", what, ms,
+                               r["total_ms"].get<double>() / ms);
+                };
+                floorLine("stream_floor_ms", "memory floor (streaming the same bytes)");
+                floorLine("single_pass_floor_ms",
+                          "single-pass floor (inputs and float history once)");
+                floorLine("single_pass_floor_half_ms",
+                          "single-pass floor (inputs and half history once)");
                 std::fflush(stdout);
             }
             r.erase("line");
