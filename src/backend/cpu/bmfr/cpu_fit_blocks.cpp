@@ -19,7 +19,6 @@ struct Phase2 {
     /// `half` (BmfrSettings::halfHistory: the normals and the colour).
     const void* planes[9];
     bool half[9] = {};
-    bool anyHalf = false;
 
     Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g)
         : ctx(c), b(buffers), grid(g) {
@@ -30,7 +29,6 @@ struct Phase2 {
             planes[6 + ch] = b.noisy[cur].address(ch);
             half[ch] = b.normal[cur].half, half[6 + ch] = b.noisy[cur].half;
         }
-        anyHalf = half[0] || half[6];
     }
     const float* floatPlane(int ch) const { return static_cast<const float*>(planes[ch]); }
     const _Float16* halfPlane(int ch) const { return static_cast<const _Float16*>(planes[ch]); }
@@ -48,7 +46,7 @@ struct Phase2 {
 struct BlockRows {
     const float* source[6]; ///< normal xyz, position xyz
     const float* colour[3];
-    long pitch = 0;
+    long pitch[9] = {};  ///< floats between block rows: sources, then colour channels
     bool inside = false; ///< the block lies in the image; imageIndex is not filled
 };
 
@@ -84,9 +82,9 @@ BMFR_SIMD_INLINE void copySourceRun(const Phase2& a, int ch, float* dst, long fr
     copyRun(dst, a.floatPlane(ch) + from, n);
 }
 
-/// The rows of block (ox, oy). A block inside the image reads float planes in place; a border
-/// block, or any block of half planes, is copied into scratch as floats with the image mirrored
-/// in, and marks the pixels it owns.
+/// The rows of block (ox, oy). A block inside the image reads float planes in place and
+/// converts half planes into scratch; a border block is copied into scratch as floats with the
+/// image mirrored in, and marks the pixels it owns.
 template <Isa kIsa>
 BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& sc) {
     const BlockGrid& g = a.grid;
@@ -94,11 +92,22 @@ BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& s
     BlockRows r;
     r.inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     gatherExtras(a, ox, oy, r.inside, sc);
-    if (r.inside && !a.anyHalf) {
+    if (r.inside) {
+        // Float planes are read in place; half planes are converted into scratch.
         const long first = long(oy) * g.width + ox;
-        for (int ch = 0; ch < 6; ++ch) r.source[ch] = a.floatPlane(ch) + first;
-        for (int ch = 0; ch < 3; ++ch) r.colour[ch] = a.floatPlane(6 + ch) + first;
-        r.pitch = g.width;
+        for (int ch = 0; ch < 9; ++ch) {
+            const float* rows = sc.soa.data() + long(ch) * W;
+            long pitch = B;
+            if (!a.half[ch]) {
+                rows = a.floatPlane(ch) + first, pitch = g.width;
+            } else {
+                for (int ly = 0; ly < B; ++ly)
+                    copySourceRun<kIsa>(a, ch, sc.soa.data() + long(ch) * W + ly * B,
+                                        first + long(ly) * g.width, B);
+            }
+            (ch < 6 ? r.source[ch] : r.colour[ch - 6]) = rows;
+            r.pitch[ch] = pitch;
+        }
         return r;
     }
     float* copy[9];
@@ -112,7 +121,6 @@ BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& s
         const int k = ly * B;
         for (int ch = 0; ch < 9; ++ch)
             copySourceRun<kIsa>(a, ch, copy[ch] + k + xa, row + ox + xa, xb - xa);
-        if (r.inside) continue;
         for (int lx = 0; lx < B; ++lx) {
             const bool in = lx >= xa && lx < xb;
             if (!in) {
@@ -124,7 +132,7 @@ BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& s
     }
     for (int ch = 0; ch < 6; ++ch) r.source[ch] = copy[ch];
     for (int ch = 0; ch < 3; ++ch) r.colour[ch] = copy[6 + ch];
-    r.pitch = B;
+    for (long& pitch : r.pitch) pitch = B;
     return r;
 }
 
@@ -253,7 +261,7 @@ BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch&
         const bool extra = feat.source == FeatureSource::Extra;
         const float* from = extra ? sc.soa.data() + (9 + long(feat.extraIndex)) * W
                                   : r.source[int(feat.source) - int(FeatureSource::NormalX)];
-        const long pitch = extra ? B : r.pitch;
+        const long pitch = extra ? B : r.pitch[int(feat.source) - int(FeatureSource::NormalX)];
         if (feat.exponent != 1.0f && feat.exponent != 2.0f) {
             otherColumn(feat, from, pitch, B, nz, clean, noised);
             continue;
@@ -270,7 +278,7 @@ BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch&
     }
     for (int ch = 0; ch < 3; ++ch) {
         float* z = sc.work.data() + long(M + ch) * zs;
-        for (int ly = 0; ly < B; ++ly) copyRun(z + ly * B, r.colour[ch] + ly * r.pitch, B);
+        for (int ly = 0; ly < B; ++ly) copyRun(z + ly * B, r.colour[ch] + ly * r.pitch[6 + ch], B);
     }
 }
 
