@@ -69,6 +69,24 @@ TEST(CliConventions, VersionNamesTheVersionCommitAndBackends) {
     EXPECT_NE(r.output.find("backends: reference, cpu"), std::string::npos) << r.output;
 }
 
+TEST(CliConventions, CpuPathIsNamedAndChosenByTheEnvironment) {
+    auto r = runCli("--version");
+    EXPECT_NE(r.output.find("cpu path: "), std::string::npos) << r.output;
+    r = runCli("--version", false, "BMFR_CPU_ISA=baseline");
+    EXPECT_NE(r.output.find("cpu path: baseline of "), std::string::npos) << r.output;
+    r = runCli("bench --sizes 64x48 --frames 2 --warmup 1 --no-baseline -q", false,
+               "BMFR_CPU_ISA=baseline");
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("(baseline path, half history)"), std::string::npos) << r.output;
+    // A name that is not a path is an error that lists the accepted ones, never a fallback.
+    r = runCli("bench --sizes 64x48 --frames 2 --warmup 1 --no-baseline -q", false,
+               "BMFR_CPU_ISA=avx3");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("unknown CPU path 'avx3' (use baseline, avx2 or avx512)"),
+              std::string::npos)
+        << r.output;
+}
+
 TEST(CliConventions, EveryCommandTakesQuietAndWritesWithDashO) {
     for (const char* c : kCommands) {
         const auto help = runCli(std::string(c) + " --help");

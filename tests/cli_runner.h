@@ -12,10 +12,12 @@ struct CliResult {
     std::string output; ///< stdout and stderr together (or stdout alone when asked)
 };
 
-/// `bmfr ARGS`; with `stdoutOnly` stderr goes to /dev/null.
-inline CliResult runCli(const std::string& args, bool stdoutOnly = false) {
-    const std::string cmd =
-        std::string(BMFR_CLI_PATH) + " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
+/// `bmfr ARGS`; with `stdoutOnly` stderr goes to /dev/null; `env` ("NAME=value ...") is set
+/// for the command alone.
+inline CliResult runCli(const std::string& args, bool stdoutOnly = false,
+                        const std::string& env = "") {
+    const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(BMFR_CLI_PATH) +
+                            " " + args + (stdoutOnly ? " 2>/dev/null" : " 2>&1");
     FILE* p = popen(cmd.c_str(), "r");
     std::string out;
     std::array<char, 512> buf;
