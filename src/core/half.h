@@ -5,6 +5,9 @@
 #include "core/vec.h"
 #if defined(__CUDACC__)
 #include <cuda_fp16.h>
+#elif !defined(__FLT16_MAX__)
+#include <bit>
+#include <cstdint>
 #endif
 
 namespace bmfr {
@@ -19,8 +22,23 @@ BMFR_HD float roundToHalf(float x) {
     x = x < -kHalfMax ? -kHalfMax : (x > kHalfMax ? kHalfMax : x);
 #if defined(__CUDACC__)
     return __half2float(__float2half_rn(x));
-#else
+#elif defined(__FLT16_MAX__)
     return float(_Float16(x));
+#else
+    // Compilers without _Float16: the half's bits by integer arithmetic (as the CPU backend's
+    // store8), then back. x is finite and at most kHalfMax here.
+    uint32_t u = std::bit_cast<uint32_t>(x);
+    const uint32_t sign = u & 0x80000000u;
+    u ^= sign;
+    uint32_t h;
+    if (u < (113u << 23)) {
+        h = std::bit_cast<uint32_t>(std::bit_cast<float>(u) + 0.5f) - 0x3f000000u;
+    } else {
+        h = (u + 0xC8000FFFu + ((u >> 13) & 1u)) >> 13;
+    }
+    const uint32_t magnitude =
+        std::bit_cast<uint32_t>(std::bit_cast<float>((h & 0x7fffu) << 13) * 0x1p112f);
+    return std::bit_cast<float>(magnitude | sign);
 #endif
 }
 
