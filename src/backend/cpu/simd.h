@@ -1,5 +1,5 @@
 // Eight-wide float vectors (GCC/Clang vector extensions) for the fast CPU passes.
-// Portable source: the compiler lowers them to SSE, AVX2 or NEON for each target clone.
+// Portable source: the compiler lowers them to SSE, AVX2 or AVX-512 for each path (isa.h).
 #pragma once
 #include "backend/cpu/isa.h"
 #include <cstdint>
@@ -62,11 +62,18 @@ BMFR_SIMD_INLINE f8 load8(const float* p) {
 BMFR_SIMD_INLINE void store8(float* p, f8 v) {
     std::memcpy(p, &v, sizeof v);
 }
-/// Half planes (history stored as 16-bit floats). The conversions are integer arithmetic, the
-/// same instructions on every path: GCC 12 splits a vector conversion to _Float16 into one
-/// conversion per lane, and F16C cannot be called from a body compiled for every path.
+/// Half planes (history stored as 16-bit floats). As _Float16, for the baseline path: integer
+/// arithmetic, since GCC 12 splits a vector conversion to _Float16 into one conversion per lane.
+/// The AVX2 and AVX-512 paths store F16cHalf (below) instead.
 typedef uint16_t u16x8 __attribute__((vector_size(16)));
 typedef uint32_t u32x8 __attribute__((vector_size(32)));
+
+/// Each lane clamped to [-65504, 65504], the finite halves (see roundToHalf, core/half.h).
+BMFR_SIMD_INLINE f8 saturateToHalf8(f8 v) {
+    f8 big{};
+    for (int l = 0; l < 8; ++l) big[l] = 65504.0f;
+    return v > big ? big : (v < -big ? -big : v);
+}
 
 /// Eight halves as floats, exactly (normal, subnormal and zero halves; a half plane holds no
 /// infinity or NaN).
@@ -82,10 +89,7 @@ BMFR_SIMD_INLINE f8 load8(const _Float16* p) {
 /// Stores roundToHalf (core/half.h) of each lane: saturated to the largest half, then rounded
 /// to nearest, ties to even, as F16C and the C++ conversion do (tested bit for bit).
 BMFR_SIMD_INLINE void store8(_Float16* p, f8 v) {
-    f8 big{};
-    for (int l = 0; l < 8; ++l) big[l] = 65504.0f;
-    v = v > big ? big : (v < -big ? -big : v);
-    u32x8 u = u32x8(v);
+    u32x8 u = u32x8(saturateToHalf8(v));
     const u32x8 sign = u & 0x80000000u;
     u ^= sign;
     // Below 2^-14 the half is subnormal: adding 0.5 aligns its 10 bits at the bottom of the
@@ -118,9 +122,7 @@ BMFR_SIMD_INLINE f8 load8(const F16cHalf* p) {
 /// The same as store8(_Float16*, f8): saturate, then round to nearest even (imm 4: MXCSR's
 /// rounding, which bmfr never changes from nearest even).
 BMFR_SIMD_INLINE void store8(F16cHalf* p, f8 v) {
-    f8 big{};
-    for (int l = 0; l < 8; ++l) big[l] = 65504.0f;
-    v = v > big ? big : (v < -big ? -big : v);
+    v = saturateToHalf8(v);
     s16x8 h;
     asm("vcvtps2ph $4, %1, %0" : "=x"(h) : "x"(v));
     std::memcpy(p, &h, sizeof h);
