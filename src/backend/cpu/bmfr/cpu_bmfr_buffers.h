@@ -29,17 +29,18 @@ struct PlaneSet {
 
     void assign(int channels, size_t planeStride, bool asHalf) {
         stride = planeStride, half = asHalf;
-        bytes.assign(size_t(channels) * stride * (half ? sizeof(_Float16) : sizeof(float)),
-                     std::byte{0});
+        bytes.assign(size_t(channels) * stride * elementSize(), std::byte{0});
     }
+    size_t elementSize() const { return half ? sizeof(_Float16) : sizeof(float); }
     template <class T> T* plane(int channel) {
         return reinterpret_cast<T*>(bytes.data()) + size_t(channel) * stride;
     }
     template <class T> const T* plane(int channel) const {
         return reinterpret_cast<const T*>(bytes.data()) + size_t(channel) * stride;
     }
-    const void* address(int channel) const {
-        return bytes.data() + size_t(channel) * stride * (half ? sizeof(_Float16) : sizeof(float));
+    /// Where value i of a channel lies, whatever the storage.
+    const void* address(int channel, size_t i = 0) const {
+        return bytes.data() + (size_t(channel) * stride + i) * elementSize();
     }
     /// Value i of a channel as float, whatever the storage.
     float at(int channel, size_t i) const {
@@ -57,11 +58,11 @@ struct Buffers {
     size_t stride = 0;
 
     // History, [slot].
-    std::vector<float> position[2]; ///< 3 planes: position xyz (sanitised), always float
-    PlaneSet normal[2];             ///< 3 planes: normal xyz (sanitised)
-    PlaneSet noisy[2];              ///< 4 planes: phase I colour (demodulated), history length
-    PlaneSet accumulatedFitted[2];  ///< 3 planes: phase III colour
-    std::vector<float> output[2];   ///< 3 floats per pixel (the public image), +24 of padding
+    PlaneSet position[2];          ///< 3 planes: position xyz (sanitised), always float
+    PlaneSet normal[2];            ///< 3 planes: normal xyz (sanitised)
+    PlaneSet noisy[2];             ///< 4 planes: phase I colour (demodulated), history length
+    PlaneSet accumulatedFitted[2]; ///< 3 planes: phase III colour
+    std::vector<float> output[2];  ///< 3 floats per pixel (the public image), +24 of padding
 
     // This frame only.
     std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame
@@ -98,8 +99,8 @@ template <class T> struct FramePlanes {
 
     FramePlanes(Buffers& b, int cur) {
         for (int c = 0; c < 3; ++c) {
-            prevPosition[c] = b.plane(b.position[1 - cur], c);
-            position[c] = b.plane(b.position[cur], c);
+            prevPosition[c] = b.position[1 - cur].plane<float>(c);
+            position[c] = b.position[cur].plane<float>(c);
             prevNormal[c] = b.normal[1 - cur].plane<T>(c);
             normal[c] = b.normal[cur].plane<T>(c);
         }

@@ -15,7 +15,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.width = w, b_.height = h;
         b_.stride = (n + 7) / 8 * 8 + 8; // an 8-float load at any pixel stays in its plane
         for (int k = 0; k < 2; ++k) {
-            b_.position[k].assign(3 * b_.stride, 0.0f);
+            b_.position[k].assign(3, b_.stride, false);
             b_.normal[k].assign(3, b_.stride, s.halfHistory);
             b_.noisy[k].assign(4, b_.stride, s.halfHistory);
             b_.accumulatedFitted[k].assign(3, b_.stride, s.halfHistory);

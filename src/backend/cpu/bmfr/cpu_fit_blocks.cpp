@@ -15,30 +15,23 @@ struct Phase2 {
     const BmfrPassContext& ctx;
     Buffers& b;
     BlockGrid grid;
-    /// The fitter's sources: normal xyz, position xyz, phase I colour; float, or half where
-    /// `half` (BmfrSettings::halfHistory: the normals and the colour).
-    const void* planes[9];
-    bool half[9] = {};
+    /// The fitter's sources: normal xyz, position xyz, phase I colour, each a channel of a
+    /// plane set (float, or half under BmfrSettings::halfHistory).
+    const PlaneSet* set[9];
+    int channel[9];
 
     Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g)
         : ctx(c), b(buffers), grid(g) {
         const int cur = c.timeline.history.cur;
         for (int ch = 0; ch < 3; ++ch) {
-            planes[ch] = b.normal[cur].address(ch);
-            planes[3 + ch] = b.plane(b.position[cur], ch);
-            planes[6 + ch] = b.noisy[cur].address(ch);
-            half[ch] = b.normal[cur].half, half[6 + ch] = b.noisy[cur].half;
+            set[ch] = &b.normal[cur], set[3 + ch] = &b.position[cur], set[6 + ch] = &b.noisy[cur];
+            channel[ch] = channel[3 + ch] = channel[6 + ch] = ch;
         }
     }
-    const float* floatPlane(int ch) const { return static_cast<const float*>(planes[ch]); }
-    const _Float16* halfPlane(int ch) const { return static_cast<const _Float16*>(planes[ch]); }
-    /// Address of value i of a source, for prefetching.
-    const void* address(int ch, long i) const {
-        return static_cast<const std::byte*>(planes[ch]) + i * (half[ch] ? 2 : 4);
-    }
-    float value(int ch, long i) const {
-        return half[ch] ? float(halfPlane(ch)[i]) : floatPlane(ch)[i];
-    }
+    bool half(int ch) const { return set[ch]->half; }
+    template <class T> const T* plane(int ch) const { return set[ch]->plane<T>(channel[ch]); }
+    const void* address(int ch, long i) const { return set[ch]->address(channel[ch], size_t(i)); }
+    float value(int ch, long i) const { return set[ch]->at(channel[ch], size_t(i)); }
 };
 
 /// Where each source's block rows start and how far apart they are (floats). Inside the image
@@ -77,9 +70,8 @@ template <class T> BMFR_SIMD_INLINE void copyRun(float* dst, const T* src, int n
 }
 template <Isa kIsa>
 BMFR_SIMD_INLINE void copySourceRun(const Phase2& a, int ch, float* dst, long from, int n) {
-    using Half = HalfOf<kIsa>;
-    if (a.half[ch]) return copyRun(dst, static_cast<const Half*>(a.planes[ch]) + from, n);
-    copyRun(dst, a.floatPlane(ch) + from, n);
+    if (a.half(ch)) return copyRun(dst, a.plane<HalfOf<kIsa>>(ch) + from, n);
+    copyRun(dst, a.plane<float>(ch) + from, n);
 }
 
 /// The rows of block (ox, oy). A block inside the image reads float planes in place and
@@ -98,8 +90,8 @@ BMFR_SIMD_INLINE BlockRows blockRows(const Phase2& a, int ox, int oy, Scratch& s
         for (int ch = 0; ch < 9; ++ch) {
             const float* rows = sc.soa.data() + long(ch) * W;
             long pitch = B;
-            if (!a.half[ch]) {
-                rows = a.floatPlane(ch) + first, pitch = g.width;
+            if (!a.half(ch)) {
+                rows = a.plane<float>(ch) + first, pitch = g.width;
             } else {
                 for (int ly = 0; ly < B; ++ly)
                     copySourceRun<kIsa>(a, ch, sc.soa.data() + long(ch) * W + ly * B,
