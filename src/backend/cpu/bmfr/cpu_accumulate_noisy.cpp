@@ -129,13 +129,12 @@ BMFR_SIMD_DISPATCH(void, accumulateRows,
                    (const FrameArgs& a, long y0, long y1, int64_t& bad, int64_t& lost),
                    (a, y0, y1, bad, lost)) {
     const int w = a.t.width;
-    auto rows = [&] [[gnu::always_inline]] (auto storage) {
-        const FramePlanes<decltype(storage)> pl(a.b, a.t.cur);
+    auto rows = [&] [[gnu::always_inline]] (const auto& pl) {
         for (long y = y0; y < y1; ++y)
             for (int x = 0; x < w; x += 8)
                 accumulateGroup(a, pl, x, int(y), std::min(8, w - x), bad, lost);
     };
-    a.s.halfHistory ? rows(HalfOf<kIsa>{}) : rows(float{});
+    withFramePlanes<kIsa>(a.b, a.t.cur, a.s.halfHistory, rows);
 }
 
 } // namespace

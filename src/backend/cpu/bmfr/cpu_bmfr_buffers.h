@@ -2,6 +2,7 @@
 // load), phase I and the fit run one row of blocks at a time, and phase III runs fused with TAA
 // row by row.
 #pragma once
+#include "backend/cpu/simd.h"
 #include "core/image.h"
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/bmfr_passes.h"
@@ -117,6 +118,16 @@ template <class T> struct FramePlanes {
         accept = b.acceptMask.data();
     }
 };
+
+/// Calls body(FramePlanes<T>) with T the history storage a body compiled for `kIsa` uses:
+/// float, or with `half` the path's half type (simd::HalfOf).
+template <Isa kIsa, class Body>
+BMFR_SIMD_INLINE void withFramePlanes(Buffers& b, int cur, bool half, Body&& body) {
+    if (half)
+        body(FramePlanes<simd::HalfOf<kIsa>>(b, cur));
+    else
+        body(FramePlanes<float>(b, cur));
+}
 
 /// What the row kernels of phase I and the resolve pass read.
 struct FrameArgs {

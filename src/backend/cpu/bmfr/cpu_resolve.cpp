@@ -73,8 +73,7 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
     const float* history = a.b.output[1 - a.t.cur].data();
     float* out = a.b.output[a.t.cur].data();
     auto row = [&](long y) { return ring + size_t(y % 3) * ResolvedRows::rowFloats(w); };
-    auto rows = [&] [[gnu::always_inline]] (auto storage) {
-        const FramePlanes<decltype(storage)> pl(a.b, a.t.cur);
+    auto rows = [&] [[gnu::always_inline]] (const auto& pl) {
         if (taa && y0 > 0) phase3Row(a, pl, y0 - 1, false, row(y0 - 1));
         phase3Row(a, pl, y0, true, row(y0));
         for (long y = y0; y < y1; ++y) {
@@ -86,7 +85,7 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
                    history, out + 3 * y * w, w, h, a.s.taaBlendAlpha, taa);
         }
     };
-    a.s.halfHistory ? rows(HalfOf<kIsa>{}) : rows(float{});
+    withFramePlanes<kIsa>(a.b, a.t.cur, a.s.halfHistory, rows);
 }
 
 } // namespace
