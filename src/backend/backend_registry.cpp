@@ -44,6 +44,12 @@ std::vector<std::string> compiledBackends() {
 }
 
 namespace {
+/// A CPU backend's passes, once the CPU path is known: a bad BMFR_CPU_ISA is an error when the
+/// filter is made, not inside a pass.
+template <class Make> auto onCpu(Make make) {
+    cpu::activeIsa();
+    return make();
+}
 [[noreturn]] void unavailable(Backend b) {
     throw Error(std::string("backend '") + backendName(b) +
                 "' is not available: this build of bmfr has no CUDA backend yet "
@@ -56,8 +62,7 @@ std::unique_ptr<BmfrPasses> makeBmfrPasses(Backend b) {
     case Backend::Reference:
         return reference::makeBmfrPasses();
     case Backend::Cpu:
-        cpu::activeIsa(); // a bad BMFR_CPU_ISA is an error here, not inside a pass
-        return cpu::makeBmfrPasses();
+        return onCpu(cpu::makeBmfrPasses);
     default:
         unavailable(b);
     }
@@ -68,8 +73,7 @@ std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend b) {
     case Backend::Reference:
         return reference::makeSvgfPasses();
     case Backend::Cpu:
-        cpu::activeIsa(); // a bad BMFR_CPU_ISA is an error here, not inside a pass
-        return cpu::makeSvgfPasses();
+        return onCpu(cpu::makeSvgfPasses);
     default:
         unavailable(b);
     }
@@ -80,8 +84,7 @@ std::unique_ptr<WalrPasses> makeWalrPasses(Backend b) {
     case Backend::Reference:
         return reference::makeWalrPasses();
     case Backend::Cpu:
-        cpu::activeIsa(); // a bad BMFR_CPU_ISA is an error here, not inside a pass
-        return cpu::makeWalrPasses();
+        return onCpu(cpu::makeWalrPasses);
     default:
         unavailable(b);
     }
@@ -92,8 +95,7 @@ std::unique_ptr<MaraPasses> makeMaraPasses(Backend b) {
     case Backend::Reference:
         return reference::makeMaraPasses();
     case Backend::Cpu:
-        cpu::activeIsa(); // a bad BMFR_CPU_ISA is an error here, not inside a pass
-        return cpu::makeMaraPasses();
+        return onCpu(cpu::makeMaraPasses);
     default:
         unavailable(b);
     }

@@ -93,8 +93,7 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
                 const size_t from = size_t(own.first) * size_t(t.width);
                 const size_t pixels = size_t(own.last - own.first) * size_t(t.width);
                 for (int ch = 0; ch < 3; ++ch)
-                    for (size_t i = from; i < from + pixels; ++i)
-                        b.plane(b.fitted, ch)[i] = b.noisy[t.cur].at(ch, i);
+                    b.noisy[t.cur].copyOut(ch, from, pixels, b.plane(b.fitted, ch) + from);
             }
             accumulateNs += ns(t0, t1);
             fitNs += ns(t1, Clock::now());

@@ -6,6 +6,7 @@
 #include "core/image.h"
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/bmfr_passes.h"
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -42,6 +43,14 @@ struct PlaneSet {
     /// Where value i of a channel lies, whatever the storage.
     const void* address(int channel, size_t i = 0) const {
         return bytes.data() + (size_t(channel) * stride + i) * elementSize();
+    }
+    /// Values [from, from + n) of a channel as floats, eight at a time.
+    void copyOut(int channel, size_t from, size_t n, float* dst) const {
+        if (!half) return (void)std::copy_n(plane<float>(channel) + from, n, dst);
+        const _Float16* src = plane<_Float16>(channel) + from;
+        size_t k = 0;
+        for (; k + 8 <= n; k += 8) simd::store8(dst + k, simd::load8(src + k));
+        for (; k < n; ++k) dst[k] = float(src[k]);
     }
     /// Value i of a channel as float, whatever the storage.
     float at(int channel, size_t i) const {
