@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 namespace bmfr::cpu {
 
@@ -140,9 +141,11 @@ BMFR_SIMD_INLINE void updateGroup(const float* v, float* a, int count, int rows,
     }
 }
 
-template <class V>
-BMFR_SIMD_INLINE int solveHouseholderBody(float* columns, int featureCount, int rows, long stride,
-                                          float* coeffs) {
+// The AVX-512 path sweeps sixteen rows at a time, the others eight.
+BMFR_SIMD_DISPATCH(int, solveHouseholderPaths,
+                   (float* columns, int featureCount, int rows, long stride, float* coeffs),
+                   (columns, featureCount, rows, stride, coeffs)) {
+    using V = std::conditional_t<kIsa == Isa::Avx512, f16v, f8>;
     const int M = featureCount, total = featureCount + 3;
     auto column = [&](int j) { return columns + long(j) * stride; };
     HouseholderSteps q;
@@ -175,31 +178,6 @@ BMFR_SIMD_INLINE int solveHouseholderBody(float* columns, int featureCount, int 
     }
 
     return q.solve(M, coeffs);
-}
-
-// Dispatched by hand, not by BMFR_SIMD_DISPATCH: the AVX-512 path sweeps sixteen rows at a time.
-BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] int solveAvx512(float* columns, int featureCount,
-                                                          int rows, long stride, float* coeffs) {
-    return solveHouseholderBody<f16v>(columns, featureCount, rows, stride, coeffs);
-}
-BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] int solveAvx2(float* columns, int featureCount, int rows,
-                                                      long stride, float* coeffs) {
-    return solveHouseholderBody<f8>(columns, featureCount, rows, stride, coeffs);
-}
-[[gnu::noinline]] int solveBaseline(float* columns, int featureCount, int rows, long stride,
-                                    float* coeffs) {
-    return solveHouseholderBody<f8>(columns, featureCount, rows, stride, coeffs);
-}
-
-int solveHouseholderPaths(float* columns, int featureCount, int rows, long stride, float* coeffs) {
-    switch (activeIsa()) {
-    case Isa::Avx512:
-        return solveAvx512(columns, featureCount, rows, stride, coeffs);
-    case Isa::Avx2:
-        return solveAvx2(columns, featureCount, rows, stride, coeffs);
-    default:
-        return solveBaseline(columns, featureCount, rows, stride, coeffs);
-    }
 }
 
 } // namespace
