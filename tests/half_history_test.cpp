@@ -20,6 +20,7 @@ namespace {
 
 struct Scores {
     double rmse = 0, temporal = 0;
+    std::vector<float> last; ///< the last output frame
 };
 
 /// Mean tone-mapped RMSE against the references over frames [first, n) and mean temporal error
@@ -42,6 +43,7 @@ Scores score(bool half, const std::vector<FrameData>& frames, int first,
         }
         previous = std::move(out);
     }
+    sc.last = previous.pixels;
     return sc;
 }
 
@@ -53,6 +55,8 @@ void expectQualityRule(const std::vector<FrameData>& frames, int first, const ch
     std::printf("%s: RMSE %.5f -> %.5f (%+.3f%%), temporal %.5f -> %.5f (%+.3f%%)\n", what, f.rmse,
                 h.rmse, 100 * (h.rmse - f.rmse) / f.rmse, f.temporal, h.temporal,
                 100 * (h.temporal - f.temporal) / f.temporal);
+    // The setting must take effect: half storage rounds, so some output bits differ.
+    EXPECT_NE(h.last, f.last) << what << ": half and float history gave the same output";
     EXPECT_LE(dr, 0.005) << what << ": RMSE " << f.rmse << " (float) -> " << h.rmse << " (half)";
     EXPECT_LE(dt, 0.01) << what << ": temporal error " << f.temporal << " (float) -> " << h.temporal
                         << " (half)";
