@@ -1,6 +1,7 @@
 // The fitting core, reference and fast, against an independent double-precision
 // least-squares solve (Eigen), and the two against each other.
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
+#include "backend/cuda/bmfr/cooperative_fit.h"
 #include "core/hash.h"
 #include "filters/bmfr/householder_qr.h"
 #include <Eigen/Dense>
@@ -13,13 +14,24 @@ namespace {
 
 constexpr int W = 1024;
 
+/// The CUDA backend's block-cooperative QR, run on the host by a team of 256 (the GPU's).
+int solveHouseholderTeam(float* columns, int M, int rows, float* coeffs) {
+    const cuda::HostTeam team{256};
+    cuda::TeamFitState st{};
+    std::vector<float> partial(size_t(cuda::teamFitPartials(M)) * size_t(team.size()));
+    cuda::teamHouseholder(team, columns, M, rows, partial.data(), st);
+    for (int k = 0; k < 3 * M; ++k) coeffs[k] = st.coeffs[k];
+    return st.q.deficient;
+}
+
 using Solver = int (*)(float*, int, int, float*);
 struct NamedSolver {
     const char* name;
     Solver solve;
 };
 const NamedSolver kSolvers[] = {{"reference", &solveHouseholder},
-                                {"fast", &cpu::solveHouseholderFast}};
+                                {"fast", &cpu::solveHouseholderFast},
+                                {"cuda team", &solveHouseholderTeam}};
 
 float uniform(uint32_t a, uint32_t b, uint32_t c) {
     return unitFloat(hashKeys(a, b, c));
@@ -126,7 +138,7 @@ TEST(Householder, UnregularisedRankDeficiencyGivesFiniteMeanFit) {
     }
 }
 
-// The fast solver's tolerance against the reference: coefficients of well-conditioned blocks
+// The fast and the CUDA team solvers' tolerance against the reference: coefficients of well-conditioned blocks
 // within 1e-4 relative (only the summation order differs), the same columns dropped, and any
 // row count (heads and tails around the 8-wide body).
 TEST(Householder, FastSolverMatchesReferenceForAnyRowCount) {
@@ -145,10 +157,13 @@ TEST(Householder, FastSolverMatchesReferenceForAnyRowCount) {
                                                      0.3f * cols[size_t(2) * rows + k] * (c + 1) +
                                                      0.2f * uniform(trial + 7, c, k);
             }
-            std::vector<float> a = cols, b = cols, ca(M * 3), cb(M * 3), cs(M * 3);
+            std::vector<float> a = cols, b = cols, d = cols, ca(M * 3), cb(M * 3), cs(M * 3),
+                               cd(M * 3);
             const int droppedA = solveHouseholder(a.data(), M, rows, ca.data());
             const int droppedB = cpu::solveHouseholderFast(b.data(), M, rows, cb.data());
             EXPECT_EQ(droppedA, droppedB) << rows << " rows, trial " << trial;
+            EXPECT_EQ(solveHouseholderTeam(d.data(), M, rows, cd.data()), droppedA)
+                << "cuda team, " << rows << " rows, trial " << trial;
             // The fitter's padded column stride gives the same bits as contiguous columns.
             const long stride = cpu::qrColumnStride(rows);
             std::vector<float> padded(size_t(M + 3) * size_t(stride), -7.0f);
@@ -159,13 +174,16 @@ TEST(Householder, FastSolverMatchesReferenceForAnyRowCount) {
             EXPECT_EQ(cs, cb) << rows << " rows, trial " << trial;
             for (int k = 0; k < rows; ++k)
                 for (int c = 0; c < 3; ++c) {
-                    double fa = 0, fb = 0;
+                    double fa = 0, fb = 0, fd = 0;
                     for (int f = 0; f < M; ++f) {
                         fa += double(ca[f * 3 + c]) * cols[size_t(f) * rows + k];
                         fb += double(cb[f * 3 + c]) * cols[size_t(f) * rows + k];
+                        fd += double(cd[f * 3 + c]) * cols[size_t(f) * rows + k];
                     }
                     ASSERT_NEAR(fa, fb, 1e-4 * (1.0 + std::fabs(fa)))
                         << rows << " rows, trial " << trial << ", row " << k;
+                    ASSERT_NEAR(fa, fd, 1e-4 * (1.0 + std::fabs(fa)))
+                        << "cuda team, " << rows << " rows, trial " << trial << ", row " << k;
                 }
         }
     }

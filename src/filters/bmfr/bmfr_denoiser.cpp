@@ -1,8 +1,8 @@
 #include "backend/backend_registry.h"
-#include "core/hash.h"
 #include "core/settings_table.h"
 #include "filters/bmfr/bmfr_passes.h"
 #include "filters/bmfr/bmfr_settings_table.h"
+#include "filters/bmfr/regularisation_noise.h"
 #include "filters/filter_entry.h"
 #include "temporal/frame_checks.h"
 #include "temporal/input_staging.h"
@@ -38,10 +38,9 @@ void BmfrDenoiser::Impl::fillNoise() {
     timeline.noise.resize(size_t(M) * W);
     for (int f = 0; f < M; ++f) {
         const bool constant = settings.features[size_t(f)].source == FeatureSource::One;
-        for (int k = 0; k < W; ++k) {
-            float u = unitFloat(hashKeys(settings.seed, frame, uint32_t(f), uint32_t(k)));
-            timeline.noise[size_t(f) * W + k] = constant ? 0.0f : eps * (2.0f * u - 1.0f);
-        }
+        for (int k = 0; k < W; ++k)
+            timeline.noise[size_t(f) * W + k] =
+                regularisationNoise(settings.seed, frame, f, k, eps, constant);
     }
 }
 

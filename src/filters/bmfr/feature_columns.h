@@ -61,4 +61,37 @@ BMFR_HD void buildFeatureColumns(const Feature* features, int M, const BlockSour
     }
 }
 
+/// A feature's source value raised to its exponent, as buildFeatureColumns does.
+BMFR_HD float raiseFeature(float v, float exponent) {
+    if (exponent == 1.0f) return v;
+    if (exponent == 2.0f) return v * v;
+    return applyExponent(v, exponent);
+}
+
+/// Feature `feat`'s unscaled value at one pixel from its sources (normal, position, and the
+/// pixel's extras, one value each): buildFeatureColumns for a single row, for backends that
+/// fit a block row by row.
+BMFR_HD float featureValue(const Feature& feat, const float normal[3], const float position[3],
+                           const float* extras) {
+    float v = 1.0f;
+    switch (feat.source) {
+    case FeatureSource::One:
+        return 1.0f;
+    case FeatureSource::NormalX:
+    case FeatureSource::NormalY:
+    case FeatureSource::NormalZ:
+        v = normal[int(feat.source) - int(FeatureSource::NormalX)];
+        break;
+    case FeatureSource::PositionX:
+    case FeatureSource::PositionY:
+    case FeatureSource::PositionZ:
+        v = position[int(feat.source) - int(FeatureSource::PositionX)];
+        break;
+    case FeatureSource::Extra:
+        v = extras[feat.extraIndex];
+        break;
+    }
+    return raiseFeature(v, feat.exponent);
+}
+
 } // namespace bmfr

@@ -1,0 +1,178 @@
+// The BMFR fitting kernel (paper section 4.2) as one thread team per block, the GPU's shape of
+// it: the team gathers the block into a column-major matrix in shared memory, every column
+// reduction is a fixed tree over the team's partial sums, and one thread does each Householder
+// step's scalar work through HouseholderSteps (the CPU solvers' own). The weighted sum
+// re-evaluates the noise-free features per pixel rather than keeping a second copy of them.
+// BMFR_HD and templated on the team (backend/cuda/team.h): the GPU runs it in
+// cuda_fit_kernel.cu, and the host tests run the same code against the reference fitBlock.
+#pragma once
+#include "backend/cuda/team.h"
+#include "filters/bmfr/fitting_kernel.h"
+
+namespace bmfr::cuda {
+
+/// The scalar state of one block's fit, in the team's shared memory.
+struct TeamFitState {
+    HouseholderSteps q;
+    float lo[kMaxFeatures], hi[kMaxFeatures]; ///< each feature column's range in the block
+    float factor[kMaxFeatures + 3];           ///< 2 v.a_j / v.v of the current step
+    float coeffs[kMaxFeatures * 3];
+};
+
+/// Partial sums per thread: min and max of every feature, or one dot product per column.
+BMFR_HD int teamFitPartials(int featureCount) {
+    return 2 * featureCount > featureCount + 3 ? 2 * featureCount : featureCount + 3;
+}
+
+/// Where one block's fit keeps its data.
+struct TeamFitMemory {
+    TeamFitState* state;
+    float* partial; ///< teamFitPartials(M) x team size
+    float* matrix;  ///< (M + 3) x W, column-major: noised scaled features, then colour
+};
+
+/// Combines partial[c * T + t] over the T threads into partial[c * T] for columns
+/// [0, count), in a fixed tree (T a power of two), by op(c, x, y).
+template <class Team, class Op>
+BMFR_HD void teamReduce(const Team& team, float* partial, int count, Op op) {
+    const int T = team.size();
+    for (int s = T / 2; s > 0; s /= 2)
+        team.parallel([&](int t) {
+            if (t < s)
+                for (int c = 0; c < count; ++c)
+                    partial[c * T + t] = op(c, partial[c * T + t], partial[c * T + t + s]);
+        });
+}
+
+/// Image pixel of block pixel k (mirrored in at the border); `owned` when the block owns it.
+BMFR_HD long teamBlockPixel(const BlockGrid& g, int bx, int by, int k, bool& owned) {
+    const int ux = g.originX(bx) + k % g.blockSize, uy = g.originY(by) + k / g.blockSize;
+    owned = ux >= 0 && ux < g.width && uy >= 0 && uy < g.height;
+    return long(mirrorIndex(uy, g.height)) * g.width + mirrorIndex(ux, g.width);
+}
+
+/// Feature f of image pixel idx, unscaled (gatherBlock and buildFeatureColumns, per pixel).
+BMFR_HD float teamFeature(const BlockFit& a, int f, long idx) {
+    const Feature& feat = a.features[f];
+    if (feat.source == FeatureSource::Extra) {
+        const float v = a.in.extras[feat.extraIndex][idx];
+        return raiseFeature(std::isfinite(v) ? v : 0.0f, feat.exponent);
+    }
+    const float n[3] = {a.normal[3 * idx], a.normal[3 * idx + 1], a.normal[3 * idx + 2]};
+    const float p[3] = {a.position[3 * idx], a.position[3 * idx + 1], a.position[3 * idx + 2]};
+    return featureValue(feat, n, p, nullptr);
+}
+
+/// solveHouseholder's contract for a team: QR of the (M + 3) x W column-major matrix `A`
+/// (overwritten), coefficients into st.coeffs, dependent columns counted in st.q.deficient.
+/// `P` holds (M + 3) x team-size partial sums; st.q must be fresh.
+template <class Team>
+BMFR_HD void teamHouseholder(const Team& team, float* A, int M, int W, float* P,
+                             TeamFitState& st) {
+    const int C = M + 3, T = team.size();
+    // Step k reflects column k onto e_k.
+    for (int k = 0; k < M; ++k) {
+        const int J = C - k; // columns k .. C-1; partial j holds sum_{i>k} x_i a_(k+j),i
+        team.parallel([&](int t) {
+            const float* x = A + long(k) * W;
+            for (int j = 0; j < J; ++j) {
+                const float* col = A + long(k + j) * W;
+                float s = 0.0f;
+                for (int i = t; i < W; i += T)
+                    if (i > k) s += x[i] * col[i];
+                P[j * T + t] = s;
+            }
+        });
+        teamReduce(team, P, J, [](int, float x, float y) { return x + y; });
+        team.single([&] {
+            const float vtv = st.q.reflect(A, k, C, W, P[0]);
+            if (st.q.dead[k]) return;
+            const float vk = A[long(k) * W + k];
+            for (int j = k + 1; j < C; ++j) {
+                float* col = A + long(j) * W;
+                const float f = 2.0f * (vk * col[k] + P[(j - k) * T]) / vtv;
+                st.factor[j] = f;
+                col[k] -= f * vk;
+                st.q.R[k][j] = col[k];
+            }
+        });
+        team.parallel([&](int t) {
+            if (st.q.dead[k]) return;
+            const float* v = A + long(k) * W;
+            for (int i = t; i < W; i += T)
+                if (i > k)
+                    for (int j = k + 1; j < C; ++j) A[long(j) * W + i] -= st.factor[j] * v[i];
+        });
+    }
+    team.single([&] { st.q.solve(M, st.coeffs); });
+}
+
+/// Fits block (bx, by) with `team`: fitBlock's result, with the QR's sums in tree order.
+template <class Team>
+BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
+                          const TeamFitMemory& mem) {
+    const BlockGrid& g = a.grid;
+    const int W = g.blockSize * g.blockSize, M = a.featureCount, T = team.size();
+    float* A = mem.matrix;
+    float* P = mem.partial;
+    TeamFitState& st = *mem.state;
+
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) {
+            bool owned;
+            const long idx = teamBlockPixel(g, bx, by, k, owned);
+            for (int f = 0; f < M; ++f) A[long(f) * W + k] = teamFeature(a, f, idx);
+            for (int c = 0; c < 3; ++c) A[long(M + c) * W + k] = a.color[3 * idx + c];
+        }
+    });
+
+    // Each feature's range over the block, for the authors' block scaling.
+    team.parallel([&](int t) {
+        for (int f = 0; f < M; ++f) {
+            float lo = INFINITY, hi = -INFINITY;
+            for (int k = t; k < W; k += T) {
+                const float v = A[long(f) * W + k];
+                lo = v < lo ? v : lo;
+                hi = hi < v ? v : hi;
+            }
+            P[f * T + t] = lo;
+            P[(M + f) * T + t] = hi;
+        }
+    });
+    teamReduce(team, P, 2 * M,
+               [M](int c, float x, float y) { return c < M ? (y < x ? y : x) : (x < y ? y : x); });
+    team.single([&] {
+        st.q = HouseholderSteps{};
+        for (int f = 0; f < M; ++f) st.lo[f] = P[f * T], st.hi[f] = P[(M + f) * T];
+    });
+    team.parallel([&](int t) {
+        for (int f = 0; f < M; ++f) {
+            const bool scaled = a.features[f].scaled;
+            for (int k = t; k < W; k += T) {
+                float& v = A[long(f) * W + k];
+                const float clean = scaled ? scaleFeature(v, st.lo[f], st.hi[f]) : v;
+                v = clean + a.noise[long(f) * W + k];
+            }
+        }
+    });
+
+    teamHouseholder(team, A, M, W, P, st);
+
+    // Weighted sum of the noise-free features, written to the pixels the block owns.
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) {
+            bool owned;
+            const long idx = teamBlockPixel(g, bx, by, k, owned);
+            if (!owned) continue;
+            float sum[3] = {0.0f, 0.0f, 0.0f};
+            for (int f = 0; f < M; ++f) {
+                float v = teamFeature(a, f, idx);
+                if (a.features[f].scaled) v = scaleFeature(v, st.lo[f], st.hi[f]);
+                for (int c = 0; c < 3; ++c) sum[c] += st.coeffs[f * 3 + c] * v;
+            }
+            for (int c = 0; c < 3; ++c) a.fitted[3 * idx + c] = sum[c] > 0.0f ? sum[c] : 0.0f;
+        }
+    });
+}
+
+} // namespace bmfr::cuda

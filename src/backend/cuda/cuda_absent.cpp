@@ -1,0 +1,27 @@
+// The CUDA entry points of a build without nvcc: each says that this build has none.
+#include "backend/cuda/cuda_device.h"
+#include <bmfr/error.h>
+
+namespace bmfr::cuda {
+
+namespace {
+[[noreturn]] void absent() {
+    throw Error("no CUDA device: this build of bmfr has no CUDA backend (nvcc was not found "
+                "when it was configured; rebuild with -DBMFR_CUDA=ON where the toolkit exists)");
+}
+} // namespace
+
+bool built() {
+    return false;
+}
+void requireDevice() {
+    absent();
+}
+std::string deviceName() {
+    absent();
+}
+double copyFloorMs(double, int) {
+    absent();
+}
+
+} // namespace bmfr::cuda

@@ -1,0 +1,20 @@
+// What the rest of bmfr (the registry, bench, tests) asks of CUDA without including its
+// headers: whether the backend is built, whether a device is there, which one, and how fast it
+// copies. In a build without CUDA every call but built() throws bmfr::Error saying so.
+#pragma once
+#include <string>
+
+namespace bmfr::cuda {
+
+/// True when this library was built with the CUDA backend.
+bool built();
+/// Throws bmfr::Error "no CUDA device: ..." unless a usable device exists, and makes device 0
+/// current. Cheap after the first call.
+void requireDevice();
+/// The current device, as "NVIDIA H200 (sm_90, 132 SMs, 140.4 GiB)".
+std::string deviceName();
+/// The memory floor of `bytes` on this GPU: milliseconds a device-to-device copy of that many
+/// bytes takes (median of `repeats` timed copies after one warm-up, CUDA events).
+double copyFloorMs(double bytes, int repeats = 9);
+
+} // namespace bmfr::cuda

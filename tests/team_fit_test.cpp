@@ -1,0 +1,118 @@
+// The CUDA backend's block-cooperative fit (backend/cuda/bmfr/cooperative_fit.h), run on the
+// host by HostTeam, against the reference fitBlock: the same algorithm with the QR's sums in
+// tree order, so within the conformance suite's tolerance. Runs on every machine; the GPU
+// runs this very code.
+#include "backend/cuda/bmfr/cooperative_fit.h"
+#include "core/hash.h"
+#include "filters/bmfr/regularisation_noise.h"
+#include <bmfr/features.h>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <string>
+#include <vector>
+
+namespace bmfr {
+namespace {
+
+float uniform(uint32_t a, uint32_t b, uint32_t c) {
+    return unitFloat(hashKeys(a, b, c));
+}
+
+/// A w x h frame of smooth features (a tilted floor meeting a wall), an extra buffer, and a
+/// noisy colour that the features can mostly explain.
+struct Frame {
+    int w, h;
+    std::vector<float> normal, position, color, extra;
+    Frame(int width, int height, uint32_t seed) : w(width), h(height) {
+        const size_t n = size_t(w) * size_t(h);
+        normal.resize(3 * n), position.resize(3 * n), color.resize(3 * n), extra.resize(n);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t i = size_t(y) * w + x;
+                const bool wall = x > w / 2 + y / 3;
+                const float px = float(x) * 0.05f, py = float(y) * 0.04f;
+                const float p[3] = {px, wall ? 1.0f + py : 0.0f, wall ? 2.0f : py};
+                const float nn[3] = {0.0f, wall ? 0.0f : 1.0f, wall ? -1.0f : 0.0f};
+                for (int c = 0; c < 3; ++c) {
+                    position[3 * i + c] = p[c] + 3.0f;
+                    normal[3 * i + c] = nn[c];
+                    color[3 * i + c] = 0.4f + 0.2f * px * (c + 1) + (wall ? 0.3f : 0.0f) +
+                                       0.5f * (uniform(seed, uint32_t(i), uint32_t(c)) - 0.5f);
+                }
+                extra[i] = std::sin(px * 3.0f) + (i % 97 == 0 ? NAN : 0.0f);
+            }
+    }
+};
+
+/// Fits every block of frame `f` with the reference and with a host team of `threads`; returns
+/// the worst excess over the conformance tolerance (<= 0 passes).
+double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& features,
+                   float noiseAmplitude, int threads, long frameIndex) {
+    const int M = int(features.size()), W = blockSize * blockSize;
+    std::vector<float> noise(size_t(M) * W);
+    for (int m = 0; m < M; ++m)
+        for (int k = 0; k < W; ++k)
+            noise[size_t(m) * W + k] = regularisationNoise(
+                5, uint32_t(frameIndex), m, k, noiseAmplitude,
+                features[size_t(m)].source == FeatureSource::One);
+    BlockFit a;
+    a.grid = makeBlockGrid(f.w, f.h, blockSize, frameIndex);
+    a.features = features.data(), a.featureCount = M, a.noise = noise.data();
+    a.normal = f.normal.data(), a.position = f.position.data(), a.color = f.color.data();
+    a.in.extras[0] = f.extra.data(), a.in.extraCount = 1;
+    a.in.width = f.w, a.in.height = f.h;
+
+    std::vector<float> reference(f.color.size(), -1.0f), team(f.color.size(), -1.0f);
+    std::vector<float> clean(size_t(M) * W), work(size_t(M + 3) * W), sum(3 * size_t(W));
+    std::vector<float> sources(size_t(6 + 16) * W);
+    std::vector<int> index(static_cast<size_t>(W), 0);
+    const BlockFitScratch sc{clean.data(), work.data(), sum.data(), sources.data(), index.data()};
+    const cuda::HostTeam host{threads};
+    cuda::TeamFitState st{};
+    std::vector<float> partial(size_t(cuda::teamFitPartials(M)) * size_t(threads));
+    std::vector<float> matrix(size_t(M + 3) * W);
+    const cuda::TeamFitMemory mem{&st, partial.data(), matrix.data()};
+    for (int by = 0; by < a.grid.blocksY; ++by)
+        for (int bx = 0; bx < a.grid.blocksX; ++bx) {
+            a.fitted = reference.data();
+            fitBlock(a, bx, by, sc, solveHouseholder);
+            a.fitted = team.data();
+            cuda::fitBlockTeam(host, a, bx, by, mem);
+        }
+    double worst = -1.0;
+    for (size_t i = 0; i < team.size(); ++i) {
+        EXPECT_GE(team[i], 0.0f) << "pixel " << i / 3 << " not written or negative";
+        const double excess =
+            std::fabs(double(team[i]) - reference[i]) - (1e-4 + 1e-3 * std::fabs(reference[i]));
+        worst = std::max(worst, excess);
+    }
+    return worst;
+}
+
+TEST(TeamFit, MatchesTheReferenceFitterOnEveryBlock) {
+    const std::vector<Feature> features = defaultFeatures();
+    const Frame f(101, 67, 3);
+    for (int threads : {256, 64, 32})
+        for (long frame : {0L, 5L})
+            EXPECT_LE(worstExcess(f, 32, features, 0.01f, threads, frame), 0.0)
+                << threads << " threads, frame " << frame;
+}
+
+TEST(TeamFit, OtherBlockSizesFeaturesAndRankDeficiency) {
+    const Frame f(70, 45, 4);
+    const std::vector<Feature> features = defaultFeatures();
+    const std::vector<Feature> withExtra =
+        parseFeatures("1,n.x,n.y,n.z,p.x,p.y^3,p.z^0.5,p.x^2,extra0^2,extra0");
+    for (int block : {8, 20, 64}) {
+        SCOPED_TRACE("block size " + std::to_string(block));
+        EXPECT_LE(worstExcess(f, block, features, 0.01f, 256, 1), 0.0);
+        EXPECT_LE(worstExcess(f, block, withExtra, 0.01f, 128, 2), 0.0);
+        // Without regularisation the flat floor's dependent columns are dropped by both.
+        EXPECT_LE(worstExcess(f, block, features, 0.0f, 256, 3), 0.0);
+    }
+    // An image smaller than a block: everything mirrored in.
+    EXPECT_LE(worstExcess(Frame(5, 3, 6), 32, features, 0.01f, 256, 0), 0.0);
+}
+
+} // namespace
+} // namespace bmfr
