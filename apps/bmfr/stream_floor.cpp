@@ -37,6 +37,12 @@ std::span<const PassTraffic> singlePassTraffic(bool halfHistory) {
     return kSinglePass;
 }
 
+double trafficBytes(int width, int height, std::span<const PassTraffic> passes) {
+    double planes = 0;
+    for (const PassTraffic& pass : passes) planes += pass.reads + pass.writes;
+    return planes * double(width) * double(height) * sizeof(float);
+}
+
 double streamFloorMs(int width, int height, int threads, int repeats,
                      std::span<const PassTraffic> passes) {
     const long n = long(width) * height;

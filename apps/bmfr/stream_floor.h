@@ -18,6 +18,9 @@ std::span<const PassTraffic> fastPassTraffic(bool halfHistory = false);
 /// half as BmfrSettings::halfHistory stores it), everything else kept in cache.
 std::span<const PassTraffic> singlePassTraffic(bool halfHistory = false);
 
+/// Bytes the planes of `passes` come to for a width x height frame.
+double trafficBytes(int width, int height, std::span<const PassTraffic> passes);
+
 /// Median ms (over `repeats`) to stream, for a width x height frame, the planes of `passes` in
 /// turn, with `threads` workers (0 = all cores). No arithmetic beyond one add per plane read;
 /// ordinary stores, so each written line is also read first (write-allocate).

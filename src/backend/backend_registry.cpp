@@ -2,6 +2,7 @@
 // to tests/conformance/conformance_test.cpp).
 #include "backend/backend_registry.h"
 #include "backend/cpu/isa.h"
+#include "backend/cuda/cuda_device.h"
 #include <bmfr/error.h>
 #include <cstring>
 #include <string>
@@ -20,6 +21,12 @@ std::unique_ptr<SvgfPasses> makeSvgfPasses();
 std::unique_ptr<WalrPasses> makeWalrPasses();
 std::unique_ptr<MaraPasses> makeMaraPasses();
 } // namespace cpu
+#if defined(BMFR_HAVE_CUDA)
+namespace cuda {
+std::unique_ptr<BmfrPasses> makeBmfrPasses();
+std::unique_ptr<SvgfPasses> makeSvgfPasses();
+} // namespace cuda
+#endif
 
 const char* backendName(Backend b) {
     switch (b) {
@@ -40,6 +47,7 @@ Backend parseBackend(const char* name) {
 }
 
 std::vector<std::string> compiledBackends() {
+    if (cuda::built()) return {"reference", "cpu", "cuda"};
     return {"reference", "cpu"};
 }
 
@@ -50,10 +58,15 @@ template <class Make> auto onCpu(Make make) {
     cpu::activeIsa();
     return make();
 }
-[[noreturn]] void unavailable(Backend b) {
-    throw Error(std::string("backend '") + backendName(b) +
-                "' is not available: this build of bmfr has no CUDA backend yet "
-                "(use --backend cpu or reference)");
+/// The CUDA backend's passes, once a device is known to exist: "no CUDA device: ..." when the
+/// filter is made, in a build without CUDA too.
+template <class Make> auto onCuda(Make make) {
+    cuda::requireDevice();
+    return make();
+}
+[[noreturn]] void notOnCuda(const char* filter) {
+    throw Error(std::string("the cuda backend runs bmfr and svgf; ") + filter +
+                " runs on --backend cpu or reference");
 }
 } // namespace
 
@@ -63,9 +76,14 @@ std::unique_ptr<BmfrPasses> makeBmfrPasses(Backend b) {
         return reference::makeBmfrPasses();
     case Backend::Cpu:
         return onCpu(cpu::makeBmfrPasses);
-    default:
-        unavailable(b);
+    case Backend::Cuda:
+#if defined(BMFR_HAVE_CUDA)
+        return onCuda(cuda::makeBmfrPasses);
+#else
+        cuda::requireDevice();
+#endif
     }
+    throw Error("unknown backend");
 }
 
 std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend b) {
@@ -74,9 +92,14 @@ std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend b) {
         return reference::makeSvgfPasses();
     case Backend::Cpu:
         return onCpu(cpu::makeSvgfPasses);
-    default:
-        unavailable(b);
+    case Backend::Cuda:
+#if defined(BMFR_HAVE_CUDA)
+        return onCuda(cuda::makeSvgfPasses);
+#else
+        cuda::requireDevice();
+#endif
     }
+    throw Error("unknown backend");
 }
 
 std::unique_ptr<WalrPasses> makeWalrPasses(Backend b) {
@@ -85,9 +108,10 @@ std::unique_ptr<WalrPasses> makeWalrPasses(Backend b) {
         return reference::makeWalrPasses();
     case Backend::Cpu:
         return onCpu(cpu::makeWalrPasses);
-    default:
-        unavailable(b);
+    case Backend::Cuda:
+        notOnCuda("walr");
     }
+    throw Error("unknown backend");
 }
 
 std::unique_ptr<MaraPasses> makeMaraPasses(Backend b) {
@@ -96,9 +120,10 @@ std::unique_ptr<MaraPasses> makeMaraPasses(Backend b) {
         return reference::makeMaraPasses();
     case Backend::Cpu:
         return onCpu(cpu::makeMaraPasses);
-    default:
-        unavailable(b);
+    case Backend::Cuda:
+        notOnCuda("mara2017");
     }
+    throw Error("unknown backend");
 }
 
 } // namespace bmfr

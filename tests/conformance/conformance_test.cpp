@@ -2,9 +2,11 @@
 // same frames. Outputs must agree within the stated tolerance; discard masks, history lengths
 // and the non-finite and discarded counts must be identical. A new backend joins with one line
 // in kBackends, a new filter with one entry in kFilters. The CPU backend is held to it on each of
-// its instruction-set paths; a path this processor lacks is reported skipped.
+// its instruction-set paths; a path this processor lacks is reported skipped. The CUDA backend
+// (bmfr and svgf) is reported skipped, with the reason, where there is no GPU.
 #include "../path_traced_box.h"
 #include "backend/cpu/isa.h"
+#include "backend/cuda/cuda_device.h"
 #include "core/image.h"
 #include "synth/procedural_scene.h"
 #include <bmfr/bmfr.h>
@@ -18,7 +20,7 @@ namespace bmfr {
 namespace {
 
 /// The backends held to the reference backend, as "backend" or "backend_path".
-const std::vector<std::string> kBackends = {"cpu_baseline", "cpu_avx2", "cpu_avx512"};
+const std::vector<std::string> kBackends = {"cpu_baseline", "cpu_avx2", "cpu_avx512", "cuda"};
 
 /// Each filter with the configurations beyond the common ones (defaults and every switch).
 struct FilterCase {
@@ -181,6 +183,17 @@ struct Conformance : testing::TestWithParam<std::tuple<std::string, std::string>
     }
     void SetUp() override {
         const std::string b = std::get<0>(GetParam());
+        if (b == "cuda") {
+            const std::string filter = std::get<1>(GetParam());
+            if (filter != "bmfr" && filter != "svgf")
+                GTEST_SKIP() << "the cuda backend runs bmfr and svgf; " << filter << " has none";
+            try {
+                cuda::requireDevice();
+            } catch (const Error& e) {
+                GTEST_SKIP() << e.what();
+            }
+            return;
+        }
         if (b.find('_') == std::string::npos) return;
         const cpu::Isa isa = cpu::parseIsa(b.substr(b.find('_') + 1));
         if (int(isa) > int(cpu::bestIsa()))

@@ -70,7 +70,7 @@ ImageView BmfrDenoiser::denoise(const FrameInput& frame) {
     checkFrameInput(frame, m.extrasNeeded());
     TemporalHistory& h = m.timeline.history;
     if (h.begin(frame)) m.passes->allocate(h.width, h.height, m.settings, m.pool.threadCount());
-    m.fillNoise();
+    if (m.passes->needsHostNoise()) m.fillNoise();
 
     m.stats.times.clear();
     const BmfrPassContext ctx{m.settings, m.staging.stage(frame), m.timeline, m.pool};

@@ -35,6 +35,8 @@ struct InputCounters {
 class BmfrPasses {
   public:
     virtual ~BmfrPasses() = default;
+    /// False when the backend draws the regularisation noise itself (on its device).
+    virtual bool needsHostNoise() const { return true; }
     /// Sizes every buffer for w x h; called when the frame size changes.
     virtual void allocate(int w, int h, const BmfrSettings& s, int threads) = 0;
     /// Runs phase I to TAA, writing the output to history slot timeline.history.cur and each

@@ -10,27 +10,65 @@ namespace bmfr {
 
 using SvgfPassContext = PassContext<SvgfSettings>;
 
-/// SVGF's per-pixel buffers in host memory: the history (double-buffered) and this frame's.
-struct SvgfBuffers {
+/// SVGF's per-pixel buffers: the history (double-buffered) and this frame's, as images of F
+/// (floats) and U (bytes): host Image<T> for the host backends, device images for CUDA.
+template <class F, class U> struct SvgfImages {
     // History, [slot].
-    ImageF normal[2], position[2]; ///< sanitised features for the shared discard test
-    ImageF color[2];               ///< demodulated colour history (fed back from the step-1 level)
-    ImageF moments[2];             ///< 2 channels: luminance and luminance squared
-    ImageU8 historyLength[2];      ///< 0 = no sample yet (fewer than 1 spp)
-    ImageF output[2];              ///< final output (TAA history), 24 floats of padding
+    F normal[2], position[2]; ///< sanitised features for the shared discard test
+    F color[2];               ///< demodulated colour history (fed back from the step-1 level)
+    F moments[2];             ///< 2 channels: luminance and luminance squared
+    U historyLength[2];       ///< 0 = no sample yet (fewer than 1 spp)
+    F output[2];              ///< final output (TAA history), 24 floats of padding
     // This frame.
-    ImageF integrated, integratedMoments, depth, depthGradient;
-    ImageF variance;      ///< estimate before filtering (debug view)
-    ImageF filtered[2];   ///< a-trous ping-pong: RGB colour + variance
-    ImageF previousPixel; ///< 2 channels, shared with TAA
-    ImageU8 accept;
-    ImageF remodulated;                         ///< before TAA
+    F integrated, integratedMoments, depth, depthGradient;
+    F variance;      ///< estimate before filtering (debug view)
+    F filtered[2];   ///< a-trous ping-pong: RGB colour + variance
+    F previousPixel; ///< 2 channels, shared with TAA
+    U accept;
+    F remodulated; ///< before TAA
+
+    void allocate(int w, int h) {
+        for (int k = 0; k < 2; ++k) {
+            normal[k].resize(w, h, 3), position[k].resize(w, h, 3), color[k].resize(w, h, 3);
+            moments[k].resize(w, h, 2), historyLength[k].resize(w, h, 1);
+            output[k].resize(w, h, 3, 24), filtered[k].resize(w, h, 4);
+        }
+        integrated.resize(w, h, 3), integratedMoments.resize(w, h, 2), depth.resize(w, h, 1);
+        depthGradient.resize(w, h, 2), variance.resize(w, h, 1), previousPixel.resize(w, h, 2);
+        accept.resize(w, h, 1), remodulated.resize(w, h, 3);
+    }
+
+    /// The kernels' view of this frame, reading the input from `in`.
+    SvgfFrame frame(const SvgfPassContext& ctx, const InputPlanes& in) {
+        const SvgfSettings& s = ctx.settings;
+        const int cur = ctx.history.cur, prev = 1 - cur;
+        SvgfFrame f;
+        f.in = in;
+        f.modes = {s.colorIsDemodulated, true, s.albedoEpsilon};
+        f.previous = ctx.history.previous;
+        f.viewProjection = ctx.frame.viewProjection;
+        f.limits = {s.positionLimitSquared, s.normalLimitSquared};
+        f.colorAlpha = s.colorAlpha, f.momentsAlpha = s.momentsAlpha;
+        f.width = ctx.history.width, f.height = ctx.history.height;
+        f.prevNormal = normal[prev].data(), f.prevPosition = position[prev].data();
+        f.prevColor = color[prev].data(), f.prevMoments = moments[prev].data();
+        f.prevLength = historyLength[prev].data();
+        f.normal = normal[cur].data(), f.position = position[cur].data();
+        f.color = color[cur].data(), f.moments = moments[cur].data();
+        f.length = historyLength[cur].data();
+        f.integrated = integrated.data(), f.integratedMoments = integratedMoments.data();
+        f.depth = depth.data(), f.depthGradient = depthGradient.data();
+        f.previousPixel = previousPixel.data(), f.accept = accept.data();
+        return f;
+    }
+};
+
+/// SVGF's buffers in host memory, with the debug copies both host backends keep.
+struct SvgfBuffers : SvgfImages<ImageF, ImageU8> {
     int outputLevel = 0;                        ///< which of filtered[] holds the last level
     ImageF historyLengthF, acceptF, finalLevel; ///< debug copies, sized on first use
 
-    void allocate(int w, int h);
-    /// The kernels' view of this frame.
-    SvgfFrame frame(const SvgfPassContext& ctx);
+    SvgfFrame frame(const SvgfPassContext& ctx) { return SvgfImages::frame(ctx, ctx.input); }
     DebugBuffers debug(int cur) const;
     void captureDebug(int cur);
 };

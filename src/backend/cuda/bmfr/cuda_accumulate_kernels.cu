@@ -1,0 +1,54 @@
+// Phase I and phase III of BMFR on the GPU, one thread per pixel. Built with --fmad=false: the
+// discard decisions and history lengths must be the reference backend's, bit for bit.
+#include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
+#include "backend/cuda/device_buffer.h"
+#include "backend/cuda/launch.h"
+#include "filters/bmfr/regularisation_noise.h"
+
+namespace bmfr::cuda {
+
+namespace {
+__global__ void accumulateNoisyKernel(NoisyAccumulation a, unsigned long long* counters) {
+    const long i = pixelIndex();
+    if (i >= long(a.width) * a.height) return;
+    int64_t bad = 0;
+    const bool lost = accumulateNoisyPixel(a, i, bad);
+    countIf(&counters[0], bad);
+    countIf(&counters[1], lost ? 1 : 0);
+}
+__global__ void accumulateFittedKernel(FittedAccumulation a, float* out, long n) {
+    const long i = pixelIndex();
+    if (i < n) store3(out, i, accumulateFittedPixel(a, i));
+}
+__global__ void noiseKernel(float* noise, const Feature* features, int M, int W, uint32_t seed,
+                            uint32_t frame, float amplitude) {
+    const long i = pixelIndex();
+    if (i >= long(M) * W) return;
+    const int f = int(i / W), k = int(i % W);
+    noise[i] = regularisationNoise(seed, frame, f, k, amplitude,
+                                   features[f].source == FeatureSource::One);
+}
+} // namespace
+
+void launchAccumulateNoisy(const NoisyAccumulation& a, unsigned long long* counters,
+                           cudaStream_t stream) {
+    const long n = long(a.width) * a.height;
+    accumulateNoisyKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(a, counters);
+    check(cudaGetLastError(), "phase I kernel");
+}
+
+void launchAccumulateFitted(const FittedAccumulation& a, float* out, cudaStream_t stream) {
+    const long n = long(a.width) * a.in.height;
+    accumulateFittedKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(a, out, n);
+    check(cudaGetLastError(), "phase III kernel");
+}
+
+void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,
+                 uint32_t seed, uint32_t frame, float amplitude, cudaStream_t stream) {
+    const long n = long(featureCount) * blockPixels;
+    noiseKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(noise, features, featureCount,
+                                                              blockPixels, seed, frame, amplitude);
+    check(cudaGetLastError(), "noise kernel");
+}
+
+} // namespace bmfr::cuda

@@ -1,0 +1,32 @@
+// The CUDA backend's BMFR kernels, as launches host C++ can call: phase I and phase III one
+// thread per pixel over the shared BMFR_HD kernels, the regularisation noise, and the
+// block-cooperative fit (cooperative_fit.h), one CUDA block per regression block.
+#pragma once
+#include "filters/bmfr/accumulation_kernels.h"
+#include "filters/bmfr/fitting_kernel.h"
+#include <cstddef>
+#include <cuda_runtime_api.h>
+
+namespace bmfr::cuda {
+
+/// counters[0] += non-finite input values, counters[1] += pixels that lost their history.
+void launchAccumulateNoisy(const NoisyAccumulation& a, unsigned long long* counters,
+                           cudaStream_t stream);
+/// out (3 floats per pixel) = phase III's re-modulated colour, before TAA.
+void launchAccumulateFitted(const FittedAccumulation& a, float* out, cudaStream_t stream);
+/// noise[f * W + k] = regularisationNoise(...) for the frame, on the device.
+void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,
+                 uint32_t seed, uint32_t frame, float amplitude, cudaStream_t stream);
+
+/// How the fit runs on this device for M features and B x B blocks.
+struct FitPlan {
+    int threads = 256;       ///< team size, a power of two
+    size_t sharedBytes = 0;  ///< dynamic shared memory per block
+    bool matrixInShared = true;
+    size_t matrixFloats = 0; ///< (M + 3) x B^2: per block, in global scratch when not shared
+};
+FitPlan planFit(int featureCount, int blockSize);
+/// Fits every block of a.grid; `scratch` holds matrixFloats per block when !matrixInShared.
+void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream);
+
+} // namespace bmfr::cuda

@@ -1,0 +1,55 @@
+// The BMFR fitting kernel on the GPU: one CUDA block per regression block running
+// fitBlockTeam (cooperative_fit.h) with the matrix in shared memory, or in global scratch when
+// the block is too large for this device's shared memory.
+#include "backend/cuda/bmfr/cooperative_fit.h"
+#include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
+#include "backend/cuda/device_buffer.h"
+
+namespace bmfr::cuda {
+
+namespace {
+/// The fixed part of the team's memory, rounded to keep the float arrays 16-byte aligned.
+constexpr size_t kStateBytes = (sizeof(TeamFitState) + 15) / 16 * 16;
+
+__global__ void fitKernel(BlockFit a, int matrixFloats, bool matrixInShared, float* scratch) {
+    extern __shared__ float4 shared[];
+    char* base = reinterpret_cast<char*>(shared);
+    const DeviceTeam team;
+    float* partial = reinterpret_cast<float*>(base + kStateBytes);
+    float* matrix = partial + size_t(teamFitPartials(a.featureCount)) * blockDim.x;
+    if (!matrixInShared)
+        matrix = scratch + size_t(blockIdx.y * gridDim.x + blockIdx.x) * size_t(matrixFloats);
+    const TeamFitMemory mem{reinterpret_cast<TeamFitState*>(base), partial, matrix};
+    fitBlockTeam(team, a, int(blockIdx.x), int(blockIdx.y), mem);
+}
+} // namespace
+
+FitPlan planFit(int featureCount, int blockSize) {
+    FitPlan p;
+    const int W = blockSize * blockSize;
+    // A quarter of the block's pixels per thread at most, a warp at least.
+    p.threads = 32;
+    while (p.threads < 256 && p.threads * 4 < W) p.threads *= 2;
+    p.matrixFloats = size_t(featureCount + 3) * size_t(W);
+    const size_t fixed =
+        kStateBytes + size_t(teamFitPartials(featureCount)) * size_t(p.threads) * sizeof(float);
+    int device = 0, optin = 0;
+    check(cudaGetDevice(&device), "cudaGetDevice");
+    check(cudaDeviceGetAttribute(&optin, cudaDevAttrMaxSharedMemoryPerBlockOptin, device),
+          "cudaDeviceGetAttribute");
+    p.matrixInShared = fixed + p.matrixFloats * sizeof(float) <= size_t(optin);
+    p.sharedBytes = fixed + (p.matrixInShared ? p.matrixFloats * sizeof(float) : 0);
+    check(cudaFuncSetAttribute(fitKernel, cudaFuncAttributeMaxDynamicSharedMemorySize,
+                               int(p.sharedBytes)),
+          "cudaFuncSetAttribute");
+    return p;
+}
+
+void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream) {
+    const dim3 grid(unsigned(a.grid.blocksX), unsigned(a.grid.blocksY));
+    fitKernel<<<grid, unsigned(plan.threads), plan.sharedBytes, stream>>>(
+        a, int(plan.matrixFloats), plan.matrixInShared, scratch);
+    check(cudaGetLastError(), "fit kernel");
+}
+
+} // namespace bmfr::cuda

@@ -1,0 +1,25 @@
+// Launch shapes the CUDA backend's per-pixel kernels share.
+#pragma once
+#include "core/host_device.h"
+
+namespace bmfr::cuda {
+
+/// Threads per block of the one-thread-per-pixel kernels.
+inline constexpr int kPixelThreads = 256;
+/// Blocks covering n pixels.
+inline unsigned pixelBlocks(long n) {
+    return unsigned((n + kPixelThreads - 1) / kPixelThreads);
+}
+
+#if defined(__CUDACC__)
+/// This thread's pixel of a one-dimensional launch.
+__device__ inline long pixelIndex() {
+    return long(blockIdx.x) * blockDim.x + threadIdx.x;
+}
+/// Adds a thread's count to a frame counter only when there is something to add (rare).
+__device__ inline void countIf(unsigned long long* counter, int64_t n) {
+    if (n) atomicAdd(counter, (unsigned long long)n);
+}
+#endif
+
+} // namespace bmfr::cuda

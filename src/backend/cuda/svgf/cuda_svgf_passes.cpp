@@ -1,0 +1,124 @@
+// The CUDA backend's SVGF: the reference backend's stages (reference_svgf_passes.cpp) as
+// kernels on one stream over device-resident buffers, then the shared CUDA TAA. The output and
+// the non-finite count come down with the frame's only synchronisation.
+#include "backend/cuda/cuda_device.h"
+#include "backend/cuda/cuda_taa.h"
+#include "backend/cuda/device_input.h"
+#include "backend/cuda/stage_events.h"
+#include "backend/cuda/svgf/cuda_svgf_kernels.h"
+#include "filters/svgf/svgf_passes.h"
+
+namespace bmfr::cuda {
+
+namespace {
+
+class CudaSvgfPasses final : public SvgfPasses {
+  public:
+    CudaSvgfPasses() { requireDevice(); }
+
+    void allocate(int w, int h) override {
+        b_.allocate(w, h);
+        ycocg_.resize(w, h, 3);
+        counters_.resize(1);
+        for (ImageF& o : output_) o.resize(w, h, 3);
+    }
+
+    int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
+        const SvgfSettings& s = ctx.settings;
+        const TemporalHistory& h = ctx.history;
+        const cudaStream_t st = stream_.get();
+        events_.begin(st);
+        const InputPlanes& in = input_.upload(ctx.input, st);
+        check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), st), "counter reset");
+        events_.mark("upload", st);
+
+        const SvgfFrame f = b_.frame(ctx, in);
+        launchSvgfAccumulate(f, counters_.data(), st);
+        events_.mark("accumulate", st);
+        launchSvgfVariance(f, s, b_.filtered[0].data(), b_.variance.data(), st);
+        events_.mark("variance", st);
+        AtrousLevel level{nullptr,         nullptr,  f.normal, f.depth, f.depthGradient,
+                          f.length,        h.width, h.height};
+        int src = 0;
+        for (int k = 0; k < s.iterations; ++k) {
+            const int index = s.reverseLevels ? s.iterations - 1 - k : k;
+            level.in = b_.filtered[src].data(), level.out = b_.filtered[1 - src].data();
+            level.step = 1 << index;
+            launchSvgfAtrous(level, s, st);
+            src = 1 - src;
+            if (index == 0) // the step-1 level becomes the next frame's colour history
+                launchSvgfKeepLevel(b_.filtered[src].data(), b_.color[h.cur].data(),
+                                    b_.integrated.pixelCount(), st);
+        }
+        outputLevel_ = src;
+        launchSvgfRemodulate(b_.filtered[src].data(), in, s.albedoEpsilon, b_.remodulated.data(),
+                             st);
+        events_.mark("atrous", st);
+
+        const TaaInputs taa{b_.remodulated.data(),   nullptr, b_.output[1 - h.cur].data(),
+                            b_.previousPixel.data(), h.width, h.height,
+                            s.taaBlendAlpha};
+        launchTaa(taa, ycocg_.data(), b_.output[h.cur].data(), s.taa && h.hasHistory(), st);
+        events_.mark("taa", st);
+
+        b_.output[h.cur].download(output_[h.cur], st);
+        check(cudaMemcpyAsync(&count_, counters_.data(), sizeof count_, cudaMemcpyDeviceToHost,
+                              st),
+              "counter download");
+        events_.mark("download", st);
+        stream_.synchronize();
+        events_.report(times);
+        return int64_t(count_);
+    }
+
+    ImageView output(int slot) const override { return view(output_[slot]); }
+    /// Brought to the host only when asked for: most callers never look at it.
+    ImageView variance() const override {
+        b_.variance.download(variance_, stream_.get());
+        stream_.synchronize();
+        return view(variance_);
+    }
+
+    void captureDebug(int cur) override {
+        const cudaStream_t st = stream_.get();
+        b_.integrated.download(debug_.integrated, st);
+        b_.filtered[outputLevel_].download(level_, st);
+        b_.historyLength[cur].download(length_, st);
+        b_.accept.download(accept_, st);
+        stream_.synchronize();
+        widenToFloat(length_, debug_.historyLengthF);
+        widenToFloat(accept_, debug_.acceptF);
+        debug_.finalLevel.resize(level_.width, level_.height, 3);
+        for (long i = 0; i < level_.pixelCount(); ++i)
+            store3(debug_.finalLevel.data(), i, load3Stride4(level_.data(), i));
+    }
+    DebugBuffers debug(int) const override {
+        return {view(debug_.integrated), view(debug_.finalLevel), view(debug_.historyLengthF),
+                view(debug_.acceptF)};
+    }
+
+  private:
+    Stream stream_;
+    StageEvents events_;
+    DeviceInput input_;
+    SvgfImages<DeviceImageF, DeviceImageU8> b_;
+    DeviceImageF ycocg_;
+    DeviceArray<unsigned long long> counters_;
+    unsigned long long count_ = 0;
+    int outputLevel_ = 0;
+    ImageF output_[2], level_;
+    mutable ImageF variance_;
+    ImageU8 length_, accept_;
+    /// The debug views, in the host backends' layout.
+    struct {
+        ImageF integrated, finalLevel, historyLengthF, acceptF;
+    } debug_;
+};
+
+} // namespace
+
+std::unique_ptr<SvgfPasses> makeSvgfPasses() {
+    return std::make_unique<CudaSvgfPasses>();
+}
+
+} // namespace bmfr::cuda
