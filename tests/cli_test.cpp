@@ -1,5 +1,6 @@
 // The bmfr command line: a full run writes what it promises; bad input exits non-zero with a
 // message naming the problem.
+#include "backend/cuda/cuda_device.h"
 #include "cli_runner.h"
 #include "io/exr.h"
 #include <array>
@@ -289,8 +290,8 @@ TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
         const char* message;
     };
     for (const Bad& b :
-         {Bad{"--backend cuda", "backend 'cuda' is not available"},
-          Bad{"--backend gpu", "unknown backend 'gpu'"},
+         {Bad{"--backend gpu", "unknown backend 'gpu'"},
+          Bad{"--backend cuda --filter walr", "the cuda backend runs bmfr and svgf; walr runs on"},
           Bad{"--svgf-iterations 3", "--svgf-iterations is not a setting of the bmfr"},
           Bad{"--set nope=1", "'nope' is not a setting of the bmfr filter"},
           Bad{"--set blockSize", "expected key=value"},
@@ -302,6 +303,31 @@ TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
         Result r = run(base + b.args);
         EXPECT_EQ(r.code, 1) << b.args;
         EXPECT_NE(r.output.find(b.message), std::string::npos) << b.args << ": " << r.output;
+    }
+    fs::remove_all(in);
+    fs::remove_all(out);
+}
+
+// Without a GPU (or without CUDA in the build), the cuda backend is one clear error, exit 1;
+// with one, it denoises as the CPU backend does.
+TEST(Cli, CudaBackendDenoisesOrSaysWhyNot) {
+    fs::path in = scratch("cuda_in"), out = scratch("cuda_out");
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);
+    bool device = true;
+    try {
+        cuda::requireDevice();
+    } catch (const Error&) {
+        device = false;
+    }
+    for (const char* filter : {"bmfr", "svgf"}) {
+        Result r = run("denoise " + in.string() + " -o " + out.string() +
+                       " -q --no-png --backend cuda --filter " + filter);
+        if (device) {
+            EXPECT_EQ(r.code, 0) << filter << ": " << r.output;
+        } else {
+            EXPECT_EQ(r.code, 1) << filter;
+            EXPECT_NE(r.output.find("no CUDA device: "), std::string::npos) << r.output;
+        }
     }
     fs::remove_all(in);
     fs::remove_all(out);
