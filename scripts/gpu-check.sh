@@ -58,7 +58,7 @@ nvidia-smi -L 2>&1 | tee -a "$summary"
 "$bmfr" --version 2>&1 | tee -a "$summary"
 
 step tests 240 "$work/bmfr_tests" \
-    --gtest_filter='AllBackendsAndFilters/Conformance.*/cuda_*:TeamFit.*:Householder.*'
+    --gtest_filter='AllBackendsAndFilters/Conformance.*/cuda_bmfr:AllBackendsAndFilters/Conformance.*/cuda_svgf:TeamFit.*:Householder.*'
 
 demo=$work/demo
 step demo 300 bash -c "

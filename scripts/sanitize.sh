@@ -9,7 +9,8 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fr
 # -O1: the sanitizers need no more, and it halves the build on two cores.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
-    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DBMFR_PYTHON=OFF > /dev/null
+    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DBMFR_PYTHON=OFF \
+    -DBMFR_CUDA=OFF > /dev/null
 cmake --build build-asan -j "$(nproc)" --target bmfr bmfr_tests > /dev/null
 cd build-asan
 # The CPU backend's conformance cases run on the baseline path alone here: the AVX2 and AVX-512

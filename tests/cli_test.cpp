@@ -4,6 +4,7 @@
 #include "cli_runner.h"
 #include "io/exr.h"
 #include <array>
+#include <bmfr/error.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -315,8 +316,8 @@ TEST(Cli, CudaBackendDenoisesOrSaysWhyNot) {
     ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);
     bool device = true;
     try {
-        cuda::requireDevice();
-    } catch (const Error&) {
+        bmfr::cuda::requireDevice();
+    } catch (const bmfr::Error&) {
         device = false;
     }
     for (const char* filter : {"bmfr", "svgf"}) {

@@ -138,9 +138,9 @@ TEST(Householder, UnregularisedRankDeficiencyGivesFiniteMeanFit) {
     }
 }
 
-// The fast and the CUDA team solvers' tolerance against the reference: coefficients of well-conditioned blocks
-// within 1e-4 relative (only the summation order differs), the same columns dropped, and any
-// row count (heads and tails around the 8-wide body).
+// The fast and the CUDA team solvers' tolerance against the reference: coefficients of
+// well-conditioned blocks within 1e-4 relative (only the summation order differs), the same columns
+// dropped, and any row count (heads and tails around the 8-wide body).
 TEST(Householder, FastSolverMatchesReferenceForAnyRowCount) {
     for (int rows : {64, 81, 144, 1024, 4096}) {
         for (uint32_t trial = 0; trial < 5; ++trial) {

@@ -52,9 +52,9 @@ double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& fe
     std::vector<float> noise(size_t(M) * W);
     for (int m = 0; m < M; ++m)
         for (int k = 0; k < W; ++k)
-            noise[size_t(m) * W + k] = regularisationNoise(
-                5, uint32_t(frameIndex), m, k, noiseAmplitude,
-                features[size_t(m)].source == FeatureSource::One);
+            noise[size_t(m) * W + k] =
+                regularisationNoise(5, uint32_t(frameIndex), m, k, noiseAmplitude,
+                                    features[size_t(m)].source == FeatureSource::One);
     BlockFit a;
     a.grid = makeBlockGrid(f.w, f.h, blockSize, frameIndex);
     a.features = features.data(), a.featureCount = M, a.noise = noise.data();

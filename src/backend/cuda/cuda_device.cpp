@@ -42,11 +42,11 @@ void requireDevice() {
             why = "the driver reports no CUDA-capable device";
         else {
             const cudaError_t s = cudaSetDevice(0);
-            if (s != cudaSuccess) why = std::string("device 0 is unusable: ") + cudaGetErrorString(s);
+            if (s != cudaSuccess)
+                why = std::string("device 0 is unusable: ") + cudaGetErrorString(s);
         }
     });
-    if (!why.empty())
-        throw Error("no CUDA device: " + why + " (use --backend cpu or reference)");
+    if (!why.empty()) throw Error("no CUDA device: " + why + " (use --backend cpu or reference)");
     check(cudaSetDevice(0), "cudaSetDevice");
 }
 
@@ -66,6 +66,7 @@ double copyFloorMs(double bytes, int repeats) {
     const size_t n = std::max<size_t>(size_t(bytes / 2.0), 1);
     DeviceArray<unsigned char> a, b;
     a.resize(n), b.resize(n);
+    check(cudaDeviceSynchronize(), "allocation");
     Stream stream;
     cudaEvent_t start, stop;
     check(cudaEventCreate(&start), "cudaEventCreate");

@@ -3,8 +3,8 @@
 // of a sequence). Host code; the kernels see raw pointers.
 #pragma once
 #include "core/image.h"
-#include <cuda_runtime_api.h>
 #include <cstddef>
+#include <cuda_runtime_api.h>
 #include <utility>
 
 namespace bmfr::cuda {

@@ -24,16 +24,23 @@ const InputPlanes& DeviceInput::upload(const InputPlanes& h, cudaStream_t stream
         const float* InputPlanes::*field;
         int channels;
     };
-    static constexpr Plane kAll[kPlanes] = {
-        {&InputPlanes::color, 3},          {&InputPlanes::albedo, 3},
-        {&InputPlanes::normal, 3},         {&InputPlanes::position, 3},
-        {&InputPlanes::emission, 3},       {&InputPlanes::sampleMask, 1},
-        {&InputPlanes::motion, 2},         {&InputPlanes::motionDepth, 1},
-        {&InputPlanes::diffuseIndirect, 3}, {&InputPlanes::previousPosition, 3},
-        {&InputPlanes::previousNormal, 3}, {&InputPlanes::matteIndirect, 3},
-        {&InputPlanes::glossyIndirect, 3}, {&InputPlanes::directLight, 3},
-        {&InputPlanes::specularF0, 3},     {&InputPlanes::roughness, 1},
-        {&InputPlanes::glossyHitDistance, 1}};
+    static constexpr Plane kAll[kPlanes] = {{&InputPlanes::color, 3},
+                                            {&InputPlanes::albedo, 3},
+                                            {&InputPlanes::normal, 3},
+                                            {&InputPlanes::position, 3},
+                                            {&InputPlanes::emission, 3},
+                                            {&InputPlanes::sampleMask, 1},
+                                            {&InputPlanes::motion, 2},
+                                            {&InputPlanes::motionDepth, 1},
+                                            {&InputPlanes::diffuseIndirect, 3},
+                                            {&InputPlanes::previousPosition, 3},
+                                            {&InputPlanes::previousNormal, 3},
+                                            {&InputPlanes::matteIndirect, 3},
+                                            {&InputPlanes::glossyIndirect, 3},
+                                            {&InputPlanes::directLight, 3},
+                                            {&InputPlanes::specularF0, 3},
+                                            {&InputPlanes::roughness, 1},
+                                            {&InputPlanes::glossyHitDistance, 1}};
     for (int k = 0; k < kPlanes; ++k)
         d.*kAll[k].field = put(h.*kAll[k].field, kAll[k].channels, n, planes_[k], stream);
     d.extraCount = h.extraCount;

@@ -67,8 +67,7 @@ BMFR_HD float teamFeature(const BlockFit& a, int f, long idx) {
 /// (overwritten), coefficients into st.coeffs, dependent columns counted in st.q.deficient.
 /// `P` holds (M + 3) x team-size partial sums; st.q must be fresh.
 template <class Team>
-BMFR_HD void teamHouseholder(const Team& team, float* A, int M, int W, float* P,
-                             TeamFitState& st) {
+BMFR_HD void teamHouseholder(const Team& team, float* A, int M, int W, float* P, TeamFitState& st) {
     const int C = M + 3, T = team.size();
     // Step k reflects column k onto e_k.
     for (int k = 0; k < M; ++k) {

@@ -25,8 +25,8 @@ __global__ void noiseKernel(float* noise, const Feature* features, int M, int W,
     const long i = pixelIndex();
     if (i >= long(M) * W) return;
     const int f = int(i / W), k = int(i % W);
-    noise[i] = regularisationNoise(seed, frame, f, k, amplitude,
-                                   features[f].source == FeatureSource::One);
+    noise[i] =
+        regularisationNoise(seed, frame, f, k, amplitude, features[f].source == FeatureSource::One);
 }
 } // namespace
 

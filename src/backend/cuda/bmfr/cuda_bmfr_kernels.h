@@ -20,8 +20,8 @@ void launchNoise(float* noise, const Feature* features, int featureCount, int bl
 
 /// How the fit runs on this device for M features and B x B blocks.
 struct FitPlan {
-    int threads = 256;       ///< team size, a power of two
-    size_t sharedBytes = 0;  ///< dynamic shared memory per block
+    int threads = 256;      ///< team size, a power of two
+    size_t sharedBytes = 0; ///< dynamic shared memory per block
     bool matrixInShared = true;
     size_t matrixFloats = 0; ///< (M + 3) x B^2: per block, in global scratch when not shared
 };

@@ -60,6 +60,9 @@ class CudaBmfrPasses final : public BmfrPasses {
         const BlockGrid most = makeBlockGrid(w, h, s.blockSize, 0);
         b.fitScratch.resize(plan_.matrixInShared ? 0
                                                  : plan_.matrixFloats * size_t(most.blockCount()));
+        // The zeroing and the feature copy ran on the legacy stream, which the passes'
+        // non-blocking stream does not wait for.
+        check(cudaDeviceSynchronize(), "allocation");
     }
 
     InputCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
@@ -92,8 +95,8 @@ class CudaBmfrPasses final : public BmfrPasses {
 
         if (s.stages.fitting) {
             const int W = s.blockSize * s.blockSize, M = int(s.features.size());
-            launchNoise(b.noise.data(), b.features.data(), M, W, s.seed,
-                        uint32_t(t.frameIndex), s.noiseAmplitude, st);
+            launchNoise(b.noise.data(), b.features.data(), M, W, s.seed, uint32_t(t.frameIndex),
+                        s.noiseAmplitude, st);
             BlockFit f;
             f.grid = makeBlockGrid(t.width, t.height, s.blockSize, t.frameIndex);
             f.features = b.features.data(), f.featureCount = M, f.noise = b.noise.data();

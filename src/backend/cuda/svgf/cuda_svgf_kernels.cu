@@ -47,8 +47,8 @@ void launchSvgfAccumulate(const SvgfFrame& f, unsigned long long* counters, cuda
     check(cudaGetLastError(), "SVGF depth gradient kernel");
 }
 
-void launchSvgfVariance(const SvgfFrame& f, const SvgfSettings& s, float* filtered,
-                        float* variance, cudaStream_t stream) {
+void launchSvgfVariance(const SvgfFrame& f, const SvgfSettings& s, float* filtered, float* variance,
+                        cudaStream_t stream) {
     const long n = long(f.width) * f.height;
     varianceKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(f, s, filtered, variance);
     check(cudaGetLastError(), "SVGF variance kernel");

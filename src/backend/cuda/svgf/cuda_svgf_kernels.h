@@ -8,8 +8,8 @@ namespace bmfr::cuda {
 
 /// Accumulation, then the depth gradient; counters[0] += non-finite input values.
 void launchSvgfAccumulate(const SvgfFrame& f, unsigned long long* counters, cudaStream_t stream);
-void launchSvgfVariance(const SvgfFrame& f, const SvgfSettings& s, float* filtered,
-                        float* variance, cudaStream_t stream);
+void launchSvgfVariance(const SvgfFrame& f, const SvgfSettings& s, float* filtered, float* variance,
+                        cudaStream_t stream);
 void launchSvgfAtrous(const AtrousLevel& level, const SvgfSettings& s, cudaStream_t stream);
 /// colour history (3 floats) = the RGB of a level (4 floats per pixel).
 void launchSvgfKeepLevel(const float* level, float* color, long pixels, cudaStream_t stream);

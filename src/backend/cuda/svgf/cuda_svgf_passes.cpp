@@ -21,6 +21,8 @@ class CudaSvgfPasses final : public SvgfPasses {
         ycocg_.resize(w, h, 3);
         counters_.resize(1);
         for (ImageF& o : output_) o.resize(w, h, 3);
+        // The zeroing ran on the legacy stream, which the passes' stream does not wait for.
+        check(cudaDeviceSynchronize(), "allocation");
     }
 
     int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
@@ -37,8 +39,8 @@ class CudaSvgfPasses final : public SvgfPasses {
         events_.mark("accumulate", st);
         launchSvgfVariance(f, s, b_.filtered[0].data(), b_.variance.data(), st);
         events_.mark("variance", st);
-        AtrousLevel level{nullptr,         nullptr,  f.normal, f.depth, f.depthGradient,
-                          f.length,        h.width, h.height};
+        AtrousLevel level{nullptr,         nullptr,  f.normal, f.depth,
+                          f.depthGradient, f.length, h.width,  h.height};
         int src = 0;
         for (int k = 0; k < s.iterations; ++k) {
             const int index = s.reverseLevels ? s.iterations - 1 - k : k;
@@ -62,8 +64,7 @@ class CudaSvgfPasses final : public SvgfPasses {
         events_.mark("taa", st);
 
         b_.output[h.cur].download(output_[h.cur], st);
-        check(cudaMemcpyAsync(&count_, counters_.data(), sizeof count_, cudaMemcpyDeviceToHost,
-                              st),
+        check(cudaMemcpyAsync(&count_, counters_.data(), sizeof count_, cudaMemcpyDeviceToHost, st),
               "counter download");
         events_.mark("download", st);
         stream_.synchronize();
