@@ -324,3 +324,47 @@ TEST(Hardening, FuzzerFindingsAreRejectedCleanly) {
 
 } // namespace
 } // namespace bmfr
+
+namespace bmfr {
+namespace {
+
+/// Where a frame says its buffers are is checked before any is read: device memory is for the
+/// cuda backend alone, a frame's buffers are all in one memory, and a host frame's result never
+/// goes to a device view. (No GPU is needed: the views are never dereferenced.)
+TEST(Hardening, BufferMemoryIsCheckedBeforeAnythingIsRead) {
+    const std::vector<FrameData> frames = proceduralFrames(16, 12, 1);
+    auto expectError = [](const std::function<void()>& f, const std::string& what) {
+        try {
+            f();
+            ADD_FAILURE() << "no error; expected: " << what;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    };
+    for (const std::string& name : filterNames()) {
+        SCOPED_TRACE(name);
+        auto filter = makeFilter(name);
+        FrameInput device = frames[0].input();
+        for (ImageView* v : {&device.color, &device.albedo, &device.normal, &device.position})
+            v->memory = Memory::Cuda;
+        expectError([&] { filter->denoise(device); },
+                    "the frame's buffers are in CUDA device memory, which the cpu backend cannot "
+                    "read: use backend cuda");
+        FrameInput mixed = frames[0].input();
+        mixed.albedo.memory = Memory::Cuda;
+        expectError([&] { filter->denoise(mixed); },
+                    "input buffer 'albedo' is in CUDA device memory, colour in host memory");
+        std::vector<float> pixels(16 * 12 * 3);
+        MutableImageView out{pixels.data(), 16, 12, 3, 0, Memory::Cuda};
+        expectError([&] { filter->denoise(frames[0].input(), out); },
+                    "output buffer is in CUDA device memory, the frame's buffers in host memory");
+        // None of it moved the history: the next frame is a first frame.
+        auto fresh = makeFilter(name);
+        const ImageView a = filter->denoise(frames[0].input());
+        const ImageView b = fresh->denoise(frames[0].input());
+        EXPECT_EQ(std::memcmp(a.data, b.data, sizeof(float) * 3 * 16 * 12), 0);
+    }
+}
+
+} // namespace
+} // namespace bmfr

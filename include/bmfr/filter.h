@@ -24,10 +24,12 @@ class BMFR_API Filter {
   public:
     virtual ~Filter() = default;
     /// Denoises one frame; returns linear HDR RGB (3 channels, packed) valid until the next
-    /// call. Throws bmfr::Error for missing or mismatched buffers and broken matrices.
+    /// call, in the memory the frame's buffers are in (device memory: the cuda backend only).
+    /// Throws bmfr::Error for missing or mismatched buffers and broken matrices.
     virtual ImageView denoise(const FrameInput& frame) = 0;
     /// The same, with the result also written into `out` (same size; 3 or 4 channels, any
-    /// row stride; a fourth channel is left as it was).
+    /// row stride; a fourth channel is left as it was). `out` may be in host memory, or in
+    /// device memory when the frame's buffers are.
     ImageView denoise(const FrameInput& frame, const MutableImageView& out);
     /// Drops the history (as FrameInput::reset).
     virtual void reset() = 0;

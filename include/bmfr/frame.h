@@ -5,6 +5,10 @@
 
 namespace bmfr {
 
+/// Where an image's pixels are: host memory, or CUDA device memory (a device pointer, for the
+/// cuda backend, as engines hand over their G-buffer).
+enum class Memory { Host, Cuda };
+
 /// Read-only view of an interleaved float image, rows top to bottom: pixel (x, y), channel c is
 /// data[y * rowStride + x * channels + c]. Colour buffers take 3 or 4 channels (RGBA, as engines
 /// hand them over; the fourth is ignored).
@@ -15,6 +19,7 @@ struct ImageView {
     int channels = 3;
     /// Floats between the starts of two rows; 0 = packed (width * channels).
     long rowStride = 0;
+    Memory memory = Memory::Host; ///< where `data` points; every buffer of a frame alike
     long stride() const { return rowStride ? rowStride : long(width) * channels; }
     /// True when the pixels are packed RGB: what the filters read without a copy.
     bool packedRgb() const { return channels == 3 && stride() == long(width) * 3; }
@@ -27,7 +32,8 @@ struct MutableImageView {
     int width = 0;
     int height = 0;
     int channels = 3;
-    long rowStride = 0; ///< floats between rows; 0 = packed
+    long rowStride = 0;           ///< floats between rows; 0 = packed
+    Memory memory = Memory::Host; ///< where `data` points
     long stride() const { return rowStride ? rowStride : long(width) * channels; }
 };
 
@@ -99,6 +105,12 @@ struct FrameInput {
     /// Sub-pixel offset of this frame's primary rays from the pixel centre, pixels, [-0.5, 0.5].
     float jitter[2] = {0.0f, 0.0f};
     bool reset = false; ///< camera cut: drop all history before this frame
+    /// With the buffers in CUDA device memory (Memory::Cuda): the cudaStream_t to run on, or
+    /// null for the filter's own stream. On the caller's stream the filter never waits for the
+    /// GPU: the output view (device memory) is ready when the stream reaches that point, and
+    /// lastStats() then holds the times and counts of the latest earlier frame that had
+    /// finished when this one was queued. Ignored for host buffers.
+    void* cudaStream = nullptr;
 };
 
 /// Per-stage wall time of the last frame, milliseconds; each filter names its own stages.

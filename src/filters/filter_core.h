@@ -36,9 +36,10 @@ template <class S, class P> struct FilterCore {
     /// Runs one frame through the passes; returns the history slot it wrote. Throws
     /// bmfr::Error for bad input before the history moves on.
     int runFrame(const FrameInput& frame) {
-        checkFrameInput(frame, 0);
+        checkFrameInput(frame, 0, settings.backend);
         if (history.begin(frame)) passes->allocate(history.width, history.height);
-        const PassContext<S> ctx{settings, staging.stage(frame), frame, history, pool};
+        const PassContext<S> ctx{settings, staging.stage(frame, settings.backend == Backend::Cuda),
+                                 frame, history, pool};
         stats.times.clear();
         stats.nonFiniteInputs = passes->run(ctx, stats.times);
         if (debug) passes->captureDebug(history.cur);

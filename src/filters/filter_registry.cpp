@@ -44,8 +44,10 @@ std::vector<SettingDoc> filterSettings(const std::string& name) {
 
 ImageView Filter::denoise(const FrameInput& frame, const MutableImageView& out) {
     checkOutput(out, frame.color.width, frame.color.height); // before the history moves on
+    if (out.memory == Memory::Cuda && frame.color.memory == Memory::Host)
+        throw Error("output buffer is in CUDA device memory, the frame's buffers in host memory");
     const ImageView result = denoise(frame);
-    writeOutput(result, out);
+    writeOutput(result, out, frame.cudaStream);
     return result;
 }
 

@@ -14,8 +14,16 @@ struct ChannelRange {
 };
 constexpr ChannelRange kRgb{3, 4}, kScalar{1, 1}, kMotion{2, 4};
 
-void checkImage(const ImageView& v, const std::string& name, ChannelRange channels, int w, int h) {
+const char* memoryName(Memory m) {
+    return m == Memory::Cuda ? "CUDA device memory" : "host memory";
+}
+
+void checkImage(const ImageView& v, const std::string& name, ChannelRange channels, int w, int h,
+                Memory memory) {
     if (!v.data) throw Error("input buffer '" + name + "' is missing");
+    if (v.memory != memory)
+        throw Error("input buffer '" + name + "' is in " + memoryName(v.memory) + ", colour in " +
+                    memoryName(memory) + ": a frame's buffers must all be in one");
     if (v.width <= 0 || v.height <= 0)
         throw Error("input buffer '" + name + "' has zero size (" + std::to_string(v.width) + "x" +
                     std::to_string(v.height) + ")");
@@ -38,32 +46,41 @@ void checkImage(const ImageView& v, const std::string& name, ChannelRange channe
 
 } // namespace
 
-void checkFrameInput(const FrameInput& f, int extrasNeeded) {
+bool inDeviceMemory(const FrameInput& frame) {
+    return frame.color.memory == Memory::Cuda;
+}
+
+void checkFrameInput(const FrameInput& f, int extrasNeeded, Backend backend) {
     const int w = f.color.width, h = f.color.height;
-    checkImage(f.color, "color", kRgb, w, h);
-    checkImage(f.albedo, "albedo", kRgb, w, h);
-    checkImage(f.normal, "normal", kRgb, w, h);
-    checkImage(f.position, "position", kRgb, w, h);
-    if (f.emission.data) checkImage(f.emission, "emission", kRgb, w, h);
-    if (f.motion.data) checkImage(f.motion, "motion", kMotion, w, h);
-    if (f.previousPosition.data) checkImage(f.previousPosition, "previousPosition", kRgb, w, h);
-    if (f.previousNormal.data) checkImage(f.previousNormal, "previousNormal", kRgb, w, h);
-    if (f.diffuseIndirect.data) checkImage(f.diffuseIndirect, "diffuseIndirect", kRgb, w, h);
-    if (f.matteIndirect.data) checkImage(f.matteIndirect, "matteIndirect", kRgb, w, h);
-    if (f.glossyIndirect.data) checkImage(f.glossyIndirect, "glossyIndirect", kRgb, w, h);
-    if (f.directLight.data) checkImage(f.directLight, "directLight", kRgb, w, h);
-    if (f.specularF0.data) checkImage(f.specularF0, "specularF0", kRgb, w, h);
-    if (f.roughness.data) checkImage(f.roughness, "roughness", kScalar, w, h);
-    if (f.glossyHitDistance.data)
-        checkImage(f.glossyHitDistance, "glossyHitDistance", kScalar, w, h);
+    const Memory m = f.color.memory;
+    if (m == Memory::Cuda && backend != Backend::Cuda)
+        throw Error(std::string("the frame's buffers are in CUDA device memory, which the ") +
+                    backendName(backend) + " backend cannot read: use backend cuda");
+    const auto check = [m](const ImageView& v, const std::string& name, ChannelRange c, int width,
+                           int height) { checkImage(v, name, c, width, height, m); };
+    check(f.color, "color", kRgb, w, h);
+    check(f.albedo, "albedo", kRgb, w, h);
+    check(f.normal, "normal", kRgb, w, h);
+    check(f.position, "position", kRgb, w, h);
+    if (f.emission.data) check(f.emission, "emission", kRgb, w, h);
+    if (f.motion.data) check(f.motion, "motion", kMotion, w, h);
+    if (f.previousPosition.data) check(f.previousPosition, "previousPosition", kRgb, w, h);
+    if (f.previousNormal.data) check(f.previousNormal, "previousNormal", kRgb, w, h);
+    if (f.diffuseIndirect.data) check(f.diffuseIndirect, "diffuseIndirect", kRgb, w, h);
+    if (f.matteIndirect.data) check(f.matteIndirect, "matteIndirect", kRgb, w, h);
+    if (f.glossyIndirect.data) check(f.glossyIndirect, "glossyIndirect", kRgb, w, h);
+    if (f.directLight.data) check(f.directLight, "directLight", kRgb, w, h);
+    if (f.specularF0.data) check(f.specularF0, "specularF0", kRgb, w, h);
+    if (f.roughness.data) check(f.roughness, "roughness", kScalar, w, h);
+    if (f.glossyHitDistance.data) check(f.glossyHitDistance, "glossyHitDistance", kScalar, w, h);
     if (f.extras.size() > 16) throw Error("at most 16 extra buffers");
     for (size_t e = 0; e < f.extras.size(); ++e)
-        checkImage(f.extras[e], "extra" + std::to_string(e), kScalar, w, h);
+        check(f.extras[e], "extra" + std::to_string(e), kScalar, w, h);
     if (extrasNeeded > int(f.extras.size()))
         throw Error("feature extra" + std::to_string(extrasNeeded - 1) + " needs " +
                     std::to_string(extrasNeeded) + " extra buffers, the frame has " +
                     std::to_string(f.extras.size()));
-    if (f.sampleMask.data) checkImage(f.sampleMask, "sampleMask", kScalar, w, h);
+    if (f.sampleMask.data) check(f.sampleMask, "sampleMask", kScalar, w, h);
     if (!isUsableCameraMatrix(f.viewProjection))
         throw Error("view-projection matrix is not finite or not invertible");
     for (float j : f.jitter)

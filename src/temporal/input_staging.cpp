@@ -1,4 +1,5 @@
 #include "temporal/input_staging.h"
+#include "backend/cuda/cuda_device.h"
 #include <bmfr/error.h>
 #include <string>
 
@@ -6,9 +7,7 @@ namespace bmfr {
 
 const float* InputStaging::packed(const ImageView& v, int channels, std::vector<float>& copy,
                                   int first) {
-    if (!v.data) return nullptr;
-    if (first == 0 && v.channels == channels && v.stride() == long(v.width) * channels)
-        return v.data;
+    if (isPacked(v, channels, first)) return v.data;
     const size_t n = size_t(v.width) * size_t(v.height) * size_t(channels);
     if (copy.size() != n) copy.resize(n);
     const long stride = v.stride();
@@ -22,29 +21,16 @@ const float* InputStaging::packed(const ImageView& v, int channels, std::vector<
     return copy.data();
 }
 
-const InputPlanes& InputStaging::stage(const FrameInput& f) {
-    InputPlanes& p = planes_;
-    p.width = f.color.width, p.height = f.color.height;
-    p.color = packed(f.color, 3, color_);
-    p.albedo = packed(f.albedo, 3, albedo_);
-    p.normal = packed(f.normal, 3, normal_);
-    p.position = packed(f.position, 3, position_);
-    p.emission = packed(f.emission, 3, emission_);
-    p.sampleMask = packed(f.sampleMask, 1, sampleMask_);
-    p.motion = packed(f.motion, 2, motion_);
-    p.motionDepth = f.motion.channels >= 3 ? packed(f.motion, 1, motionDepth_, 2) : nullptr;
-    p.diffuseIndirect = packed(f.diffuseIndirect, 3, diffuseIndirect_);
-    p.previousPosition = packed(f.previousPosition, 3, previousPosition_);
-    p.previousNormal = packed(f.previousNormal, 3, previousNormal_);
-    p.matteIndirect = packed(f.matteIndirect, 3, matte_);
-    p.glossyIndirect = packed(f.glossyIndirect, 3, glossy_);
-    p.directLight = packed(f.directLight, 3, direct_);
-    p.specularF0 = packed(f.specularF0, 3, f0_);
-    p.roughness = packed(f.roughness, 1, roughness_);
-    p.glossyHitDistance = packed(f.glossyHitDistance, 1, hitDistance_);
-    p.extraCount = int(f.extras.size());
-    for (int e = 0; e < p.extraCount; ++e) p.extras[e] = packed(f.extras[size_t(e)], 1, extras_[e]);
-    return p;
+const InputPlanes& InputStaging::stage(const FrameInput& f, bool backendStages) {
+    if (backendStages) {
+        planes_ = InputPlanes{};
+        planes_.width = f.color.width, planes_.height = f.color.height;
+        return planes_;
+    }
+    planes_ = stagePlanes(f, [this](const ImageView& v, int channels, int slot, int first) {
+        return packed(v, channels, copies_[slot], first);
+    });
+    return planes_;
 }
 
 void checkOutput(const MutableImageView& out, int width, int height) {
@@ -60,8 +46,11 @@ void checkOutput(const MutableImageView& out, int width, int height) {
         throw Error("output buffer's row stride is less than a row");
 }
 
-void writeOutput(const ImageView& in, const MutableImageView& out) {
+void writeOutput(const ImageView& in, const MutableImageView& out, void* cudaStream) {
     checkOutput(out, in.width, in.height);
+    if (in.memory == Memory::Cuda) return cuda::copyOutput(in, out, cudaStream);
+    if (out.memory == Memory::Cuda)
+        throw Error("output buffer is in CUDA device memory, the frame's buffers in host memory");
     const long stride = out.stride();
     for (int y = 0; y < in.height; ++y) {
         const float* src = in.data + long(y) * in.width * 3;

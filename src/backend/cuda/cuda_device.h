@@ -2,6 +2,7 @@
 // headers: whether the backend is built, whether a device is there, which one, and how fast it
 // copies. In a build without CUDA every call but built() throws bmfr::Error saying so.
 #pragma once
+#include <bmfr/frame.h>
 #include <string>
 
 namespace bmfr::cuda {
@@ -16,5 +17,10 @@ std::string deviceName();
 /// The memory floor of `bytes` on this GPU: milliseconds a device-to-device copy of that many
 /// bytes takes (median of `repeats` timed copies after one warm-up, CUDA events).
 double copyFloorMs(double bytes, int repeats = 9);
+/// Writes the packed RGB device image `from` into `to` (device or host memory, 3 or 4
+/// channels, any row stride; a fourth channel is left as it was), ordered on `stream` (a
+/// cudaStream_t, or null for the default stream). Returns once done, except for a device `to`
+/// on a given stream.
+void copyOutput(const ImageView& from, const MutableImageView& to, void* stream);
 
 } // namespace bmfr::cuda

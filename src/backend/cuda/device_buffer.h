@@ -61,6 +61,10 @@ template <typename T> struct DeviceImage {
 };
 
 using DeviceImageF = DeviceImage<float>;
+/// A view of a device image for the caller (Memory::Cuda).
+inline ImageView deviceView(const DeviceImage<float>& img) {
+    return ImageView{img.data(), img.width, img.height, img.channels, 0, Memory::Cuda};
+}
 using DeviceImageU8 = DeviceImage<uint8_t>;
 
 /// A non-blocking stream owned by one filter's passes.

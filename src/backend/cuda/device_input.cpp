@@ -1,51 +1,41 @@
 #include "backend/cuda/device_input.h"
+#include "backend/cuda/image_copy.h"
 
 namespace bmfr::cuda {
 
-namespace {
-const float* put(const float* host, int channels, long pixels, DeviceArray<float>& dev,
-                 cudaStream_t stream) {
-    if (!host) return nullptr;
-    const size_t n = size_t(pixels) * size_t(channels);
-    dev.resize(n);
-    check(cudaMemcpyAsync(dev.data(), host, n * sizeof(float), cudaMemcpyHostToDevice, stream),
-          "input upload");
-    return dev.data();
+const float* DeviceInput::plane(const ImageView& v, int channels, int slot, int first,
+                                cudaStream_t s) {
+    const bool packed = isPacked(v, channels, first);
+    if (packed && v.memory == Memory::Cuda) return v.data;
+    const size_t w = size_t(v.width), h = size_t(v.height), c = size_t(channels);
+    DeviceArray<float>& out = planes_[slot];
+    out.resize(w * h * c);
+    if (packed) {
+        check(cudaMemcpyAsync(out.data(), v.data, w * h * c * sizeof(float), cudaMemcpyHostToDevice,
+                              s),
+              "input upload");
+        return out.data();
+    }
+    const float* rows = v.data;
+    const size_t pitch = size_t(v.stride()) * sizeof(float);
+    if (v.memory == Memory::Host) { // the rows as they are (the last one may end early)
+        rows_[slot].resize(size_t(v.stride()) * h);
+        check(cudaMemcpy2DAsync(rows_[slot].data(), pitch, v.data, pitch,
+                                w * size_t(v.channels) * sizeof(float), h, cudaMemcpyHostToDevice,
+                                s),
+              "input upload");
+        rows = rows_[slot].data();
+    }
+    launchPackChannels(rows, v.channels, v.stride(), first, channels, v.width, v.height, out.data(),
+                       s);
+    return out.data();
 }
-} // namespace
 
-const InputPlanes& DeviceInput::upload(const InputPlanes& h, cudaStream_t stream) {
-    const long n = long(h.width) * h.height;
-    InputPlanes& d = device_;
-    d = InputPlanes{};
-    d.width = h.width, d.height = h.height;
-    // Each plane with its channel count (InputPlanes says which are not 3).
-    struct Plane {
-        const float* InputPlanes::*field;
-        int channels;
-    };
-    static constexpr Plane kAll[kPlanes] = {{&InputPlanes::color, 3},
-                                            {&InputPlanes::albedo, 3},
-                                            {&InputPlanes::normal, 3},
-                                            {&InputPlanes::position, 3},
-                                            {&InputPlanes::emission, 3},
-                                            {&InputPlanes::sampleMask, 1},
-                                            {&InputPlanes::motion, 2},
-                                            {&InputPlanes::motionDepth, 1},
-                                            {&InputPlanes::diffuseIndirect, 3},
-                                            {&InputPlanes::previousPosition, 3},
-                                            {&InputPlanes::previousNormal, 3},
-                                            {&InputPlanes::matteIndirect, 3},
-                                            {&InputPlanes::glossyIndirect, 3},
-                                            {&InputPlanes::directLight, 3},
-                                            {&InputPlanes::specularF0, 3},
-                                            {&InputPlanes::roughness, 1},
-                                            {&InputPlanes::glossyHitDistance, 1}};
-    for (int k = 0; k < kPlanes; ++k)
-        d.*kAll[k].field = put(h.*kAll[k].field, kAll[k].channels, n, planes_[k], stream);
-    d.extraCount = h.extraCount;
-    for (int e = 0; e < h.extraCount; ++e) d.extras[e] = put(h.extras[e], 1, n, extras_[e], stream);
-    return d;
+const InputPlanes& DeviceInput::stage(const FrameInput& frame, cudaStream_t stream) {
+    device_ = stagePlanes(frame, [&](const ImageView& v, int channels, int slot, int first) {
+        return plane(v, channels, slot, first, stream);
+    });
+    return device_;
 }
 
 } // namespace bmfr::cuda

@@ -1,23 +1,24 @@
-// A frame's input planes on the device: the staged host planes (temporal/input_staging.h)
-// uploaded once per frame into arrays kept between frames, and the same InputPlanes struct
-// pointing at them for the kernels.
+// A frame's input planes on the device, staged from the caller's buffers in either memory:
+// packed device buffers are read in place; host buffers are uploaded; RGBA or padded rows are
+// packed by a kernel. The arrays are kept between frames; the planes are the InputPlanes the
+// kernels read.
 #pragma once
 #include "backend/cuda/device_buffer.h"
-#include "temporal/pixel_input.h"
+#include "temporal/input_staging.h"
 
 namespace bmfr::cuda {
 
 class DeviceInput {
   public:
-    /// Uploads every plane `host` has, ordered on `stream`; returns the device planes (valid
-    /// until the next call). Allocates only when the size or the set of planes changes.
-    const InputPlanes& upload(const InputPlanes& host, cudaStream_t stream);
+    /// The frame's planes on the device, staged on `stream` (valid until the next call).
+    /// Allocates only when the size or the set of buffers changes.
+    const InputPlanes& stage(const FrameInput& frame, cudaStream_t stream);
 
   private:
-    static constexpr int kPlanes = 17;
+    const float* plane(const ImageView& v, int channels, int slot, int first, cudaStream_t s);
     InputPlanes device_;
-    DeviceArray<float> planes_[kPlanes];
-    DeviceArray<float> extras_[InputPlanes::kMaxExtras];
+    DeviceArray<float> planes_[kStagedPlanes]; ///< packed planes, by stagePlanes slot
+    DeviceArray<float> rows_[kStagedPlanes];   ///< uploaded rows of unpacked host buffers
 };
 
 } // namespace bmfr::cuda

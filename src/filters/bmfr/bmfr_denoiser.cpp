@@ -67,13 +67,15 @@ const BmfrSettings& BmfrDenoiser::settings() const {
 
 ImageView BmfrDenoiser::denoise(const FrameInput& frame) {
     Impl& m = *impl_;
-    checkFrameInput(frame, m.extrasNeeded());
+    checkFrameInput(frame, m.extrasNeeded(), m.settings.backend);
     TemporalHistory& h = m.timeline.history;
     if (h.begin(frame)) m.passes->allocate(h.width, h.height, m.settings, m.pool.threadCount());
     if (m.passes->needsHostNoise()) m.fillNoise();
 
     m.stats.times.clear();
-    const BmfrPassContext ctx{m.settings, m.staging.stage(frame), m.timeline, m.pool};
+    const bool backendStages = m.settings.backend == Backend::Cuda;
+    const BmfrPassContext ctx{m.settings, m.staging.stage(frame, backendStages), frame, m.timeline,
+                              m.pool};
     const InputCounters counters = m.passes->run(ctx, m.stats.times);
     if (m.debug) m.passes->captureDebug(m.timeline);
     m.stats.nonFiniteInputs = counters.nonFinite;

@@ -21,6 +21,7 @@ struct BmfrTimeline {
 struct BmfrPassContext {
     const BmfrSettings& settings;
     const InputPlanes& input;
+    const FrameInput& frame; ///< the caller's buffers (device ones are staged by the backend)
     const BmfrTimeline& timeline;
     ThreadPool& pool;
 };

@@ -1,13 +1,13 @@
 // The CUDA backend's BMFR: the reference backend's stages as kernels on one stream, the
-// history and every intermediate kept on the device between frames. Per frame: the input
-// planes go up, phase I, the noise and the block-cooperative fit, phase III and TAA run, and
-// the output and two counters come down with the frame's only synchronisation.
+// history and every intermediate kept on the device between frames. Per frame: the input is
+// staged (uploaded, or read in place from device memory), phase I, the noise and the
+// block-cooperative fit, phase III and TAA run, and the output (for host frames) and two
+// counters come down, with at most one synchronisation (device_frame.h).
 #include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
 #include "backend/cuda/cuda_device.h"
 #include "backend/cuda/cuda_taa.h"
-#include "backend/cuda/device_input.h"
-#include "backend/cuda/stage_events.h"
-#include "filters/bmfr/bmfr_passes.h"
+#include "backend/cuda/device_frame.h"
+#include "filters/bmfr/bmfr_pass_setup.h"
 
 namespace bmfr::cuda {
 
@@ -28,7 +28,6 @@ struct Buffers {
 /// What comes back to the host each frame (and, on request, the debug views).
 struct HostCopies {
     ImageF output[2];
-    unsigned long long counters[2] = {};
     ImageF noisy, fitted, historyLengthF, acceptF;
     ImageU8 historyLength, accept;
 };
@@ -55,7 +54,7 @@ class CudaBmfrPasses final : public BmfrPasses {
         check(cudaMemcpy(b.features.data(), s.features.data(), size_t(M) * sizeof(Feature),
                          cudaMemcpyHostToDevice),
               "feature upload");
-        b.counters.resize(2);
+        b.counters.resize(DeviceFrame::kCounters);
         plan_ = planFit(M, s.blockSize);
         const BlockGrid most = makeBlockGrid(w, h, s.blockSize, 0);
         b.fitScratch.resize(plan_.matrixInShared ? 0
@@ -69,87 +68,55 @@ class CudaBmfrPasses final : public BmfrPasses {
         const BmfrSettings& s = ctx.settings;
         const TemporalHistory& t = ctx.timeline.history;
         const int cur = t.cur, prev = 1 - cur;
-        const cudaStream_t st = stream_.get();
+        const cudaStream_t st = frame_.get();
         Buffers& b = b_;
-        events_.begin(st);
-        const InputPlanes& in = input_.upload(ctx.input, st);
+        const InputPlanes& in = frame_.begin(ctx.frame);
         check(cudaMemsetAsync(b.counters.data(), 0, b.counters.bytes(), st), "counter reset");
-        events_.mark("upload", st);
 
-        NoisyAccumulation a;
-        a.in = in;
-        a.modes = {s.colorIsDemodulated, s.stages.demodulate, s.albedoEpsilon};
-        a.previous = t.previous;
-        a.limits = {s.positionLimitSquared, s.normalLimitSquared};
-        a.minAlpha = s.firstBlendAlpha, a.accumulate = s.stages.firstAccumulation;
-        a.halfHistory = s.halfHistory;
-        a.width = t.width, a.height = t.height;
-        a.normal = b.normal[cur].data(), a.position = b.position[cur].data();
-        a.prevNormal = b.normal[prev].data(), a.prevPosition = b.position[prev].data();
-        a.prevNoisy = b.accumulatedNoisy[prev].data();
-        a.prevLength = b.historyLength[prev].data();
-        a.noisy = b.accumulatedNoisy[cur].data(), a.length = b.historyLength[cur].data();
-        a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
-        launchAccumulateNoisy(a, b.counters.data(), st);
-        events_.mark("accumulate", st);
+        launchAccumulateNoisy(noisyAccumulation(ctx, in, b), b.counters.data(), st);
+        frame_.mark("accumulate");
 
         if (s.stages.fitting) {
             const int W = s.blockSize * s.blockSize, M = int(s.features.size());
             launchNoise(b.noise.data(), b.features.data(), M, W, s.seed, uint32_t(t.frameIndex),
                         s.noiseAmplitude, st);
-            BlockFit f;
-            f.grid = makeBlockGrid(t.width, t.height, s.blockSize, t.frameIndex);
-            f.features = b.features.data(), f.featureCount = M, f.noise = b.noise.data();
-            f.normal = b.normal[cur].data(), f.position = b.position[cur].data();
-            f.color = b.accumulatedNoisy[cur].data();
-            f.in = in;
-            f.fitted = b.fitted.data();
-            launchFitBlocks(f, plan_, b.fitScratch.data(), st);
+            launchFitBlocks(blockFit(ctx, in, b, b.features.data(), b.noise.data()), plan_,
+                            b.fitScratch.data(), st);
         } else {
             check(cudaMemcpyAsync(b.fitted.data(), b.accumulatedNoisy[cur].data(),
                                   b.accumulatedNoisy[cur].pixels.bytes(), cudaMemcpyDeviceToDevice,
                                   st),
                   "fit copy");
         }
-        events_.mark("fit", st);
+        frame_.mark("fit");
 
-        FittedAccumulation r;
-        r.in = in;
-        r.accumulate = t.hasHistory() && s.stages.secondAccumulation;
-        r.remodulate = s.stages.demodulate || s.colorIsDemodulated;
-        r.albedoEpsilon = s.albedoEpsilon, r.minAlpha = s.secondBlendAlpha, r.width = t.width;
-        r.halfHistory = s.halfHistory;
-        r.fitted = b.fitted.data(), r.prevAccumulated = b.accumulatedFitted[prev].data();
-        r.previousPixel = b.previousPixel.data(), r.accept = b.acceptMask.data();
-        r.length = b.historyLength[cur].data(), r.accumulated = b.accumulatedFitted[cur].data();
-        launchAccumulateFitted(r, b.remodulated.data(), st);
-        events_.mark("accumulate_fitted", st);
+        launchAccumulateFitted(fittedAccumulation(ctx, in, b), b.remodulated.data(), st);
+        frame_.mark("accumulate_fitted");
 
         const TaaInputs taa{b.remodulated.data(),   nullptr, b.output[prev].data(),
                             b.previousPixel.data(), t.width, t.height,
                             s.taaBlendAlpha};
         launchTaa(taa, b.ycocg.data(), b.output[cur].data(), s.taa && t.hasHistory(), st);
-        events_.mark("taa", st);
+        frame_.mark("taa");
 
-        b.output[cur].download(host_.output[cur], st);
-        check(cudaMemcpyAsync(host_.counters, b.counters.data(), sizeof host_.counters,
-                              cudaMemcpyDeviceToHost, st),
-              "counter download");
-        events_.mark("download", st);
-        stream_.synchronize();
-        events_.report(times);
-        return {int64_t(host_.counters[0]), int64_t(host_.counters[1])};
+        if (!frame_.onDevice()) b.output[cur].download(host_.output[cur], st);
+        unsigned long long counts[DeviceFrame::kCounters];
+        frame_.finish(b.counters.data(), times, counts);
+        return {int64_t(counts[0]), int64_t(counts[1])};
     }
 
-    ImageView output(int slot) const override { return view(host_.output[slot]); }
+    /// In the memory the frame's buffers were in.
+    ImageView output(int slot) const override {
+        return frame_.onDevice() ? deviceView(b_.output[slot]) : view(host_.output[slot]);
+    }
 
     void captureDebug(const BmfrTimeline& t) override {
-        const cudaStream_t st = stream_.get();
+        const cudaStream_t st = frame_.get();
         b_.accumulatedNoisy[t.history.cur].download(host_.noisy, st);
         b_.fitted.download(host_.fitted, st);
         b_.historyLength[t.history.cur].download(host_.historyLength, st);
         b_.acceptMask.download(host_.accept, st);
-        stream_.synchronize();
+        frame_.synchronize();
         widenToFloat(host_.historyLength, host_.historyLengthF);
         widenToFloat(host_.accept, host_.acceptF);
     }
@@ -160,9 +127,7 @@ class CudaBmfrPasses final : public BmfrPasses {
     }
 
   private:
-    Stream stream_;
-    StageEvents events_;
-    DeviceInput input_;
+    DeviceFrame frame_;
     Buffers b_;
     HostCopies host_;
     FitPlan plan_;

@@ -1,10 +1,9 @@
 // The CUDA backend's SVGF: the reference backend's stages (reference_svgf_passes.cpp) as
-// kernels on one stream over device-resident buffers, then the shared CUDA TAA. The output and
-// the non-finite count come down with the frame's only synchronisation.
+// kernels on one stream over device-resident buffers, then the shared CUDA TAA. The output (for
+// host frames) and the non-finite count come down, with at most one synchronisation.
 #include "backend/cuda/cuda_device.h"
 #include "backend/cuda/cuda_taa.h"
-#include "backend/cuda/device_input.h"
-#include "backend/cuda/stage_events.h"
+#include "backend/cuda/device_frame.h"
 #include "backend/cuda/svgf/cuda_svgf_kernels.h"
 #include "filters/svgf/svgf_passes.h"
 
@@ -19,7 +18,7 @@ class CudaSvgfPasses final : public SvgfPasses {
     void allocate(int w, int h) override {
         b_.allocate(w, h);
         ycocg_.resize(w, h, 3);
-        counters_.resize(1);
+        counters_.resize(DeviceFrame::kCounters);
         for (ImageF& o : output_) o.resize(w, h, 3);
         // The zeroing ran on the legacy stream, which the passes' stream does not wait for.
         check(cudaDeviceSynchronize(), "allocation");
@@ -28,17 +27,15 @@ class CudaSvgfPasses final : public SvgfPasses {
     int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
         const SvgfSettings& s = ctx.settings;
         const TemporalHistory& h = ctx.history;
-        const cudaStream_t st = stream_.get();
-        events_.begin(st);
-        const InputPlanes& in = input_.upload(ctx.input, st);
+        const cudaStream_t st = frame_.get();
+        const InputPlanes& in = frame_.begin(ctx.frame);
         check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), st), "counter reset");
-        events_.mark("upload", st);
 
         const SvgfFrame f = b_.frame(ctx, in);
         launchSvgfAccumulate(f, counters_.data(), st);
-        events_.mark("accumulate", st);
+        frame_.mark("accumulate");
         launchSvgfVariance(f, s, b_.filtered[0].data(), b_.variance.data(), st);
-        events_.mark("variance", st);
+        frame_.mark("variance");
         AtrousLevel level{nullptr,         nullptr,  f.normal, f.depth,
                           f.depthGradient, f.length, h.width,  h.height};
         int src = 0;
@@ -55,38 +52,39 @@ class CudaSvgfPasses final : public SvgfPasses {
         outputLevel_ = src;
         launchSvgfRemodulate(b_.filtered[src].data(), in, s.albedoEpsilon, b_.remodulated.data(),
                              st);
-        events_.mark("atrous", st);
+        frame_.mark("atrous");
 
         const TaaInputs taa{b_.remodulated.data(),   nullptr, b_.output[1 - h.cur].data(),
                             b_.previousPixel.data(), h.width, h.height,
                             s.taaBlendAlpha};
         launchTaa(taa, ycocg_.data(), b_.output[h.cur].data(), s.taa && h.hasHistory(), st);
-        events_.mark("taa", st);
+        frame_.mark("taa");
 
-        b_.output[h.cur].download(output_[h.cur], st);
-        check(cudaMemcpyAsync(&count_, counters_.data(), sizeof count_, cudaMemcpyDeviceToHost, st),
-              "counter download");
-        events_.mark("download", st);
-        stream_.synchronize();
-        events_.report(times);
-        return int64_t(count_);
+        if (!frame_.onDevice()) b_.output[h.cur].download(output_[h.cur], st);
+        unsigned long long counts[DeviceFrame::kCounters];
+        frame_.finish(counters_.data(), times, counts);
+        return int64_t(counts[0]);
     }
 
-    ImageView output(int slot) const override { return view(output_[slot]); }
-    /// Brought to the host only when asked for: most callers never look at it.
+    /// In the memory the frame's buffers were in.
+    ImageView output(int slot) const override {
+        return frame_.onDevice() ? deviceView(b_.output[slot]) : view(output_[slot]);
+    }
+    /// On the host, brought there only when asked for: most callers never look at it.
     ImageView variance() const override {
-        b_.variance.download(variance_, stream_.get());
-        stream_.synchronize();
+        if (frame_.onDevice()) return deviceView(b_.variance);
+        b_.variance.download(variance_, frame_.get());
+        frame_.synchronize();
         return view(variance_);
     }
 
     void captureDebug(int cur) override {
-        const cudaStream_t st = stream_.get();
+        const cudaStream_t st = frame_.get();
         b_.integrated.download(debug_.integrated, st);
         b_.filtered[outputLevel_].download(level_, st);
         b_.historyLength[cur].download(length_, st);
         b_.accept.download(accept_, st);
-        stream_.synchronize();
+        frame_.synchronize();
         widenToFloat(length_, debug_.historyLengthF);
         widenToFloat(accept_, debug_.acceptF);
         debug_.finalLevel.resize(level_.width, level_.height, 3);
@@ -99,13 +97,10 @@ class CudaSvgfPasses final : public SvgfPasses {
     }
 
   private:
-    Stream stream_;
-    StageEvents events_;
-    DeviceInput input_;
+    DeviceFrame frame_;
     SvgfImages<DeviceImageF, DeviceImageU8> b_;
     DeviceImageF ycocg_;
     DeviceArray<unsigned long long> counters_;
-    unsigned long long count_ = 0;
     int outputLevel_ = 0;
     ImageF output_[2], level_;
     mutable ImageF variance_;

@@ -4,9 +4,8 @@
 #include "backend/reference/reference_taa.h"
 #include "core/image.h"
 #include "core/stopwatch.h"
-#include "filters/bmfr/accumulation_kernels.h"
+#include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/bmfr_passes.h"
-#include "filters/bmfr/fitting_kernel.h"
 #include <atomic>
 #include <cstring>
 
@@ -43,22 +42,8 @@ struct Buffers {
 };
 
 InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
-    const BmfrSettings& s = ctx.settings;
     const TemporalHistory& t = ctx.timeline.history;
-    const int cur = t.cur, prev = 1 - t.cur;
-    NoisyAccumulation a;
-    a.in = ctx.input;
-    a.modes = {s.colorIsDemodulated, s.stages.demodulate, s.albedoEpsilon};
-    a.previous = t.previous;
-    a.limits = {s.positionLimitSquared, s.normalLimitSquared};
-    a.minAlpha = s.firstBlendAlpha, a.accumulate = s.stages.firstAccumulation;
-    a.halfHistory = s.halfHistory;
-    a.width = t.width, a.height = t.height;
-    a.normal = b.normal[cur].data(), a.position = b.position[cur].data();
-    a.prevNormal = b.normal[prev].data(), a.prevPosition = b.position[prev].data();
-    a.prevNoisy = b.accumulatedNoisy[prev].data(), a.prevLength = b.historyLength[prev].data();
-    a.noisy = b.accumulatedNoisy[cur].data(), a.length = b.historyLength[cur].data();
-    a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
+    const NoisyAccumulation a = noisyAccumulation(ctx, ctx.input, b);
     std::atomic<int64_t> nonFinite{0}, discarded{0};
     ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
         int64_t bad = 0, lost = 0;
@@ -77,14 +62,7 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
                     b.fitted.pixels.size() * sizeof(float));
         return;
     }
-    BlockFit a;
-    a.grid = makeBlockGrid(t.width, t.height, s.blockSize, t.frameIndex);
-    a.features = s.features.data(), a.featureCount = int(s.features.size());
-    a.noise = ctx.timeline.noise.data();
-    a.normal = b.normal[t.cur].data(), a.position = b.position[t.cur].data();
-    a.color = b.accumulatedNoisy[t.cur].data();
-    a.in = ctx.input;
-    a.fitted = b.fitted.data();
+    const BlockFit a = blockFit(ctx, ctx.input, b, s.features.data(), ctx.timeline.noise.data());
     const BlockGrid& g = a.grid;
     ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
         const BlockFitScratch sc = b.scratch[size_t(ThreadPool::currentThreadIndex())].view();
@@ -94,17 +72,8 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
 }
 
 void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
-    const BmfrSettings& s = ctx.settings;
     const TemporalHistory& t = ctx.timeline.history;
-    FittedAccumulation a;
-    a.in = ctx.input;
-    a.accumulate = t.hasHistory() && s.stages.secondAccumulation;
-    a.remodulate = s.stages.demodulate || s.colorIsDemodulated;
-    a.albedoEpsilon = s.albedoEpsilon, a.minAlpha = s.secondBlendAlpha, a.width = t.width;
-    a.halfHistory = s.halfHistory;
-    a.fitted = b.fitted.data(), a.prevAccumulated = b.accumulatedFitted[1 - t.cur].data();
-    a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
-    a.length = b.historyLength[t.cur].data(), a.accumulated = b.accumulatedFitted[t.cur].data();
+    const FittedAccumulation a = fittedAccumulation(ctx, ctx.input, b);
     float* out = b.remodulated.data();
     ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
         for (long i = y0 * t.width; i < y1 * t.width; ++i)

@@ -1,0 +1,63 @@
+#include "backend/cuda/device_frame.h"
+#include "temporal/frame_checks.h"
+
+namespace bmfr::cuda {
+
+DeviceFrame::DeviceFrame() {
+    check(cudaEventCreateWithFlags(&end_, cudaEventDisableTiming), "cudaEventCreate");
+    check(cudaMallocHost(reinterpret_cast<void**>(&hostCounts_), sizeof(*hostCounts_) * kCounters),
+          "cudaMallocHost");
+    current_ = own_.get();
+}
+
+DeviceFrame::~DeviceFrame() {
+    cudaEventSynchronize(end_); // the last frame's copies into hostCounts_
+    cudaEventDestroy(end_);
+    cudaFreeHost(hostCounts_);
+}
+
+const InputPlanes& DeviceFrame::begin(const FrameInput& frame) {
+    // A deferred frame's stats, if it is done by now (never waiting for it).
+    previousTimes_.clear();
+    for (unsigned long long& c : previousCounts_) c = 0;
+    if (pending_ && cudaEventQuery(end_) == cudaSuccess) {
+        events_.report(previousTimes_);
+        for (int k = 0; k < kCounters; ++k) previousCounts_[k] = hostCounts_[k];
+    }
+    pending_ = false;
+
+    onDevice_ = inDeviceMemory(frame);
+    deferred_ = onDevice_ && frame.cudaStream;
+    current_ = deferred_ ? static_cast<cudaStream_t>(frame.cudaStream) : own_.get();
+    // The history was written on whichever stream ran the previous frame.
+    check(cudaStreamWaitEvent(current_, end_, 0), "cudaStreamWaitEvent");
+    events_.begin(current_);
+    const InputPlanes& in = input_.stage(frame, current_);
+    events_.mark("upload", current_);
+    return in;
+}
+
+void DeviceFrame::finish(const unsigned long long* deviceCounters, StageTimes& times,
+                         unsigned long long* counts) {
+    check(cudaMemcpyAsync(hostCounts_, deviceCounters, sizeof(*hostCounts_) * kCounters,
+                          cudaMemcpyDeviceToHost, current_),
+          "counter download");
+    events_.mark("download", current_);
+    check(cudaEventRecord(end_, current_), "cudaEventRecord");
+    if (deferred_) {
+        pending_ = true;
+        for (int k = 0; k < previousTimes_.count; ++k)
+            times.add(previousTimes_.name[k], previousTimes_.ms[k]);
+        for (int k = 0; k < kCounters; ++k) counts[k] = previousCounts_[k];
+        return;
+    }
+    synchronize();
+    events_.report(times);
+    for (int k = 0; k < kCounters; ++k) counts[k] = hostCounts_[k];
+}
+
+void DeviceFrame::synchronize() const {
+    check(cudaStreamSynchronize(current_), "cudaStreamSynchronize");
+}
+
+} // namespace bmfr::cuda

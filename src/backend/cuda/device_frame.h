@@ -1,0 +1,51 @@
+// What every CUDA filter's passes do around their kernels each frame: choose the stream (the
+// caller's, for device buffers, or the passes' own), order the frame after the previous one on
+// the device, stage the input, time the stages with events, and end the frame: with one
+// synchronisation, or with none on the caller's stream, whose times and counts are then read
+// once a later frame finds them done.
+#pragma once
+#include "backend/cuda/device_input.h"
+#include "backend/cuda/stage_events.h"
+
+namespace bmfr::cuda {
+
+class DeviceFrame {
+  public:
+    static constexpr int kCounters = 2;
+
+    DeviceFrame();
+    ~DeviceFrame();
+    DeviceFrame(const DeviceFrame&) = delete;
+    DeviceFrame& operator=(const DeviceFrame&) = delete;
+
+    /// Starts a frame: stages its input (the "upload" stage) and returns the device planes.
+    const InputPlanes& begin(const FrameInput& frame);
+    /// The stream this frame runs on.
+    cudaStream_t get() const { return current_; }
+    /// True when this frame's buffers, and so its output, are in device memory.
+    bool onDevice() const { return onDevice_; }
+    /// Ends the stage `name` (a string literal).
+    void mark(const char* name) { events_.mark(name, current_); }
+    /// Ends the frame after the downloads queued on its stream (the "download" stage), with
+    /// the frame's kCounters device counters. Adds stage times to `times` and writes counts to
+    /// `counts`: this frame's after waiting for it, or, on the caller's stream, those of the
+    /// previous frame if it had finished when this one began (else none, and zeros).
+    void finish(const unsigned long long* deviceCounters, StageTimes& times,
+                unsigned long long* counts);
+    /// Waits for the frame's stream (debug downloads).
+    void synchronize() const;
+
+  private:
+    Stream own_;
+    cudaStream_t current_ = nullptr;
+    bool onDevice_ = false, deferred_ = false;
+    StageEvents events_;
+    DeviceInput input_;
+    cudaEvent_t end_ = nullptr;                ///< the previous frame's last work
+    unsigned long long* hostCounts_ = nullptr; ///< pinned, written by the stream
+    bool pending_ = false;                     ///< a deferred frame's stats are still to be read
+    StageTimes previousTimes_;
+    unsigned long long previousCounts_[kCounters] = {};
+};
+
+} // namespace bmfr::cuda
