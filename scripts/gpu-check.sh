@@ -10,11 +10,14 @@
 # The GPU machine has nvcc, CMake and Python but none of our Debian packages and no network, so
 # the binaries travel with their libraries (Embree, TBB, OpenEXR, fmt, libstdc++ ...; glibc
 # is the machine's own and must be 2.36 or newer). What `run` does, each step time-limited:
-#   1. the conformance suite for cuda (bmfr, svgf) and the team-fit and Householder tests;
+#   1. the conformance suite for cuda (bmfr, svgf), device buffers on either stream, and the
+#      team-fit and Householder tests;
 #   2. the demo: BMFR and SVGF on cuda against the CPU backend, scored by `bmfr eval`;
-#   3. `bmfr bench --backend cuda` at 720p, 1080p and 4K beside the CPU backend, and SVGF at 720p;
+#   3. `bmfr bench --backend cuda` at 720p, 1080p and 4K beside the CPU backend, again with the
+#      input in device memory (JSON), and SVGF at 720p;
 #   4. compute-sanitizer memcheck and racecheck on a small sequence, where it works.
-# Device time is short (minutes): run it once, read summary.txt, rerun only what failed.
+# The step limits add up to under ten minutes, one device call: run it once with
+# timeout_s=600, read summary.txt, rerun only what failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-run}
@@ -57,11 +60,11 @@ say "== machine"
 nvidia-smi -L 2>&1 | tee -a "$summary"
 "$bmfr" --version 2>&1 | tee -a "$summary"
 
-step tests 240 "$work/bmfr_tests" \
-    --gtest_filter='AllBackendsAndFilters/Conformance.*/cuda_bmfr:AllBackendsAndFilters/Conformance.*/cuda_svgf:TeamFit.*:Householder.*'
+step tests 140 "$work/bmfr_tests" \
+    --gtest_filter='AllBackendsAndFilters/Conformance.*/cuda_bmfr:AllBackendsAndFilters/Conformance.*/cuda_svgf:CudaDeviceBuffers.*:TeamFit.*:Householder.*'
 
 demo=$work/demo
-step demo 300 bash -c "
+step demo 120 bash -c "
     set -e
     '$bmfr' demo -o '$demo' --quiet
     for f in bmfr svgf; do
@@ -71,17 +74,17 @@ step demo 300 bash -c "
     '$bmfr' eval -r '$demo/input' -m noisy cpu-bmfr='$demo/cpu-bmfr' cuda-bmfr='$demo/cuda-bmfr' \
         cpu-svgf='$demo/cpu-svgf' cuda-svgf='$demo/cuda-svgf' -o '$demo/eval'"
 
-step bench 420 "$bmfr" bench --backend cuda --baseline-backend cpu \
+step bench 140 "$bmfr" bench --backend cuda --baseline-backend cpu \
     --sizes 1280x720,1920x1080,3840x2160
-step bench-json 300 "$bmfr" bench --backend cuda --baseline-backend cpu --quiet --json \
-    --sizes 1280x720,1920x1080,3840x2160
-step bench-svgf 120 "$bmfr" bench --backend cuda --filter svgf --baseline-backend cpu \
+step bench-device 50 "$bmfr" bench --backend cuda --device-buffers --no-baseline \
+    --sizes 1280x720,1920x1080,3840x2160 --json
+step bench-svgf 50 "$bmfr" bench --backend cuda --filter svgf --baseline-backend cpu \
     --sizes 1280x720
 
 if command -v compute-sanitizer > /dev/null; then
     small=$work/small
     "$bmfr" synth -o "$small" --width 77 --height 45 --frames 3 --quiet
-    step sanitizer 240 bash -c "
+    step sanitizer 90 bash -c "
         for tool in memcheck racecheck; do
             for f in bmfr svgf; do
                 compute-sanitizer --tool \$tool --error-exitcode 9 \

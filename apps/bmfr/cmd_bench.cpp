@@ -11,6 +11,7 @@
 #include <fmt/core.h>
 #include <fmt/format.h>
 #include <functional>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string_view>
@@ -26,6 +27,9 @@ struct BenchJob {
     /// Moving objects with motion vectors; the baseline is then the same backend reprojecting
     /// by the camera alone, so the ratio is the cost of the motion-vector path.
     bool motion = false;
+    /// The measured filter reads its input from CUDA device buffers (copied there once), as an
+    /// engine hands them over: no upload, and the output stays on the device.
+    bool deviceBuffers = false;
     std::string filter = "bmfr", backend = "cpu", baselineBackend = "reference";
     /// Another filter as the baseline (on baselineBackend), as WALR beside BMFR; "" = the same.
     std::string baselineFilter;
@@ -129,6 +133,22 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     const double singleHalf = job.backend == "cpu" && half
                                   ? streamFloorMs(w, h, job.threads, 5, singlePassTraffic(true))
                                   : 0.0;
+    // Device copies of every frame's buffers, made before timing starts.
+    std::vector<std::unique_ptr<cuda::DeviceImageCopy>> deviceCopies;
+    auto onDevice = [&deviceCopies](FrameInput in) {
+        for (ImageView* v : {&in.color, &in.albedo, &in.normal, &in.position, &in.emission,
+                             &in.motion, &in.previousPosition, &in.previousNormal}) {
+            deviceCopies.push_back(std::make_unique<cuda::DeviceImageCopy>(*v));
+            *v = deviceCopies.back()->view();
+        }
+        return in;
+    };
+    std::vector<FrameInput> deviceFrames, deviceBackwards;
+    if (job.deviceBuffers) {
+        if (!gpu) throw Error("--device-buffers needs --backend cuda");
+        for (const FrameData& f : frames) deviceFrames.push_back(onDevice(f.input()));
+        for (const FrameData& f : backwards) deviceBackwards.push_back(onDevice(f.input()));
+    }
     StageLog log, refLog;
     std::vector<double> deviceMs; // GPU frame time without the host transfers
     for (int i = 0; i < job.warmup + job.frames; ++i) {
@@ -138,7 +158,10 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
         if (k >= distinct) k = period - k;
         const FrameData& frame = (back && job.motion ? backwards : frames)[size_t(k)];
         const FrameInput in = frame.input();
-        d->denoise(mara ? in : withoutFactorisation(in));
+        if (job.deviceBuffers)
+            d->denoise((back && job.motion ? deviceBackwards : deviceFrames)[size_t(k)]);
+        else
+            d->denoise(mara ? in : withoutFactorisation(in));
         if (i >= job.warmup) {
             log.add(d->lastStats().times);
             if (gpu) deviceMs.push_back(onDeviceMs(d->lastStats().times));
@@ -157,6 +180,7 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     if (singleHalf > 0) r["single_pass_floor_half_ms"] = singleHalf;
     if (bmfrFilter) r["history"] = half ? "half" : "float";
     r["backend"] = job.backend;
+    if (job.deviceBuffers) r["input"] = "device buffers";
     if (job.backend == "cpu") r["cpu_path"] = cpu::isaName(cpu::activeIsa());
     if (gpu) {
         r["device"] = cuda::deviceName();
@@ -206,6 +230,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     "halfHistory=false)");
     cmd->add_option("--set", job->sets,
                     "key=value: a setting of the measured filter (bmfr settings NAME), repeatable");
+    cmd->add_flag("--device-buffers", job->deviceBuffers,
+                  "with --backend cuda: the input in device memory (copied there once, as an "
+                  "engine's G-buffer) and the output left there: no upload or download");
     cmd->add_flag("--motion", job->motion,
                   "moving objects with motion vectors and previous positions; the baseline is "
                   "the same backend reprojecting by the camera alone (the cost of the motion "
@@ -227,6 +254,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 std::string how;
                 if (r.contains("cpu_path")) how = r["cpu_path"].get<std::string>() + " path";
                 if (r.contains("device")) how = r["device"].get<std::string>();
+                if (r.contains("input")) how += ", " + r["input"].get<std::string>();
                 if (r.contains("history"))
                     how += (how.empty() ? "" : ", ") + r["history"].get<std::string>() + " history";
                 fmt::print("{:>10} {} on {}{}: {} ms   (median of {} frames)\n", size, job->filter,

@@ -26,5 +26,16 @@ double copyFloorMs(double, int) {
 void copyOutput(const ImageView&, const MutableImageView&, void*) {
     absent();
 }
+DeviceImageCopy::DeviceImageCopy(const ImageView&) {
+    absent();
+}
+DeviceImageCopy::~DeviceImageCopy() = default;
+CallerStream::CallerStream() {
+    absent();
+}
+CallerStream::~CallerStream() = default;
+void CallerStream::synchronize() const {
+    absent();
+}
 
 } // namespace bmfr::cuda

@@ -119,4 +119,35 @@ void copyOutput(const ImageView& from, const MutableImageView& to, void* stream)
                     packed[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)];
 }
 
+DeviceImageCopy::DeviceImageCopy(const ImageView& host) : view_(host) {
+    view_.memory = Memory::Cuda;
+    if (!host.data) return;
+    requireDevice();
+    const size_t row = size_t(host.width) * size_t(host.channels) * sizeof(float);
+    const size_t pitch = size_t(host.stride()) * sizeof(float);
+    check(cudaMalloc(&data_, pitch * size_t(host.height)), "cudaMalloc");
+    check(cudaMemcpy2D(data_, pitch, host.data, pitch, row, size_t(host.height),
+                       cudaMemcpyHostToDevice),
+          "device copy");
+    // A pageable copy may still be on its way; the filters' streams do not wait for it.
+    check(cudaDeviceSynchronize(), "device copy");
+    view_.data = static_cast<const float*>(data_);
+}
+DeviceImageCopy::~DeviceImageCopy() {
+    cudaFree(data_);
+}
+
+CallerStream::CallerStream() {
+    requireDevice();
+    cudaStream_t s = nullptr;
+    check(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking), "cudaStreamCreate");
+    stream_ = s;
+}
+CallerStream::~CallerStream() {
+    cudaStreamDestroy(static_cast<cudaStream_t>(stream_));
+}
+void CallerStream::synchronize() const {
+    check(cudaStreamSynchronize(static_cast<cudaStream_t>(stream_)), "cudaStreamSynchronize");
+}
+
 } // namespace bmfr::cuda

@@ -23,4 +23,34 @@ double copyFloorMs(double bytes, int repeats = 9);
 /// on a given stream.
 void copyOutput(const ImageView& from, const MutableImageView& to, void* stream);
 
+/// A host image copied once into device memory (same channels and row stride), for callers
+/// that hand a filter device buffers: the bench and the tests, as an engine would.
+class DeviceImageCopy {
+  public:
+    explicit DeviceImageCopy(const ImageView& host);
+    ~DeviceImageCopy();
+    DeviceImageCopy(const DeviceImageCopy&) = delete;
+    DeviceImageCopy& operator=(const DeviceImageCopy&) = delete;
+    /// The copy, as a view in device memory (null data for a null host view).
+    ImageView view() const { return view_; }
+
+  private:
+    void* data_ = nullptr;
+    ImageView view_;
+};
+
+/// A CUDA stream of the caller's (FrameInput::cudaStream), for the bench and the tests.
+class CallerStream {
+  public:
+    CallerStream();
+    ~CallerStream();
+    CallerStream(const CallerStream&) = delete;
+    CallerStream& operator=(const CallerStream&) = delete;
+    void* get() const { return stream_; }
+    void synchronize() const;
+
+  private:
+    void* stream_ = nullptr;
+};
+
 } // namespace bmfr::cuda
