@@ -7,3 +7,5 @@ py=()
 [ -x /usr/bin/python3 ] && py=(-DPython3_EXECUTABLE=/usr/bin/python3)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${py[@]}" > /dev/null
 cmake --build build -j "$(nproc)"
+# Which backends this build has (the cuda backend needs nvcc at configure time, no GPU).
+build/bmfr --version

@@ -1,6 +1,7 @@
 // bmfr: denoise 1-spp path-traced sequences with BMFR; benchmark; demo on a built-in scene.
 // Exit codes: 0 success, 1 a runtime error, 2 a usage error, 130 interrupted.
 #include "backend/cpu/isa.h"
+#include "backend/cuda/cuda_device.h"
 #include "commands.h"
 #include "git_commit.h"
 #include "io/shell_quote.h"
@@ -22,9 +23,18 @@ std::string versionText() {
     } catch (const bmfr::Error&) {
         path = "none (BMFR_CPU_ISA is invalid)";
     }
-    return fmt::format("bmfr {} (commit {}; backends: {}; cpu path: {} of {})", BMFR_VERSION,
+    // Which GPU the cuda backend would use, or why none.
+    std::string gpu;
+    if (bmfr::cuda::built()) {
+        try {
+            gpu = "; cuda device: " + bmfr::cuda::deviceName();
+        } catch (const bmfr::Error& e) {
+            gpu = std::string("; cuda: ") + e.what();
+        }
+    }
+    return fmt::format("bmfr {} (commit {}; backends: {}; cpu path: {} of {}{})", BMFR_VERSION,
                        BMFR_GIT_COMMIT, fmt::join(bmfr::compiledBackends(), ", "), path,
-                       bmfr::cpu::isaName(bmfr::cpu::bestIsa()));
+                       bmfr::cpu::isaName(bmfr::cpu::bestIsa()), gpu);
 }
 
 const std::string& invocation() {
