@@ -68,10 +68,11 @@ TEST(CliConventions, VersionNamesTheVersionCommitAndBackends) {
         << r.output;
     EXPECT_NE(r.output.find("backends: reference, cpu"), std::string::npos) << r.output;
     // With the cuda backend built: its device, or why there is none.
-    if (r.output.find("backends: reference, cpu, cuda") != std::string::npos)
+    if (r.output.find("backends: reference, cpu, cuda") != std::string::npos) {
         EXPECT_TRUE(r.output.find("; cuda device: ") != std::string::npos ||
                     r.output.find("; cuda: no CUDA device: ") != std::string::npos)
             << r.output;
+    }
 }
 
 TEST(CliConventions, CpuPathIsNamedAndChosenByTheEnvironment) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bmfr/error.h>
 #include <cstdio>
+#include <dlfcn.h>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -30,6 +31,15 @@ bool built() {
     return true;
 }
 
+namespace {
+/// The runtime reports a missing driver as an old one; tell the two apart.
+bool driverInstalled() {
+    void* lib = dlopen("libcuda.so.1", RTLD_LAZY | RTLD_LOCAL);
+    if (lib) dlclose(lib);
+    return lib != nullptr;
+}
+} // namespace
+
 void requireDevice() {
     // The answer cannot change within a process; ask the driver once.
     static std::once_flag once;
@@ -37,7 +47,9 @@ void requireDevice() {
     std::call_once(once, [] {
         int count = 0;
         const cudaError_t e = cudaGetDeviceCount(&count);
-        if (e != cudaSuccess)
+        if (e == cudaErrorInsufficientDriver && !driverInstalled())
+            why = "no NVIDIA driver is installed (libcuda.so.1 cannot be loaded)";
+        else if (e != cudaSuccess)
             why = std::string(cudaGetErrorString(e)) + " (" + cudaGetErrorName(e) + ")";
         else if (count == 0)
             why = "the driver reports no CUDA-capable device";
