@@ -68,9 +68,9 @@ class CudaBmfrPasses final : public BmfrPasses {
         const BmfrSettings& s = ctx.settings;
         const TemporalHistory& t = ctx.timeline.history;
         const int cur = t.cur, prev = 1 - cur;
-        const cudaStream_t st = frame_.get();
         Buffers& b = b_;
         const InputPlanes& in = frame_.begin(ctx.frame);
+        const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
         check(cudaMemsetAsync(b.counters.data(), 0, b.counters.bytes(), st), "counter reset");
 
         launchAccumulateNoisy(noisyAccumulation(ctx, in, b), b.counters.data(), st);

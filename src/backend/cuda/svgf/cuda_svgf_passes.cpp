@@ -27,8 +27,8 @@ class CudaSvgfPasses final : public SvgfPasses {
     int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
         const SvgfSettings& s = ctx.settings;
         const TemporalHistory& h = ctx.history;
-        const cudaStream_t st = frame_.get();
         const InputPlanes& in = frame_.begin(ctx.frame);
+        const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
         check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), st), "counter reset");
 
         const SvgfFrame f = b_.frame(ctx, in);
