@@ -51,16 +51,23 @@ BMFR_HD long teamBlockPixel(const BlockGrid& g, int bx, int by, int k, bool& own
     return long(mirrorIndex(uy, g.height)) * g.width + mirrorIndex(ux, g.width);
 }
 
-/// Feature f of image pixel idx, unscaled (gatherBlock and buildFeatureColumns, per pixel).
-BMFR_HD float teamFeature(const BlockFit& a, int f, long idx) {
+/// One image pixel's feature sources: its normal and position, read once for all features.
+struct TeamPixel {
+    long idx;
+    float n[3], p[3];
+    BMFR_HD TeamPixel(const BlockFit& a, long i) : idx(i) {
+        for (int c = 0; c < 3; ++c) n[c] = a.normal[3 * i + c], p[c] = a.position[3 * i + c];
+    }
+};
+
+/// Feature f of a pixel, unscaled (gatherBlock and buildFeatureColumns, per pixel).
+BMFR_HD float teamFeature(const BlockFit& a, int f, const TeamPixel& px) {
     const Feature& feat = a.features[f];
     if (feat.source == FeatureSource::Extra) {
-        const float v = a.in.extras[feat.extraIndex][idx];
+        const float v = a.in.extras[feat.extraIndex][px.idx];
         return raiseFeature(std::isfinite(v) ? v : 0.0f, feat.exponent);
     }
-    const float n[3] = {a.normal[3 * idx], a.normal[3 * idx + 1], a.normal[3 * idx + 2]};
-    const float p[3] = {a.position[3 * idx], a.position[3 * idx + 1], a.position[3 * idx + 2]};
-    return featureValue(feat, n, p, nullptr);
+    return featureValue(feat, px.n, px.p, nullptr);
 }
 
 /// solveHouseholder's contract for a team: QR of the (M + 3) x W column-major matrix `A`
@@ -119,9 +126,9 @@ BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T) {
             bool owned;
-            const long idx = teamBlockPixel(g, bx, by, k, owned);
-            for (int f = 0; f < M; ++f) A[long(f) * W + k] = teamFeature(a, f, idx);
-            for (int c = 0; c < 3; ++c) A[long(M + c) * W + k] = a.color[3 * idx + c];
+            const TeamPixel px(a, teamBlockPixel(g, bx, by, k, owned));
+            for (int f = 0; f < M; ++f) A[long(f) * W + k] = teamFeature(a, f, px);
+            for (int c = 0; c < 3; ++c) A[long(M + c) * W + k] = a.color[3 * px.idx + c];
         }
     });
 
@@ -163,9 +170,10 @@ BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
             bool owned;
             const long idx = teamBlockPixel(g, bx, by, k, owned);
             if (!owned) continue;
+            const TeamPixel px(a, idx);
             float sum[3] = {0.0f, 0.0f, 0.0f};
             for (int f = 0; f < M; ++f) {
-                float v = teamFeature(a, f, idx);
+                float v = teamFeature(a, f, px);
                 if (a.features[f].scaled) v = scaleFeature(v, st.lo[f], st.hi[f]);
                 for (int c = 0; c < 3; ++c) sum[c] += st.coeffs[f * 3 + c] * v;
             }
