@@ -73,6 +73,21 @@ struct SvgfBuffers : SvgfImages<ImageF, ImageU8> {
     void captureDebug(int cur);
 };
 
+/// The a-trous levels in the settings' order over the ping-pong pair filtered[0..1]: calls
+/// level(from, to, step) for each, and keep(k) once filtered[k] holds the step-1 level (the
+/// next frame's colour history). Returns which of filtered[] holds the last level.
+template <class Level, class Keep>
+int runAtrousLevels(const SvgfSettings& s, Level&& level, Keep&& keep) {
+    int src = 0;
+    for (int k = 0; k < s.iterations; ++k) {
+        const int index = s.reverseLevels ? s.iterations - 1 - k : k;
+        level(src, 1 - src, 1 << index);
+        src = 1 - src;
+        if (index == 0) keep(src);
+    }
+    return src;
+}
+
 /// One backend's SVGF passes.
 class SvgfPasses {
   public:

@@ -38,17 +38,17 @@ class CudaSvgfPasses final : public SvgfPasses {
         frame_.mark("variance");
         AtrousLevel level{nullptr,         nullptr,  f.normal, f.depth,
                           f.depthGradient, f.length, h.width,  h.height};
-        int src = 0;
-        for (int k = 0; k < s.iterations; ++k) {
-            const int index = s.reverseLevels ? s.iterations - 1 - k : k;
-            level.in = b_.filtered[src].data(), level.out = b_.filtered[1 - src].data();
-            level.step = 1 << index;
-            launchSvgfAtrous(level, s, st);
-            src = 1 - src;
-            if (index == 0) // the step-1 level becomes the next frame's colour history
-                launchSvgfKeepLevel(b_.filtered[src].data(), b_.color[h.cur].data(),
+        const int src = runAtrousLevels(
+            s,
+            [&](int from, int to, int step) {
+                level.in = b_.filtered[from].data(), level.out = b_.filtered[to].data();
+                level.step = step;
+                launchSvgfAtrous(level, s, st);
+            },
+            [&](int k) {
+                launchSvgfKeepLevel(b_.filtered[k].data(), b_.color[h.cur].data(),
                                     b_.integrated.pixelCount(), st);
-        }
+            });
         outputLevel_ = src;
         launchSvgfRemodulate(b_.filtered[src].data(), in, s.albedoEpsilon, b_.remodulated.data(),
                              st);

@@ -26,18 +26,18 @@ int64_t svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTim
     });
     times.add("variance", clock.lap());
     AtrousLevel level{nullptr, nullptr, f.normal, f.depth, f.depthGradient, f.length, w, h.height};
-    int src = 0;
-    for (int k = 0; k < s.iterations; ++k) {
-        const int index = s.reverseLevels ? s.iterations - 1 - k : k;
-        level.in = b.filtered[src].data(), level.out = b.filtered[1 - src].data();
-        level.step = 1 << index;
-        ctx.pool.forEachPixel(w, h.height, 4,
-                              [&](int x, int y) { svgfAtrousPixel(level, s, x, y); });
-        src = 1 - src;
-        if (index == 0) // the step-1 level becomes the next frame's colour history
+    const int src = runAtrousLevels(
+        s,
+        [&](int from, int to, int step) {
+            level.in = b.filtered[from].data(), level.out = b.filtered[to].data();
+            level.step = step;
+            ctx.pool.forEachPixel(w, h.height, 4,
+                                  [&](int x, int y) { svgfAtrousPixel(level, s, x, y); });
+        },
+        [&](int k) {
             for (long i = 0; i < b.integrated.pixelCount(); ++i)
-                store3(b.color[cur].data(), i, load3Stride4(b.filtered[src].data(), i));
-    }
+                store3(b.color[cur].data(), i, load3Stride4(b.filtered[k].data(), i));
+        });
     b.outputLevel = src;
     const float* last = b.filtered[src].data();
     ctx.pool.parallelFor(h.height, 8, [&](long y0, long y1) {
