@@ -18,7 +18,7 @@ else
     cmake --install "$build" --prefix "$prefix" > /dev/null
 fi
 
-# 1. CMake: find_package(bmfr 0.2 REQUIRED) and bmfr::bmfr.
+# 1. CMake: find_package(bmfr 0.3 REQUIRED) and bmfr::bmfr.
 cmake -S "$src/examples/minimal" -B "$scratch/cmake-build" -DCMAKE_PREFIX_PATH="$prefix" \
       -DCMAKE_BUILD_TYPE=Release > "$scratch/consumer-configure.log"
 cmake --build "$scratch/cmake-build" > "$scratch/consumer-build.log"
