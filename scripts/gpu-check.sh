@@ -8,8 +8,9 @@
 #                                       # writes its logs to $OUT (or gpu-check-out/)
 #
 # The GPU machine has nvcc, CMake and Python but none of our Debian packages and no network, so
-# the binaries travel with their libraries (Embree, TBB, OpenEXR, fmt, libstdc++ ...; glibc
-# is the machine's own and must be 2.36 or newer). What `run` does, each step time-limited:
+# the binaries travel with their libraries (Embree, TBB, OpenEXR, fmt, libstdc++ ...), and with
+# this machine's glibc and loader in case that machine's glibc is older than 2.36. What `run`
+# does, each step time-limited:
 #   1. the conformance suite for cuda (bmfr, svgf), device buffers on either stream, and the
 #      team-fit and Householder tests;
 #   2. the demo: BMFR and SVGF on cuda against the CPU backend, scored by `bmfr eval`;
@@ -25,11 +26,15 @@ mode=${1:-run}
 if [ "$mode" = prepare ]; then
     set -e
     bash scripts/build.sh
-    rm -rf gpu-carry && mkdir -p gpu-carry/stage/lib
+    rm -rf gpu-carry && mkdir -p gpu-carry/stage/lib gpu-carry/stage/glibc
     cp build/bmfr build/tests/bmfr_tests gpu-carry/stage/
-    ldd build/bmfr build/tests/bmfr_tests | awk '/=> \// {print $3}' | sort -u |
-        grep -Ev '/(libc|libm|libdl|librt|libpthread|ld-linux[^/]*)\.so' |
+    libs=$(ldd build/bmfr build/tests/bmfr_tests | awk '/=> \// {print $3}' | sort -u)
+    echo "$libs" | grep -Ev '/(libc|libm|libdl|librt|libpthread)\.so' |
         xargs -I{} cp -L {} gpu-carry/stage/lib/
+    # This machine's glibc and loader, used there only if its own glibc is too old.
+    echo "$libs" | grep -E '/(libc|libm|libdl|librt|libpthread)\.so' |
+        xargs -I{} cp -L {} gpu-carry/stage/glibc/
+    cp -L /lib64/ld-linux-x86-64.so.2 gpu-carry/stage/glibc/
     tar -C gpu-carry/stage -cJf gpu-carry/bundle.tar.xz .
     rm -rf gpu-carry/stage
     ls -la gpu-carry/bundle.tar.xz
@@ -43,7 +48,20 @@ work=/tmp/bmfr-gpu
 rm -rf "$work" && mkdir -p "$work"
 tar -C "$work" -xJf gpu-carry/bundle.tar.xz || { echo "no gpu-carry/bundle.tar.xz: run prepare first"; exit 1; }
 export LD_LIBRARY_PATH="$work/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-bmfr=$work/bmfr
+# The binaries through the machine's own loader, or through ours if its glibc is too old.
+mkdir -p "$work/bin"
+for b in bmfr bmfr_tests; do
+    printf '#!/bin/sh\nexec "%s" "$@"\n' "$work/$b" > "$work/bin/$b"
+    chmod +x "$work/bin/$b"
+done
+if ! "$work/bin/bmfr" --version > /dev/null 2>&1; then
+    for b in bmfr bmfr_tests; do
+        printf '#!/bin/sh\nexec "%s" --library-path "%s" "%s" "$@"\n' \
+            "$work/glibc/ld-linux-x86-64.so.2" "$work/glibc:$LD_LIBRARY_PATH" "$work/$b" \
+            > "$work/bin/$b"
+    done
+fi
+bmfr=$work/bin/bmfr
 summary=$out/summary.txt
 say() { echo "$*" | tee -a "$summary"; }
 step() { # step NAME SECONDS COMMAND... : runs it, logs to $out/NAME.log, notes its exit status
@@ -60,7 +78,7 @@ say "== machine"
 nvidia-smi -L 2>&1 | tee -a "$summary"
 "$bmfr" --version 2>&1 | tee -a "$summary"
 
-step tests 140 "$work/bmfr_tests" \
+step tests 140 "$work/bin/bmfr_tests" \
     --gtest_filter='AllBackendsAndFilters/Conformance.*/cuda_bmfr:AllBackendsAndFilters/Conformance.*/cuda_svgf:CudaDeviceBuffers.*:TeamFit.*:Householder.*'
 
 demo=$work/demo
