@@ -56,13 +56,9 @@ struct OnDevice {
 };
 
 std::vector<float> toHost(const ImageView& result, void* stream) {
-    std::vector<float> out(size_t(result.width) * result.height * 3);
-    if (result.memory == Memory::Host) {
-        std::memcpy(out.data(), result.data, out.size() * sizeof(float));
-        return out;
-    }
-    cuda::copyOutput(result, MutableImageView{out.data(), result.width, result.height, 3}, stream);
-    return out;
+    const ImageView host =
+        result.memory == Memory::Cuda ? cuda::downloadRgb(result, stream) : result;
+    return std::vector<float>(host.data, host.data + size_t(host.width) * host.height * 3);
 }
 
 using CudaDeviceBuffers = NeedsGpu;

@@ -48,7 +48,9 @@ void checkOutput(const MutableImageView& out, int width, int height) {
 
 void writeOutput(const ImageView& in, const MutableImageView& out, void* cudaStream) {
     checkOutput(out, in.width, in.height);
-    if (in.memory == Memory::Cuda) return cuda::copyOutput(in, out, cudaStream);
+    if (in.memory == Memory::Cuda && out.memory == Memory::Cuda)
+        return cuda::copyOutput(in, out, cudaStream);
+    if (in.memory == Memory::Cuda) return writeOutput(cuda::downloadRgb(in, cudaStream), out);
     if (out.memory == Memory::Cuda)
         throw Error("output buffer is in CUDA device memory, the frame's buffers in host memory");
     const long stride = out.stride();

@@ -26,6 +26,9 @@ double copyFloorMs(double, int) {
 void copyOutput(const ImageView&, const MutableImageView&, void*) {
     absent();
 }
+ImageView downloadRgb(const ImageView&, void*) {
+    absent();
+}
 DeviceImageCopy::DeviceImageCopy(const ImageView&) {
     absent();
 }

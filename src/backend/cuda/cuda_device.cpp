@@ -103,32 +103,19 @@ double copyFloorMs(double bytes, int repeats) {
 
 void copyOutput(const ImageView& from, const MutableImageView& to, void* stream) {
     const cudaStream_t s = static_cast<cudaStream_t>(stream);
-    const int w = from.width, h = from.height;
-    if (to.memory == Memory::Cuda) {
-        launchUnpackRgb(from.data, w, h, to.data, to.channels, to.stride(), s);
-        if (!stream) check(cudaStreamSynchronize(s), "cudaStreamSynchronize");
-        return;
-    }
-    const size_t row = size_t(w) * 3 * sizeof(float);
-    if (to.channels == 3) {
-        check(cudaMemcpy2DAsync(to.data, size_t(to.stride()) * sizeof(float), from.data, row, row,
-                                size_t(h), cudaMemcpyDeviceToHost, s),
-              "output download");
-        check(cudaStreamSynchronize(s), "cudaStreamSynchronize");
-        return;
-    }
-    // RGBA on the host: the fourth channel stays, so the rows come down packed first.
+    launchUnpackRgb(from.data, from.width, from.height, to.data, to.channels, to.stride(), s);
+    if (!stream) check(cudaStreamSynchronize(s), "cudaStreamSynchronize");
+}
+
+ImageView downloadRgb(const ImageView& from, void* stream) {
+    const cudaStream_t s = static_cast<cudaStream_t>(stream);
     thread_local std::vector<float> packed;
-    packed.resize(size_t(w) * size_t(h) * 3);
+    packed.resize(size_t(from.width) * size_t(from.height) * 3);
     check(cudaMemcpyAsync(packed.data(), from.data, packed.size() * sizeof(float),
                           cudaMemcpyDeviceToHost, s),
           "output download");
     check(cudaStreamSynchronize(s), "cudaStreamSynchronize");
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c)
-                to.data[long(y) * to.stride() + long(x) * to.channels + c] =
-                    packed[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)];
+    return ImageView{packed.data(), from.width, from.height, 3};
 }
 
 DeviceImageCopy::DeviceImageCopy(const ImageView& host) : view_(host) {

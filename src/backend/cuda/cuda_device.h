@@ -17,11 +17,13 @@ std::string deviceName();
 /// The memory floor of `bytes` on this GPU: milliseconds a device-to-device copy of that many
 /// bytes takes (median of `repeats` timed copies after one warm-up, CUDA events).
 double copyFloorMs(double bytes, int repeats = 9);
-/// Writes the packed RGB device image `from` into `to` (device or host memory, 3 or 4
-/// channels, any row stride; a fourth channel is left as it was), ordered on `stream` (a
-/// cudaStream_t, or null for the default stream). Returns once done, except for a device `to`
-/// on a given stream.
+/// Writes the packed RGB device image `from` into the device image `to` (3 or 4 channels, any
+/// row stride; a fourth channel is left as it was), ordered on `stream` (a cudaStream_t, or null
+/// for the default stream, then waited for).
 void copyOutput(const ImageView& from, const MutableImageView& to, void* stream);
+/// The packed RGB device image `from` brought to the host after the work queued on `stream`
+/// (waited for); the view is valid until this thread's next call.
+ImageView downloadRgb(const ImageView& from, void* stream);
 
 /// A host image copied once into device memory (same channels and row stride), for callers
 /// that hand a filter device buffers: the bench and the tests, as an engine would.
