@@ -95,7 +95,12 @@ TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
         EXPECT_FALSE(d.cameraKeys.empty()) << name;
         EXPECT_EQ(d.referenceSpp, 4096) << name;
     }
-    EXPECT_EQ(presetNames().size(), 7u);
+    EXPECT_EQ(presetNames().size(), 8u);
+    // The Sponza presets open the atrium's roof and sample the sun and sky apart.
+    const SceneDescription atrium = loadSceneDescription("sponza-atrium", "/s", false);
+    EXPECT_EQ(atrium.hiddenObjects, std::vector<std::string>{"Roof"});
+    EXPECT_EQ(atrium.lightSampling, LightSampling::Split);
+    EXPECT_EQ(atrium.bounces, 4);
     EXPECT_EQ(loadSceneDescription("cornell-objects", "/s", false).animations.size(), 3u);
     EXPECT_FLOAT_EQ(loadSceneDescription("sponza-glossy", "/s", false).roughnessOverride, 0.1f);
     EXPECT_EQ(loadSceneDescription("sponza-light", "/s", false).quadLights.size(), 1u);
@@ -104,6 +109,33 @@ TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
     // A Sponza preset whose mesh is not under --scenes says so, and names the flag.
     expectError([] { loadSceneDescription("sponza-moving", "no/such/dir"); },
                 "with --scenes DIR (the relative 'no/such/dir' is read from");
+}
+
+TEST(RenderScene, HiddenObjectsLeaveTheSceneAndAnUnknownNameListsTheObjects) {
+    Scene box = builtinCornellBox();
+    const size_t all = box.triangleCount();
+    size_t tall = 0;
+    for (int o : box.triangleObject) tall += box.objectNames[size_t(o)] == "tall_block";
+    ASSERT_GT(tall, 0u);
+    box.removeObjects({"tall_block"});
+    EXPECT_EQ(box.triangleCount(), all - tall);
+    EXPECT_EQ(box.positions.size(), 3 * box.triangleCount());
+    EXPECT_EQ(box.triangleObject.size(), box.triangleCount());
+    for (int o : box.triangleObject) EXPECT_NE(box.objectNames[size_t(o)], "tall_block");
+    expectError([&] { box.removeObjects({"roof"}); },
+                "hide_objects names 'roof', but the scene has no such object (objects: room");
+    auto parse = [](const std::string& text) {
+        return parseSceneDescription(nlohmann::json::parse(text), ".");
+    };
+    const std::string base = R"({"mesh": "builtin:cornell", "camera": {"keyframes": [
+        {"position": [0, 1, 3], "target": [0, 1, 0]}]})";
+    EXPECT_EQ(parse(base + R"(, "hide_objects": ["tall_block"]})").hiddenObjects.size(), 1u);
+    expectError([&] { parse(base + R"(, "hide_objects": "tall_block"})"); },
+                "\"hide_objects\" must be a list of object names");
+    expectError([&] { parse(base + R"(, "light_sampling": "all"})"); },
+                "\"light_sampling\" is 'all', expected one or split");
+    expectError([&] { parse(base + R"(, "light_sampling": "split", "paths": "mara"})"); },
+                "\"light_sampling\": \"split\" is for the paper's paths");
 }
 
 TEST(RenderScene, SceneWithoutLightIsAnError) {

@@ -45,9 +45,10 @@ double meanOf(const ImageF& img) {
 
 FrameData renderOnce(const Scene& scene, const CameraPose& pose, const Environment& env, int w,
                      int h, int bounces, int refSpp, int frame = 0,
-                     const CameraPose* previous = nullptr, int factoredDirectSpp = 0) {
+                     const CameraPose* previous = nullptr, int factoredDirectSpp = 0,
+                     LightSampling sampling = LightSampling::One) {
     RayAccel accel(scene);
-    LightSet lights(scene, {}, env);
+    LightSet lights(scene, {}, env, sampling);
     FrameRenderer r(scene, accel, w, h, bounces, 7);
     if (factoredDirectSpp) r.setFactoredPaths(factoredDirectSpp);
     FrameData out;
@@ -92,6 +93,33 @@ TEST(Render, LambertianPlaneUnderTheSunMatchesAnalyticIrradiance) {
     // And its splits: all direct, all diffuse.
     EXPECT_NEAR(meanOf(f.aovs[1].second), expected, 0.01 * expected);
     EXPECT_NEAR(meanOf(f.aovs[2].second), 0.0, 1e-9);
+}
+
+TEST(Render, SunAndSkySampledApartMatchTheAnalyticIrradiance) {
+    // A Lambertian plane under the sun and a constant sky: E = E_sun cos(theta) + pi L_sky, so
+    // L = albedo / pi * E. Both samplings must get it, the 1-spp frame within its noise; sampled
+    // apart, every pixel sees the sun and none is black.
+    Scene plane;
+    const float albedo = 0.6f;
+    int m = addMaterial(plane, {albedo, albedo, albedo}, {0, 0, 0});
+    addQuad(plane, {-100, 0, -100}, {-100, 0, 100}, {100, 0, 100}, {100, 0, -100}, m);
+    Environment env;
+    const float theta = 0.5f;
+    env.sun.direction = {std::sin(theta), std::cos(theta), 0};
+    env.sun.irradiance = {2, 2, 2};
+    env.sky = {0.3f, 0.3f, 0.3f};
+    CameraPose pose;
+    pose.position = {0, 3, 2}, pose.target = {0, 0, 0}, pose.fovY = 0.5f;
+    const double expected = albedo / 3.14159265 * (2.0 * std::cos(theta) + 3.14159265 * 0.3);
+    for (LightSampling sampling : {LightSampling::One, LightSampling::Split}) {
+        const char* name = sampling == LightSampling::One ? "one" : "split";
+        FrameData f = renderOnce(plane, pose, env, 32, 24, 1, 256, 0, nullptr, 0, sampling);
+        EXPECT_NEAR(meanOf(f.reference), expected, 0.01 * expected) << name;
+        EXPECT_NEAR(meanOf(f.color), expected, 0.05 * expected) << name;
+        if (sampling == LightSampling::Split) {
+            for (float v : f.color.pixels) ASSERT_GT(v, 0.0f) << name;
+        }
+    }
 }
 
 TEST(Render, OneSppMeanEqualsTheReferenceWithinTheNoise) {

@@ -132,30 +132,27 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         const bool last = vertex == bounces_;
         const bool reflective = !isBlack(sp.diffuse) || !isBlack(sp.f0);
         const Vec3 origin = sp.p + offsetScale(sp.p) * sp.ng;
-        // Next event estimation.
-        const float uSel = rng.next(), u1 = rng.next(), u2 = rng.next();
-        if (reflective && !lights_.empty()) {
-            LightSample ls = lights_.sample(sp.p, sp.ns, uSel, u1, u2);
-            if (ls.pdf > 0) {
-                BsdfValue f = evalBsdf(sp, ls.wi);
-                const float c = dot(sp.ns, ls.wi);
-                if ((!isBlack(f.diffuse) || !isBlack(f.glossy))) {
-                    ++rays;
-                    float tMax = ls.distance >= 1e29f
-                                     ? 1e30f
-                                     : ls.distance * (1 - 1e-4f) - offsetScale(sp.p);
-                    if (!accel_.occluded(origin, ls.wi, tMax)) {
-                        // At the last vertex no BSDF ray follows: light sampling takes it all.
-                        float w = last ? 1.0f : powerHeuristic(ls.pdf, f.pdf);
-                        Vec3 L = (c * w / ls.pdf) * ls.radiance;
-                        if (vertex == 0)
-                            add(0, f.diffuse * L, f.glossy * L);
-                        else
-                            add(vertex, tD * ((f.diffuse + f.glossy) * L),
-                                tG * ((f.diffuse + f.glossy) * L));
-                    }
-                }
-            }
+        // Next event estimation: one sample per strategy (one, or local, sun and sky apart).
+        // (With no lights the three numbers are still drawn, so paths keep their sequence.)
+        for (int strategy = 0; strategy < std::max(1, lights_.strategies()); ++strategy) {
+            const float uSel = rng.next(), u1 = rng.next(), u2 = rng.next();
+            if (!reflective) continue;
+            const LightSample ls = lights_.sample(strategy, sp.p, sp.ns, uSel, u1, u2);
+            if (!(ls.pdf > 0)) continue;
+            const BsdfValue f = evalBsdf(sp, ls.wi);
+            const float c = dot(sp.ns, ls.wi);
+            if (isBlack(f.diffuse) && isBlack(f.glossy)) continue;
+            ++rays;
+            const float tMax =
+                ls.distance >= 1e29f ? 1e30f : ls.distance * (1 - 1e-4f) - offsetScale(sp.p);
+            if (accel_.occluded(origin, ls.wi, tMax)) continue;
+            // At the last vertex no BSDF ray follows: light sampling takes it all.
+            const float w = last ? 1.0f : powerHeuristic(ls.pdf, f.pdf);
+            const Vec3 L = (c * w / ls.pdf) * ls.radiance;
+            if (vertex == 0)
+                add(0, f.diffuse * L, f.glossy * L);
+            else
+                add(vertex, tD * ((f.diffuse + f.glossy) * L), tG * ((f.diffuse + f.glossy) * L));
         }
         const float uLobe = rng.next(), b1 = rng.next(), b2 = rng.next();
         if (last || !reflective) break;

@@ -10,11 +10,12 @@ float LightSet::area(int tri) const {
     return 0.5f * length(cross(p[1] - p[0], p[2] - p[0]));
 }
 
-LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env)
+LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env,
+                   LightSampling sampling)
     : scene_(scene), quads_(quads), env_(env) {
     std::vector<float> weights;
     triangleEntry_.assign(scene.triangleCount(), -1);
-    float total = 0;
+    float localTotal = 0;
     for (size_t t = 0; t < scene.triangleCount(); ++t) {
         const Material& m = scene.materials[size_t(scene.triangleMaterial[t])];
         float w = area(int(t)) * luminance(m.emission);
@@ -22,16 +23,18 @@ LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, cons
         triangleEntry_[t] = int(entries_.size());
         entries_.push_back({Kind::Triangle, int(t), 0});
         weights.push_back(w);
-        total += w;
+        localTotal += w;
     }
     for (size_t q = 0; q < quads.size(); ++q) {
         float w = length(cross(quads[q].edgeU, quads[q].edgeV)) * luminance(quads[q].radiance);
         quadEntry_.push_back(int(entries_.size()));
         entries_.push_back({Kind::Quad, int(q), 0});
         weights.push_back(w);
-        total += w;
+        localTotal += w;
     }
-    const float localTotal = total;
+    const size_t locals = entries_.size();
+    // Local lights and the sun have no common power scale: each gets the local lights' weight.
+    const float distantWeight = localTotal > 0 ? localTotal : 1.0f;
     if (env.sun.enabled()) {
         float r = 0.5f * env.sun.angularDiameter;
         sunCosMax_ = std::cos(r);
@@ -39,31 +42,45 @@ LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, cons
         sunRadiance_ = env.sun.irradiance / sunSolidAngle_;
         sunEntry_ = int(entries_.size());
         entries_.push_back({Kind::Sun, 0, 0});
-        // Local lights and the sun have no common power scale: each gets the local lights' weight.
-        weights.push_back(localTotal > 0 ? localTotal : 1.0f);
-        total += weights.back();
+        weights.push_back(distantWeight);
     }
     if (env.sky.x + env.sky.y + env.sky.z > 0) {
         skyEntry_ = int(entries_.size());
         entries_.push_back({Kind::Sky, 0, 0});
-        weights.push_back(localTotal > 0 ? localTotal : 1.0f);
-        total += weights.back();
+        weights.push_back(distantWeight);
     }
-    float acc = 0;
-    for (size_t i = 0; i < entries_.size(); ++i) {
-        entries_[i].probability = weights[i] / total;
-        acc += entries_[i].probability;
-        cdf_.push_back(acc);
+    // Each strategy selects among its entries by weight; an entry's probability is its
+    // selection probability within its strategy.
+    auto addStrategy = [&](size_t begin, size_t end) {
+        if (begin == end) return;
+        Strategy st;
+        float total = 0, acc = 0;
+        for (size_t i = begin; i < end; ++i) total += weights[i];
+        for (size_t i = begin; i < end; ++i) {
+            entries_[i].probability = weights[i] / total;
+            acc += entries_[i].probability;
+            st.entries.push_back(int(i));
+            st.cdf.push_back(acc);
+        }
+        st.cdf.back() = 1.0f;
+        strategies_.push_back(std::move(st));
+    };
+    if (sampling == LightSampling::One) {
+        addStrategy(0, entries_.size());
+    } else {
+        addStrategy(0, locals);
+        for (size_t i = locals; i < entries_.size(); ++i) addStrategy(i, i + 1);
     }
-    if (!cdf_.empty()) cdf_.back() = 1.0f;
 }
 
-LightSample LightSet::sample(Vec3 p, Vec3 surfaceNormal, float uSelect, float u1, float u2) const {
+LightSample LightSet::sample(int strategy, Vec3 p, Vec3 surfaceNormal, float uSelect, float u1,
+                             float u2) const {
     LightSample s;
-    if (entries_.empty()) return s;
-    size_t i = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), uSelect) - cdf_.begin());
-    i = std::min(i, entries_.size() - 1);
-    const Entry& e = entries_[i];
+    if (strategy < 0 || size_t(strategy) >= strategies_.size()) return s;
+    const Strategy& st = strategies_[size_t(strategy)];
+    size_t i = size_t(std::lower_bound(st.cdf.begin(), st.cdf.end(), uSelect) - st.cdf.begin());
+    i = std::min(i, st.entries.size() - 1);
+    const Entry& e = entries_[size_t(st.entries[i])];
     Vec3 q, n;
     float a = 0;
     if (e.kind == Kind::Sky) {

@@ -1,6 +1,6 @@
 // Light sources and their sampling: emissive triangles (one-sided, front = winding), analytic
 // two-sided quads (may move per frame), a constant sky (cosine-sampled around the normal), and a
-// sun with angular size, and a constant sky (reached by BSDF rays only).
+// sun with angular size.
 #pragma once
 #include "render/scene.h"
 #include <vector>
@@ -32,15 +32,31 @@ struct LightSample {
     float pdf = 0; ///< solid angle, selection included
 };
 
-/// Light selection is proportional to power (area x luminance) among local lights; the sun and
-/// the sky, when present, each weigh as much as all local lights together.
+/// How a path vertex samples the lights.
+enum class LightSampling {
+    /// One sample per vertex from all lights (the BMFR paper's paths): selection proportional
+    /// to power among local lights; the sun and the sky each weigh as much as all local lights.
+    One,
+    /// Up to three samples per vertex: one local light, the sun and the sky, each with its own
+    /// shadow ray. Far fewer black pixels where one of them is mostly occluded (Sponza's atrium).
+    Split,
+};
+
+/// The scene's lights and their sampling strategies (see LightSampling).
 class LightSet {
   public:
-    LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env);
+    LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env,
+             LightSampling sampling = LightSampling::One);
     bool empty() const { return entries_.empty(); }
-    /// A light sample seen from p with surface normal n (the sky is sampled cosine-weighted
-    /// around n).
-    LightSample sample(Vec3 p, Vec3 n, float uSelect, float u1, float u2) const;
+    /// How many light samples each vertex takes: 1, or with Split one per kind present.
+    int strategies() const { return int(strategies_.size()); }
+    /// Light sample `strategy` (< strategies()) seen from p with surface normal n (the sky is
+    /// sampled cosine-weighted around n); uSelect picks among the strategy's lights.
+    LightSample sample(int strategy, Vec3 p, Vec3 n, float uSelect, float u1, float u2) const;
+    /// The single strategy of LightSampling::One.
+    LightSample sample(Vec3 p, Vec3 n, float uSelect, float u1, float u2) const {
+        return sample(0, p, n, uSelect, u1, u2);
+    }
     /// Solid-angle pdf of sample() returning the point q on emissive triangle `tri`.
     float pdfTriangle(int tri, Vec3 p, Vec3 q) const;
     float pdfQuad(int quad, Vec3 p, Vec3 q) const;
@@ -68,7 +84,12 @@ class LightSet {
     std::vector<QuadLight> quads_;
     Environment env_;
     std::vector<Entry> entries_;
-    std::vector<float> cdf_;
+    /// Per strategy: its entries and their cumulative probabilities.
+    struct Strategy {
+        std::vector<int> entries;
+        std::vector<float> cdf;
+    };
+    std::vector<Strategy> strategies_;
     std::vector<int> triangleEntry_; ///< scene triangle -> entry, -1 when not emissive
     std::vector<int> quadEntry_;
     int sunEntry_ = -1, skyEntry_ = -1;

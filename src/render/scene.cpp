@@ -22,6 +22,35 @@ void Scene::addTriangle(Vec3 a, Vec3 b, Vec3 c, int material) {
     triangleMaterial.push_back(material);
 }
 
+void Scene::removeObjects(const std::vector<std::string>& names) {
+    std::vector<char> drop(objectNames.size(), 0);
+    for (const std::string& name : names) {
+        bool found = false;
+        for (size_t o = 0; o < objectNames.size(); ++o)
+            if (objectNames[o] == name) drop[o] = 1, found = true;
+        if (!found) {
+            std::string list;
+            for (const std::string& n : objectNames) list += (list.empty() ? "" : ", ") + n;
+            throw Error("scene description: hide_objects names '" + name +
+                        "', but the scene has no such object (objects: " + list + ")");
+        }
+    }
+    size_t kept = 0;
+    for (size_t t = 0; t < triangleCount(); ++t) {
+        if (drop[size_t(triangleObject[t])]) continue;
+        for (size_t k = 0; k < 3; ++k) {
+            positions[3 * kept + k] = positions[3 * t + k];
+            normals[3 * kept + k] = normals[3 * t + k];
+            uvs[3 * kept + k] = uvs[3 * t + k];
+        }
+        triangleMaterial[kept] = triangleMaterial[t];
+        triangleObject[kept] = triangleObject[t];
+        ++kept;
+    }
+    positions.resize(3 * kept), normals.resize(3 * kept), uvs.resize(3 * kept);
+    triangleMaterial.resize(kept), triangleObject.resize(kept);
+}
+
 void Scene::bounds(Vec3& lo, Vec3& hi) const {
     lo = {INFINITY, INFINITY, INFINITY};
     hi = -1.0f * lo;

@@ -81,6 +81,9 @@ struct Scene {
     void addTriangle(Vec3 a, Vec3 b, Vec3 c, int material);
     /// Starts an object: the triangles added from now on belong to it.
     void beginObject(const std::string& name);
+    /// Drops every triangle of the objects with these names. Throws bmfr::Error naming the
+    /// scene's objects when a name matches none.
+    void removeObjects(const std::vector<std::string>& names);
     /// Axis-aligned bounds of all vertices.
     void bounds(Vec3& lo, Vec3& hi) const;
 };

@@ -95,7 +95,8 @@ const std::map<std::string, std::string>& presets() {
         {"sponza-moving", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
-            "sun": {"direction": [0.15, 1.0, 0.5], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+            "hide_objects": ["Roof"], "light_sampling": "split",
+            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
             "sky": {"radiance": [3.0, 3.5, 4.5]},
             "camera": {"keyframes": [
                 {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
@@ -104,23 +105,37 @@ const std::map<std::string, std::string>& presets() {
         {"sponza-static", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
-            "sun": {"direction": [0.15, 1.0, 0.5], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+            "hide_objects": ["Roof"], "light_sampling": "split",
+            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
             "sky": {"radiance": [3.0, 3.5, 4.5]},
             "camera": {"keyframes": [
                 {"frame": 0, "position": [12.0, 4.8, -3.0], "target": [0.0, 6.0, 1.5], "fov_deg": 50}]}})"},
         {"sponza-light", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
+            "hide_objects": ["Roof"], "light_sampling": "split",
             "sky": {"radiance": [0.04, 0.05, 0.07]},
             "lights": [{"type": "quad", "centre": [8.0, 9.0, 0.0], "u": [0.6, 0, 0], "v": [0, 0, 0.6],
                         "radiance": [120, 105, 85],
                         "path": [{"frame": 0, "centre": [10.0, 9.0, -1.0]}, {"frame": 59, "centre": [-8.0, 9.0, 1.0]}]}],
             "camera": {"keyframes": [
                 {"frame": 0, "position": [14.0, 5.0, 0.0], "target": [0.0, 6.5, 0.0], "fov_deg": 55}]}})"},
+        // Multi-bounce, unclamped: a steep sun along the atrium's long axis casts the columns'
+        // hard shadows on the floor; four bounces carry its light into the colonnades.
+        {"sponza-atrium", R"({
+            "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
+            "reference_spp": 4096, "bounces": 4,
+            "hide_objects": ["Roof"], "light_sampling": "split",
+            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+            "sky": {"radiance": [3.0, 3.5, 4.5]},
+            "camera": {"keyframes": [
+                {"frame": 0,  "position": [9.0, 5.5, -2.0], "target": [-10.0, 10.0, 1.5], "fov_deg": 60},
+                {"frame": 59, "position": [3.0, 5.5, -2.0], "target": [-16.0, 10.0, 1.0], "fov_deg": 60}]}})"},
         {"sponza-glossy", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096, "roughness_override": 0.1,
-            "sun": {"direction": [0.15, 1.0, 0.5], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+            "hide_objects": ["Roof"], "light_sampling": "split",
+            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
             "sky": {"radiance": [3.0, 3.5, 4.5]},
             "camera": {"keyframes": [
                 {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
@@ -153,10 +168,26 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
     const std::string where = "scene description";
     try {
         requireKnownKeys(j,
-                         {"mesh", "width", "height", "frames", "reference_spp", "bounces", "seed",
-                          "jitter", "roughness_override", "sky", "sun", "lights", "camera",
-                          "diffuse_indirect_only", "animations", "gltf_animation", "paths",
-                          "direct_spp"},
+                         {"mesh",
+                          "width",
+                          "height",
+                          "frames",
+                          "reference_spp",
+                          "bounces",
+                          "seed",
+                          "jitter",
+                          "roughness_override",
+                          "sky",
+                          "sun",
+                          "lights",
+                          "camera",
+                          "diffuse_indirect_only",
+                          "animations",
+                          "gltf_animation",
+                          "paths",
+                          "direct_spp",
+                          "hide_objects",
+                          "light_sampling"},
                          where);
         d.mesh = j.at("mesh").get<std::string>();
         if (d.mesh.rfind("builtin:", 0) != 0 && fs::path(d.mesh).is_relative())
@@ -170,6 +201,12 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         d.seed = uint32_t(integerField(j, "seed", 0, 4294967295LL, d.seed, where));
         d.jitter = j.value("jitter", d.jitter);
         d.diffuseIndirectOnly = j.value("diffuse_indirect_only", d.diffuseIndirectOnly);
+        const json hidden = j.value("hide_objects", json::array());
+        for (const json& o : hidden) {
+            if (!hidden.is_array() || !o.is_string())
+                throw Error(where + ": \"hide_objects\" must be a list of object names");
+            d.hiddenObjects.push_back(o.get<std::string>());
+        }
         const std::string paths = j.value("paths", std::string("bmfr"));
         if (paths != "bmfr" && paths != "mara")
             throw Error(where + ": \"paths\" is '" + paths + "', expected bmfr or mara");
@@ -177,6 +214,14 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         if (j.contains("direct_spp") && paths != "mara")
             throw Error(where + ": \"direct_spp\" needs \"paths\": \"mara\"");
         d.factoredDirectSpp = paths == "mara" ? directSpp : 0;
+        const std::string sampling = j.value("light_sampling", std::string("one"));
+        if (sampling != "one" && sampling != "split")
+            throw Error(where + ": \"light_sampling\" is '" + sampling +
+                        "', expected one or split");
+        d.lightSampling = sampling == "split" ? LightSampling::Split : LightSampling::One;
+        if (d.lightSampling == LightSampling::Split && paths == "mara")
+            throw Error(where + ": \"light_sampling\": \"split\" is for the paper's paths; "
+                                "\"paths\": \"mara\" takes \"direct_spp\" light samples instead");
         if (j.contains("sky")) {
             requireKnownKeys(j["sky"], {"radiance"}, "scene description 'sky'");
             d.environment.sky = vec3(j["sky"].at("radiance"), "sky.radiance");

@@ -34,9 +34,15 @@ struct SceneDescription {
     /// at the first hit, [1, 4096]; 0 = the paper's paths ("paths": "bmfr").
     int factoredDirectSpp = 0;
     Environment environment;
+    /// "light_sampling": "one" (the paper's: one light sample per path vertex) or "split"
+    /// (local lights, the sun and the sky each sampled at every vertex).
+    LightSampling lightSampling = LightSampling::One;
     std::vector<QuadLightSpec> quadLights;
     std::vector<CameraKey> cameraKeys;
     std::string gltfCamera; ///< use this named camera of the mesh file (static)
+    /// Objects of the mesh left out, by name (every object of that name): for example the
+    /// roof some Sponza exports carry, which keeps the sun and sky out of the atrium.
+    std::vector<std::string> hiddenObjects;
     /// Moving objects: keyframed rigid transforms of the mesh's named objects.
     std::vector<ObjectAnimation> animations;
     /// Frames per second at which the mesh file's own animations play (glTF translation,

@@ -79,6 +79,8 @@ std::string renderFingerprint(const SceneDescription& d, const std::string& layo
         for (Vec3 v : {k.pose.position, k.pose.target, k.pose.up}) add(s, v);
     }
     s += d.gltfCamera;
+    for (const std::string& o : d.hiddenObjects) s += "hide:" + o + ";";
+    if (d.lightSampling == LightSampling::Split) s += "split-lights;";
     if (d.gltfAnimationFps > 0) s += fmt::format("gltf@{};", d.gltfAnimationFps);
     for (const ObjectAnimation& a : d.animations) {
         s += a.object + ":";
@@ -103,6 +105,7 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     Stopwatch clock;
     Scene scene = loadScene(d.mesh);
     for (const std::string& w : scene.warnings) warn(w);
+    scene.removeObjects(d.hiddenObjects);
     if (d.roughnessOverride >= 0)
         for (Material& m : scene.materials) m.roughness = d.roughnessOverride;
     report.triangles = scene.triangleCount();
@@ -199,7 +202,7 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
         }
         std::vector<QuadLight> quads;
         for (const QuadLightSpec& q : d.quadLights) quads.push_back(q.at(float(i)));
-        LightSet lights(animator.animated() ? posed : scene, quads, d.environment);
+        LightSet lights(animator.animated() ? posed : scene, quads, d.environment, d.lightSampling);
         FrameRenderStats stats;
         bool done = renderer.render(i, path.at(float(i)), path.at(float(i - 1)), i > 0, lights,
                                     d.jitter, d.referenceSpp, frame, stats, cancel,
