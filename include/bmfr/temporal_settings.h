@@ -23,6 +23,7 @@ struct TemporalSettings {
     float normalLimitSquared = 1.0f;    ///< history discard: squared normal distance
     float taaBlendAlpha = 0.2f;         ///< TAA weight of the current frame
     bool taa = true;                    ///< temporal anti-aliasing on the output
+    bool taaSameSurface = false;        ///< TAA history only from taps on the same surface
     float albedoEpsilon = 0.001f;       ///< albedo floor when (de)modulating
     bool colorIsDemodulated = false;    ///< the colour input is already divided by albedo
     int threads = 0;                    ///< worker threads, 0 = all cores

@@ -17,6 +17,11 @@ struct TaaInputs {
     const float* previousPixel = nullptr;
     int width = 0, height = 0;
     float alpha = 0.2f; ///< weight of the current frame
+    /// The filter's accept mask (bit t = bilinear tap t passed the history discard test), or
+    /// null. With it the history is gathered from the accepted taps only, so it never mixes
+    /// in the surface behind an edge, and a pixel with none keeps its current colour
+    /// (TemporalSettings::taaSameSurface); without it from every tap (the authors').
+    const uint8_t* accept = nullptr;
 };
 
 /// Clamp box of pixel (x, y): the mean of the 3x3 box and the 5-tap cross bounds, in YCoCg.
@@ -47,18 +52,23 @@ BMFR_HD Vec3 taaPixel(const TaaInputs& a, int x, int y) {
     const Vec2 pp{a.previousPixel[2 * i], a.previousPixel[2 * i + 1]};
     const BilinearFootprint fp = bilinearFootprint(pp);
     if (fp.x0 < -1 || fp.y0 < -1 || fp.x0 >= a.width || fp.y0 >= a.height) return c;
+    const uint8_t taps = a.accept ? a.accept[i] : uint8_t(15);
+    if (taps == 0) return c;
     Vec3 lo, hi;
     taaClampBox(a, x, y, lo, hi);
-    // Bilinear history, renormalised at the image border.
+    // Bilinear history, renormalised at the image border (and over the accepted taps).
     Vec3 old{};
     float total = 0.0f;
     for (int t = 0; t < 4; ++t) {
         const int tx = tapX(fp, t), ty = tapY(fp, t);
-        if (tx < 0 || ty < 0 || tx >= a.width || ty >= a.height) continue;
+        if (tx < 0 || ty < 0 || tx >= a.width || ty >= a.height || !(taps & (1 << t))) continue;
         old += fp.weight[t] * load3(a.history, long(ty) * a.width + tx);
         total += fp.weight[t];
     }
-    if (total > 0.0f) old = old / total;
+    if (total > 0.0f)
+        old = old / total;
+    else if (a.accept)
+        return c;
     const Vec3 clamped = yCoCgToRgb(clamp(rgbToYCoCg(old), lo, hi));
     return lerp(clamped, c, a.alpha);
 }

@@ -27,6 +27,11 @@ template <class S> SettingsTable<S> temporalSettingsTable() {
         {"taaBlendAlpha", "taa-alpha", "", {0, 1, true}, "TAA weight of the current frame",
          BMFR_FIELD(S, taaBlendAlpha)},
         {"taa", "taa", "", {}, "temporal anti-aliasing of the output", BMFR_FIELD(S, taa)},
+        {"taaSameSurface", "taa-same-surface", "", {},
+         "TAA takes the history only from the bilinear taps that passed the history discard "
+         "test (the same surface), so edges do not blur under motion; false: all four taps, "
+         "the authors'",
+         BMFR_FIELD(S, taaSameSurface)},
         {"albedoEpsilon", "albedo-epsilon", "", {1e-6, 1},
          "demodulation divides by max(albedo, eps) and re-modulation multiplies by the same",
          BMFR_FIELD(S, albedoEpsilon)},

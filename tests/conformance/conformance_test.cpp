@@ -48,7 +48,8 @@ const FilterCase kFilters[] = {
      {{"the paper's first frames (no cumulative start)", {{"cumulativeStart", "false"}}},
       {"c / h in stage 5, fewer taps",
        {{"normaliseConfidence", "true"}, {"preTaps", "8"}, {"finalTaps", "12"}}},
-      {"TAA on", {{"taa", "true"}}}}},
+      {"TAA on", {{"taa", "true"}}},
+      {"TAA on, from the same surface", {{"taa", "true"}, {"taaSameSurface", "true"}}}}},
 };
 
 // The stated tolerance: |backend - reference| <= kAbs + kRel * |reference| per channel, and the

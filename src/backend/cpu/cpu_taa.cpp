@@ -37,8 +37,8 @@ BMFR_SIMD_DISPATCH(void, resolveRows,
 
 BMFR_SIMD_DISPATCH(void, taaRows,
                    (const float* history, float* scratch, float* out, int w, int h, float alpha,
-                    bool enabled, long y0, long y1),
-                   (history, scratch, out, w, h, alpha, enabled, y0, y1)) {
+                    bool enabled, const uint8_t* accept, long y0, long y1),
+                   (history, scratch, out, w, h, alpha, enabled, accept, y0, y1)) {
     const size_t pitch = ResolvedRows::pitch(w), stride = rowFloats(w);
     for (long y = y0; y < y1; ++y) {
         const float* mid = scratch + size_t(y) * stride;
@@ -46,7 +46,7 @@ BMFR_SIMD_DISPATCH(void, taaRows,
         const float* down = y + 1 < h ? mid + stride : mid;
         const float* previous = mid + ResolvedRows::rowFloats(w);
         taaRow(up, mid, down, pitch, previous, previous + pitch, history, out + 3 * y * w, w, h,
-               alpha, enabled);
+               alpha, enabled, accept ? accept + y * w : nullptr);
     }
 }
 
@@ -58,11 +58,11 @@ size_t taaScratchFloats(int width, int height) {
 
 void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
                           const float* previousPixel, float* scratch, float* out, int w, int h,
-                          float alpha, bool enabled) {
+                          float alpha, bool enabled, const uint8_t* accept) {
     pool.parallelFor(
         h, 8, [&](long y0, long y1) { resolveRows(current, previousPixel, scratch, w, y0, y1); });
     pool.parallelFor(h, 8, [&](long y0, long y1) {
-        taaRows(history, scratch, out, w, h, alpha, enabled, y0, y1);
+        taaRows(history, scratch, out, w, h, alpha, enabled, accept, y0, y1);
     });
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 #include "core/parallel.h"
 #include <cstddef>
+#include <cstdint>
 
 namespace bmfr::cpu {
 
@@ -11,9 +12,10 @@ size_t taaScratchFloats(int width, int height);
 /// TAA with a 3x3 YCoCg neighbourhood clamp (Karis 2014, the authors' variant) and bilinear
 /// history at `previousPixel` (2 floats per pixel), weight `alpha` for the current frame.
 /// `current`, `history` and `out` hold 3 floats per pixel. `scratch` holds
-/// taaScratchFloats(width, height) floats. With enabled = false, `out` gets `current`.
+/// taaScratchFloats(width, height) floats. With enabled = false, `out` gets `current`. `accept`
+/// (accept masks, or null) restricts the history to the accepted taps (TaaInputs::accept).
 void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
                           const float* previousPixel, float* scratch, float* out, int width,
-                          int height, float alpha, bool enabled);
+                          int height, float alpha, bool enabled, const uint8_t* accept);
 
 } // namespace bmfr::cpu

@@ -41,10 +41,12 @@ BMFR_SIMD_INLINE void finishResolvedRow(float* row, size_t pitch, int width) {
 /// previousY), renormalised at the border. up/mid/down are resolved rows y-1, y, y+1; where a
 /// row lies outside the image the nearest inside one stands in, which leaves every min and max
 /// unchanged. `history` is the previous output (3 floats per pixel); `out` gets 3 floats per
-/// pixel. With enabled = false the row is copied.
+/// pixel. With enabled = false the row is copied. `accept` (the row's accept masks, or null)
+/// restricts the history to the accepted taps, as TaaInputs::accept.
 BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* down, size_t pitch,
                              const float* previousX, const float* previousY, const float* history,
-                             float* out, int w, int h, float alpha, bool enabled) {
+                             float* out, int w, int h, float alpha, bool enabled,
+                             const uint8_t* accept) {
     using namespace simd;
     const int pad = ResolvedRows::kRowPad;
     for (int x = 0; x < w; x += 8) {
@@ -56,8 +58,9 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
             continue;
         }
         const Footprint8 fp = footprint8(load8(previousX + x), load8(previousY + x));
-        const i8 use = (fp.x0 >= -1) & (fp.y0 >= -1) & (fp.x0 < w) & (fp.y0 < h);
-        if (!anyLane(use)) {
+        const i8 mask = accept ? loadBytes(accept + x, n) : i8{} + 15;
+        const i8 use = (fp.x0 >= -1) & (fp.y0 >= -1) & (fp.x0 < w) & (fp.y0 < h) & (mask != 0);
+        if (!anyLane(use & firstLanes(n))) {
             storeXyz8(out + 3 * x, n, c);
             continue;
         }
@@ -75,9 +78,12 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
             lo[ch] = 0.5f * (boxLo + crossLo), hi[ch] = 0.5f * (boxHi + crossHi);
         }
         const Taps8 taps = taps8(fp, w, h, use & firstLanes(n));
+        const i8 tapUse[4] = {
+            taps.inside[0] & ((mask & 1) != 0), taps.inside[1] & ((mask & 2) != 0),
+            taps.inside[2] & ((mask & 4) != 0), taps.inside[3] & ((mask & 8) != 0)};
         f8 old[3];
         const f8 total = weightedTaps<3>(
-            taps, fp.weight, taps.inside, [&](int k, f8* v) { tapXyz(taps, history, k, v); }, old);
+            taps, fp.weight, tapUse, [&](int k, f8* v) { tapXyz(taps, history, k, v); }, old);
         const i8 some = total > 0.0f;
         for (int ch = 0; ch < 3; ++ch) old[ch] = some ? old[ch] / total : old[ch];
         f8 y[3], clamped[3], r[3];
@@ -85,7 +91,7 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
         for (int ch = 0; ch < 3; ++ch) y[ch] = min8(max8(y[ch], lo[ch]), hi[ch]);
         yCoCgToRgb8(y, clamped);
         for (int ch = 0; ch < 3; ++ch)
-            r[ch] = use ? lerp8(clamped[ch], c[ch], splat8(alpha)) : c[ch];
+            r[ch] = (accept ? use & some : use) ? lerp8(clamped[ch], c[ch], splat8(alpha)) : c[ch];
         storeXyz8(out + 3 * x, n, r);
     }
 }

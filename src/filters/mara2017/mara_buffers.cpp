@@ -92,8 +92,14 @@ MaraFrame MaraBuffers::frame(const MaraPassContext& ctx) {
 
 TaaInputs MaraBuffers::taaInputs(const MaraPassContext& ctx) const {
     const TemporalHistory& h = ctx.history;
-    return {composed.data(), nullptr,  output[1 - h.cur].data(),  previousPixel.data(),
-            h.width,         h.height, ctx.settings.taaBlendAlpha};
+    return {composed.data(),
+            nullptr,
+            output[1 - h.cur].data(),
+            previousPixel.data(),
+            h.width,
+            h.height,
+            ctx.settings.taaBlendAlpha,
+            ctx.settings.taaSameSurface ? accept.data() : nullptr};
 }
 
 void MaraBuffers::captureDebug(int cur) {

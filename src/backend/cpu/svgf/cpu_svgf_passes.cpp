@@ -21,7 +21,8 @@ class CpuSvgfPasses final : public HostSvgfPasses {
         temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
                              buffers.previousPixel.data(), taaScratch_.data(),
                              buffers.output[h.cur].data(), h.width, h.height,
-                             ctx.settings.taaBlendAlpha, ctx.settings.taa && h.hasHistory());
+                             ctx.settings.taaBlendAlpha, ctx.settings.taa && h.hasHistory(),
+                             ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr);
         times.add("taa", clock.lap());
         return bad;
     }

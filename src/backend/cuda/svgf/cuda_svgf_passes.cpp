@@ -54,9 +54,14 @@ class CudaSvgfPasses final : public SvgfPasses {
                              st);
         frame_.mark("atrous");
 
-        const TaaInputs taa{b_.remodulated.data(),   nullptr, b_.output[1 - h.cur].data(),
-                            b_.previousPixel.data(), h.width, h.height,
-                            s.taaBlendAlpha};
+        const TaaInputs taa{b_.remodulated.data(),
+                            nullptr,
+                            b_.output[1 - h.cur].data(),
+                            b_.previousPixel.data(),
+                            h.width,
+                            h.height,
+                            s.taaBlendAlpha,
+                            s.taaSameSurface ? b_.accept.data() : nullptr};
         launchTaa(taa, ycocg_.data(), b_.output[h.cur].data(), s.taa && h.hasHistory(), st);
         frame_.mark("taa");
 

@@ -1,0 +1,72 @@
+// TAA against hand-computed values: the authors' history from all four bilinear taps, and the
+// same-surface history (TemporalSettings::taaSameSurface) from the accepted taps only, in the
+// reference's per-pixel code and the CPU backend's eight-wide rows.
+#include "backend/cpu/cpu_taa.h"
+#include "temporal/taa.h"
+#include <gtest/gtest.h>
+#include <vector>
+
+namespace bmfr {
+namespace {
+
+// A 4x3 grey image with a vertical edge: columns 0-1 at 0.2, columns 2-3 at 0.8. The history
+// holds 0.3 in column 1 and 0.7 in column 2. Pixel (1, 1) was at (1.5, 1): half way between
+// them, so the bilinear taps are (1, 1) and (2, 1) at weight 0.5 each.
+struct EdgeFrame {
+    static constexpr int w = 4, h = 3;
+    std::vector<float> current, history, previousPixel;
+    EdgeFrame() {
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float c = x < 2 ? 0.2f : 0.8f, o = x < 2 ? 0.3f : 0.7f;
+                current.insert(current.end(), {c, c, c});
+                history.insert(history.end(), {o, o, o});
+                previousPixel.insert(previousPixel.end(), {float(x) + 0.5f, float(y)});
+            }
+    }
+};
+
+// Pixel (1, 1) by hand, alpha 0.2. The clamp box spans [0.2, 0.8]: no clamping.
+//   all four taps:          0.8 (0.5 * 0.3 + 0.5 * 0.7) + 0.2 * 0.2 = 0.44
+//   only tap (1, 1) (bit 0): 0.8 * 0.3 + 0.2 * 0.2 = 0.28
+//   no tap accepted:        the current colour, 0.2
+constexpr float kAllTaps = 0.44f, kSameSurface = 0.28f, kNoTap = 0.2f;
+
+float referenceTaa(const EdgeFrame& f, const uint8_t* accept) {
+    std::vector<float> ycocg;
+    for (size_t i = 0; i < f.current.size(); i += 3) {
+        const Vec3 v = rgbToYCoCg({f.current[i], f.current[i + 1], f.current[i + 2]});
+        ycocg.insert(ycocg.end(), {v.x, v.y, v.z});
+    }
+    const TaaInputs a{f.current.data(),
+                      ycocg.data(),
+                      f.history.data(),
+                      f.previousPixel.data(),
+                      f.w,
+                      f.h,
+                      0.2f,
+                      accept};
+    return taaPixel(a, 1, 1).y;
+}
+
+float cpuTaa(const EdgeFrame& f, const uint8_t* accept) {
+    ThreadPool pool(1);
+    std::vector<float> scratch(cpu::taaScratchFloats(f.w, f.h)), out(f.current.size());
+    cpu::temporalAntiAliasing(pool, f.current.data(), f.history.data(), f.previousPixel.data(),
+                              scratch.data(), out.data(), f.w, f.h, 0.2f, true, accept);
+    return out[3 * (f.w + 1) + 1];
+}
+
+TEST(Taa, HistoryFromAllTapsOrOnlyTheSameSurfaceMatchesHandValues) {
+    const EdgeFrame f;
+    std::vector<uint8_t> all(size_t(f.w * f.h), 15), first(all.size(), 1), none(all.size(), 0);
+    for (auto taa : {referenceTaa, cpuTaa}) {
+        EXPECT_NEAR(taa(f, nullptr), kAllTaps, 1e-6f);
+        EXPECT_NEAR(taa(f, all.data()), kAllTaps, 1e-6f);
+        EXPECT_NEAR(taa(f, first.data()), kSameSurface, 1e-6f);
+        EXPECT_NEAR(taa(f, none.data()), kNoTap, 1e-6f);
+    }
+}
+
+} // namespace
+} // namespace bmfr
