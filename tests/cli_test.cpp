@@ -5,6 +5,7 @@
 #include "io/exr.h"
 #include <array>
 #include <bmfr/error.h>
+#include <bmfr/filter.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -164,7 +165,7 @@ TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
     ASSERT_EQ(run("synth -o " + in.string() + " --width 48 --height 32 --frames 3 -q").code, 0);
     Result r = run("ablate " + in.string() + " -o " + out.string());
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* s : {"without fitting (phase II)", "without TAA",
+    for (const char* s : {"without fitting (phase II)", "without TAA", "with taaSameSurface",
                           "## Greedy feature selection", "+ normals", "+ material_id"})
         EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
     EXPECT_TRUE(fs::exists(out / "ablation.json"));
@@ -349,6 +350,52 @@ TEST(Cli, ReadmeSettingsTableIsTheGeneratedOne) {
     EXPECT_EQ(text.substr(first, b - first), r.output)
         << "README.md's settings table is stale: paste `bmfr settings --markdown` between the "
            "markers";
+}
+
+} // namespace
+
+namespace {
+
+std::vector<float> pixelsOf(const fs::path& p) {
+    return bmfr::readExr(p.string(), 3).pixels;
+}
+
+TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
+    // The library's list: the quality preset sets the improvements a filter has.
+    using bmfr::presetSettings, bmfr::SettingValues;
+    EXPECT_EQ(presetSettings("bmfr", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
+    EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
+    EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
+    EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
+    Result listed = run("settings bmfr --preset quality");
+    ASSERT_EQ(listed.code, 0) << listed.output;
+    EXPECT_NE(listed.output.find("bmfr: taaSameSurface=true"), std::string::npos) << listed.output;
+    // On the command line: --preset quality gives the bits of its switches set by hand, and
+    // --preset faithful those of no flags; a flag after the preset overrides it.
+    fs::path in = scratch("preset_in");
+    ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 30 --frames 4 -q").code, 0);
+    auto denoise = [&](const std::string& name, const std::string& flags) {
+        const fs::path out = scratch("preset_" + name);
+        const Result r = run("denoise " + in.string() + " -o " + out.string() + " -q " + flags);
+        EXPECT_EQ(r.code, 0) << r.output;
+        return pixelsOf(out / "denoised_0003.exr");
+    };
+    const std::vector<float> quality = denoise("quality", "--preset quality"),
+                             bySwitch = denoise("switch", "--taa-same-surface"),
+                             faithful = denoise("faithful", "--preset faithful"),
+                             plain = denoise("plain", ""),
+                             overridden =
+                                 denoise("override", "--preset quality --taa-same-surface false");
+    ASSERT_FALSE(quality.empty());
+    EXPECT_EQ(quality, bySwitch);
+    EXPECT_EQ(faithful, plain);
+    EXPECT_EQ(overridden, plain);
+    EXPECT_NE(quality, plain);
+    EXPECT_NE(
+        run("denoise " + in.string() + " -o " + scratch("preset_bad").string() + " --preset fast")
+            .code,
+        0);
+    fs::remove_all(in);
 }
 
 } // namespace

@@ -35,6 +35,7 @@ struct BenchJob {
     std::string baselineFilter;
     std::vector<std::string> sets;         ///< "key=value" settings of the measured filter
     std::vector<std::string> baselineSets; ///< "key=value" settings of the baseline
+    std::string preset = "faithful", baselinePreset = "faithful"; ///< presetSettings()
     const std::string& referenceFilter() const {
         return baselineFilter.empty() ? filter : baselineFilter;
     }
@@ -108,6 +109,7 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
             v.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
         }
     };
+    for (const auto& kv : presetSettings(job.filter, job.preset)) values.push_back(kv);
     addSets(values, job.sets, "--set");
     std::unique_ptr<Filter> d = makeFilter(job.filter, values);
     // The baseline backend runs on the same frames, interleaved frame by frame with the
@@ -116,6 +118,8 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     const std::string baseline = job.motion ? job.backend : job.baselineBackend;
     if (job.baseline) {
         SettingValues baseValues = {{"threads", threads}, {"backend", baseline}};
+        for (const auto& kv : presetSettings(job.referenceFilter(), job.baselinePreset))
+            baseValues.push_back(kv);
         addSets(baseValues, job.baselineSets, "--baseline-set");
         ref = makeFilter(job.referenceFilter(), baseValues);
     }
@@ -224,6 +228,15 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--baseline-filter", job->baselineFilter,
                     "another filter as the baseline, on --baseline-backend (walr beside bmfr: "
                     "--filter walr --baseline-filter bmfr --baseline-backend cpu)");
+    cmd->add_option("--preset", job->preset,
+                    "the measured filter's preset: faithful or quality (bmfr settings --preset)")
+        ->check(CLI::IsMember(presetNames()))
+        ->default_val("faithful");
+    cmd->add_option("--baseline-preset", job->baselinePreset,
+                    "the baseline's preset (the quality preset against the faithful one: "
+                    "--preset quality --baseline-backend cpu)")
+        ->check(CLI::IsMember(presetNames()))
+        ->default_val("faithful");
     cmd->add_option("--baseline-set", job->baselineSets,
                     "key=value: a setting of the baseline, repeatable (half against float "
                     "history: --set halfHistory=true --baseline-backend cpu --baseline-set "
@@ -255,6 +268,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 if (r.contains("cpu_path")) how = r["cpu_path"].get<std::string>() + " path";
                 if (r.contains("device")) how = r["device"].get<std::string>();
                 if (r.contains("input")) how += ", " + r["input"].get<std::string>();
+                if (job->preset != "faithful")
+                    how += (how.empty() ? "" : ", ") + job->preset + " preset";
                 if (r.contains("history"))
                     how += (how.empty() ? "" : ", ") + r["history"].get<std::string>() + " history";
                 fmt::print("{:>10} {} on {}{}: {} ms   (median of {} frames)\n", size, job->filter,
@@ -265,12 +280,15 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                                r["baseline_line"].get<std::string>(),
                                100.0 * (1.0 / r["speedup"].get<double>() - 1.0));
                 else if (r.contains("baseline_line") &&
-                         (!job->baselineFilter.empty() || !job->baselineSets.empty()))
+                         (!job->baselineFilter.empty() || !job->baselineSets.empty() ||
+                          job->preset != job->baselinePreset))
                     fmt::print("{:>10} {} on {}{}: {} ms   -> {} takes {:.2f}x its time\n", "",
                                job->referenceFilter(), job->baselineBackend,
-                               job->baselineSets.empty()
+                               job->baselineSets.empty() && job->preset == job->baselinePreset
                                    ? ""
-                                   : fmt::format(" ({})", fmt::join(job->baselineSets, ", ")),
+                                   : fmt::format(" ({} preset{}{})", job->baselinePreset,
+                                                 job->baselineSets.empty() ? "" : ", ",
+                                                 fmt::join(job->baselineSets, ", ")),
                                r["baseline_line"].get<std::string>(), job->filter,
                                1.0 / r["speedup"].get<double>());
                 else if (r.contains("baseline_line"))

@@ -33,7 +33,7 @@ std::string markdown() {
 
 void addSettingsCommand(CLI::App& app, int& exitCode) {
     struct Job {
-        std::string filter;
+        std::string filter, preset;
         bool markdown = false, quiet = false;
     };
     auto job = std::make_shared<Job>();
@@ -41,10 +41,22 @@ void addSettingsCommand(CLI::App& app, int& exitCode) {
         "settings", "every setting of a filter: key, flag, unit, range, default and help");
     cmd->add_option("filter", job->filter, "one filter (default: all)");
     cmd->add_flag("--markdown", job->markdown, "the README's table");
+    cmd->add_option("--preset", job->preset,
+                    "print only what this preset sets (faithful, quality), as key=value")
+        ->check(CLI::IsMember(presetNames()));
     cmd->add_flag("-q,--quiet", job->quiet,
                   "accepted on every command; the table is this command's result");
     cmd->callback([job, &exitCode] {
-        if (job->markdown) {
+        if (!job->preset.empty()) {
+            std::vector<std::string> names = filterNames();
+            if (!job->filter.empty()) names = {job->filter};
+            for (const std::string& f : names) {
+                fmt::print("{}:", f);
+                for (const auto& [k, v] : presetSettings(f, job->preset))
+                    fmt::print(" {}={}", k, v);
+                fmt::print("\n");
+            }
+        } else if (job->markdown) {
             fmt::print("{}", markdown());
         } else {
             std::vector<std::string> names = filterNames();

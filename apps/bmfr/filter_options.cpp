@@ -35,6 +35,12 @@ void FilterOptions::addTo(CLI::App& cmd, const std::vector<std::string>& filters
             else
                 o->type_name(d.range.empty() ? "TEXT" : "NUMBER");
         }
+    cmd.add_option("--preset", preset,
+                   "faithful (the papers' settings) or quality (with the improvements beyond "
+                   "them; `bmfr settings FILTER --preset quality` lists them); flags and --set "
+                   "override it")
+        ->check(CLI::IsMember(presetNames()))
+        ->default_val("faithful");
     cmd.add_option("--set", sets,
                    "any setting as key=value (keys: `bmfr settings FILTER`); repeatable");
     cmd.add_option("--disable", disabled,
@@ -52,6 +58,7 @@ SettingValues FilterOptions::resolve(const std::string& name, const SequenceDefa
     if (seq.normalLimitSquared)
         v.push_back({"normalLimitSquared", number(*seq.normalLimitSquared)});
     if (seq.colorIsDemodulated) v.push_back({"colorIsDemodulated", "true"});
+    for (const auto& kv : presetSettings(name, preset)) v.push_back(kv);
     for (const auto& [flag, text] : flags) {
         if (text.empty()) continue; // not given
         const SettingDoc* d = findDoc(docs, flag);

@@ -19,10 +19,12 @@ struct SequenceDefaults {
 struct FilterOptions {
     /// Adds the flags of every filter in `filters` (a shared flag once), --set and --disable.
     void addTo(CLI::App& cmd, const std::vector<std::string>& filters);
-    /// The values for filter `name`, in order: the sequence's, the flags, --set, --disable.
+    /// The values for filter `name`, in order: the sequence's, the preset's, the flags, --set,
+    /// --disable.
     /// Throws bmfr::Error for a flag or key that `name` does not have.
     SettingValues resolve(const std::string& name, const SequenceDefaults& sequence) const;
 
+    std::string preset = "faithful";          ///< presetSettings(), applied before the flags
     std::map<std::string, std::string> flags; ///< flag -> text, as given
     std::vector<std::string> sets;            ///< "key=value"
     std::vector<std::string> disabled;        ///< switch flags to turn off

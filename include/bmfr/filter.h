@@ -58,5 +58,11 @@ BMFR_API std::unique_ptr<Filter> makeFilter(const std::string& name,
 BMFR_API std::vector<std::string> filterNames();
 /// The settings table of filter `name`: the shared settings first.
 BMFR_API std::vector<SettingDoc> filterSettings(const std::string& name);
+/// The named presets, in order: "faithful" (the papers' defaults) and "quality" (the
+/// improvements beyond the papers that measured better, each also a setting of its own).
+BMFR_API std::vector<std::string> presetNames();
+/// The settings preset `preset` gives filter `name` (those of its improvements the filter has);
+/// apply them before any others. Throws bmfr::Error for an unknown filter or preset.
+BMFR_API SettingValues presetSettings(const std::string& name, const std::string& preset);
 
 } // namespace bmfr

@@ -3,10 +3,12 @@
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
 #include "eval/plot.h"
+#include "filters/bmfr/bmfr_settings_table.h"
 #include "io/atomic_file.h"
 #include "io/sequence.h"
 #include <bmfr/denoiser.h>
 #include <bmfr/error.h>
+#include <bmfr/filter.h>
 #include <filesystem>
 #include <fmt/core.h>
 #include <fstream>
@@ -96,6 +98,15 @@ AblationResult runAblation(const std::string& input, const std::string& output,
         st.flag(s) = false;
         r.stages.push_back(run(s, st.name));
     }
+    // The quality preset's switches (the improvements beyond the paper), each flipped in turn.
+    for (const auto& [key, value] : presetSettings("bmfr", "quality"))
+        for (const auto& e : bmfrSettingsTable()) {
+            if (e.key != key || !std::holds_alternative<bool& (*)(Settings&)>(e.field)) continue;
+            const bool on = formatSetting(e, base) == "true";
+            Settings s = base;
+            applySettings(bmfrSettingsTable(), s, {{key, on ? "false" : "true"}}, "bmfr");
+            r.stages.push_back(run(s, (on ? "without " : "with ") + key));
+        }
 
     std::vector<Group> groups = {{"normals", "n.x,n.y,n.z"},
                                  {"positions", "p.x,p.y,p.z"},

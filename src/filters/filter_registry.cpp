@@ -42,6 +42,25 @@ std::vector<SettingDoc> filterSettings(const std::string& name) {
     return find(name).settings();
 }
 
+std::vector<std::string> presetNames() {
+    return {"faithful", "quality"};
+}
+
+SettingValues presetSettings(const std::string& name, const std::string& preset) {
+    // The quality preset: every switch that measured better than the paper on our sequences
+    // (README, "Beyond the paper"). A filter gets the ones in its settings table.
+    static const SettingValues kQuality = {{"taaSameSurface", "true"}};
+    const std::vector<SettingDoc> docs = filterSettings(name);
+    if (preset == "faithful") return {};
+    if (preset != "quality")
+        throw Error("unknown preset '" + preset + "' (expected faithful or quality)");
+    SettingValues v;
+    for (const auto& kv : kQuality)
+        for (const SettingDoc& d : docs)
+            if (d.key == kv.first) v.push_back(kv);
+    return v;
+}
+
 ImageView Filter::denoise(const FrameInput& frame, const MutableImageView& out) {
     checkOutput(out, frame.color.width, frame.color.height); // before the history moves on
     if (out.memory == Memory::Cuda && frame.color.memory == Memory::Host)
