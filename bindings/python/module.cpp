@@ -325,4 +325,19 @@ single-channel roughness and glossy_hit_distance: Mara et al. 2017's factorisati
             return rows;
         },
         py::arg("name") = "bmfr", "A filter's settings: name, key, unit, range, default, help.");
+    m.def(
+        "preset",
+        [](const std::string& name, const std::string& preset) {
+            py::dict values;
+            try {
+                for (const auto& [key, value] : presetSettings(name, preset))
+                    values[py::str(pythonName(name, key))] = value;
+            } catch (const Error& e) {
+                throw py::value_error(e.what());
+            }
+            return values;
+        },
+        py::arg("name"), py::arg("preset"),
+        "The settings a preset (faithful, quality) gives a filter, by Python name: "
+        "bmfr.Filter(\"bmfr\", **bmfr.preset(\"bmfr\", \"quality\")).");
 }

@@ -62,6 +62,21 @@ def test_same_bits_as_the_cli(sequence, tmp_path, name, extra):
     assert f.stats["total_ms"] > 0 and "non_finite_inputs" in f.stats
 
 
+def test_the_quality_preset_gives_the_cli_bits(sequence, tmp_path):
+    cli("denoise", sequence, "-o", tmp_path, "--preset", "quality", "--no-png", "--no-flip", "-q")
+    assert bmfr.preset("bmfr", "quality") == {"taa_same_surface": "true"}
+    assert bmfr.preset("bmfr", "faithful") == {}
+    with pytest.raises(ValueError, match="unknown preset 'fast'"):
+        bmfr.preset("bmfr", "fast")
+    seq = bmfr.read_sequence(str(sequence))
+    f = bmfr.Filter("bmfr", **sequence_settings(seq.info), **bmfr.preset("bmfr", "quality"))
+    for fr in seq:
+        out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"),
+                        extras=fr["extras"])
+        expected = bmfr.read_exr(str(tmp_path / f"denoised_{fr['index']:04d}.exr"))
+        assert np.array_equal(out, expected), f"frame {fr['index']} differs from the CLI"
+
+
 def test_rgba_and_padded_rows_give_the_same_result(sequence):
     fr = next(iter(bmfr.read_sequence(str(sequence))))
     packed = bmfr.Filter().denoise(*frame_args(fr))
