@@ -5,6 +5,7 @@
 #pragma once
 #include "core/color.h"
 #include "temporal/reprojection.h"
+#include <bmfr/temporal_settings.h>
 
 namespace bmfr {
 
@@ -23,6 +24,15 @@ struct TaaInputs {
     /// (TemporalSettings::taaSameSurface); without it from every tap (the authors').
     const uint8_t* accept = nullptr;
 };
+
+/// A filter's TAA inputs (ycocg is the pass's own): `accept` is used only when the settings
+/// ask for the same-surface history.
+inline TaaInputs taaInputs(const float* current, const float* history, const float* previousPixel,
+                           int width, int height, const TemporalSettings& s,
+                           const uint8_t* accept) {
+    return {current, nullptr, history,         previousPixel,
+            width,   height,  s.taaBlendAlpha, s.taaSameSurface ? accept : nullptr};
+}
 
 /// Clamp box of pixel (x, y): the mean of the 3x3 box and the 5-tap cross bounds, in YCoCg.
 BMFR_HD void taaClampBox(const TaaInputs& a, int x, int y, Vec3& lo, Vec3& hi) {

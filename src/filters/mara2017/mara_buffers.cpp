@@ -92,14 +92,8 @@ MaraFrame MaraBuffers::frame(const MaraPassContext& ctx) {
 
 TaaInputs MaraBuffers::taaInputs(const MaraPassContext& ctx) const {
     const TemporalHistory& h = ctx.history;
-    return {composed.data(),
-            nullptr,
-            output[1 - h.cur].data(),
-            previousPixel.data(),
-            h.width,
-            h.height,
-            ctx.settings.taaBlendAlpha,
-            ctx.settings.taaSameSurface ? accept.data() : nullptr};
+    return bmfr::taaInputs(composed.data(), output[1 - h.cur].data(), previousPixel.data(), h.width,
+                           h.height, ctx.settings, accept.data());
 }
 
 void MaraBuffers::captureDebug(int cur) {

@@ -93,14 +93,9 @@ class CudaBmfrPasses final : public BmfrPasses {
         launchAccumulateFitted(fittedAccumulation(ctx, in, b), b.remodulated.data(), st);
         frame_.mark("accumulate_fitted");
 
-        const TaaInputs taa{b.remodulated.data(),
-                            nullptr,
-                            b.output[prev].data(),
-                            b.previousPixel.data(),
-                            t.width,
-                            t.height,
-                            s.taaBlendAlpha,
-                            s.taaSameSurface ? b.acceptMask.data() : nullptr};
+        const TaaInputs taa =
+            taaInputs(b.remodulated.data(), b.output[prev].data(), b.previousPixel.data(), t.width,
+                      t.height, s, b.acceptMask.data());
         launchTaa(taa, b.ycocg.data(), b.output[cur].data(), s.taa && t.hasHistory(), st);
         frame_.mark("taa");
 

@@ -54,14 +54,9 @@ class CudaSvgfPasses final : public SvgfPasses {
                              st);
         frame_.mark("atrous");
 
-        const TaaInputs taa{b_.remodulated.data(),
-                            nullptr,
-                            b_.output[1 - h.cur].data(),
-                            b_.previousPixel.data(),
-                            h.width,
-                            h.height,
-                            s.taaBlendAlpha,
-                            s.taaSameSurface ? b_.accept.data() : nullptr};
+        const TaaInputs taa =
+            taaInputs(b_.remodulated.data(), b_.output[1 - h.cur].data(), b_.previousPixel.data(),
+                      h.width, h.height, s, b_.accept.data());
         launchTaa(taa, ycocg_.data(), b_.output[h.cur].data(), s.taa && h.hasHistory(), st);
         frame_.mark("taa");
 

@@ -121,14 +121,9 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         times.add("fit", clock.lap());
         accumulateFitted(ctx, b);
         times.add("accumulate_fitted", clock.lap());
-        const TaaInputs taa{b.remodulated.data(),
-                            nullptr,
-                            b.output[1 - t.cur].data(),
-                            b.previousPixel.data(),
-                            t.width,
-                            t.height,
-                            ctx.settings.taaBlendAlpha,
-                            ctx.settings.taaSameSurface ? b.acceptMask.data() : nullptr};
+        const TaaInputs taa =
+            taaInputs(b.remodulated.data(), b.output[1 - t.cur].data(), b.previousPixel.data(),
+                      t.width, t.height, ctx.settings, b.acceptMask.data());
         taaPass(ctx.pool, taa, b.ycocg.data(), b.output[t.cur].data(),
                 ctx.settings.taa && t.hasHistory());
         times.add("taa", clock.lap());

@@ -61,14 +61,9 @@ class ReferenceSvgfPasses final : public HostSvgfPasses {
         const int64_t bad = svgfStagesBeforeTaa(ctx, buffers, times);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
-        const TaaInputs taa{buffers.remodulated.data(),
-                            nullptr,
-                            buffers.output[1 - h.cur].data(),
-                            buffers.previousPixel.data(),
-                            h.width,
-                            h.height,
-                            ctx.settings.taaBlendAlpha,
-                            ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr};
+        const TaaInputs taa = taaInputs(
+            buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
+            buffers.previousPixel.data(), h.width, h.height, ctx.settings, buffers.accept.data());
         taaPass(ctx.pool, taa, ycocg_.data(), buffers.output[h.cur].data(),
                 ctx.settings.taa && h.hasHistory());
         times.add("taa", clock.lap());
