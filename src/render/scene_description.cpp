@@ -67,6 +67,14 @@ const std::string kCornellAnimations = R"("animations": [
                     {"frame": 30, "rotation_deg": [0, 60, 0]},
                     {"frame": 59, "rotation_deg": [0, 0, 0]}]}])";
 
+/// Every Sponza preset: the file's roof left out (it keeps all sun and sky out of the atrium),
+/// and the sun, the sky and the local lights sampled apart at each vertex.
+const std::string kOpenAtrium = R"("hide_objects": ["Roof"], "light_sampling": "split",)";
+/// The sunlit Sponza presets' sky and sun: steep, along the atrium's long axis.
+const std::string kSunAndSky = R"(
+            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+            "sky": {"radiance": [3.0, 3.5, 4.5]},)";
+
 const std::map<std::string, std::string>& presets() {
     static const std::map<std::string, std::string> p = {
         {"cornell-moving", R"({
@@ -95,9 +103,8 @@ const std::map<std::string, std::string>& presets() {
         {"sponza-moving", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
-            "hide_objects": ["Roof"], "light_sampling": "split",
-            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
-            "sky": {"radiance": [3.0, 3.5, 4.5]},
+            )" + kOpenAtrium + kSunAndSky +
+                              R"(
             "camera": {"keyframes": [
                 {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
                 {"frame": 30, "position": [9.0, 5.0, -2.0],  "target": [-4.0, 6.0, 0.0], "fov_deg": 50},
@@ -105,15 +112,15 @@ const std::map<std::string, std::string>& presets() {
         {"sponza-static", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
-            "hide_objects": ["Roof"], "light_sampling": "split",
-            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
-            "sky": {"radiance": [3.0, 3.5, 4.5]},
+            )" + kOpenAtrium + kSunAndSky +
+                              R"(
             "camera": {"keyframes": [
                 {"frame": 0, "position": [12.0, 4.8, -3.0], "target": [0.0, 6.0, 1.5], "fov_deg": 50}]}})"},
         {"sponza-light", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
-            "hide_objects": ["Roof"], "light_sampling": "split",
+            )" + kOpenAtrium +
+                             R"(
             "sky": {"radiance": [0.04, 0.05, 0.07]},
             "lights": [{"type": "quad", "centre": [8.0, 9.0, 0.0], "u": [0.6, 0, 0], "v": [0, 0, 0.6],
                         "radiance": [120, 105, 85],
@@ -125,18 +132,16 @@ const std::map<std::string, std::string>& presets() {
         {"sponza-atrium", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096, "bounces": 4,
-            "hide_objects": ["Roof"], "light_sampling": "split",
-            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
-            "sky": {"radiance": [3.0, 3.5, 4.5]},
+            )" + kOpenAtrium + kSunAndSky +
+                              R"(
             "camera": {"keyframes": [
                 {"frame": 0,  "position": [9.0, 5.5, -2.0], "target": [-10.0, 10.0, 1.5], "fov_deg": 60},
                 {"frame": 59, "position": [3.0, 5.5, -2.0], "target": [-16.0, 10.0, 1.0], "fov_deg": 60}]}})"},
         {"sponza-glossy", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096, "roughness_override": 0.1,
-            "hide_objects": ["Roof"], "light_sampling": "split",
-            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
-            "sky": {"radiance": [3.0, 3.5, 4.5]},
+            )" + kOpenAtrium + kSunAndSky +
+                              R"(
             "camera": {"keyframes": [
                 {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
                 {"frame": 59, "position": [3.0, 5.2, -4.5],  "target": [-10.0, 6.5, 1.0], "fov_deg": 50}]}})"},
