@@ -363,13 +363,16 @@ std::vector<float> pixelsOf(const fs::path& p) {
 TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     // The library's list: the quality preset sets the improvements a filter has.
     using bmfr::presetSettings, bmfr::SettingValues;
-    EXPECT_EQ(presetSettings("bmfr", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
+    EXPECT_EQ(presetSettings("bmfr", "quality"),
+              (SettingValues{{"taaSameSurface", "true"}, {"excludeEmitters", "true"}}));
     EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
     EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
     Result listed = run("settings bmfr --preset quality");
     ASSERT_EQ(listed.code, 0) << listed.output;
-    EXPECT_NE(listed.output.find("bmfr: taaSameSurface=true"), std::string::npos) << listed.output;
+    EXPECT_NE(listed.output.find("bmfr: taaSameSurface=true excludeEmitters=true"),
+              std::string::npos)
+        << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
     // --preset faithful those of no flags; a flag after the preset overrides it.
     fs::path in = scratch("preset_in");
@@ -381,11 +384,12 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         return pixelsOf(out / "denoised_0003.exr");
     };
     const std::vector<float> quality = denoise("quality", "--preset quality"),
-                             bySwitch = denoise("switch", "--taa-same-surface"),
+                             bySwitch = denoise("switch", "--taa-same-surface --exclude-emitters"),
                              faithful = denoise("faithful", "--preset faithful"),
                              plain = denoise("plain", ""),
                              overridden =
-                                 denoise("override", "--preset quality --taa-same-surface false");
+                                 denoise("override", "--preset quality --taa-same-surface false "
+                                                     "--exclude-emitters false");
     ASSERT_FALSE(quality.empty());
     EXPECT_EQ(quality, bySwitch);
     EXPECT_EQ(faithful, plain);

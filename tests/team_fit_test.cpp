@@ -5,6 +5,7 @@
 #include "backend/cuda/bmfr/cooperative_fit.h"
 #include "core/hash.h"
 #include "filters/bmfr/regularisation_noise.h"
+#include <algorithm>
 #include <bmfr/features.h>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -22,10 +23,11 @@ float uniform(uint32_t a, uint32_t b, uint32_t c) {
 /// noisy colour that the features can mostly explain.
 struct Frame {
     int w, h;
-    std::vector<float> normal, position, color, extra;
+    std::vector<float> normal, position, color, extra, albedo;
     Frame(int width, int height, uint32_t seed) : w(width), h(height) {
         const size_t n = size_t(w) * size_t(h);
         normal.resize(3 * n), position.resize(3 * n), color.resize(3 * n), extra.resize(n);
+        albedo.assign(3 * n, 1.0f);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t i = size_t(y) * w + x;
@@ -42,12 +44,39 @@ struct Frame {
                 extra[i] = std::sin(px * 3.0f) + (i % 97 == 0 ? NAN : 0.0f);
             }
     }
+    /// Paints a lamp: a flat, bright w x h patch at (x0, y0), the same in every channel.
+    Frame& lamp(int x0, int y0, int lw, int lh) {
+        for (int y = y0; y < y0 + lh; ++y)
+            for (int x = x0; x < x0 + lw; ++x)
+                for (int c = 0; c < 3; ++c) color[3 * (size_t(y) * w + x) + c] = 30.0f;
+        return *this;
+    }
+};
+
+/// Both fitters' scratch for M features, blocks of W pixels and a team of `threads`.
+struct Scratch {
+    std::vector<float> clean, work, sum, sources, partial, matrix;
+    std::vector<int> index, histogram;
+    std::vector<uint8_t> mask, teamMask;
+    Scratch(int M, int W, int threads)
+        : clean(size_t(M) * size_t(W)), work(size_t(M + 3) * size_t(W)), sum(3 * size_t(W)),
+          sources(size_t(6 + 16) * size_t(W)),
+          partial(size_t(cuda::teamFitPartials(M)) * size_t(threads)), matrix(work.size()),
+          index(size_t(W)), histogram(size_t(kMaskBuckets)), mask(size_t(W)), teamMask(size_t(W)) {}
+    BlockFitScratch reference() {
+        return {clean.data(), work.data(), sum.data(),      sources.data(),
+                index.data(), mask.data(), histogram.data()};
+    }
+    cuda::TeamFitMemory team(cuda::TeamFitState& st) {
+        return {&st, partial.data(), matrix.data(), teamMask.data()};
+    }
 };
 
 /// Fits every block of frame `f` with the reference and with a host team of `threads`; returns
 /// the worst excess over the conformance tolerance (<= 0 passes).
 double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& features,
-                   float noiseAmplitude, int threads, long frameIndex) {
+                   float noiseAmplitude, int threads, long frameIndex,
+                   bool excludeEmitters = false) {
     const int M = int(features.size()), W = blockSize * blockSize;
     std::vector<float> noise(size_t(M) * W);
     for (int m = 0; m < M; ++m)
@@ -61,24 +90,28 @@ double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& fe
     a.normal = f.normal.data(), a.position = f.position.data(), a.color = f.color.data();
     a.in.extras[0] = f.extra.data(), a.in.extraCount = 1;
     a.in.width = f.w, a.in.height = f.h;
-
+    a.in.color = f.color.data(), a.in.albedo = f.albedo.data();
+    a.in.normal = f.normal.data(), a.in.position = f.position.data();
+    std::vector<uint8_t> referenceBits(f.extra.size(), 7), teamBits(f.extra.size(), 9);
     std::vector<float> reference(f.color.size(), -1.0f), team(f.color.size(), -1.0f);
-    std::vector<float> clean(size_t(M) * W), work(size_t(M + 3) * W), sum(3 * size_t(W));
-    std::vector<float> sources(size_t(6 + 16) * W);
-    std::vector<int> index(static_cast<size_t>(W), 0);
-    const BlockFitScratch sc{clean.data(), work.data(), sum.data(), sources.data(), index.data()};
+    Scratch scratch(M, W, threads);
+    const BlockFitScratch sc = scratch.reference();
     const cuda::HostTeam host{threads};
     cuda::TeamFitState st{};
-    std::vector<float> partial(size_t(cuda::teamFitPartials(M)) * size_t(threads));
-    std::vector<float> matrix(size_t(M + 3) * W);
-    const cuda::TeamFitMemory mem{&st, partial.data(), matrix.data()};
+    const cuda::TeamFitMemory mem = scratch.team(st);
     for (int by = 0; by < a.grid.blocksY; ++by)
         for (int bx = 0; bx < a.grid.blocksX; ++bx) {
             a.fitted = reference.data();
+            a.emitters = {excludeEmitters, 16.0f, InputModes{}, referenceBits.data()};
             fitBlock(a, bx, by, sc, solveHouseholder);
             a.fitted = team.data();
+            a.emitters.bits = teamBits.data();
             cuda::fitBlockTeam(host, a, bx, by, mem);
         }
+    if (excludeEmitters) {
+        EXPECT_EQ(referenceBits, teamBits);
+        EXPECT_GT(std::count(teamBits.begin(), teamBits.end(), 1), 0) << "no emitter found";
+    }
     double worst = -1.0;
     for (size_t i = 0; i < team.size(); ++i) {
         EXPECT_GE(team[i], 0.0f) << "pixel " << i / 3 << " not written or negative";
@@ -110,6 +143,11 @@ TEST(TeamFit, OtherBlockSizesFeaturesAndRankDeficiency) {
         // Without regularisation the flat floor's dependent columns are dropped by both.
         EXPECT_LE(worstExcess(f, block, features, 0.0f, 256, 3), 0.0);
     }
+    // A lamp across a block edge, left out of the fit, on every thread count.
+    Frame lit(101, 67, 7);
+    lit.lamp(20, 25, 24, 6);
+    for (int threads : {256, 32})
+        EXPECT_LE(worstExcess(lit, 32, features, 0.01f, threads, 4, true), 0.0) << threads;
     // An image smaller than a block: everything mirrored in.
     EXPECT_LE(worstExcess(Frame(5, 3, 6), 32, features, 0.01f, 256, 0), 0.0);
 }

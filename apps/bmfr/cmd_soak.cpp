@@ -16,17 +16,18 @@ namespace bmfr::app {
 
 namespace {
 
-/// Resident set size of this process, bytes (Linux /proc/self/statm). Reads into a stack
-/// buffer: the measurement itself must allocate nothing.
+/// Anonymous resident memory of this process, bytes (Linux /proc/self/statm: resident less
+/// file-backed). The binary's code pages, faulted in as a path first runs on a later frame, are
+/// not a leak. Reads into a stack buffer: the measurement itself must allocate nothing.
 long long residentBytes() {
     char text[128] = {};
     const int fd = ::open("/proc/self/statm", O_RDONLY);
     if (fd < 0) return 0;
     const ssize_t n = ::read(fd, text, sizeof text - 1);
     ::close(fd);
-    long long pages = 0, resident = 0;
-    if (n <= 0 || std::sscanf(text, "%lld %lld", &pages, &resident) != 2) return 0;
-    return resident * ::sysconf(_SC_PAGESIZE);
+    long long pages = 0, resident = 0, shared = 0;
+    if (n <= 0 || std::sscanf(text, "%lld %lld %lld", &pages, &resident, &shared) != 3) return 0;
+    return (resident - shared) * ::sysconf(_SC_PAGESIZE);
 }
 
 struct SoakJob {

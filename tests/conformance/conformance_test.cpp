@@ -270,6 +270,36 @@ TEST_P(Conformance, PathTracedFrames) {
     }
 }
 
+TEST_P(Conformance, ALampInViewWithoutAnEmissionBuffer) {
+    if (filter().name != std::string("bmfr")) GTEST_SKIP() << "a setting of bmfr's";
+    // A bright, flat rectangle painted over the moving scene: the emitter exclusion finds it,
+    // and every backend must find the same pixels and drop the same history taps.
+    ProceduralFrames p(96, 72, 6, false);
+    for (FrameData& f : p.frames) {
+        f.emission = {};
+        for (int y = 20; y < 29; ++y)
+            for (int x = 30; x < 52; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const size_t i = 3 * (size_t(y) * 96 + x) + c;
+                    f.color.pixels[i] = 25.0f * f.albedo.pixels[i];
+                }
+    }
+    // The reference finds the lamp: the ceiling above it is no longer lit by the fit.
+    auto on = makeFilter("bmfr", {{"backend", "reference"}, {"excludeEmitters", "true"}});
+    auto off = makeFilter("bmfr", {{"backend", "reference"}});
+    double lit = 0.0;
+    for (int i = 0; i < 6; ++i) {
+        const ImageView a = on->denoise(p.frames[size_t(i)].input());
+        const ImageView b = off->denoise(p.frames[size_t(i)].input());
+        for (int x = 30; x < 52; ++x) lit += b.data[3 * (14 * 96 + x)] - a.data[3 * (14 * 96 + x)];
+    }
+    EXPECT_GT(lit, 50.0) << "the exclusion changed nothing above the lamp";
+    for (const char* ratio : {"16", "4"})
+        expectConformance(filter().name, backend(),
+                          {{"excludeEmitters", "true"}, {"emitterRatio", ratio}}, 6, p.source(),
+                          std::string("a lamp, emitter ratio ") + ratio);
+}
+
 std::vector<std::string> filterCases() {
     std::vector<std::string> v;
     for (const FilterCase& f : kFilters) v.push_back(f.name);

@@ -28,6 +28,8 @@ struct BmfrSettings : TemporalSettings {
     float secondBlendAlpha = 0.1f; ///< phase III minimum new-frame weight
     uint32_t seed = 0;             ///< regularisation noise seed
     bool halfHistory = true;       ///< normals and colour history as 16-bit floats (else float32)
+    bool excludeEmitters = false;  ///< fit blocks without bright patches (lights in view)
+    float emitterRatio = 16.0f;    ///< a patch pixel is this many times the block's median
     StageSwitches stages{};
 };
 

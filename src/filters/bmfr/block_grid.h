@@ -21,6 +21,14 @@ struct BlockGrid {
     BMFR_HD int blockCount() const { return blocksX * blocksY; }
 };
 
+/// Image pixel of pixel k (row-major) of block (bx, by), mirrored in at the border; `owned`
+/// when the block owns it.
+BMFR_HD long blockPixel(const BlockGrid& g, int bx, int by, int k, bool& owned) {
+    const int ux = g.originX(bx) + k % g.blockSize, uy = g.originY(by) + k / g.blockSize;
+    owned = ux >= 0 && ux < g.width && uy >= 0 && uy < g.height;
+    return long(mirrorIndex(uy, g.height)) * g.width + mirrorIndex(ux, g.width);
+}
+
 /// Grid for frame `frameIndex` (offset = kBlockOffsets[frameIndex % 16], scaled to the block
 /// size when it is not 32 so the displacement stays within half a block).
 inline BlockGrid makeBlockGrid(int width, int height, int blockSize, long frameIndex) {

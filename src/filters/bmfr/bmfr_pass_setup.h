@@ -17,7 +17,7 @@ NoisyAccumulation noisyAccumulation(const BmfrPassContext& ctx, const InputPlane
     const int cur = t.cur, prev = 1 - t.cur;
     NoisyAccumulation a;
     a.in = in;
-    a.modes = {s.colorIsDemodulated, s.stages.demodulate, s.albedoEpsilon};
+    a.modes = inputModes(s);
     a.previous = t.previous;
     a.limits = {s.positionLimitSquared, s.normalLimitSquared};
     a.minAlpha = s.firstBlendAlpha, a.accumulate = s.stages.firstAccumulation;
@@ -45,6 +45,7 @@ BlockFit blockFit(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b,
     a.color = b.accumulatedNoisy[t.cur].data();
     a.in = in;
     a.fitted = b.fitted.data();
+    a.emitters = emitterExclusion(s, in, b.emitter[t.cur].data());
     return a;
 }
 

@@ -40,6 +40,16 @@ SettingsTable<S> ownSettings() {
          "memory, tone-mapped RMSE within 0.5% of float32's; false gives float32 history for "
          "bit-exact work. Positions stay float32",
          BMFR_FIELD(S, halfHistory)},
+        {"excludeEmitters", "exclude-emitters", "", {},
+         "leave out of each block's fit the pixels far brighter than the block's median "
+         "(emitterRatio) that form a patch, as a light in view without an emission buffer, and "
+         "give them their own accumulated colour; off with an emission buffer, which handles "
+         "them already",
+         BMFR_FIELD(S, excludeEmitters)},
+        {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
+         "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
+         "median, above which a pixel may belong to an emitter",
+         BMFR_FIELD(S, emitterRatio)},
         {"demodulate", "demodulate", "", {}, "divide colour by albedo before filtering",
          BMFR_FIELD(S, stages.demodulate)},
         {"firstAccumulation", "accumulation", "", {}, "phase I: accumulate the noisy colour",

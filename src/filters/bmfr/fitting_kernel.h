@@ -2,15 +2,36 @@
 // and phase I colour, scale each feature column to the block, add the regularisation noise,
 // solve the least squares by Householder QR, and write the weighted sum of the noise-free
 // features to the pixels the block owns. BMFR_HD over raw arrays; the CPU backend's fitter
-// (backend/cpu/bmfr/cpu_fit_blocks.cpp) is the same maths streamed from planes.
+// (backend/cpu/bmfr/cpu_fit_blocks.cpp) is the same maths streamed from planes. With
+// BmfrSettings::excludeEmitters the block's emitter pixels (emitter_mask.h) sit the fit out.
 #pragma once
 #include "core/border.h"
 #include "filters/bmfr/block_grid.h"
+#include "filters/bmfr/emitter_exclusion.h"
 #include "filters/bmfr/feature_columns.h"
 #include "filters/bmfr/householder_qr.h"
 #include "temporal/pixel_input.h"
 
 namespace bmfr {
+
+/// How BMFR reads its colour input.
+inline InputModes inputModes(const BmfrSettings& s) {
+    return {s.colorIsDemodulated, s.stages.demodulate, s.albedoEpsilon};
+}
+
+/// BmfrSettings::excludeEmitters for one frame's fit (emitter_exclusion.h).
+struct EmitterExclusion {
+    bool on = false;         ///< asked for, and no emission buffer to do it instead
+    float ratio = 16.0f;     ///< BmfrSettings::emitterRatio
+    InputModes modes;        ///< how phase I read the current samples
+    uint8_t* bits = nullptr; ///< 1 where the output is an emitter's own sample
+};
+
+/// This frame's emitter exclusion, writing its bits to `bits`.
+inline EmitterExclusion emitterExclusion(const BmfrSettings& s, const InputPlanes& in,
+                                         uint8_t* bits) {
+    return {s.excludeEmitters && in.emission == nullptr, s.emitterRatio, inputModes(s), bits};
+}
 
 /// One frame's fit: its sources and output are packed images (3 floats per pixel).
 struct BlockFit {
@@ -23,6 +44,7 @@ struct BlockFit {
     const float* color = nullptr; ///< phase I output
     InputPlanes in;               ///< for the extra feature buffers
     float* fitted = nullptr;      ///< the block writes the pixels it owns
+    EmitterExclusion emitters;
 };
 
 /// One worker's scratch for a block of W pixels and M features.
@@ -32,7 +54,35 @@ struct BlockFitScratch {
     float* sum;      ///< 3 x W weighted sums
     float* sources;  ///< (6 + 16) x W gathered normal, position and extras
     int* imageIndex; ///< W: image pixel of each block pixel, -1 when not owned
+    uint8_t* mask;   ///< W: the emitter mask (emitter_exclusion.h)
+    int* histogram;  ///< kMaskBuckets
 };
+
+/// Leaves the emitter pixels of block (bx, by) out of the least squares: their rows of the
+/// M + 3 columns (`stride` floats apart, the colour last) become zero. Returns how many there
+/// are; `mask` says which, and which are the emitter this frame (maskEmitter).
+BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const EmitterExclusion& e,
+                               int bx, int by, float* columns, int M, long stride, int* histogram,
+                               uint8_t* mask) {
+    const int B = g.blockSize;
+    const float* z[3] = {columns + M * stride, columns + (M + 1) * stride,
+                         columns + (M + 2) * stride};
+    const int excluded = emitterMask(
+        B, e.ratio, in, e.modes,
+        [&](int k) {
+            return luminance({z[0][k], z[1][k], z[2][k]});
+        },
+        [&](int k) {
+            bool owned;
+            return blockPixel(g, bx, by, k, owned);
+        },
+        histogram, mask);
+    if (excluded)
+        for (int k = 0; k < B * B; ++k)
+            if (mask[k] & kMaskExcluded)
+                for (int f = 0; f < M + 3; ++f) columns[f * stride + k] = 0.0f;
+    return excluded;
+}
 
 /// Gathers block (bx, by) as structure-of-arrays, mirroring the image in at the border, and
 /// marks the pixels it owns.
@@ -88,6 +138,9 @@ BMFR_HD void fitBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& 
         for (int k = 0; k < W; ++k) dst[k] = col[k] + nz[k];
     }
 
+    const int excluded = a.emitters.on ? excludeEmitterRows(a.grid, a.in, a.emitters, bx, by,
+                                                            sc.work, M, W, sc.histogram, sc.mask)
+                                       : 0;
     float coeffs[kMaxFeatures * 3];
     solve(sc.work, M, W, coeffs);
 
@@ -108,6 +161,10 @@ BMFR_HD void fitBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& 
             const float v = sc.sum[long(c) * W + k];
             a.fitted[3L * idx + c] = v > 0.0f ? v : 0.0f;
         }
+        if (!a.emitters.on) continue;
+        const bool emitter = excluded && maskEmitter(sc.mask[k]);
+        if (emitter) store3(a.fitted, idx, emitterSample(a.in, idx, a.emitters.modes));
+        a.emitters.bits[idx] = emitter;
     }
 }
 

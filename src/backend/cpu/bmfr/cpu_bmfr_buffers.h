@@ -20,6 +20,8 @@ struct Scratch {
     std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
     std::vector<float> ones;     ///< one block row of 1 (+8 of padding): the constant feature
     std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
+    std::vector<uint8_t> mask;   ///< the emitter mask (emitter_exclusion.h)
+    std::vector<int> histogram;  ///< and its luminance histogram
 };
 
 /// Planes of one value per pixel, stored as float or, with BmfrSettings::halfHistory, as half
@@ -68,11 +70,12 @@ struct Buffers {
     size_t stride = 0;
 
     // History, [slot].
-    PlaneSet position[2];          ///< 3 planes: position xyz (sanitised), always float
-    PlaneSet normal[2];            ///< 3 planes: normal xyz (sanitised)
-    PlaneSet noisy[2];             ///< 4 planes: phase I colour (demodulated), history length
-    PlaneSet accumulatedFitted[2]; ///< 3 planes: phase III colour
-    std::vector<float> output[2];  ///< 3 floats per pixel (the public image), +24 of padding
+    PlaneSet position[2];            ///< 3 planes: position xyz (sanitised), always float
+    PlaneSet normal[2];              ///< 3 planes: normal xyz (sanitised)
+    PlaneSet noisy[2];               ///< 4 planes: phase I colour (demodulated), history length
+    PlaneSet accumulatedFitted[2];   ///< 3 planes: phase III colour
+    std::vector<float> output[2];    ///< 3 floats per pixel (the public image), +24 of padding
+    std::vector<uint8_t> emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
 
     // This frame only.
     std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame

@@ -3,6 +3,7 @@
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "backend/cpu/taa_rows.h"
 #include "core/stopwatch.h"
+#include "filters/bmfr/fitting_kernel.h"
 
 namespace bmfr::cpu {
 
@@ -20,6 +21,7 @@ class CpuBmfrPasses final : public BmfrPasses {
             b_.noisy[k].assign(4, b_.stride, s.halfHistory);
             b_.accumulatedFitted[k].assign(3, b_.stride, s.halfHistory);
             b_.output[k].assign(3 * n + 24, 0.0f);
+            b_.emitter[k].assign(s.excludeEmitters ? n : 0, 0);
         }
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
         b_.acceptMask.assign(n + 8, 0);
@@ -34,6 +36,8 @@ class CpuBmfrPasses final : public BmfrPasses {
             sc.imageIndex.assign(W, -1);
             sc.ones.assign(size_t(s.blockSize) + 8, 1.0f);
             sc.rows.assign(3 * ResolvedRows::rowFloats(w), 0.0f);
+            sc.mask.assign(W, 0);
+            sc.histogram.assign(kMaskBuckets, 0);
         }
     }
 
@@ -43,6 +47,10 @@ class CpuBmfrPasses final : public BmfrPasses {
         StageSplit split;
         InputCounters counters = accumulateAndFit(ctx, b_, split);
         Stopwatch clock;
+        if (emitterExclusion(ctx.settings, ctx.input, nullptr).on) {
+            dropTapsAcrossEmitterEdges(ctx);
+            split.fitMs += clock.lap();
+        }
         resolve(ctx, b_);
         times.add("accumulate", split.accumulateMs);
         times.add("fit", split.fitMs);
@@ -80,6 +88,20 @@ class CpuBmfrPasses final : public BmfrPasses {
     }
 
   private:
+    /// sameEmitterTaps over the accept mask, once the fit has set every emitter bit.
+    void dropTapsAcrossEmitterEdges(const BmfrPassContext& ctx) {
+        const TemporalHistory& t = ctx.timeline.history;
+        const uint8_t* own = b_.emitter[t.cur].data();
+        const uint8_t* prev = b_.emitter[1 - t.cur].data();
+        const float* px = b_.plane(b_.previousPixel, 0);
+        const float* py = b_.plane(b_.previousPixel, 1);
+        uint8_t* accept = b_.acceptMask.data();
+        ctx.pool.parallelFor(t.height, 8, [&](long y0, long y1) {
+            for (long i = y0 * t.width; i < y1 * t.width; ++i)
+                accept[i] = sameEmitterTaps(accept[i], {px[i], py[i]}, prev, own[i], t.width);
+        });
+    }
+
     Buffers b_;
 };
 

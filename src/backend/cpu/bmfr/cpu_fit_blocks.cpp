@@ -2,6 +2,7 @@
 #include "backend/cpu/simd.h"
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/feature_columns.h"
+#include "filters/bmfr/fitting_kernel.h"
 #include <algorithm>
 #include <type_traits>
 
@@ -19,9 +20,12 @@ struct Phase2 {
     /// plane set (float, or half under BmfrSettings::halfHistory).
     const PlaneSet* set[9];
     int channel[9];
+    EmitterExclusion emitters;
 
     Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g)
-        : ctx(c), b(buffers), grid(g) {
+        : ctx(c), b(buffers), grid(g),
+          emitters(emitterExclusion(c.settings, c.input,
+                                    buffers.emitter[c.timeline.history.cur].data())) {
         const int cur = c.timeline.history.cur;
         for (int ch = 0; ch < 3; ++ch) {
             set[ch] = &b.normal[cur], set[3 + ch] = &b.position[cur], set[6 + ch] = &b.noisy[cur];
@@ -274,6 +278,25 @@ BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch&
     }
 }
 
+/// After the weighted sum: the excluded pixels that are the emitter this frame take their own
+/// sample (emitter_exclusion.h), and every owned pixel gets its emitter bit.
+void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int excluded,
+                     const Scratch& sc) {
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize;
+    for (int k = 0; k < B * B; ++k) {
+        const long idx =
+            rows.inside ? first + long(k / B) * g.width + k % B : long(sc.imageIndex[size_t(k)]);
+        if (idx < 0) continue;
+        const bool emitter = excluded && maskEmitter(sc.mask[size_t(k)]);
+        if (emitter) {
+            const Vec3 c = emitterSample(a.ctx.input, idx, a.emitters.modes);
+            for (int ch = 0; ch < 3; ++ch) a.b.plane(a.b.fitted, ch)[idx] = c[ch];
+        }
+        a.emitters.bits[idx] = emitter;
+    }
+}
+
 BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc),
                    (a, bx, by, sc)) {
     const BmfrSettings& s = a.ctx.settings;
@@ -285,6 +308,10 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
     const BlockRows rows = blockRows<kIsa>(a, ox, oy, sc);
     buildColumns(a, rows, sc);
     prefetchBlock(a, bx + 1, by); // the next block of this row (none after the last)
+    const int excluded =
+        a.emitters.on ? excludeEmitterRows(g, a.ctx.input, a.emitters, bx, by, sc.work.data(), M,
+                                           qrColumnStride(W), sc.histogram.data(), sc.mask.data())
+                      : 0;
 
     float coeffs[kMaxFeatures * 3];
     solveHouseholderFast(sc.work.data(), M, W, qrColumnStride(W), coeffs);
@@ -333,6 +360,7 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
                     sum[c][l] += coeffs[f * 3 + c] * clean[long(f) * W + k + l];
         scatter(k, n, sum);
     }
+    if (a.emitters.on) restoreEmitters(a, rows, first, excluded, sc);
 }
 
 } // namespace

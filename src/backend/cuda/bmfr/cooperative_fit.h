@@ -17,6 +17,8 @@ struct TeamFitState {
     float lo[kMaxFeatures], hi[kMaxFeatures]; ///< each feature column's range in the block
     float factor[kMaxFeatures + 3];           ///< 2 v.a_j / v.v of the current step
     float coeffs[kMaxFeatures * 3];
+    int histogram[kMaskBuckets]; ///< excludeEmitters: the block's luminance histogram
+    float maskThreshold;         ///< and the luminance above which a pixel is a candidate
 };
 
 /// Partial sums per thread: min and max of every feature, or one dot product per column.
@@ -29,6 +31,7 @@ struct TeamFitMemory {
     TeamFitState* state;
     float* partial; ///< teamFitPartials(M) x team size
     float* matrix;  ///< (M + 3) x W, column-major: noised scaled features, then colour
+    uint8_t* mask;  ///< W: the emitter mask (emitter_exclusion.h)
 };
 
 /// Combines partial[c * T + t] over the T threads into partial[c * T] for columns
@@ -42,13 +45,6 @@ BMFR_HD void teamReduce(const Team& team, float* partial, int count, Op op) {
                 for (int c = 0; c < count; ++c)
                     partial[c * T + t] = op(c, partial[c * T + t], partial[c * T + t + s]);
         });
-}
-
-/// Image pixel of block pixel k (mirrored in at the border); `owned` when the block owns it.
-BMFR_HD long teamBlockPixel(const BlockGrid& g, int bx, int by, int k, bool& owned) {
-    const int ux = g.originX(bx) + k % g.blockSize, uy = g.originY(by) + k / g.blockSize;
-    owned = ux >= 0 && ux < g.width && uy >= 0 && uy < g.height;
-    return long(mirrorIndex(uy, g.height)) * g.width + mirrorIndex(ux, g.width);
 }
 
 /// One image pixel's feature sources: its normal and position, read once for all features.
@@ -113,6 +109,49 @@ BMFR_HD void teamHouseholder(const Team& team, float* A, int M, int W, float* P,
     team.single([&] { st.q.solve(M, st.coeffs); });
 }
 
+/// excludeEmitterRows for a team: the mask's stages pixel-parallel (the histogram on one thread),
+/// then the excluded rows of the M + 3 columns of `A` zeroed.
+template <class Team>
+BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by, float* A,
+                             const TeamFitMemory& mem) {
+    const BlockGrid& g = a.grid;
+    const int B = g.blockSize, W = B * B, M = a.featureCount, T = team.size();
+    TeamFitState& st = *mem.state;
+    uint8_t* mask = mem.mask;
+    const InputModes& modes = a.emitters.modes;
+    auto accumulated = [&](int k) {
+        return luminance({A[long(M) * W + k], A[long(M + 1) * W + k], A[long(M + 2) * W + k]});
+    };
+    auto pixel = [&](int k) {
+        bool owned;
+        return blockPixel(g, bx, by, k, owned);
+    };
+    team.single([&] {
+        for (int b = 0; b < kMaskBuckets; ++b) st.histogram[b] = 0;
+        for (int k = 0; k < W; ++k) ++st.histogram[maskBucket(accumulated(k))];
+        st.maskThreshold = maskThreshold(st.histogram, W, a.emitters.ratio);
+    });
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) {
+            const float sample = luminance(emitterSample(a.in, pixel(k), modes));
+            mask[k] = maskCandidate(accumulated(k), sample, st.maskThreshold);
+        }
+    });
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T)
+            mask[k] |= maskSeed(mask[k], a.in, modes, pixel(k), st.maskThreshold);
+    });
+    // Reads the neighbours' seed bits and sets its own pixel's excluded bit.
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) mask[k] |= maskExcluded(mask, B, k);
+    });
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T)
+            if (mask[k] & kMaskExcluded)
+                for (int f = 0; f < M + 3; ++f) A[long(f) * W + k] = 0.0f;
+    });
+}
+
 /// Fits block (bx, by) with `team`: fitBlock's result, with the QR's sums in tree order.
 template <class Team>
 BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
@@ -126,7 +165,7 @@ BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T) {
             bool owned;
-            const TeamPixel px(a, teamBlockPixel(g, bx, by, k, owned));
+            const TeamPixel px(a, blockPixel(g, bx, by, k, owned));
             for (int f = 0; f < M; ++f) A[long(f) * W + k] = teamFeature(a, f, px);
             for (int c = 0; c < 3; ++c) A[long(M + c) * W + k] = a.color[3 * px.idx + c];
         }
@@ -162,13 +201,14 @@ BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
         }
     });
 
+    if (a.emitters.on) teamEmitterMask(team, a, bx, by, A, mem);
     teamHouseholder(team, A, M, W, P, st);
 
     // Weighted sum of the noise-free features, written to the pixels the block owns.
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T) {
             bool owned;
-            const long idx = teamBlockPixel(g, bx, by, k, owned);
+            const long idx = blockPixel(g, bx, by, k, owned);
             if (!owned) continue;
             const TeamPixel px(a, idx);
             float sum[3] = {0.0f, 0.0f, 0.0f};
@@ -178,6 +218,10 @@ BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
                 for (int c = 0; c < 3; ++c) sum[c] += st.coeffs[f * 3 + c] * v;
             }
             for (int c = 0; c < 3; ++c) a.fitted[3 * idx + c] = sum[c] > 0.0f ? sum[c] : 0.0f;
+            if (!a.emitters.on) continue;
+            const bool emitter = maskEmitter(mem.mask[k]);
+            if (emitter) store3(a.fitted, idx, emitterSample(a.in, idx, a.emitters.modes));
+            a.emitters.bits[idx] = emitter;
         }
     });
 }

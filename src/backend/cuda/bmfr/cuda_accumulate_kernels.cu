@@ -20,6 +20,13 @@ __global__ void accumulateFittedKernel(FittedAccumulation a, float* out, long n)
     const long i = pixelIndex();
     if (i < n) store3(out, i, accumulateFittedPixel(a, i));
 }
+__global__ void sameEmitterTapsKernel(uint8_t* accept, const float* pp, const uint8_t* prevEmitter,
+                                      const uint8_t* emitter, int width, long n) {
+    const long i = pixelIndex();
+    if (i < n)
+        accept[i] =
+            sameEmitterTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, prevEmitter, emitter[i], width);
+}
 __global__ void noiseKernel(float* noise, const Feature* features, int M, int W, uint32_t seed,
                             uint32_t frame, float amplitude) {
     const long i = pixelIndex();
@@ -41,6 +48,14 @@ void launchAccumulateFitted(const FittedAccumulation& a, float* out, cudaStream_
     const long n = long(a.width) * a.in.height;
     accumulateFittedKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(a, out, n);
     check(cudaGetLastError(), "phase III kernel");
+}
+
+void launchSameEmitterTaps(uint8_t* accept, const float* previousPixel, const uint8_t* prevEmitter,
+                           const uint8_t* emitter, int width, int height, cudaStream_t stream) {
+    const long n = long(width) * height;
+    sameEmitterTapsKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(
+        accept, previousPixel, prevEmitter, emitter, width, n);
+    check(cudaGetLastError(), "emitter taps kernel");
 }
 
 void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,

@@ -14,6 +14,9 @@ void launchAccumulateNoisy(const NoisyAccumulation& a, unsigned long long* count
                            cudaStream_t stream);
 /// out (3 floats per pixel) = phase III's re-modulated colour, before TAA.
 void launchAccumulateFitted(const FittedAccumulation& a, float* out, cudaStream_t stream);
+/// accept[i] = sameEmitterTaps(...): no history across an emitter's edge (excludeEmitters).
+void launchSameEmitterTaps(uint8_t* accept, const float* previousPixel, const uint8_t* prevEmitter,
+                           const uint8_t* emitter, int width, int height, cudaStream_t stream);
 /// noise[f * W + k] = regularisationNoise(...) for the frame, on the device.
 void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,
                  uint32_t seed, uint32_t frame, float amplitude, cudaStream_t stream);
@@ -22,6 +25,7 @@ void launchNoise(float* noise, const Feature* features, int featureCount, int bl
 struct FitPlan {
     int threads = 256;      ///< team size, a power of two
     size_t sharedBytes = 0; ///< dynamic shared memory per block
+    size_t maskBytes = 0;   ///< the emitter mask: B^2 bytes, rounded up to 16
     bool matrixInShared = true;
     size_t matrixFloats = 0; ///< (M + 3) x B^2: per block, in global scratch when not shared
 };

@@ -17,6 +17,7 @@ struct Buffers {
     // History, [slot].
     DeviceImageF normal[2], position[2], accumulatedNoisy[2], accumulatedFitted[2], output[2];
     DeviceImageU8 historyLength[2];
+    DeviceImageU8 emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
     // This frame only.
     DeviceImageF previousPixel, fitted, remodulated, ycocg;
     DeviceImageU8 acceptMask;
@@ -44,6 +45,7 @@ class CudaBmfrPasses final : public BmfrPasses {
             b.normal[k].resize(w, h, 3), b.position[k].resize(w, h, 3);
             b.accumulatedNoisy[k].resize(w, h, 3), b.accumulatedFitted[k].resize(w, h, 3);
             b.output[k].resize(w, h, 3), b.historyLength[k].resize(w, h, 1);
+            b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
             host_.output[k].resize(w, h, 3);
         }
         b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
@@ -80,8 +82,12 @@ class CudaBmfrPasses final : public BmfrPasses {
             const int W = s.blockSize * s.blockSize, M = int(s.features.size());
             launchNoise(b.noise.data(), b.features.data(), M, W, s.seed, uint32_t(t.frameIndex),
                         s.noiseAmplitude, st);
-            launchFitBlocks(blockFit(ctx, in, b, b.features.data(), b.noise.data()), plan_,
-                            b.fitScratch.data(), st);
+            const BlockFit fit = blockFit(ctx, in, b, b.features.data(), b.noise.data());
+            launchFitBlocks(fit, plan_, b.fitScratch.data(), st);
+            if (fit.emitters.on)
+                launchSameEmitterTaps(b.acceptMask.data(), b.previousPixel.data(),
+                                      b.emitter[prev].data(), fit.emitters.bits, t.width, t.height,
+                                      st);
         } else {
             check(cudaMemcpyAsync(b.fitted.data(), b.accumulatedNoisy[cur].data(),
                                   b.accumulatedNoisy[cur].pixels.bytes(), cudaMemcpyDeviceToDevice,

@@ -11,15 +11,19 @@ namespace {
 /// The fixed part of the team's memory, rounded to keep the float arrays 16-byte aligned.
 constexpr size_t kStateBytes = (sizeof(TeamFitState) + 15) / 16 * 16;
 
-__global__ void fitKernel(BlockFit a, int matrixFloats, bool matrixInShared, float* scratch) {
+__global__ void fitKernel(BlockFit a, int matrixFloats, bool matrixInShared, int maskBytes,
+                          float* scratch) {
     extern __shared__ float4 shared[];
     char* base = reinterpret_cast<char*>(shared);
     const DeviceTeam team;
     float* partial = reinterpret_cast<float*>(base + kStateBytes);
-    float* matrix = partial + size_t(teamFitPartials(a.featureCount)) * blockDim.x;
+    // The emitter mask (maskBytes, a multiple of 16) between the partial sums and the matrix.
+    uint8_t* mask =
+        reinterpret_cast<uint8_t*>(partial + size_t(teamFitPartials(a.featureCount)) * blockDim.x);
+    float* matrix = reinterpret_cast<float*>(mask + maskBytes);
     if (!matrixInShared)
         matrix = scratch + size_t(blockIdx.y * gridDim.x + blockIdx.x) * size_t(matrixFloats);
-    const TeamFitMemory mem{reinterpret_cast<TeamFitState*>(base), partial, matrix};
+    const TeamFitMemory mem{reinterpret_cast<TeamFitState*>(base), partial, matrix, mask};
     fitBlockTeam(team, a, int(blockIdx.x), int(blockIdx.y), mem);
 }
 } // namespace
@@ -31,8 +35,10 @@ FitPlan planFit(int featureCount, int blockSize) {
     p.threads = 32;
     while (p.threads < 256 && p.threads * 4 < W) p.threads *= 2;
     p.matrixFloats = size_t(featureCount + 3) * size_t(W);
-    const size_t fixed =
-        kStateBytes + size_t(teamFitPartials(featureCount)) * size_t(p.threads) * sizeof(float);
+    p.maskBytes = (size_t(W) + 15) / 16 * 16;
+    const size_t fixed = kStateBytes +
+                         size_t(teamFitPartials(featureCount)) * size_t(p.threads) * sizeof(float) +
+                         p.maskBytes;
     int device = 0, optin = 0;
     check(cudaGetDevice(&device), "cudaGetDevice");
     check(cudaDeviceGetAttribute(&optin, cudaDevAttrMaxSharedMemoryPerBlockOptin, device),
@@ -48,7 +54,7 @@ FitPlan planFit(int featureCount, int blockSize) {
 void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream) {
     const dim3 grid(unsigned(a.grid.blocksX), unsigned(a.grid.blocksY));
     fitKernel<<<grid, unsigned(plan.threads), plan.sharedBytes, stream>>>(
-        a, int(plan.matrixFloats), plan.matrixInShared, scratch);
+        a, int(plan.matrixFloats), plan.matrixInShared, int(plan.maskBytes), scratch);
     check(cudaGetLastError(), "fit kernel");
 }
 

@@ -17,8 +17,11 @@ namespace {
 struct FitScratch {
     std::vector<float> clean, work, sum, sources;
     std::vector<int> imageIndex;
+    std::vector<uint8_t> mask;
+    std::vector<int> histogram;
     BlockFitScratch view() {
-        return {clean.data(), work.data(), sum.data(), sources.data(), imageIndex.data()};
+        return {clean.data(),      work.data(), sum.data(),      sources.data(),
+                imageIndex.data(), mask.data(), histogram.data()};
     }
 };
 
@@ -28,6 +31,7 @@ struct Buffers {
     ImageF normal[2], position[2]; ///< sanitised features (discard tests)
     ImageF accumulatedNoisy[2];    ///< phase I output, demodulated
     ImageU8 historyLength[2];      ///< phase I sample count, 1..255
+    ImageU8 emitter[2];            ///< BmfrSettings::excludeEmitters: the fit's emitter bits
     ImageF accumulatedFitted[2];   ///< phase III accumulation, demodulated
     ImageF output[2];              ///< final (TAA) output, linear
     // This frame only.
@@ -69,6 +73,15 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
         for (long k = b0; k < b1; ++k)
             fitBlock(a, int(k % g.blocksX), int(k / g.blocksX), sc, solveHouseholder);
     });
+    if (!a.emitters.on) return;
+    const uint8_t* prevEmitter = b.emitter[1 - t.cur].data();
+    const float* pp = b.previousPixel.data();
+    uint8_t* accept = b.acceptMask.data();
+    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
+        for (long i = y0 * t.width; i < y1 * t.width; ++i)
+            accept[i] = sameEmitterTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, prevEmitter,
+                                        a.emitters.bits[i], t.width);
+    });
 }
 
 void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
@@ -90,6 +103,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
             b.position[k].resize(w, h, 3);
             b.accumulatedNoisy[k].resize(w, h, 3);
             b.historyLength[k].resize(w, h, 1);
+            b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
             b.accumulatedFitted[k].resize(w, h, 3);
             b.output[k].resize(w, h, 3);
         }
@@ -108,6 +122,8 @@ class ReferenceBmfrPasses final : public BmfrPasses {
             sc.sum.assign(3 * W, 0.0f);
             sc.sources.assign((6 + 16) * W, 0.0f);
             sc.imageIndex.assign(W, -1);
+            sc.mask.assign(W, 0);
+            sc.histogram.assign(kMaskBuckets, 0);
         }
     }
 

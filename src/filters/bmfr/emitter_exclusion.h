@@ -1,0 +1,161 @@
+// Emitters without an emission buffer (BmfrSettings::excludeEmitters). A block fit cannot
+// represent a light in view whose normal and position match its surroundings (a ceiling lamp):
+// it spreads the light into its dark neighbours, and the bilinear history smears it across the
+// light's edge. So:
+// - the mask: the block pixels whose accumulated, demodulated luminance is far above the
+//   block's median sit the least squares out when they are, or touch, a pixel whose current
+//   sample is as bright and flat (its neighbours' samples agree: an emitter's own light carries
+//   no noise). A lit surface's noisy samples and fireflies are not flat, and stay in;
+// - of those, a pixel whose current sample is above the threshold is the emitter this frame and
+//   keeps that sample; the others are the surface beside it and take the fit;
+// - a history tap whose emitter bit differs from the pixel's is dropped (phase III and TAA).
+// BMFR_HD, in stages that a GPU team runs pixel-parallel and the CPU backends run in loops.
+#pragma once
+#include "core/color.h"
+#include "temporal/pixel_input.h"
+#include "temporal/reprojection.h"
+#include <cmath>
+#include <cstdint>
+
+namespace bmfr {
+
+/// The luminance histogram behind the block's median: half-octave buckets from 2^-24 up, with
+/// bucket 0 for zero and below and the last bucket open-ended.
+inline constexpr int kMaskBuckets = 72;
+
+BMFR_HD int maskBucket(float lum) {
+    if (!(lum > 0.0f)) return 0;
+    // 2 log2(lum) + 49 is bucket 1 at 2^-24 and bucket 71 at 2^11.
+    const float b = 2.0f * std::log2(lum) + 49.0f;
+    return b < 1.0f ? 1 : b >= float(kMaskBuckets - 1) ? kMaskBuckets - 1 : int(b);
+}
+
+/// The upper end of bucket b, so that the median read from the histogram is never below the
+/// true one by more than its bucket's width (a factor of sqrt 2).
+BMFR_HD float maskBucketTop(int b) {
+    return b == 0 ? 0.0f : std::exp2((float(b) + 1.0f - 49.0f) * 0.5f);
+}
+
+/// The luminance above which a pixel of the block is a candidate: `ratio` times the top of the
+/// bucket holding the median of the W counted pixels; 0 (no candidate) when that is zero, as
+/// in a block more than half black.
+BMFR_HD float maskThreshold(const int* histogram, int W, float ratio) {
+    int below = 0;
+    for (int b = 0; b < kMaskBuckets; ++b) {
+        below += histogram[b];
+        if (2 * below > W) return b == 0 ? 0.0f : ratio * maskBucketTop(b);
+    }
+    return 0.0f;
+}
+
+/// Bits of one block pixel's mask byte, set by the three stages in order.
+inline constexpr uint8_t kMaskCandidate = 1, kMaskBright = 2, kMaskSeed = 4, kMaskExcluded = 8;
+
+/// An emitter's own light carries no noise: its neighbours' current samples agree with its own
+/// to within this fraction, where a lit surface's 1-spp samples scatter far wider.
+inline constexpr float kEmitterFlatness = 0.02f;
+
+/// Pixel i's current demodulated sample, as phase I read it.
+BMFR_HD Vec3 emitterSample(const InputPlanes& in, long i, const InputModes& modes) {
+    int64_t ignored = 0; // phase I counted them
+    return readPixel(in, i, modes, ignored).color;
+}
+
+/// Stage 1, pixel k: a candidate when its accumulated luminance is above the threshold, bright
+/// when its current sample's is.
+BMFR_HD uint8_t maskCandidate(float accumulated, float sample, float threshold) {
+    if (!(threshold > 0.0f)) return 0;
+    return uint8_t((accumulated > threshold ? kMaskCandidate : 0) |
+                   (sample > threshold ? kMaskBright : 0));
+}
+
+/// The image neighbours of pixel i whose current samples are above the threshold and within
+/// kEmitterFlatness of `sample`, i's own luminance (across block edges: a light's edge row
+/// may be all of it a block holds).
+BMFR_HD int flatNeighbours(const InputPlanes& in, const InputModes& modes, long i, float sample,
+                           float threshold) {
+    const int x = int(i % in.width), y = int(i / in.width);
+    const float tolerance = kEmitterFlatness * sample;
+    int n = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int u = x + dx, v = y + dy;
+            if (!(dx || dy) || u < 0 || u >= in.width || v < 0 || v >= in.height) continue;
+            const float s = luminance(emitterSample(in, long(v) * in.width + u, modes));
+            n += s > threshold && std::fabs(s - sample) <= tolerance;
+        }
+    return n;
+}
+
+/// Stage 2, pixel k (image pixel i): a bright candidate whose sample at least three
+/// neighbours share seeds an emitter. A lit surface's noisy samples, and fireflies, do not.
+BMFR_HD uint8_t maskSeed(uint8_t m, const InputPlanes& in, const InputModes& modes, long i,
+                         float threshold) {
+    const uint8_t both = kMaskCandidate | kMaskBright;
+    if ((m & both) != both) return 0;
+    const float s = luminance(emitterSample(in, i, modes));
+    return flatNeighbours(in, modes, i, s, threshold) >= 3 ? kMaskSeed : 0;
+}
+
+/// Stage 3, block pixel k: a candidate that is a seed or touches one in the block sits the fit
+/// out. Those that only touch one are mostly the surface beside the emitter, which the history
+/// smeared it into.
+BMFR_HD uint8_t maskExcluded(const uint8_t* mask, int B, int k) {
+    const uint8_t m = mask[k];
+    if (!(m & kMaskCandidate)) return 0;
+    if (m & kMaskSeed) return kMaskExcluded;
+    const int x = k % B, y = k / B;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int u = x + dx, v = y + dy;
+            if (u >= 0 && u < B && v >= 0 && v < B && (mask[v * B + u] & kMaskSeed))
+                return kMaskExcluded;
+        }
+    return 0;
+}
+
+/// Whether an excluded pixel is the emitter this frame (it then keeps its current sample) or
+/// the surface beside it (it takes the fit).
+BMFR_HD bool maskEmitter(uint8_t m) {
+    return (m & kMaskExcluded) && (m & kMaskBright);
+}
+
+/// The whole mask of a B x B block, one stage after another. accumulated(k) is the accumulated
+/// luminance of block pixel k and pixel(k) its image pixel. Returns the number of excluded
+/// pixels.
+template <class Accumulated, class Pixel>
+BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputModes& modes,
+                        Accumulated&& accumulated, Pixel&& pixel, int* histogram, uint8_t* mask) {
+    const int W = B * B;
+    for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
+    for (int k = 0; k < W; ++k) ++histogram[maskBucket(accumulated(k))];
+    const float threshold = maskThreshold(histogram, W, ratio);
+    int candidates = 0;
+    for (int k = 0; k < W; ++k) {
+        const float sample = luminance(emitterSample(in, pixel(k), modes));
+        mask[k] = maskCandidate(accumulated(k), sample, threshold);
+        candidates += mask[k] & kMaskCandidate;
+    }
+    if (candidates == 0) return 0;
+    for (int k = 0; k < W; ++k) mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
+    int excluded = 0;
+    for (int k = 0; k < W; ++k) {
+        mask[k] |= maskExcluded(mask, B, k);
+        excluded += (mask[k] & kMaskExcluded) != 0;
+    }
+    return excluded;
+}
+
+/// Phase I's accepted taps of a pixel less those whose emitter bit in the previous frame differs
+/// from the pixel's own, so that no history crosses an emitter's edge.
+BMFR_HD uint8_t sameEmitterTaps(uint8_t accept, Vec2 previousPixel, const uint8_t* prevEmitter,
+                                uint8_t own, int width) {
+    if (!accept) return 0;
+    const BilinearFootprint fp = bilinearFootprint(previousPixel);
+    for (int t = 0; t < 4; ++t)
+        if ((accept & (1u << t)) && prevEmitter[long(tapY(fp, t)) * width + tapX(fp, t)] != own)
+            accept &= uint8_t(~(1u << t));
+    return accept;
+}
+
+} // namespace bmfr

@@ -1,0 +1,193 @@
+// Emitters without an emission buffer (filters/bmfr/emitter_exclusion.h and the fit's use of
+// it): the mask against hand-built blocks, its threshold and the dropped history taps against
+// hand values, and the fit of a block holding a lamp against the exact surface it was made from.
+#include "filters/bmfr/fitting_kernel.h"
+#include "filters/bmfr/householder_qr.h"
+#include <bmfr/features.h>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <vector>
+
+namespace bmfr {
+namespace {
+
+/// A w x h image of grey pixels: accumulated and current luminance set per pixel, albedo 1,
+/// a flat floor's normal and position.
+struct Planes {
+    int w, h;
+    std::vector<float> accumulated, color, albedo, normal, position;
+    Planes(int width, int height, float value) : w(width), h(height) {
+        const size_t n = size_t(w) * size_t(h);
+        accumulated.assign(n, value), color.assign(3 * n, value), albedo.assign(3 * n, 1.0f);
+        normal.assign(3 * n, 0.0f), position.assign(3 * n, 0.0f);
+        for (size_t i = 0; i < n; ++i) {
+            normal[3 * i + 1] = 1.0f;
+            position[3 * i] = float(i % size_t(w)) * 0.1f;
+            position[3 * i + 2] = float(i / size_t(w)) * 0.1f;
+        }
+    }
+    /// Both luminances of pixel (x, y); grey, so the luminance is the value.
+    void set(int x, int y, float acc, float sample) {
+        const size_t i = size_t(y) * w + x;
+        accumulated[i] = acc;
+        for (int c = 0; c < 3; ++c) color[3 * i + c] = sample;
+    }
+    InputPlanes in() const {
+        InputPlanes p;
+        p.color = color.data(), p.albedo = albedo.data();
+        p.normal = normal.data(), p.position = position.data();
+        p.width = w, p.height = h;
+        return p;
+    }
+};
+
+/// The mask of a B x B image that is one block.
+std::vector<uint8_t> maskOf(const Planes& p, float ratio, int& excluded) {
+    std::vector<uint8_t> mask(size_t(p.w) * p.h);
+    int histogram[kMaskBuckets];
+    excluded = emitterMask(
+        p.w, ratio, p.in(), InputModes{}, [&](int k) { return p.accumulated[size_t(k)]; },
+        [](int k) { return long(k); }, histogram, mask.data());
+    return mask;
+}
+
+TEST(EmitterExclusion, TheThresholdIsTheRatioTimesTheTopOfTheMediansBucket) {
+    int histogram[kMaskBuckets] = {};
+    // 0.1 is in bucket int(2 log2 0.1 + 49) = 42, whose top is 2^((43 - 49) / 2) = 1/8.
+    EXPECT_EQ(maskBucket(0.1f), 42);
+    EXPECT_FLOAT_EQ(maskBucketTop(42), 0.125f);
+    histogram[maskBucket(0.1f)] = 600, histogram[maskBucket(50.0f)] = 424;
+    EXPECT_FLOAT_EQ(maskThreshold(histogram, 1024, 16.0f), 2.0f);
+    // More than half the block black: no threshold, no candidate.
+    histogram[0] = 600, histogram[maskBucket(0.1f)] = 0;
+    EXPECT_EQ(maskThreshold(histogram, 1024, 16.0f), 0.0f);
+    EXPECT_EQ(maskCandidate(1e9f, 1e9f, 0.0f), 0);
+    // Zero, negative and non-finite luminances count as black; huge ones in the last bucket.
+    EXPECT_EQ(maskBucket(0.0f), 0);
+    EXPECT_EQ(maskBucket(-3.0f), 0);
+    EXPECT_EQ(maskBucket(NAN), 0);
+    EXPECT_EQ(maskBucket(1e30f), kMaskBuckets - 1);
+    EXPECT_EQ(maskBucket(1e-30f), 1);
+}
+
+TEST(EmitterExclusion, AFlatBrightPatchIsTheEmitterAndTheSmearBesideItSitsOut) {
+    Planes p(16, 16, 0.1f); // threshold 16 x 1/8 = 2
+    for (int y = 5; y < 9; ++y)
+        for (int x = 4; x < 10; ++x) p.set(x, y, 20.0f, 20.0f + 0.1f * float((x + y) % 3));
+    // The history smeared the lamp one pixel onto the ceiling to its right; this frame's
+    // samples there are the ceiling's.
+    for (int y = 5; y < 9; ++y) p.set(10, y, 6.0f, 0.1f);
+    int excluded = 0;
+    const std::vector<uint8_t> mask = maskOf(p, 16.0f, excluded);
+    EXPECT_EQ(excluded, 6 * 4 + 4);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const uint8_t m = mask[size_t(y) * 16 + x];
+            const bool lamp = x >= 4 && x < 10 && y >= 5 && y < 9,
+                       smear = x == 10 && y >= 5 && y < 9;
+            EXPECT_EQ(maskEmitter(m), lamp) << x << "," << y;
+            EXPECT_EQ((m & kMaskExcluded) != 0, lamp || smear) << x << "," << y;
+        }
+}
+
+TEST(EmitterExclusion, FirefliesAndNoisyLitSurfacesStayInTheFit) {
+    Planes p(16, 16, 0.1f);
+    p.set(2, 2, 50.0f, 50.0f); // a firefly this frame
+    for (int y = 10; y < 12; ++y)
+        for (int x = 2; x < 4; ++x) p.set(x, y, 12.0f, 0.1f); // one smeared by the reprojection
+    // A lit patch: bright, but its 1-spp samples scatter: 5 to 15, no two neighbours equal.
+    for (int y = 4; y < 12; ++y)
+        for (int x = 7; x < 15; ++x) p.set(x, y, 10.0f, 5.0f + float((7 * x + 13 * y) % 11));
+    int excluded = -1;
+    const std::vector<uint8_t> mask = maskOf(p, 16.0f, excluded);
+    EXPECT_EQ(excluded, 0);
+    for (uint8_t m : mask) EXPECT_FALSE(maskEmitter(m));
+    // The same lamp as a patch of equal samples is found, and a lower ratio finds no more.
+    for (int y = 4; y < 12; ++y)
+        for (int x = 7; x < 15; ++x) p.set(x, y, 10.0f, 10.0f);
+    maskOf(p, 16.0f, excluded);
+    EXPECT_EQ(excluded, 64);
+    maskOf(p, 4.0f, excluded);
+    EXPECT_EQ(excluded, 64);
+}
+
+TEST(EmitterExclusion, HistoryTapsAcrossAnEmittersEdgeAreDropped) {
+    // A pixel that came from (1.5, 0.5): taps (1,0), (2,0), (1,1), (2,1) of a 4-wide image.
+    std::vector<uint8_t> prev(8, 0);
+    prev[2] = 1; // (2, 0) was the lamp
+    EXPECT_EQ(sameEmitterTaps(0b1111, {1.5f, 0.5f}, prev.data(), 0, 4), 0b1101);
+    EXPECT_EQ(sameEmitterTaps(0b1111, {1.5f, 0.5f}, prev.data(), 1, 4), 0b0010);
+    EXPECT_EQ(sameEmitterTaps(0b0101, {1.5f, 0.5f}, prev.data(), 1, 4), 0);
+    EXPECT_EQ(sameEmitterTaps(0, {1.5f, 0.5f}, prev.data(), 0, 4), 0);
+}
+
+/// The ceiling's exact colour at pixel (x, y): within the span of the default features.
+float ceiling(int x, int y) {
+    const float px = float(x) * 0.1f, pz = float(y) * 0.1f;
+    return 0.2f + 0.05f * px + 0.03f * pz * pz;
+}
+
+/// Fits the one 32 x 32 block that lies inside a 64 x 64 image with a 6 x 4 lamp and the
+/// lamp's smear beside it; returns the fitted image and the emitter bits.
+void fitLampBlock(bool exclude, std::vector<float>& fitted, std::vector<uint8_t>& bits) {
+    const int w = 64, h = 64, B = 32, W = B * B;
+    Planes p(w, h, 0.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) p.set(x, y, ceiling(x, y), ceiling(x, y));
+    for (int y = 24; y < 28; ++y) {
+        for (int x = 26; x < 32; ++x) p.set(x, y, 20.0f, 20.0f);
+        p.set(32, y, 15.0f, ceiling(32, y));
+    }
+    std::vector<float> accumulated(3 * size_t(w) * h);
+    for (size_t i = 0; i < p.accumulated.size(); ++i)
+        for (int c = 0; c < 3; ++c) accumulated[3 * i + c] = p.accumulated[i];
+    const std::vector<Feature> features = defaultFeatures();
+    const int M = int(features.size());
+    const std::vector<float> noise(size_t(M) * W, 0.0f); // exact: no regularisation
+    BlockFit a;
+    a.grid = makeBlockGrid(w, h, B, 11); // offset (-2, -2): block (1, 1) is [14, 46)^2
+    a.features = features.data(), a.featureCount = M, a.noise = noise.data();
+    a.normal = p.normal.data(), a.position = p.position.data(), a.color = accumulated.data();
+    a.in = p.in();
+    fitted.assign(accumulated.size(), -1.0f);
+    bits.assign(size_t(w) * h, 7);
+    a.fitted = fitted.data();
+    a.emitters = {exclude, 16.0f, InputModes{}, bits.data()};
+    std::vector<float> clean(size_t(M) * W), work(size_t(M + 3) * W), sum(3 * size_t(W));
+    std::vector<float> sources(size_t(6 + 16) * W);
+    std::vector<int> index(static_cast<size_t>(W)), histogram(kMaskBuckets);
+    std::vector<uint8_t> mask(static_cast<size_t>(W));
+    const BlockFitScratch sc{clean.data(), work.data(), sum.data(),      sources.data(),
+                             index.data(), mask.data(), histogram.data()};
+    fitBlock(a, 1, 1, sc, solveHouseholder);
+}
+
+TEST(EmitterExclusion, ALampLeavesTheFitOfItsCeilingExact) {
+    std::vector<float> fitted;
+    std::vector<uint8_t> bits;
+    // The paper's fit spreads the lamp over its block.
+    fitLampBlock(false, fitted, bits);
+    double worst = 0.0;
+    for (int y = 14; y < 46; ++y)
+        for (int x = 14; x < 46; ++x) {
+            const bool lamp = x >= 26 && x <= 32 && y >= 24 && y < 28;
+            if (!lamp)
+                worst =
+                    std::max(worst, double(std::fabs(fitted[3 * (y * 64 + x)] - ceiling(x, y))));
+        }
+    EXPECT_GT(worst, 0.5);
+    EXPECT_EQ(bits[30 * 64 + 30], 7) << "no emitter bits without the exclusion";
+
+    fitLampBlock(true, fitted, bits);
+    for (int y = 14; y < 46; ++y)
+        for (int x = 14; x < 46; ++x) {
+            const bool lamp = x >= 26 && x < 32 && y >= 24 && y < 28;
+            const float expected = lamp ? 20.0f : ceiling(x, y);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(fitted[3 * (y * 64 + x) + c], expected, 2e-4f) << x << "," << y;
+            EXPECT_EQ(bits[size_t(y) * 64 + x], lamp ? 1 : 0) << x << "," << y;
+        }
+}
+
+} // namespace
+} // namespace bmfr
