@@ -58,16 +58,28 @@ TEST(EmitterExclusion, TheThresholdIsTheRatioTimesTheTopOfTheMediansBucket) {
     EXPECT_FLOAT_EQ(maskBucketTop(42), 0.125f);
     histogram[maskBucket(0.1f)] = 600, histogram[maskBucket(50.0f)] = 424;
     EXPECT_FLOAT_EQ(maskThreshold(histogram, 1024, 16.0f), 2.0f);
+    // blockThreshold reads every fourth pixel: 0.1 at those, 50 between them.
+    int scratch[kMaskBuckets];
+    const auto alternating = [](int k) { return k % 4 == 0 ? 0.1f : 50.0f; };
+    EXPECT_FLOAT_EQ(blockThreshold(64, 16.0f, alternating, scratch), 2.0f);
     // More than half the block black: no threshold, no candidate.
     histogram[0] = 600, histogram[maskBucket(0.1f)] = 0;
     EXPECT_EQ(maskThreshold(histogram, 1024, 16.0f), 0.0f);
-    EXPECT_EQ(maskCandidate(1e9f, 1e9f, 0.0f), 0);
+    const Planes p(4, 4, 1e9f);
+    EXPECT_EQ(maskCandidate(1e9f, p.in(), InputModes{}, 5, 0.0f), 0);
+    EXPECT_EQ(maskCandidate(1e9f, p.in(), InputModes{}, 5, 1.0f), kMaskCandidate | kMaskBright);
     // Zero, negative and non-finite luminances count as black; huge ones in the last bucket.
     EXPECT_EQ(maskBucket(0.0f), 0);
     EXPECT_EQ(maskBucket(-3.0f), 0);
     EXPECT_EQ(maskBucket(NAN), 0);
     EXPECT_EQ(maskBucket(1e30f), kMaskBuckets - 1);
     EXPECT_EQ(maskBucket(1e-30f), 1);
+    // Every bucket edge 2^((b - 49) / 2) against the logarithm.
+    for (int b = 2; b < kMaskBuckets - 1; ++b) {
+        const float edge = std::exp2((float(b) - 49.0f) * 0.5f);
+        EXPECT_EQ(maskBucket(edge * 1.0001f), b) << b;
+        EXPECT_EQ(maskBucket(edge * 0.9999f), b - 1) << b;
+    }
 }
 
 TEST(EmitterExclusion, AFlatBrightPatchIsTheEmitterAndTheSmearBesideItSitsOut) {

@@ -64,6 +64,20 @@ struct PixelInput {
     Vec3 normal, position, color, albedo;
 };
 
+/// Pixel i's colour as readPixel gives it, with its (finite) albedo.
+BMFR_HD Vec3 readColor(const InputPlanes& in, long i, const InputModes& modes, Vec3 albedo,
+                       int64_t& bad) {
+    Vec3 c = finiteOrZero(load3(in.color, i), bad);
+    const Vec3 g = guardAlbedo(albedo, modes.albedoEpsilon);
+    if (in.emission) {
+        Vec3 e = finiteOrZero(load3(in.emission, i), bad);
+        if (modes.colorIsDemodulated) e = {e.x / g.x, e.y / g.y, e.z / g.z};
+        c = vmax(c - e, Vec3{0, 0, 0});
+    }
+    if (modes.demodulate && !modes.colorIsDemodulated) c = {c.x / g.x, c.y / g.y, c.z / g.z};
+    return c;
+}
+
 /// Reads pixel i: NaN/Inf replaced by 0 and counted in `bad` (extras included); the noise-free
 /// emission taken out of the colour (demodulated too when the colour is); and, with
 /// modes.demodulate, the colour divided by the guarded albedo unless it already is.
@@ -72,17 +86,9 @@ BMFR_HD PixelInput readPixel(const InputPlanes& in, long i, const InputModes& mo
     px.normal = finiteOrZero(load3(in.normal, i), bad);
     px.position = finiteOrZero(load3(in.position, i), bad);
     px.albedo = finiteOrZero(load3(in.albedo, i), bad);
-    Vec3 c = finiteOrZero(load3(in.color, i), bad);
-    const Vec3 g = guardAlbedo(px.albedo, modes.albedoEpsilon);
-    if (in.emission) {
-        Vec3 e = finiteOrZero(load3(in.emission, i), bad);
-        if (modes.colorIsDemodulated) e = {e.x / g.x, e.y / g.y, e.z / g.z};
-        c = vmax(c - e, Vec3{0, 0, 0});
-    }
+    px.color = readColor(in, i, modes, px.albedo, bad);
     for (int k = 0; k < in.extraCount; ++k)
         if (!std::isfinite(in.extras[k][i])) ++bad;
-    if (modes.demodulate && !modes.colorIsDemodulated) c = {c.x / g.x, c.y / g.y, c.z / g.z};
-    px.color = c;
     return px;
 }
 

@@ -25,9 +25,12 @@ inline constexpr int kMaskBuckets = 72;
 
 BMFR_HD int maskBucket(float lum) {
     if (!(lum > 0.0f)) return 0;
-    // 2 log2(lum) + 49 is bucket 1 at 2^-24 and bucket 71 at 2^11.
-    const float b = 2.0f * std::log2(lum) + 49.0f;
-    return b < 1.0f ? 1 : b >= float(kMaskBuckets - 1) ? kMaskBuckets - 1 : int(b);
+    // floor(2 log2(lum) + 49), bucket 1 at 2^-24 and 71 at 2^11, from lum = m 2^e (m in
+    // [1/2, 1)) without a logarithm: 2e + 47, plus one in the upper half-octave.
+    int e = 0;
+    const float m = std::frexp(lum, &e);
+    const int b = 2 * e + 47 + (m >= 0.70710678f ? 1 : 0);
+    return b < 1 ? 1 : b > kMaskBuckets - 1 ? kMaskBuckets - 1 : b;
 }
 
 /// The upper end of bucket b, so that the median read from the histogram is never below the
@@ -58,15 +61,16 @@ inline constexpr float kEmitterFlatness = 0.02f;
 /// Pixel i's current demodulated sample, as phase I read it.
 BMFR_HD Vec3 emitterSample(const InputPlanes& in, long i, const InputModes& modes) {
     int64_t ignored = 0; // phase I counted them
-    return readPixel(in, i, modes, ignored).color;
+    return readColor(in, i, modes, finiteOrZero(load3(in.albedo, i), ignored), ignored);
 }
 
-/// Stage 1, pixel k: a candidate when its accumulated luminance is above the threshold, bright
-/// when its current sample's is.
-BMFR_HD uint8_t maskCandidate(float accumulated, float sample, float threshold) {
-    if (!(threshold > 0.0f)) return 0;
-    return uint8_t((accumulated > threshold ? kMaskCandidate : 0) |
-                   (sample > threshold ? kMaskBright : 0));
+/// Stage 1, pixel k (image pixel i): a candidate when its accumulated luminance is above the
+/// threshold, and bright too when its current sample's is (read for candidates only).
+BMFR_HD uint8_t maskCandidate(float accumulated, const InputPlanes& in, const InputModes& modes,
+                              long i, float threshold) {
+    if (!(threshold > 0.0f) || !(accumulated > threshold)) return 0;
+    const bool bright = luminance(emitterSample(in, i, modes)) > threshold;
+    return uint8_t(kMaskCandidate | (bright ? kMaskBright : 0));
 }
 
 /// The image neighbours of pixel i whose current samples are above the threshold and within
@@ -120,23 +124,32 @@ BMFR_HD bool maskEmitter(uint8_t m) {
     return (m & kMaskExcluded) && (m & kMaskBright);
 }
 
+/// The block's median is read from every kMaskStride-th pixel: a bucket is a factor of sqrt 2
+/// wide, and a quarter of the block places the median as well.
+inline constexpr int kMaskStride = 4;
+
+/// The threshold of a block of W pixels (a multiple of kMaskStride) from accumulated(k).
+template <class Accumulated>
+BMFR_HD float blockThreshold(int W, float ratio, Accumulated&& accumulated, int* histogram) {
+    for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
+    for (int k = 0; k < W; k += kMaskStride) ++histogram[maskBucket(accumulated(k))];
+    return maskThreshold(histogram, W / kMaskStride, ratio);
+}
+
 /// The whole mask of a B x B block, one stage after another. accumulated(k) is the accumulated
 /// luminance of block pixel k and pixel(k) its image pixel. Returns the number of excluded
-/// pixels.
+/// pixels; the mask is written only when there is a candidate (most blocks have none).
 template <class Accumulated, class Pixel>
 BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputModes& modes,
                         Accumulated&& accumulated, Pixel&& pixel, int* histogram, uint8_t* mask) {
     const int W = B * B;
-    for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
-    for (int k = 0; k < W; ++k) ++histogram[maskBucket(accumulated(k))];
-    const float threshold = maskThreshold(histogram, W, ratio);
+    const float threshold = blockThreshold(W, ratio, accumulated, histogram);
+    if (!(threshold > 0.0f)) return 0;
     int candidates = 0;
-    for (int k = 0; k < W; ++k) {
-        const float sample = luminance(emitterSample(in, pixel(k), modes));
-        mask[k] = maskCandidate(accumulated(k), sample, threshold);
-        candidates += mask[k] & kMaskCandidate;
-    }
+    for (int k = 0; k < W; ++k) candidates += accumulated(k) > threshold;
     if (candidates == 0) return 0;
+    for (int k = 0; k < W; ++k)
+        mask[k] = maskCandidate(accumulated(k), in, modes, pixel(k), threshold);
     for (int k = 0; k < W; ++k) mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
     int excluded = 0;
     for (int k = 0; k < W; ++k) {

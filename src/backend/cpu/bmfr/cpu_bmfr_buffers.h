@@ -7,6 +7,7 @@
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/bmfr_passes.h"
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <vector>
 
@@ -76,6 +77,7 @@ struct Buffers {
     PlaneSet accumulatedFitted[2];   ///< 3 planes: phase III colour
     std::vector<float> output[2];    ///< 3 floats per pixel (the public image), +24 of padding
     std::vector<uint8_t> emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
+    std::atomic<long> emitterPixels[2] = {}; ///< how many bits are set, [slot]
 
     // This frame only.
     std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame

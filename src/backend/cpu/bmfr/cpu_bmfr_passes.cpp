@@ -22,6 +22,7 @@ class CpuBmfrPasses final : public BmfrPasses {
             b_.accumulatedFitted[k].assign(3, b_.stride, s.halfHistory);
             b_.output[k].assign(3 * n + 24, 0.0f);
             b_.emitter[k].assign(s.excludeEmitters ? n : 0, 0);
+            b_.emitterPixels[k] = 0;
         }
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
         b_.acceptMask.assign(n + 8, 0);
@@ -45,9 +46,13 @@ class CpuBmfrPasses final : public BmfrPasses {
         // Phase I and the fit run interleaved; their wall time is split by the workers' time in
         // each (StageSplit).
         StageSplit split;
+        const TemporalHistory& t = ctx.timeline.history;
+        b_.emitterPixels[t.cur] = 0;
         InputCounters counters = accumulateAndFit(ctx, b_, split);
         Stopwatch clock;
-        if (emitterExclusion(ctx.settings, ctx.input, nullptr).on) {
+        // Without an emitter in either frame no tap crosses an emitter's edge.
+        if (emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
+            b_.emitterPixels[t.cur] + b_.emitterPixels[1 - t.cur] > 0) {
             dropTapsAcrossEmitterEdges(ctx);
             split.fitMs += clock.lap();
         }

@@ -284,6 +284,7 @@ void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int exc
                      const Scratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize;
+    long emitters = 0;
     for (int k = 0; k < B * B; ++k) {
         const long idx =
             rows.inside ? first + long(k / B) * g.width + k % B : long(sc.imageIndex[size_t(k)]);
@@ -294,7 +295,9 @@ void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int exc
             for (int ch = 0; ch < 3; ++ch) a.b.plane(a.b.fitted, ch)[idx] = c[ch];
         }
         a.emitters.bits[idx] = emitter;
+        emitters += emitter;
     }
+    if (emitters) a.b.emitterPixels[a.ctx.timeline.history.cur] += emitters;
 }
 
 BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc),

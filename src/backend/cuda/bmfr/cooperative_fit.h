@@ -126,16 +126,11 @@ BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by
         bool owned;
         return blockPixel(g, bx, by, k, owned);
     };
-    team.single([&] {
-        for (int b = 0; b < kMaskBuckets; ++b) st.histogram[b] = 0;
-        for (int k = 0; k < W; ++k) ++st.histogram[maskBucket(accumulated(k))];
-        st.maskThreshold = maskThreshold(st.histogram, W, a.emitters.ratio);
-    });
+    team.single(
+        [&] { st.maskThreshold = blockThreshold(W, a.emitters.ratio, accumulated, st.histogram); });
     team.parallel([&](int t) {
-        for (int k = t; k < W; k += T) {
-            const float sample = luminance(emitterSample(a.in, pixel(k), modes));
-            mask[k] = maskCandidate(accumulated(k), sample, st.maskThreshold);
-        }
+        for (int k = t; k < W; k += T)
+            mask[k] = maskCandidate(accumulated(k), a.in, modes, pixel(k), st.maskThreshold);
     });
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T)
