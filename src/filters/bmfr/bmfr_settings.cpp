@@ -41,10 +41,10 @@ SettingsTable<S> ownSettings() {
          "bit-exact work. Positions stay float32",
          BMFR_FIELD(S, halfHistory)},
         {"excludeEmitters", "exclude-emitters", "", {},
-         "leave out of each block's fit the pixels far brighter than the block's median "
-         "(emitterRatio) that form a patch, as a light in view without an emission buffer, and "
-         "give them their own accumulated colour; off with an emission buffer, which handles "
-         "them already",
+         "leave out of each block's fit the pixels far above its median luminance "
+         "(emitterRatio) around a flat, bright patch of current samples, as a light in view "
+         "without an emission buffer: the light keeps its own sample, and no history crosses "
+         "its edge. Does nothing with an emission buffer",
          BMFR_FIELD(S, excludeEmitters)},
         {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
          "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
