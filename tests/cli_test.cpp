@@ -363,14 +363,15 @@ std::vector<float> pixelsOf(const fs::path& p) {
 TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     // The library's list: the quality preset sets the improvements a filter has.
     using bmfr::presetSettings, bmfr::SettingValues;
-    EXPECT_EQ(presetSettings("bmfr", "quality"),
-              (SettingValues{{"taaSameSurface", "true"}, {"excludeEmitters", "true"}}));
+    EXPECT_EQ(presetSettings("bmfr", "quality"), (SettingValues{{"taaSameSurface", "true"},
+                                                                {"excludeEmitters", "true"},
+                                                                {"secondGrid", "true"}}));
     EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
     EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
     Result listed = run("settings bmfr --preset quality");
     ASSERT_EQ(listed.code, 0) << listed.output;
-    EXPECT_NE(listed.output.find("bmfr: taaSameSurface=true excludeEmitters=true"),
+    EXPECT_NE(listed.output.find("bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true"),
               std::string::npos)
         << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
@@ -384,12 +385,13 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         return pixelsOf(out / "denoised_0003.exr");
     };
     const std::vector<float> quality = denoise("quality", "--preset quality"),
-                             bySwitch = denoise("switch", "--taa-same-surface --exclude-emitters"),
+                             bySwitch = denoise(
+                                 "switch", "--taa-same-surface --exclude-emitters --second-grid"),
                              faithful = denoise("faithful", "--preset faithful"),
                              plain = denoise("plain", ""),
-                             overridden =
-                                 denoise("override", "--preset quality --taa-same-surface false "
-                                                     "--exclude-emitters false");
+                             overridden = denoise("override",
+                                                  "--preset quality --taa-same-surface false "
+                                                  "--exclude-emitters false --second-grid false");
     ASSERT_FALSE(quality.empty());
     EXPECT_EQ(quality, bySwitch);
     EXPECT_EQ(faithful, plain);

@@ -30,6 +30,7 @@ struct BmfrSettings : TemporalSettings {
     bool halfHistory = true;       ///< normals and colour history as 16-bit floats (else float32)
     bool excludeEmitters = false;  ///< fit blocks without bright patches (lights in view)
     float emitterRatio = 16.0f;    ///< a patch pixel is this many times the block's median
+    bool secondGrid = false;       ///< pixels without history also fitted on a shifted grid
     StageSwitches stages{};
 };
 

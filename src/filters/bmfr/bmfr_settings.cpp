@@ -46,6 +46,11 @@ SettingsTable<S> ownSettings() {
          "without an emission buffer: the light keeps its own sample, and no history crosses "
          "its edge. Does nothing with an emission buffer",
          BMFR_FIELD(S, excludeEmitters)},
+        {"secondGrid", "second-grid", "", {},
+         "pixels without history (the first frame after a reset, disocclusions) take the mean of "
+         "the fit and a second fit on the grid moved by half a block, so the block edges blur "
+         "out",
+         BMFR_FIELD(S, secondGrid)},
         {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
          "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
          "median, above which a pixel may belong to an emitter",

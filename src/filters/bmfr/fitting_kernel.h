@@ -24,7 +24,7 @@ struct EmitterExclusion {
     bool on = false;         ///< asked for, and no emission buffer to do it instead
     float ratio = 16.0f;     ///< BmfrSettings::emitterRatio
     InputModes modes;        ///< how phase I read the current samples
-    uint8_t* bits = nullptr; ///< 1 where the output is an emitter's own sample
+    uint8_t* bits = nullptr; ///< 1 where the output is an emitter's own sample; null: not kept
 };
 
 /// This frame's emitter exclusion, writing its bits to `bits`.
@@ -164,7 +164,7 @@ BMFR_HD void fitBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& 
         if (!a.emitters.on) continue;
         const bool emitter = excluded && maskEmitter(sc.mask[k]);
         if (emitter) store3(a.fitted, idx, emitterSample(a.in, idx, a.emitters.modes));
-        a.emitters.bits[idx] = emitter;
+        if (a.emitters.bits) a.emitters.bits[idx] = emitter;
     }
 }
 

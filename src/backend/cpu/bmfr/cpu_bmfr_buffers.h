@@ -83,6 +83,7 @@ struct Buffers {
     std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame
     std::vector<uint8_t> acceptMask;  ///< accepted bilinear taps, bit i = tap i (+8 padding)
     std::vector<float> fitted;        ///< 3 planes: phase II colour
+    std::vector<float> fittedSecond;  ///< BmfrSettings::secondGrid: 3 planes, the shifted fit
     std::vector<uint8_t>
         earlyRow; ///< rows phase I runs before the block rows (see accumulateAndFit)
 
@@ -171,6 +172,9 @@ void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, InputCounters& co
 /// substitution, weighted sum. Reads only the rows the blocks cover, mirrored at the edges.
 void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
                  Scratch& sc);
+/// BmfrSettings::secondGrid: fits the blocks of the shifted grid that own a pixel without
+/// history, and gives those pixels the mean of both fits.
+void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b);
 /// Phase III and TAA in one pass over rows: second accumulation, re-modulation, emission, TAA.
 void resolve(const BmfrPassContext& ctx, Buffers& b);
 

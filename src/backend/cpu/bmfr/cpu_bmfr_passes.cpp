@@ -27,6 +27,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
         b_.acceptMask.assign(n + 8, 0);
         b_.fitted.assign(3 * b_.stride, 0.0f);
+        b_.fittedSecond.assign(s.secondGrid ? 3 * b_.stride : 0, 0.0f);
         b_.earlyRow.assign(size_t(h), 0);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b_.scratch.resize(size_t(threads));
@@ -50,6 +51,10 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.emitterPixels[t.cur] = 0;
         InputCounters counters = accumulateAndFit(ctx, b_, split);
         Stopwatch clock;
+        if (ctx.settings.secondGrid && ctx.settings.stages.fitting) {
+            fitSecondGrid(ctx, b_);
+            split.fitMs += clock.lap();
+        }
         // Without an emitter in either frame no tap crosses an emitter's edge.
         if (emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
             b_.emitterPixels[t.cur] + b_.emitterPixels[1 - t.cur] > 0) {

@@ -3,6 +3,7 @@
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/feature_columns.h"
 #include "filters/bmfr/fitting_kernel.h"
+#include "filters/bmfr/second_grid.h"
 #include <algorithm>
 #include <type_traits>
 
@@ -21,11 +22,14 @@ struct Phase2 {
     const PlaneSet* set[9];
     int channel[9];
     EmitterExclusion emitters;
+    float* out[3]; ///< the fitted planes, or with `second` the second grid's
 
-    Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g)
+    Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g, bool second = false)
         : ctx(c), b(buffers), grid(g),
-          emitters(emitterExclusion(c.settings, c.input,
-                                    buffers.emitter[c.timeline.history.cur].data())) {
+          emitters(
+              emitterExclusion(c.settings, c.input,
+                               second ? nullptr : buffers.emitter[c.timeline.history.cur].data())) {
+        for (int ch = 0; ch < 3; ++ch) out[ch] = b.plane(second ? b.fittedSecond : b.fitted, ch);
         const int cur = c.timeline.history.cur;
         for (int ch = 0; ch < 3; ++ch) {
             set[ch] = &b.normal[cur], set[3 + ch] = &b.position[cur], set[6 + ch] = &b.noisy[cur];
@@ -292,8 +296,9 @@ void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int exc
         const bool emitter = excluded && maskEmitter(sc.mask[size_t(k)]);
         if (emitter) {
             const Vec3 c = emitterSample(a.ctx.input, idx, a.emitters.modes);
-            for (int ch = 0; ch < 3; ++ch) a.b.plane(a.b.fitted, ch)[idx] = c[ch];
+            for (int ch = 0; ch < 3; ++ch) a.out[ch][idx] = c[ch];
         }
+        if (!a.emitters.bits) continue;
         a.emitters.bits[idx] = emitter;
         emitters += emitter;
     }
@@ -320,8 +325,7 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
     solveHouseholderFast(sc.work.data(), M, W, qrColumnStride(W), coeffs);
 
     // Weighted sum of the noise-free features, 8 pixels at a time, straight to owned pixels.
-    float* fitted[3] = {a.b.plane(a.b.fitted, 0), a.b.plane(a.b.fitted, 1),
-                        a.b.plane(a.b.fitted, 2)};
+    float* const* fitted = a.out;
     const float* clean = sc.clean.data();
     const long first = long(oy) * g.width + ox;
     auto scatter = [&](int k, int n, f8 sum[3]) {
@@ -367,6 +371,43 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
 }
 
 } // namespace
+
+namespace {
+
+/// Whether block (bx, by) owns a pixel that phase I found without history.
+bool ownsHistoryPoorPixel(const BlockGrid& g, int bx, int by, const PlaneSet& noisy) {
+    const int x0 = std::max(0, g.originX(bx)), x1 = std::min(g.width, g.originX(bx) + g.blockSize);
+    const int y0 = std::max(0, g.originY(by)), y1 = std::min(g.height, g.originY(by) + g.blockSize);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            if (historyPoor(noisy.at(3, size_t(y) * size_t(g.width) + size_t(x)))) return true;
+    return false;
+}
+
+} // namespace
+
+void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b) {
+    const TemporalHistory& t = ctx.timeline.history;
+    const BlockGrid g =
+        secondGrid(makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex));
+    const Phase2 a{ctx, b, g, true};
+    const PlaneSet& noisy = b.noisy[t.cur]; // channel 3: the history length
+    ctx.pool.parallelFor(g.blocksY, 1, [&](long by0, long by1) {
+        Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
+        for (long by = by0; by < by1; ++by)
+            for (int bx = 0; bx < g.blocksX; ++bx)
+                if (ownsHistoryPoorPixel(g, bx, int(by), noisy)) fitBlock(a, bx, int(by), sc);
+    });
+    ctx.pool.parallelFor(t.height, 8, [&](long y0, long y1) {
+        for (long i = y0 * t.width; i < y1 * t.width; ++i) {
+            if (!historyPoor(noisy.at(3, size_t(i)))) continue;
+            for (int ch = 0; ch < 3; ++ch) {
+                float& f = b.plane(b.fitted, ch)[i];
+                f = blendSecondFit(f, b.plane(b.fittedSecond, ch)[i]);
+            }
+        }
+    });
+}
 
 void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
                  Scratch& sc) {

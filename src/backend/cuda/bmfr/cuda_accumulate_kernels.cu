@@ -4,6 +4,7 @@
 #include "backend/cuda/device_buffer.h"
 #include "backend/cuda/launch.h"
 #include "filters/bmfr/regularisation_noise.h"
+#include "filters/bmfr/second_grid.h"
 
 namespace bmfr::cuda {
 
@@ -26,6 +27,13 @@ __global__ void sameEmitterTapsKernel(uint8_t* accept, const float* pp, const ui
     if (i < n)
         accept[i] =
             sameEmitterTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, prevEmitter, emitter[i], width);
+}
+__global__ void blendSecondFitKernel(float* fitted, const float* second, const uint8_t* length,
+                                     long n) {
+    const long i = pixelIndex();
+    if (i < n && historyPoor(length[i]))
+        for (int c = 0; c < 3; ++c)
+            fitted[3 * i + c] = blendSecondFit(fitted[3 * i + c], second[3 * i + c]);
 }
 __global__ void noiseKernel(float* noise, const Feature* features, int M, int W, uint32_t seed,
                             uint32_t frame, float amplitude) {
@@ -56,6 +64,13 @@ void launchSameEmitterTaps(uint8_t* accept, const float* previousPixel, const ui
     sameEmitterTapsKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(
         accept, previousPixel, prevEmitter, emitter, width, n);
     check(cudaGetLastError(), "emitter taps kernel");
+}
+
+void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* length, long pixels,
+                          cudaStream_t stream) {
+    blendSecondFitKernel<<<pixelBlocks(pixels), kPixelThreads, 0, stream>>>(fitted, second, length,
+                                                                            pixels);
+    check(cudaGetLastError(), "second grid blend kernel");
 }
 
 void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,

@@ -17,6 +17,9 @@ void launchAccumulateFitted(const FittedAccumulation& a, float* out, cudaStream_
 /// accept[i] = sameEmitterTaps(...): no history across an emitter's edge (excludeEmitters).
 void launchSameEmitterTaps(uint8_t* accept, const float* previousPixel, const uint8_t* prevEmitter,
                            const uint8_t* emitter, int width, int height, cudaStream_t stream);
+/// fitted = blendSecondFit(fitted, second) where the history length is 1 (secondGrid).
+void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* length, long pixels,
+                          cudaStream_t stream);
 /// noise[f * W + k] = regularisationNoise(...) for the frame, on the device.
 void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,
                  uint32_t seed, uint32_t frame, float amplitude, cudaStream_t stream);

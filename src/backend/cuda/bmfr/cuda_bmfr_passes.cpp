@@ -8,6 +8,7 @@
 #include "backend/cuda/cuda_taa.h"
 #include "backend/cuda/device_frame.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
+#include "filters/bmfr/second_grid.h"
 
 namespace bmfr::cuda {
 
@@ -20,6 +21,7 @@ struct Buffers {
     DeviceImageU8 emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
     // This frame only.
     DeviceImageF previousPixel, fitted, remodulated, ycocg;
+    DeviceImageF fittedSecond; ///< BmfrSettings::secondGrid: the shifted grid's fit
     DeviceImageU8 acceptMask;
     DeviceArray<float> noise, fitScratch;
     DeviceArray<Feature> features;
@@ -49,6 +51,7 @@ class CudaBmfrPasses final : public BmfrPasses {
             host_.output[k].resize(w, h, 3);
         }
         b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
+        b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
         b.remodulated.resize(w, h, 3), b.ycocg.resize(w, h, 3), b.acceptMask.resize(w, h, 1);
         const int W = s.blockSize * s.blockSize, M = int(s.features.size());
         b.noise.resize(size_t(M) * size_t(W));
@@ -84,6 +87,15 @@ class CudaBmfrPasses final : public BmfrPasses {
                         s.noiseAmplitude, st);
             const BlockFit fit = blockFit(ctx, in, b, b.features.data(), b.noise.data());
             launchFitBlocks(fit, plan_, b.fitScratch.data(), st);
+            if (s.secondGrid) {
+                // Every block of the shifted grid, as the reference backend.
+                BlockFit second = fit;
+                second.grid = secondGrid(fit.grid);
+                second.fitted = b.fittedSecond.data(), second.emitters.bits = nullptr;
+                launchFitBlocks(second, plan_, b.fitScratch.data(), st);
+                launchBlendSecondFit(b.fitted.data(), b.fittedSecond.data(),
+                                     b.historyLength[cur].data(), long(t.width) * t.height, st);
+            }
             if (fit.emitters.on)
                 launchSameEmitterTaps(b.acceptMask.data(), b.previousPixel.data(),
                                       b.emitter[prev].data(), fit.emitters.bits, t.width, t.height,

@@ -6,6 +6,7 @@
 #include "core/stopwatch.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/bmfr_passes.h"
+#include "filters/bmfr/second_grid.h"
 #include <atomic>
 #include <cstring>
 
@@ -38,6 +39,7 @@ struct Buffers {
     ImageF previousPixel;            ///< 2 channels: continuous pixel in the previous frame
     ImageU8 acceptMask;              ///< accepted bilinear taps, bit i = tap i
     ImageF fitted;                   ///< phase II output, demodulated
+    ImageF fittedSecond;             ///< BmfrSettings::secondGrid: the shifted grid's fit
     ImageF remodulated;              ///< phase III output before TAA
     ImageF ycocg;                    ///< TAA scratch
     ImageF historyLengthF;           ///< debug copy of the history length as float
@@ -73,6 +75,27 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
         for (long k = b0; k < b1; ++k)
             fitBlock(a, int(k % g.blocksX), int(k / g.blocksX), sc, solveHouseholder);
     });
+    if (s.secondGrid) {
+        // Every block of the second grid: the spec; the CPU backend fits only those that own a
+        // history-poor pixel, which gives the same pixels.
+        BlockFit second = a;
+        second.grid = secondGrid(g);
+        second.fitted = b.fittedSecond.data(), second.emitters.bits = nullptr;
+        ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
+            const BlockFitScratch sc = b.scratch[size_t(ThreadPool::currentThreadIndex())].view();
+            for (long k = b0; k < b1; ++k)
+                fitBlock(second, int(k % g.blocksX), int(k / g.blocksX), sc, solveHouseholder);
+        });
+        const uint8_t* length = b.historyLength[t.cur].data();
+        float* f = b.fitted.data();
+        const float* f2 = b.fittedSecond.data();
+        ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
+            for (long i = y0 * t.width; i < y1 * t.width; ++i)
+                if (historyPoor(length[i]))
+                    for (int c = 0; c < 3; ++c)
+                        f[3 * i + c] = blendSecondFit(f[3 * i + c], f2[3 * i + c]);
+        });
+    }
     if (!a.emitters.on) return;
     const uint8_t* prevEmitter = b.emitter[1 - t.cur].data();
     const float* pp = b.previousPixel.data();
@@ -110,6 +133,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         b.previousPixel.resize(w, h, 2);
         b.acceptMask.resize(w, h, 1);
         b.fitted.resize(w, h, 3);
+        b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
         b.remodulated.resize(w, h, 3);
         b.ycocg.resize(w, h, 3);
         b.historyLengthF.resize(w, h, 1);
