@@ -374,13 +374,22 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
 
 namespace {
 
-/// Whether block (bx, by) owns a pixel that phase I found without history.
-bool ownsHistoryPoorPixel(const BlockGrid& g, int bx, int by, const PlaneSet& noisy) {
-    const int x0 = std::max(0, g.originX(bx)), x1 = std::min(g.width, g.originX(bx) + g.blockSize);
-    const int y0 = std::max(0, g.originY(by)), y1 = std::min(g.height, g.originY(by) + g.blockSize);
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-            if (historyPoor(noisy.at(3, size_t(y) * size_t(g.width) + size_t(x)))) return true;
+/// The image pixels block (bx, by) owns: [x0, x1) x [y0, y1).
+struct OwnedRect {
+    int x0, x1, y0, y1;
+    OwnedRect(const BlockGrid& g, int bx, int by)
+        : x0(std::max(0, g.originX(bx))), x1(std::min(g.width, g.originX(bx) + g.blockSize)),
+          y0(std::max(0, g.originY(by))), y1(std::min(g.height, g.originY(by) + g.blockSize)) {}
+};
+
+/// Whether a pixel of `r` has no history, from the history-length plane (float or half).
+template <class T> bool anyHistoryPoor(const T* length, int width, const OwnedRect& r) {
+    for (int y = r.y0; y < r.y1; ++y) {
+        const T* row = length + long(y) * width;
+        bool poor = false;
+        for (int x = r.x0; x < r.x1; ++x) poor |= historyPoor(float(row[x]));
+        if (poor) return true;
+    }
     return false;
 }
 
@@ -395,17 +404,23 @@ void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b) {
     ctx.pool.parallelFor(g.blocksY, 1, [&](long by0, long by1) {
         Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
         for (long by = by0; by < by1; ++by)
-            for (int bx = 0; bx < g.blocksX; ++bx)
-                if (ownsHistoryPoorPixel(g, bx, int(by), noisy)) fitBlock(a, bx, int(by), sc);
-    });
-    ctx.pool.parallelFor(t.height, 8, [&](long y0, long y1) {
-        for (long i = y0 * t.width; i < y1 * t.width; ++i) {
-            if (!historyPoor(noisy.at(3, size_t(i)))) continue;
-            for (int ch = 0; ch < 3; ++ch) {
-                float& f = b.plane(b.fitted, ch)[i];
-                f = blendSecondFit(f, b.plane(b.fittedSecond, ch)[i]);
+            for (int bx = 0; bx < g.blocksX; ++bx) {
+                const OwnedRect r(g, bx, int(by));
+                const bool poor = noisy.half ? anyHistoryPoor(noisy.plane<_Float16>(3), g.width, r)
+                                             : anyHistoryPoor(noisy.plane<float>(3), g.width, r);
+                if (!poor) continue;
+                fitBlock(a, bx, int(by), sc);
+                // The blocks of a grid own disjoint pixels: each blends its own.
+                for (int y = r.y0; y < r.y1; ++y)
+                    for (int x = r.x0; x < r.x1; ++x) {
+                        const size_t i = size_t(y) * size_t(g.width) + size_t(x);
+                        if (!historyPoor(noisy.at(3, i))) continue;
+                        for (int ch = 0; ch < 3; ++ch) {
+                            float& f = b.plane(b.fitted, ch)[i];
+                            f = blendSecondFit(f, a.out[ch][i]);
+                        }
+                    }
             }
-        }
     });
 }
 

@@ -60,6 +60,16 @@ InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
     return {nonFinite.load(), discarded.load()};
 }
 
+/// Every block of a.grid.
+void fitGrid(const BmfrPassContext& ctx, Buffers& b, const BlockFit& a) {
+    const BlockGrid& g = a.grid;
+    ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
+        const BlockFitScratch sc = b.scratch[size_t(ThreadPool::currentThreadIndex())].view();
+        for (long k = b0; k < b1; ++k)
+            fitBlock(a, int(k % g.blocksX), int(k / g.blocksX), sc, solveHouseholder);
+    });
+}
+
 void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
     const TemporalHistory& t = ctx.timeline.history;
     const BmfrSettings& s = ctx.settings;
@@ -69,23 +79,14 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
         return;
     }
     const BlockFit a = blockFit(ctx, ctx.input, b, s.features.data(), ctx.timeline.noise.data());
-    const BlockGrid& g = a.grid;
-    ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
-        const BlockFitScratch sc = b.scratch[size_t(ThreadPool::currentThreadIndex())].view();
-        for (long k = b0; k < b1; ++k)
-            fitBlock(a, int(k % g.blocksX), int(k / g.blocksX), sc, solveHouseholder);
-    });
+    fitGrid(ctx, b, a);
     if (s.secondGrid) {
         // Every block of the second grid: the spec; the CPU backend fits only those that own a
         // history-poor pixel, which gives the same pixels.
         BlockFit second = a;
-        second.grid = secondGrid(g);
+        second.grid = secondGrid(a.grid);
         second.fitted = b.fittedSecond.data(), second.emitters.bits = nullptr;
-        ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
-            const BlockFitScratch sc = b.scratch[size_t(ThreadPool::currentThreadIndex())].view();
-            for (long k = b0; k < b1; ++k)
-                fitBlock(second, int(k % g.blocksX), int(k / g.blocksX), sc, solveHouseholder);
-        });
+        fitGrid(ctx, b, second);
         const uint8_t* length = b.historyLength[t.cur].data();
         float* f = b.fitted.data();
         const float* f2 = b.fittedSecond.data();
