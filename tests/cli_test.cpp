@@ -365,14 +365,17 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     using bmfr::presetSettings, bmfr::SettingValues;
     EXPECT_EQ(presetSettings("bmfr", "quality"), (SettingValues{{"taaSameSurface", "true"},
                                                                 {"excludeEmitters", "true"},
-                                                                {"secondGrid", "true"}}));
+                                                                {"secondGrid", "true"},
+                                                                {"clampFireflies", "true"}}));
     EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
     EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
     Result listed = run("settings bmfr --preset quality");
     ASSERT_EQ(listed.code, 0) << listed.output;
-    EXPECT_NE(listed.output.find("bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true"),
-              std::string::npos)
+    EXPECT_NE(
+        listed.output.find(
+            "bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true clampFireflies=true"),
+        std::string::npos)
         << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
     // --preset faithful those of no flags; a flag after the preset overrides it.
@@ -384,14 +387,14 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         EXPECT_EQ(r.code, 0) << r.output;
         return pixelsOf(out / "denoised_0003.exr");
     };
-    const std::vector<float> quality = denoise("quality", "--preset quality"),
-                             bySwitch = denoise(
-                                 "switch", "--taa-same-surface --exclude-emitters --second-grid"),
-                             faithful = denoise("faithful", "--preset faithful"),
-                             plain = denoise("plain", ""),
-                             overridden = denoise("override",
-                                                  "--preset quality --taa-same-surface false "
-                                                  "--exclude-emitters false --second-grid false");
+    const std::vector<float>
+        quality = denoise("quality", "--preset quality"),
+        bySwitch = denoise("switch",
+                           "--taa-same-surface --exclude-emitters --second-grid --clamp-fireflies"),
+        faithful = denoise("faithful", "--preset faithful"), plain = denoise("plain", ""),
+        overridden = denoise("override", "--preset quality --taa-same-surface false "
+                                         "--exclude-emitters false --second-grid false "
+                                         "--clamp-fireflies false");
     ASSERT_FALSE(quality.empty());
     EXPECT_EQ(quality, bySwitch);
     EXPECT_EQ(faithful, plain);

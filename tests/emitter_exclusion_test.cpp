@@ -1,6 +1,7 @@
 // Emitters without an emission buffer (filters/bmfr/emitter_exclusion.h and the fit's use of
 // it): the mask against hand-built blocks, its threshold and the dropped history taps against
 // hand values, and the fit of a block holding a lamp against the exact surface it was made from.
+#include "filters/bmfr/firefly_clamp.h"
 #include "filters/bmfr/fitting_kernel.h"
 #include "filters/bmfr/householder_qr.h"
 #include <bmfr/features.h>
@@ -121,6 +122,29 @@ TEST(EmitterExclusion, FirefliesAndNoisyLitSurfacesStayInTheFit) {
     EXPECT_EQ(excluded, 64);
     maskOf(p, 4.0f, excluded);
     EXPECT_EQ(excluded, 64);
+}
+
+TEST(FireflyClamp, IsolatedBrightPixelsComeDownToTheThresholdAndPatchesStay) {
+    // A 16 x 16 block at 0.1 (threshold 8 x 1/8 = 1): a firefly, one smeared over 2x2, and a
+    // 3x3 lit patch.
+    std::vector<float> r(256, 0.1f), g(256, 0.1f), b(256, 0.1f);
+    auto set = [&](int x, int y, float v) {
+        r[size_t(y * 16 + x)] = g[size_t(y * 16 + x)] = b[size_t(y * 16 + x)] = v;
+    };
+    set(2, 2, 40.0f);
+    for (int y = 8; y < 10; ++y)
+        for (int x = 2; x < 4; ++x) set(x, y, 5.0f);
+    for (int y = 4; y < 7; ++y)
+        for (int x = 9; x < 12; ++x) set(x, y, 6.0f);
+    float* const z[3] = {r.data(), g.data(), b.data()};
+    int histogram[kMaskBuckets];
+    uint8_t mask[256];
+    EXPECT_EQ(clampFireflies(16, z, histogram, mask), 1 + 4);
+    EXPECT_FLOAT_EQ(r[2 * 16 + 2], 1.0f);
+    EXPECT_FLOAT_EQ(g[8 * 16 + 3], 1.0f);
+    EXPECT_FLOAT_EQ(b[5 * 16 + 10], 6.0f); // the patch's centre, eight bright neighbours
+    EXPECT_FLOAT_EQ(r[4 * 16 + 9], 6.0f);  // its corner, three
+    EXPECT_FLOAT_EQ(r[0], 0.1f);
 }
 
 TEST(EmitterExclusion, HistoryTapsAcrossAnEmittersEdgeAreDropped) {

@@ -103,6 +103,7 @@ double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& fe
         for (int bx = 0; bx < a.grid.blocksX; ++bx) {
             a.fitted = reference.data();
             a.emitters = {excludeEmitters, 16.0f, InputModes{}, referenceBits.data()};
+            a.clampFireflies = excludeEmitters;
             fitBlock(a, bx, by, sc, solveHouseholder);
             a.fitted = team.data();
             a.emitters.bits = teamBits.data();
@@ -143,9 +144,12 @@ TEST(TeamFit, OtherBlockSizesFeaturesAndRankDeficiency) {
         // Without regularisation the flat floor's dependent columns are dropped by both.
         EXPECT_LE(worstExcess(f, block, features, 0.0f, 256, 3), 0.0);
     }
-    // A lamp across a block edge, left out of the fit, on every thread count.
+    // A lamp across a block edge, left out of the fit, and fireflies clamped, on every thread
+    // count.
     Frame lit(101, 67, 7);
     lit.lamp(20, 25, 24, 6);
+    // Fireflies for the clamp that runs with it: one alone, one smeared over 2x2.
+    lit.lamp(70, 10, 1, 1).lamp(80, 50, 2, 2);
     for (int threads : {256, 32})
         EXPECT_LE(worstExcess(lit, 32, features, 0.01f, threads, 4, true), 0.0) << threads;
     // An image smaller than a block: everything mirrored in.

@@ -65,7 +65,8 @@ def test_same_bits_as_the_cli(sequence, tmp_path, name, extra):
 def test_the_quality_preset_gives_the_cli_bits(sequence, tmp_path):
     cli("denoise", sequence, "-o", tmp_path, "--preset", "quality", "--no-png", "--no-flip", "-q")
     assert bmfr.preset("bmfr", "quality") == {
-        "taa_same_surface": "true", "exclude_emitters": "true", "second_grid": "true"}
+        "taa_same_surface": "true", "exclude_emitters": "true", "second_grid": "true",
+        "clamp_fireflies": "true"}
     assert bmfr.preset("bmfr", "faithful") == {}
     with pytest.raises(ValueError, match="unknown preset 'fast'"):
         bmfr.preset("bmfr", "fast")

@@ -31,6 +31,7 @@ struct BmfrSettings : TemporalSettings {
     bool excludeEmitters = false;  ///< fit blocks without bright patches (lights in view)
     float emitterRatio = 16.0f;    ///< a patch pixel is this many times the block's median
     bool secondGrid = false;       ///< pixels without history also fitted on a shifted grid
+    bool clampFireflies = false;   ///< isolated pixels far above their block clamped in the fit
     StageSwitches stages{};
 };
 

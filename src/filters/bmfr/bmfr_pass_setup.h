@@ -46,6 +46,7 @@ BlockFit blockFit(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b,
     a.in = in;
     a.fitted = b.fitted.data();
     a.emitters = emitterExclusion(s, in, b.emitter[t.cur].data());
+    a.clampFireflies = s.clampFireflies;
     return a;
 }
 

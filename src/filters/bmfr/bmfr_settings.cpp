@@ -46,6 +46,11 @@ SettingsTable<S> ownSettings() {
          "without an emission buffer: the light keeps its own sample, and no history crosses "
          "its edge. Does nothing with an emission buffer",
          BMFR_FIELD(S, excludeEmitters)},
+        {"clampFireflies", "clamp-fireflies", "", {},
+         "in the fit's input (not the history), a pixel above 8x its block's median luminance "
+         "with at most three such neighbours is scaled down to that level, so a firefly does "
+         "not brighten its block",
+         BMFR_FIELD(S, clampFireflies)},
         {"secondGrid", "second-grid", "", {},
          "pixels without history (the first frame after a reset, disocclusions) take the mean of "
          "the fit and a second fit on the grid moved by half a block, so the block edges blur "

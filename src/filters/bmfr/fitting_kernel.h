@@ -9,6 +9,7 @@
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/emitter_exclusion.h"
 #include "filters/bmfr/feature_columns.h"
+#include "filters/bmfr/firefly_clamp.h"
 #include "filters/bmfr/householder_qr.h"
 #include "temporal/pixel_input.h"
 
@@ -45,6 +46,7 @@ struct BlockFit {
     InputPlanes in;               ///< for the extra feature buffers
     float* fitted = nullptr;      ///< the block writes the pixels it owns
     EmitterExclusion emitters;
+    bool clampFireflies = false; ///< BmfrSettings::clampFireflies
 };
 
 /// One worker's scratch for a block of W pixels and M features.
@@ -138,6 +140,11 @@ BMFR_HD void fitBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& 
         for (int k = 0; k < W; ++k) dst[k] = col[k] + nz[k];
     }
 
+    if (a.clampFireflies) {
+        float* const z[3] = {sc.work + long(M) * W, sc.work + long(M + 1) * W,
+                             sc.work + long(M + 2) * W};
+        clampFireflies(a.grid.blockSize, z, sc.histogram, sc.mask);
+    }
     const int excluded = a.emitters.on ? excludeEmitterRows(a.grid, a.in, a.emitters, bx, by,
                                                             sc.work, M, W, sc.histogram, sc.mask)
                                        : 0;

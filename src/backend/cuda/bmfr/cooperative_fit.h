@@ -109,6 +109,32 @@ BMFR_HD void teamHouseholder(const Team& team, float* A, int M, int W, float* P,
     team.single([&] { st.q.solve(M, st.coeffs); });
 }
 
+/// clampFireflies for a team: the threshold on one thread, the stages pixel-parallel.
+template <class Team>
+BMFR_HD void teamClampFireflies(const Team& team, float* A, int M, int B,
+                                const TeamFitMemory& mem) {
+    const int W = B * B, T = team.size();
+    TeamFitState& st = *mem.state;
+    uint8_t* mask = mem.mask;
+    float* z[3] = {A + long(M) * W, A + long(M + 1) * W, A + long(M + 2) * W};
+    auto lum = [&](int k) { return luminance({z[0][k], z[1][k], z[2][k]}); };
+    team.single([&] { st.maskThreshold = blockThreshold(W, kFireflyRatio, lum, st.histogram); });
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) mask[k] = fireflyCandidate(lum(k), st.maskThreshold);
+    });
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) mask[k] |= fireflyDense(mask, B, k);
+    });
+    // Reads the neighbours' bits and scales only its own pixel's colour.
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) {
+            const float f = fireflyScale(mask, B, k, lum(k), st.maskThreshold);
+            if (f != 1.0f)
+                for (int c = 0; c < 3; ++c) z[c][k] *= f;
+        }
+    });
+}
+
 /// excludeEmitterRows for a team: the mask's stages pixel-parallel (the histogram on one thread),
 /// then the excluded rows of the M + 3 columns of `A` zeroed.
 template <class Team>
@@ -196,6 +222,7 @@ BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
         }
     });
 
+    if (a.clampFireflies) teamClampFireflies(team, A, M, g.blockSize, mem);
     if (a.emitters.on) teamEmitterMask(team, a, bx, by, A, mem);
     teamHouseholder(team, A, M, W, P, st);
 

@@ -1,0 +1,75 @@
+// Fireflies (BmfrSettings::clampFireflies): a long path's rare bright sample, once accumulated,
+// is a pixel or two far above its block, and the least squares spread it through the block. In
+// the fit's input, a pixel above kFireflyRatio times the block's median whose neighbours are
+// mostly not (three of eight at most: a firefly smeared over 2x2 by the reprojection) and none
+// of them inside a bright patch is scaled down to that level. Bright patches, lit surfaces and
+// emitters, keep theirs; a bright line one pixel wide does not. Only the fit's
+// input changes: the accumulated history keeps the sample's energy.
+#pragma once
+#include "core/color.h"
+#include "filters/bmfr/emitter_exclusion.h"
+
+namespace bmfr {
+
+/// The multiple of the block's median (emitter_exclusion.h's) above which a pixel may be a
+/// firefly.
+inline constexpr float kFireflyRatio = 8.0f;
+
+inline constexpr uint8_t kFireflyCandidate = 1, kFireflyDense = 2;
+
+/// Stage 1, block pixel k: above the threshold.
+BMFR_HD uint8_t fireflyCandidate(float lum, float threshold) {
+    return threshold > 0.0f && lum > threshold ? kFireflyCandidate : 0;
+}
+
+/// The neighbours of block pixel k inside the block with `bit` set.
+BMFR_HD int fireflyNeighbours(const uint8_t* mask, int B, int k, uint8_t bit) {
+    const int x = k % B, y = k / B;
+    int n = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int u = x + dx, v = y + dy;
+            if ((dx || dy) && u >= 0 && u < B && v >= 0 && v < B && (mask[v * B + u] & bit)) ++n;
+        }
+    return n;
+}
+
+/// Stage 2, block pixel k: a candidate with five or more candidate neighbours is inside a
+/// bright patch.
+BMFR_HD uint8_t fireflyDense(const uint8_t* mask, int B, int k) {
+    return (mask[k] & kFireflyCandidate) && fireflyNeighbours(mask, B, k, kFireflyCandidate) >= 5
+               ? kFireflyDense
+               : 0;
+}
+
+/// Stage 3, block pixel k: the factor its colour is scaled by; below 1 for a candidate with at
+/// most three candidate neighbours and none inside a patch (a patch's corner has three).
+BMFR_HD float fireflyScale(const uint8_t* mask, int B, int k, float lum, float threshold) {
+    if (!(mask[k] & kFireflyCandidate) || (mask[k] & kFireflyDense)) return 1.0f;
+    if (fireflyNeighbours(mask, B, k, kFireflyCandidate) > 3) return 1.0f;
+    return fireflyNeighbours(mask, B, k, kFireflyDense) > 0 ? 1.0f : threshold / lum;
+}
+
+/// Clamps the fireflies of a B x B block's colour columns z[3] (W values each), with `mask`
+/// (W bytes) and `histogram` as scratch. Returns how many.
+BMFR_HD int clampFireflies(int B, float* const z[3], int* histogram, uint8_t* mask) {
+    const int W = B * B;
+    auto lum = [&](int k) { return luminance({z[0][k], z[1][k], z[2][k]}); };
+    const float threshold = blockThreshold(W, kFireflyRatio, lum, histogram);
+    if (!(threshold > 0.0f)) return 0;
+    int candidates = 0;
+    for (int k = 0; k < W; ++k) candidates += (mask[k] = fireflyCandidate(lum(k), threshold));
+    if (candidates == 0) return 0;
+    for (int k = 0; k < W; ++k) mask[k] |= fireflyDense(mask, B, k);
+    int clamped = 0;
+    for (int k = 0; k < W; ++k) {
+        // The mask's bits were all set before any scaling.
+        const float f = fireflyScale(mask, B, k, lum(k), threshold);
+        if (f == 1.0f) continue;
+        for (int c = 0; c < 3; ++c) z[c][k] *= f;
+        ++clamped;
+    }
+    return clamped;
+}
+
+} // namespace bmfr
