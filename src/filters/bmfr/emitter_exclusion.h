@@ -101,21 +101,25 @@ BMFR_HD uint8_t maskSeed(uint8_t m, const InputPlanes& in, const InputModes& mod
     return flatNeighbours(in, modes, i, s, threshold) >= 3 ? kMaskSeed : 0;
 }
 
+/// The eight neighbours of block pixel k inside the block with `bit` set in `mask`.
+BMFR_HD int maskNeighbours(const uint8_t* mask, int B, int k, uint8_t bit) {
+    const int x = k % B, y = k / B;
+    int n = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int u = x + dx, v = y + dy;
+            if ((dx || dy) && u >= 0 && u < B && v >= 0 && v < B && (mask[v * B + u] & bit)) ++n;
+        }
+    return n;
+}
+
 /// Stage 3, block pixel k: a candidate that is a seed or touches one in the block sits the fit
 /// out. Those that only touch one are mostly the surface beside the emitter, which the history
 /// smeared it into.
 BMFR_HD uint8_t maskExcluded(const uint8_t* mask, int B, int k) {
     const uint8_t m = mask[k];
     if (!(m & kMaskCandidate)) return 0;
-    if (m & kMaskSeed) return kMaskExcluded;
-    const int x = k % B, y = k / B;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            const int u = x + dx, v = y + dy;
-            if (u >= 0 && u < B && v >= 0 && v < B && (mask[v * B + u] & kMaskSeed))
-                return kMaskExcluded;
-        }
-    return 0;
+    return (m & kMaskSeed) || maskNeighbours(mask, B, k, kMaskSeed) > 0 ? kMaskExcluded : 0;
 }
 
 /// Whether an excluded pixel is the emitter this frame (it then keeps its current sample) or

@@ -22,22 +22,10 @@ BMFR_HD uint8_t fireflyCandidate(float lum, float threshold) {
     return threshold > 0.0f && lum > threshold ? kFireflyCandidate : 0;
 }
 
-/// The neighbours of block pixel k inside the block with `bit` set.
-BMFR_HD int fireflyNeighbours(const uint8_t* mask, int B, int k, uint8_t bit) {
-    const int x = k % B, y = k / B;
-    int n = 0;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            const int u = x + dx, v = y + dy;
-            if ((dx || dy) && u >= 0 && u < B && v >= 0 && v < B && (mask[v * B + u] & bit)) ++n;
-        }
-    return n;
-}
-
 /// Stage 2, block pixel k: a candidate with five or more candidate neighbours is inside a
 /// bright patch.
 BMFR_HD uint8_t fireflyDense(const uint8_t* mask, int B, int k) {
-    return (mask[k] & kFireflyCandidate) && fireflyNeighbours(mask, B, k, kFireflyCandidate) >= 5
+    return (mask[k] & kFireflyCandidate) && maskNeighbours(mask, B, k, kFireflyCandidate) >= 5
                ? kFireflyDense
                : 0;
 }
@@ -46,8 +34,8 @@ BMFR_HD uint8_t fireflyDense(const uint8_t* mask, int B, int k) {
 /// most three candidate neighbours and none inside a patch (a patch's corner has three).
 BMFR_HD float fireflyScale(const uint8_t* mask, int B, int k, float lum, float threshold) {
     if (!(mask[k] & kFireflyCandidate) || (mask[k] & kFireflyDense)) return 1.0f;
-    if (fireflyNeighbours(mask, B, k, kFireflyCandidate) > 3) return 1.0f;
-    return fireflyNeighbours(mask, B, k, kFireflyDense) > 0 ? 1.0f : threshold / lum;
+    if (maskNeighbours(mask, B, k, kFireflyCandidate) > 3) return 1.0f;
+    return maskNeighbours(mask, B, k, kFireflyDense) > 0 ? 1.0f : threshold / lum;
 }
 
 /// Clamps the fireflies of a B x B block's colour columns z[3] (W values each), with `mask`
