@@ -21,6 +21,22 @@ struct BlockGrid {
     BMFR_HD int blockCount() const { return blocksX * blocksY; }
 };
 
+/// The image pixels block (bx, by) owns: [x0, x1) x [y0, y1), empty where it lies outside.
+struct OwnedRect {
+    int x0, x1, y0, y1;
+    BMFR_HD bool empty() const { return x0 >= x1 || y0 >= y1; }
+};
+
+BMFR_HD int clampToRange(int v, int lo, int hi) {
+    return v < lo ? lo : v > hi ? hi : v;
+}
+
+BMFR_HD OwnedRect ownedRect(const BlockGrid& g, int bx, int by) {
+    const int ox = g.originX(bx), oy = g.originY(by), B = g.blockSize;
+    return {clampToRange(ox, 0, g.width), clampToRange(ox + B, 0, g.width),
+            clampToRange(oy, 0, g.height), clampToRange(oy + B, 0, g.height)};
+}
+
 /// Image pixel of pixel k (row-major) of block (bx, by), mirrored in at the border; `owned`
 /// when the block owns it.
 BMFR_HD long blockPixel(const BlockGrid& g, int bx, int by, int k, bool& owned) {

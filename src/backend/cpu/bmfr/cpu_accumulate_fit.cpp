@@ -15,8 +15,8 @@ struct RowSpan {
     bool empty() const { return first >= last; }
 };
 RowSpan ownedRows(const BlockGrid& g, int by) {
-    const int oy = g.originY(by);
-    return {std::clamp(oy, 0, g.height), std::clamp(oy + g.blockSize, 0, g.height)};
+    const OwnedRect r = ownedRect(g, 0, by);
+    return {r.y0, r.y1};
 }
 
 /// Marks the rows some block row reads through mirroring but does not own. Only the first and

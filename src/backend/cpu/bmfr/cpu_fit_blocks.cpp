@@ -380,14 +380,6 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
 
 namespace {
 
-/// The image pixels block (bx, by) owns: [x0, x1) x [y0, y1).
-struct OwnedRect {
-    int x0, x1, y0, y1;
-    OwnedRect(const BlockGrid& g, int bx, int by)
-        : x0(std::max(0, g.originX(bx))), x1(std::min(g.width, g.originX(bx) + g.blockSize)),
-          y0(std::max(0, g.originY(by))), y1(std::min(g.height, g.originY(by) + g.blockSize)) {}
-};
-
 /// Whether a pixel of `r` has no history, from the history-length plane (float or half).
 template <class T> bool anyHistoryPoor(const T* length, int width, const OwnedRect& r) {
     for (int y = r.y0; y < r.y1; ++y) {
@@ -411,7 +403,7 @@ void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b) {
         Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
         for (long by = by0; by < by1; ++by)
             for (int bx = 0; bx < g.blocksX; ++bx) {
-                const OwnedRect r(g, bx, int(by));
+                const OwnedRect r = ownedRect(g, bx, int(by));
                 const bool poor = noisy.half ? anyHistoryPoor(noisy.plane<_Float16>(3), g.width, r)
                                              : anyHistoryPoor(noisy.plane<float>(3), g.width, r);
                 if (!poor) continue;
