@@ -76,7 +76,8 @@ class PyFilter {
                                const py::handle& previousNormal, const py::handle& diffuseIndirect,
                                const py::handle& matteIndirect, const py::handle& glossyIndirect,
                                const py::handle& directLight, const py::handle& specularF0,
-                               const py::handle& roughness, const py::handle& glossyHitDistance) {
+                               const py::handle& roughness, const py::handle& glossyHitDistance,
+                               const py::handle& visibility) {
         int h = -1, w = -1;
         const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
                        n = imageArg(normal, "normal", h, w),
@@ -105,7 +106,9 @@ class PyFilter {
                 optional[k].view = kept[k].view;
             }
         in.color = c.view, in.albedo = a.view, in.normal = n.view, in.position = p.view;
-        ImageArg rough, hit; // single-channel (height, width)
+        ImageArg rough, hit, visible; // single-channel (height, width)
+        if (!visibility.is_none())
+            in.visibility = (visible = channelArg(visibility, "visibility", h, w)).view;
         if (!roughness.is_none())
             in.roughness = (rough = channelArg(roughness, "roughness", h, w)).view;
         if (!glossyHitDistance.is_none())
@@ -208,6 +211,7 @@ class SequenceIterator {
             d["previous_normal"] = toArray(view(frame_.previousNormal));
         if (frame_.diffuseIndirect.width)
             d["diffuse_indirect"] = toArray(view(frame_.diffuseIndirect));
+        if (frame_.visibility.width) d["visibility"] = toArray(view(frame_.visibility));
         for (const auto& [img, key] : frame_.maraBuffers())
             if (img->width) d[key] = toArray(view(*img));
         d["reset"] = frame_.reset;
@@ -263,7 +267,7 @@ Filter(name="bmfr", backend="cpu", **settings): settings by their flag name with
              py::arg("diffuse_indirect") = py::none(), py::arg("matte_indirect") = py::none(),
              py::arg("glossy_indirect") = py::none(), py::arg("direct_light") = py::none(),
              py::arg("specular_f0") = py::none(), py::arg("roughness") = py::none(),
-             py::arg("glossy_hit_distance") = py::none(),
+             py::arg("glossy_hit_distance") = py::none(), py::arg("visibility") = py::none(),
              R"(Denoises one frame; returns a new (height, width, 3) float32 array.
 
 Images are float32 (height, width, 3) or (height, width, 4) arrays, viewed without a copy when
@@ -276,7 +280,8 @@ surface's previous world position and normal, for moving objects; a third motion
 depth offset. diffuse_indirect: the demodulated diffuse indirect light, for WALR's
 signal="diffuse-indirect". matte_indirect, glossy_indirect, direct_light, specular_f0 and the
 single-channel roughness and glossy_hit_distance: Mara et al. 2017's factorisation, for
-"mara2017" (bmfr::FrameInput).)")
+"mara2017". visibility: (height, width) noise-free sun (key light) visibility times its
+cosine, for BMFR's visibility_feature (bmfr::FrameInput).)")
         .def("reset", &PyFilter::reset, "Drops all history (a camera cut).")
         .def_property_readonly("stats", &PyFilter::stats,
                                "Facts about the last frame: stage_ms, total_ms, "

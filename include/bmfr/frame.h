@@ -57,6 +57,12 @@ struct FrameInput {
     /// keeps the history of unsampled pixels; BMFR ignores the mask. Leave data null for 1 spp.
     ImageView sampleMask;
     std::vector<ImageView> extras; ///< optional 1-channel feature buffers (BMFR's Feature::Extra)
+    /// Optional noise-free visibility of the key light (a sun, a shadow-mapped main light) at
+    /// the first hit, times the cosine: max(0, n . l) where the light is unshadowed, else 0;
+    /// [0, 1], 1 channel. With BmfrSettings::visibilityFeature, BMFR fits it as one more
+    /// feature, so a hard shadow edge across a block does not block up. Leave data null when
+    /// unavailable.
+    ImageView visibility;
     /// Optional motion vectors, 2 to 4 channels: for pixel (x, y), the
     /// continuous pixel coordinate of the same surface point in the previous frame is
     /// (x + motion.x, y + motion.y), in pixels, x to the right and y downwards, where integer

@@ -36,15 +36,18 @@ class ManifestReader : public SequenceReader {
                               "frames", "generator"},
                              mp.string());
             for (size_t k = 0; k < manifest_.at("frames").size(); ++k)
-                requireKnownKeys(
-                    manifest_["frames"][k],
-                    {"color",           "albedo",           "normal",         "position",
-                     "reference",       "emission",         "motion",         "previous_position",
-                     "previous_normal", "diffuse_indirect", "matte_indirect", "glossy_indirect",
-                     "direct_light",    "specular_f0",      "roughness",      "glossy_hit_distance",
-                     "reset",           "extras",           "aovs",           "view_projection",
-                     "jitter"},
-                    mp.string() + " frame " + std::to_string(k));
+                requireKnownKeys(manifest_["frames"][k], {"color",           "albedo",
+                                                          "normal",          "position",
+                                                          "reference",       "emission",
+                                                          "motion",          "previous_position",
+                                                          "previous_normal", "diffuse_indirect",
+                                                          "matte_indirect",  "glossy_indirect",
+                                                          "direct_light",    "specular_f0",
+                                                          "roughness",       "glossy_hit_distance",
+                                                          "visibility",      "reset",
+                                                          "extras",          "aovs",
+                                                          "view_projection", "jitter"},
+                                 mp.string() + " frame " + std::to_string(k));
             if (!manifest_.contains("width") || !manifest_.contains("height"))
                 throw Error(mp.string() + ": needs \"width\" and \"height\"");
             info_.width = int(integerField(manifest_, "width", 0, 65536, 0, mp.string()));
@@ -97,6 +100,7 @@ class ManifestReader : public SequenceReader {
                                        {"previous_position", &f.previousPosition, 3},
                                        {"previous_normal", &f.previousNormal, 3},
                                        {"diffuse_indirect", &f.diffuseIndirect, 3},
+                                       {"visibility", &f.visibility, 1},
                                        {"matte_indirect", &f.matteIndirect, 3},
                                        {"glossy_indirect", &f.glossyIndirect, 3},
                                        {"direct_light", &f.directLight, 3},
@@ -276,6 +280,7 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
         j["previous_position"] = put("previous_position", f.previousPosition);
     if (f.previousNormal.width) j["previous_normal"] = put("previous_normal", f.previousNormal);
     if (f.diffuseIndirect.width) j["diffuse_indirect"] = put("diffuse_indirect", f.diffuseIndirect);
+    if (f.visibility.width) j["visibility"] = put("visibility", f.visibility);
     // "surface_roughness": the renderer's "roughness" extra already has the plain file name.
     for (const auto& [img, key] : f.maraBuffers())
         if (img->width)

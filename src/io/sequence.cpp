@@ -15,6 +15,7 @@ FrameInput FrameData::input(bool motionInput) const {
     in.position = view(position);
     if (emission.width) in.emission = view(emission);
     if (diffuseIndirect.width) in.diffuseIndirect = view(diffuseIndirect);
+    if (visibility.width) in.visibility = view(visibility);
     if (matteIndirect.width) in.matteIndirect = view(matteIndirect);
     if (glossyIndirect.width) in.glossyIndirect = view(glossyIndirect);
     if (directLight.width) in.directLight = view(directLight);
@@ -52,6 +53,7 @@ const std::vector<DefaultPass> kDefaultPasses = {
     {"specular_f0", {}},
     {"roughness", {}},
     {"glossy_hit_distance", {}},
+    {"visibility", {}},
 };
 
 std::vector<std::string> layeredBufferNames() {
@@ -94,6 +96,7 @@ void SequenceReader::checkFrame(int index, const FrameData& f) const {
     if (f.previousPosition.width) check(f.previousPosition, "previous_position");
     if (f.previousNormal.width) check(f.previousNormal, "previous_normal");
     if (f.diffuseIndirect.width) check(f.diffuseIndirect, "diffuse_indirect");
+    if (f.visibility.width) check(f.visibility, "visibility");
     for (const auto& [img, name] : f.maraBuffers())
         if (img->width) check(*img, name);
 }

@@ -20,6 +20,8 @@ struct FrameData {
     /// FrameInput::motion (2 channels, or 3 with the depth offset), previousPosition,
     /// previousNormal and diffuseIndirect; empty when the sequence has none.
     ImageF motion, previousPosition, previousNormal, diffuseIndirect;
+    /// FrameInput::visibility (1 channel); empty when the sequence has none.
+    ImageF visibility;
     /// Mara et al. 2017's factorisation (FrameInput::matteIndirect ...); empty when absent.
     ImageF matteIndirect, glossyIndirect, directLight, specularF0, roughness, glossyHitDistance;
     bool reset = false; ///< a camera cut: the history is dropped at this frame

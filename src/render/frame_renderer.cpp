@@ -95,6 +95,8 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
     out.previousNormal = objects ? ImageF(w, h, 3) : ImageF();
     out.reference = referenceSpp > 0 ? ImageF(w, h, 3) : ImageF();
     out.emission = ImageF(w, h, 3);
+    const bool sunlit = lights.environment().sun.enabled();
+    out.visibility = sunlit ? ImageF(w, h, 1) : ImageF();
     const bool factored = factoredDirectSpp_ > 0;
     for (ImageF* img : {&out.matteIndirect, &out.glossyIndirect, &out.directLight, &out.specularF0,
                         &out.roughness, &out.glossyHitDistance})
@@ -167,6 +169,7 @@ bool FrameRenderer::render(int index, const CameraPose& pose, const CameraPose& 
                 store3(out.position.data(), i, p);
                 out.extras[0].data()[i] = ph.hit ? float(s.material) : -1.0f;
                 out.extras[1].data()[i] = ph.hit ? s.roughness : 1.0f;
+                if (sunlit) out.visibility.data()[i] = integrator.sunVisibility(ph, localRays);
                 out.aovs[0].second.data()[i] = dot(p - pose.position, forward);
                 // Where this point was a frame ago: objects carry it, the sky stays put.
                 Vec3 pp = p, pn = ph.hit ? s.ns : -1.0f * dir;

@@ -29,7 +29,7 @@ class FrameRenderer {
                   uint32_t seed);
 
     /// Fills `out` (colour, albedo, normal, position, emission, motion, extras material_id and
-    /// roughness, AOVs depth, direct, indirect, diffuse, glossy; reference when referenceSpp >
+    /// roughness, the sun's visibility when the scene has a sun, AOVs depth, direct, indirect, diffuse, glossy; reference when referenceSpp >
     /// 0). With `objects` (a scene whose objects move), also the previous position and normal of
     /// each visible point, and motion vectors that follow the objects. Returns false when
     /// `cancel` became true (out is then incomplete and must be dropped).

@@ -109,6 +109,17 @@ PrimaryHit Integrator::primary(Vec3 origin, Vec3 direction, float spreadAngle,
     return ph;
 }
 
+float Integrator::sunVisibility(const PrimaryHit& first, uint64_t& rays) const {
+    const Sun& sun = lights_.environment().sun;
+    if (!first.hit || !sun.enabled()) return 0.0f;
+    const SurfacePoint& sp = first.surface;
+    const float c = dot(sp.ns, sun.direction);
+    // Below the geometric surface the shadow ray would start inside the object.
+    if (c <= 0 || dot(sp.ng, sun.direction) <= 0) return 0.0f;
+    ++rays;
+    return accel_.occluded(sp.p + offsetScale(sp.p) * sp.ng, sun.direction, 1e30f) ? 0.0f : c;
+}
+
 PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t& rays) const {
     PathContribution out;
     const Environment& env = lights_.environment();

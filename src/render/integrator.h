@@ -59,6 +59,10 @@ class Integrator {
     /// spreadAngle: radians per pixel, for the texture level of detail (ray cones).
     PrimaryHit primary(Vec3 origin, Vec3 direction, float spreadAngle, uint64_t& rays) const;
     PathContribution sample(const PrimaryHit& first, Rng& rng, uint64_t& rays) const;
+    /// The sun's noise-free visibility at the first hit times its cosine: max(0, n . l) when
+    /// the ray towards the sun's centre escapes, else 0 (also for misses and a scene without
+    /// a sun). FrameInput::visibility.
+    float sunVisibility(const PrimaryHit& first, uint64_t& rays) const;
     /// Mara et al.'s factored sample with `directSamples` light samples at the first hit
     /// (render/factored_paths.cpp).
     FactoredSample factoredSample(const PrimaryHit& first, int directSamples, Rng& rng,

@@ -76,6 +76,7 @@ void checkFrameInput(const FrameInput& f, int extrasNeeded, Backend backend) {
     if (f.extras.size() > 16) throw Error("at most 16 extra buffers");
     for (size_t e = 0; e < f.extras.size(); ++e)
         check(f.extras[e], "extra" + std::to_string(e), kScalar, w, h);
+    if (f.visibility.data) check(f.visibility, "visibility", kScalar, w, h);
     if (extrasNeeded > int(f.extras.size()))
         throw Error("feature extra" + std::to_string(extrasNeeded - 1) + " needs " +
                     std::to_string(extrasNeeded) + " extra buffers, the frame has " +

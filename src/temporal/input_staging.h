@@ -40,6 +40,8 @@ template <class Pack> InputPlanes stagePlanes(const FrameInput& f, Pack&& pack) 
     p.glossyHitDistance = put(f.glossyHitDistance, 1, 16);
     p.extraCount = int(f.extras.size());
     for (int e = 0; e < p.extraCount; ++e) p.extras[e] = put(f.extras[size_t(e)], 1, 17 + e);
+    if (f.visibility.data)
+        p.extras[p.extraCount++] = put(f.visibility, 1, 16 + InputPlanes::kMaxExtras);
     return p;
 }
 

@@ -9,7 +9,8 @@ namespace bmfr {
 /// A frame's input buffers as packed arrays (3 floats per pixel; extras 1), on host or device.
 /// temporal/input_staging.h makes them from a FrameInput of any stride and channel count.
 struct InputPlanes {
-    static constexpr int kMaxExtras = 16;
+    /// The frame's extras (at most 16), then its visibility when it has one.
+    static constexpr int kMaxExtras = 17;
     const float* color = nullptr;
     const float* albedo = nullptr;
     const float* normal = nullptr;

@@ -23,15 +23,16 @@ struct StageSwitches {
 struct BmfrSettings : TemporalSettings {
     int blockSize = 32;                                ///< edge of the square regression block
     std::vector<Feature> features = defaultFeatures(); ///< columns of T; the constant 1 first
-    float noiseAmplitude = 0.01f;  ///< half-width of the regularisation noise on feature columns
-    float firstBlendAlpha = 0.2f;  ///< phase I minimum new-frame weight (CMA, then EMA)
-    float secondBlendAlpha = 0.1f; ///< phase III minimum new-frame weight
-    uint32_t seed = 0;             ///< regularisation noise seed
-    bool halfHistory = true;       ///< normals and colour history as 16-bit floats (else float32)
-    bool excludeEmitters = false;  ///< fit blocks without bright patches (lights in view)
-    float emitterRatio = 16.0f;    ///< a patch pixel is this many times the block's median
-    bool secondGrid = false;       ///< pixels without history also fitted on a shifted grid
-    bool clampFireflies = false;   ///< isolated pixels far above their block clamped in the fit
+    float noiseAmplitude = 0.01f;   ///< half-width of the regularisation noise on feature columns
+    float firstBlendAlpha = 0.2f;   ///< phase I minimum new-frame weight (CMA, then EMA)
+    float secondBlendAlpha = 0.1f;  ///< phase III minimum new-frame weight
+    uint32_t seed = 0;              ///< regularisation noise seed
+    bool halfHistory = true;        ///< normals and colour history as 16-bit floats (else float32)
+    bool excludeEmitters = false;   ///< fit blocks without bright patches (lights in view)
+    float emitterRatio = 16.0f;     ///< a patch pixel is this many times the block's median
+    bool secondGrid = false;        ///< pixels without history also fitted on a shifted grid
+    bool clampFireflies = false;    ///< isolated pixels far above their block clamped in the fit
+    bool visibilityFeature = false; ///< fit FrameInput::visibility as one more feature, if given
     StageSwitches stages{};
 };
 

@@ -11,7 +11,11 @@
 namespace bmfr {
 
 struct __attribute__((visibility("hidden"))) BmfrDenoiser::Impl {
-    BmfrSettings settings;
+    BmfrSettings settings; ///< as given
+    /// What the passes run with: `settings`, plus the visibility column when the frames give
+    /// one (visibilityFeature). It is staged as the extra after the frame's own.
+    BmfrSettings active;
+    int visibilityExtra = -2; ///< the visibility column's extra index; -1 none; -2 no frame yet
     std::unique_ptr<BmfrPasses> passes;
     ThreadPool pool;
     BmfrTimeline timeline;
@@ -20,9 +24,10 @@ struct __attribute__((visibility("hidden"))) BmfrDenoiser::Impl {
     bool debug = false;
 
     explicit Impl(const BmfrSettings& s)
-        : settings(s), passes(makeBmfrPasses(s.backend)), pool(s.threads) {}
+        : settings(s), active(s), passes(makeBmfrPasses(s.backend)), pool(s.threads) {}
 
     void fillNoise();
+    bool selectFeatures(const FrameInput& frame);
     int extrasNeeded() const {
         int n = 0;
         for (const Feature& f : settings.features)
@@ -32,16 +37,44 @@ struct __attribute__((visibility("hidden"))) BmfrDenoiser::Impl {
 };
 
 void BmfrDenoiser::Impl::fillNoise() {
-    const int W = settings.blockSize * settings.blockSize, M = int(settings.features.size());
-    const float eps = settings.noiseAmplitude;
+    const int W = active.blockSize * active.blockSize, M = int(active.features.size());
+    const float eps = active.noiseAmplitude;
     const uint32_t frame = uint32_t(timeline.history.frameIndex);
     timeline.noise.resize(size_t(M) * W);
     for (int f = 0; f < M; ++f) {
-        const bool constant = settings.features[size_t(f)].source == FeatureSource::One;
+        const bool constant = active.features[size_t(f)].source == FeatureSource::One;
         for (int k = 0; k < W; ++k)
             timeline.noise[size_t(f) * W + k] =
-                regularisationNoise(settings.seed, frame, f, k, eps, constant);
+                regularisationNoise(active.seed, frame, f, k, eps, constant);
     }
+}
+
+/// Sets `active` for this frame; true when its feature columns changed (the passes must be
+/// allocated again). Within a history the visibility must come with every frame or none.
+bool BmfrDenoiser::Impl::selectFeatures(const FrameInput& frame) {
+    const int extra =
+        settings.visibilityFeature && frame.visibility.data ? int(frame.extras.size()) : -1;
+    if (extra == visibilityExtra) return false;
+    if (visibilityExtra != -2 && timeline.history.hasHistory() && !frame.reset)
+        throw Error(visibilityExtra < 0 || extra < 0
+                        ? std::string("this frame ") + (extra < 0 ? "lacks" : "brings") +
+                              " a visibility buffer and the earlier frames " +
+                              (extra < 0 ? "had one" : "did not") +
+                              " (visibilityFeature fits it as a feature): give it on every frame "
+                              "or none, or reset between"
+                        : "this frame has " + std::to_string(frame.extras.size()) +
+                              " extra buffers and a visibility buffer, the earlier frames " +
+                              std::to_string(visibilityExtra) +
+                              " (the visibility is fitted after the extras)");
+    visibilityExtra = extra;
+    active = settings;
+    if (extra >= 0) {
+        Feature v;
+        v.source = FeatureSource::Extra;
+        v.extraIndex = extra;
+        active.features.push_back(v);
+    }
+    return true;
 }
 
 BmfrDenoiser::BmfrDenoiser(const BmfrSettings& settings) {
@@ -68,13 +101,15 @@ const BmfrSettings& BmfrDenoiser::settings() const {
 ImageView BmfrDenoiser::denoise(const FrameInput& frame) {
     Impl& m = *impl_;
     checkFrameInput(frame, m.extrasNeeded(), m.settings.backend);
+    const bool newColumns = m.selectFeatures(frame);
     TemporalHistory& h = m.timeline.history;
-    if (h.begin(frame)) m.passes->allocate(h.width, h.height, m.settings, m.pool.threadCount());
+    if (h.begin(frame) || newColumns)
+        m.passes->allocate(h.width, h.height, m.active, m.pool.threadCount());
     if (m.passes->needsHostNoise()) m.fillNoise();
 
     m.stats.times.clear();
     const bool backendStages = m.settings.backend == Backend::Cuda;
-    const BmfrPassContext ctx{m.settings, m.staging.stage(frame, backendStages), frame, m.timeline,
+    const BmfrPassContext ctx{m.active, m.staging.stage(frame, backendStages), frame, m.timeline,
                               m.pool};
     const InputCounters counters = m.passes->run(ctx, m.stats.times);
     if (m.debug) m.passes->captureDebug(m.timeline);

@@ -56,6 +56,11 @@ SettingsTable<S> ownSettings() {
          "the fit and a second fit on the grid moved by half a block, so the block edges blur "
          "out",
          BMFR_FIELD(S, secondGrid)},
+        {"visibilityFeature", "visibility-feature", "", {},
+         "when frames carry a visibility buffer (the key light's noise-free shadow times its "
+         "cosine), fit it as one more feature column, so a hard shadow edge does not block up; "
+         "give it on every frame or none",
+         BMFR_FIELD(S, visibilityFeature)},
         {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
          "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
          "median, above which a pixel may belong to an emitter",
@@ -84,10 +89,13 @@ void validate(const BmfrSettings& s) {
     if (s.blockSize % 2 != 0) throw Error("setting blockSize must be even");
     if (s.features.empty() || s.features.front().source != FeatureSource::One)
         throw Error("setting features: the first feature must be the constant 1");
-    if (int(s.features.size()) > kMaxFeatures)
-        throw Error("setting features: " + std::to_string(s.features.size()) +
-                    " features, at most " + std::to_string(kMaxFeatures));
-    if (int(s.features.size()) + 3 > s.blockSize * s.blockSize)
+    // Room for the visibility column too, so that turning it on never fails later.
+    const int columns = int(s.features.size()) + (s.visibilityFeature ? 1 : 0);
+    if (columns > kMaxFeatures)
+        throw Error("setting features: " + std::to_string(s.features.size()) + " features" +
+                    (s.visibilityFeature ? " and the visibility" : "") + ", at most " +
+                    std::to_string(kMaxFeatures) + " columns");
+    if (columns + 3 > s.blockSize * s.blockSize)
         throw Error("setting features: more features than pixels in a block");
 }
 

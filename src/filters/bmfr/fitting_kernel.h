@@ -54,7 +54,7 @@ struct BlockFitScratch {
     float* clean;    ///< M x W scaled feature columns, noise-free (for the weighted sum)
     float* work;     ///< (M + 3) x W noised columns then colour, overwritten by the QR
     float* sum;      ///< 3 x W weighted sums
-    float* sources;  ///< (6 + 16) x W gathered normal, position and extras
+    float* sources;  ///< (6 + InputPlanes::kMaxExtras) x W gathered normal, position and extras
     int* imageIndex; ///< W: image pixel of each block pixel, -1 when not owned
     uint8_t* mask;   ///< W: the emitter mask (emitter_exclusion.h)
     int* histogram;  ///< kMaskBuckets

@@ -17,7 +17,7 @@ namespace bmfr::cpu {
 struct Scratch {
     std::vector<float> clean; ///< M scaled feature columns, noise-free (used for the sum)
     std::vector<float> work;  ///< M noised columns + 3 colour columns, overwritten by QR
-    std::vector<float> soa;   ///< (9 + 16) x W: a border block's normal, position, colour; extras
+    std::vector<float> soa;   ///< (9 + InputPlanes::kMaxExtras) x W: a border block's normal, position, colour; extras
     std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
     std::vector<float> ones;     ///< one block row of 1 (+8 of padding): the constant feature
     std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)

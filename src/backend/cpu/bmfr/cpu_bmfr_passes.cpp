@@ -34,7 +34,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         for (Scratch& sc : b_.scratch) {
             sc.clean.assign(M * W, 0.0f);
             sc.work.assign((M + 3) * size_t(qrColumnStride(int(W))), 0.0f);
-            sc.soa.assign((9 + 16) * W, 0.0f);
+            sc.soa.assign((9 + InputPlanes::kMaxExtras) * W, 0.0f);
             sc.imageIndex.assign(W, -1);
             sc.ones.assign(size_t(s.blockSize) + 8, 1.0f);
             sc.rows.assign(3 * ResolvedRows::rowFloats(w), 0.0f);

@@ -145,7 +145,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
             sc.clean.assign(M * W, 0.0f);
             sc.work.assign((M + 3) * W, 0.0f);
             sc.sum.assign(3 * W, 0.0f);
-            sc.sources.assign((6 + 16) * W, 0.0f);
+            sc.sources.assign((6 + InputPlanes::kMaxExtras) * W, 0.0f);
             sc.imageIndex.assign(W, -1);
             sc.mask.assign(W, 0);
             sc.histogram.assign(kMaskBuckets, 0);

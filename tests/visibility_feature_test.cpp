@@ -1,0 +1,160 @@
+// The key light's visibility as a BMFR feature (BmfrSettings::visibilityFeature): a hard shadow
+// edge across blocks fitted exactly against the analytic image, the renderer's sun visibility
+// against a hand-computed shadow, and the input errors.
+#include "io/sequence.h"
+#include "render/sequence_renderer.h"
+#include "test_scenes.h"
+#include "test_support.h"
+#include <bmfr/bmfr.h>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+
+namespace bmfr {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kW = 64, kH = 48;
+
+/// The sun's visibility times its cosine: a diagonal hard edge.
+float visibilityAt(int x, int y) {
+    return float(x) + 0.6f * float(y) < 40.0f ? 0.8f : 0.0f;
+}
+
+/// A fronto-parallel plane whose demodulated radiance is 0.4 + 2 visibility + 0.05 p.x (positive:
+/// p.x is within 6.7 of 0), and albedo 0.5: exactly in the span of the paper's features and the
+/// visibility.
+FrameData shadowFrame() {
+    const Mat4 vp = test::cameraAt({0, 0, 0}, kW, kH);
+    FrameData f = test::planeFrame(vp, kW, kH, {0, 0, 0}, [](int, int) { return -5.0f; });
+    f.visibility = ImageF(kW, kH, 1);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const long i = long(y) * kW + x;
+            const float v = visibilityAt(x, y), px = f.position.data()[3 * i];
+            const float radiance = 0.4f + 2.0f * v + 0.05f * px;
+            store3(f.albedo.data(), i, {0.5f, 0.5f, 0.5f});
+            store3(f.color.data(), i, {0.5f * radiance, 0.4f * radiance, 0.3f * radiance});
+            f.visibility.data()[i] = v;
+        }
+    return f;
+}
+
+/// The worst absolute error of the third frame against the exact image.
+double worstError(const std::string& backend, bool visibility) {
+    const FrameData frame = shadowFrame();
+    auto filter = makeFilter("bmfr", {{"backend", backend},
+                                      {"taa", "false"},
+                                      {"noiseAmplitude", "0"},
+                                      {"halfHistory", "false"},
+                                      {"visibilityFeature", visibility ? "true" : "false"}});
+    ImageView out;
+    for (int i = 0; i < 3; ++i) out = filter->denoise(frame.input());
+    double worst = 0.0;
+    for (long k = 0; k < long(kW) * kH * 3; ++k)
+        worst = std::max(worst, std::fabs(double(out.data[k]) - frame.color.data()[k]));
+    return worst;
+}
+
+TEST(VisibilityFeature, AHardShadowEdgeIsFittedExactly) {
+    for (const char* backend : {"reference", "cpu"}) {
+        // The paper's features cannot bend along the edge: the blocks it crosses smear it.
+        EXPECT_GT(worstError(backend, false), 0.1) << backend;
+        EXPECT_LT(worstError(backend, true), 2e-3) << backend;
+    }
+}
+
+TEST(VisibilityFeature, OffOrWithoutTheBufferTheFitIsThePapers) {
+    // The switch with frames that have no visibility is the same bits as the switch off.
+    FrameData frame = shadowFrame();
+    const FrameData plain = [&] {
+        FrameData f = frame;
+        f.visibility = ImageF();
+        return f;
+    }();
+    auto on = makeFilter("bmfr", {{"visibilityFeature", "true"}});
+    auto off = makeFilter("bmfr", {});
+    for (int i = 0; i < 2; ++i) {
+        const ImageView a = on->denoise(plain.input()), b = off->denoise(frame.input());
+        for (long k = 0; k < long(kW) * kH * 3; ++k) ASSERT_EQ(a.data[k], b.data[k]) << k;
+    }
+}
+
+TEST(VisibilityFeature, ItComesWithEveryFrameOrNoneAndIsChecked) {
+    const FrameData frame = shadowFrame();
+    FrameData without = frame;
+    without.visibility = ImageF();
+    auto filter = makeFilter("bmfr", {{"visibilityFeature", "true"}});
+    filter->denoise(frame.input());
+    EXPECT_NE(testing::errorOf([&] {
+                  filter->denoise(without.input());
+              }).find("this frame lacks a visibility buffer and the earlier frames had one"),
+              std::string::npos);
+    // After a cut the feature set may change.
+    without.reset = true;
+    EXPECT_EQ(testing::errorOf([&] { filter->denoise(without.input()); }), "(no error)");
+
+    FrameData small = frame;
+    small.visibility = ImageF(kW / 2, kH, 1);
+    EXPECT_NE(testing::errorOf([&] { filter->denoise(small.input()); }).find("visibility"),
+              std::string::npos);
+    // A non-finite visibility is counted and read as 0.
+    FrameData bad = frame;
+    bad.visibility.data()[5] = std::nanf("");
+    filter->reset();
+    const ImageView out = filter->denoise(bad.input());
+    EXPECT_EQ(filter->lastStats().nonFiniteInputs, 1);
+    for (long k = 0; k < long(kW) * kH * 3; ++k) ASSERT_TRUE(std::isfinite(out.data[k]));
+    // 24 feature columns and the visibility do not fit.
+    EXPECT_NE(testing::errorOf([] {
+                  makeFilter("bmfr", {{"visibilityFeature", "true"},
+                                      {"features", "1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,p.y^2,p.z^2,"
+                                                   "p.x^3,p.y^3,p.z^3,p.x^4,p.y^4,p.z^4,n.x^2,"
+                                                   "n.y^2,n.z^2,n.x^3,n.y^3,n.z^3,p.x^5,p.y^5"}});
+              }).find("and the visibility"),
+              std::string::npos);
+}
+
+TEST(VisibilityFeature, TheRendererWritesTheSunsShadowByHand) {
+    // A floor (y = 0, x and z in [-2, 2]) under a slab (y = 1, x in [-0.5, 0.5]); the sun
+    // along (1, 1, 0) throws the slab's shadow onto x in [-1.5, -0.5]. Seen from above.
+    const fs::path d = testing::freshDir("visibility", "render");
+    std::ofstream(d / "m.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n"
+                                  "v -0.5 1 -2\nv 0.5 1 -2\nv 0.5 1 2\nv -0.5 1 2\n"
+                                  "f 1 3 2\nf 1 4 3\nf 5 7 6\nf 5 8 7\n";
+    std::ofstream(d / "s.json") << R"({"mesh": "m.obj", "width": 48, "height": 32, "frames": 1,
+        "reference_spp": 0, "jitter": false,
+        "sun": {"direction": [1, 1, 0], "angular_diameter_deg": 0.53, "irradiance": [3, 3, 3]},
+        "camera": {"keyframes": [{"position": [0, 6, 0.01], "target": [0, 0, 0]}]}})";
+    render::SceneDescription desc =
+        render::loadSceneDescription((d / "s.json").string(), d.string());
+    render::renderSequence(
+        desc, {(d / "out").string()}, nullptr, [](int, int) {}, [](const std::string&) {});
+    FrameData f;
+    SequenceReader::open((d / "out").string())->load(0, f);
+    ASSERT_EQ(f.visibility.width, 48);
+    const float lit = 1.0f / std::sqrt(2.0f);
+    int shadowed = 0, sunlit = 0;
+    for (long i = 0; i < 48L * 32; ++i) {
+        const float* p = f.position.data() + 3 * i;
+        const float v = f.visibility.data()[i];
+        if (std::fabs(p[0]) > 1.95f || std::fabs(p[2]) > 1.95f) continue; // edges and sky
+        if (std::fabs(p[1] - 1.0f) < 1e-3f) {                             // the slab's top
+            EXPECT_NEAR(v, lit, 1e-4f) << i;
+            continue;
+        }
+        ASSERT_NEAR(p[1], 0.0f, 1e-3f) << i;
+        if (std::fabs(p[0] + 1.5f) < 0.05f || std::fabs(p[0] + 0.5f) < 0.05f) continue;
+        const bool inShadow = p[0] > -1.5f && p[0] < -0.5f;
+        EXPECT_NEAR(v, inShadow ? 0.0f : lit, 1e-4f) << p[0] << " " << p[2];
+        (inShadow ? shadowed : sunlit) += 1;
+    }
+    EXPECT_GT(shadowed, 50);
+    EXPECT_GT(sunlit, 50);
+    fs::remove_all(d);
+}
+
+} // namespace
+} // namespace bmfr
