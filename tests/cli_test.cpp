@@ -366,7 +366,8 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     EXPECT_EQ(presetSettings("bmfr", "quality"), (SettingValues{{"taaSameSurface", "true"},
                                                                 {"excludeEmitters", "true"},
                                                                 {"secondGrid", "true"},
-                                                                {"clampFireflies", "true"}}));
+                                                                {"clampFireflies", "true"},
+                                                                {"visibilityFeature", "true"}}));
     EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
     EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
@@ -374,7 +375,8 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     ASSERT_EQ(listed.code, 0) << listed.output;
     EXPECT_NE(
         listed.output.find(
-            "bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true clampFireflies=true"),
+            "bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true clampFireflies=true "
+            "visibilityFeature=true"),
         std::string::npos)
         << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
@@ -390,11 +392,12 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     const std::vector<float>
         quality = denoise("quality", "--preset quality"),
         bySwitch = denoise("switch",
-                           "--taa-same-surface --exclude-emitters --second-grid --clamp-fireflies"),
+                           "--taa-same-surface --exclude-emitters --second-grid --clamp-fireflies "
+                           "--visibility-feature"),
         faithful = denoise("faithful", "--preset faithful"), plain = denoise("plain", ""),
         overridden = denoise("override", "--preset quality --taa-same-surface false "
                                          "--exclude-emitters false --second-grid false "
-                                         "--clamp-fireflies false");
+                                         "--clamp-fireflies false --visibility-feature false");
     ASSERT_FALSE(quality.empty());
     EXPECT_EQ(quality, bySwitch);
     EXPECT_EQ(faithful, plain);

@@ -140,8 +140,12 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     // Device copies of every frame's buffers, made before timing starts.
     std::vector<std::unique_ptr<cuda::DeviceImageCopy>> deviceCopies;
     auto onDevice = [&deviceCopies](FrameInput in) {
-        for (ImageView* v : {&in.color, &in.albedo, &in.normal, &in.position, &in.emission,
-                             &in.motion, &in.previousPosition, &in.previousNormal}) {
+        std::vector<ImageView*> views = {
+            &in.color,  &in.albedo,           &in.normal,         &in.position,  &in.emission,
+            &in.motion, &in.previousPosition, &in.previousNormal, &in.visibility};
+        for (ImageView& e : in.extras) views.push_back(&e);
+        for (ImageView* v : views) {
+            if (!v->data) continue;
             deviceCopies.push_back(std::make_unique<cuda::DeviceImageCopy>(*v));
             *v = deviceCopies.back()->view();
         }

@@ -52,7 +52,8 @@ SettingValues presetSettings(const std::string& name, const std::string& preset)
     static const SettingValues kQuality = {{"taaSameSurface", "true"},
                                            {"excludeEmitters", "true"},
                                            {"secondGrid", "true"},
-                                           {"clampFireflies", "true"}};
+                                           {"clampFireflies", "true"},
+                                           {"visibilityFeature", "true"}};
     const std::vector<SettingDoc> docs = filterSettings(name);
     if (preset == "faithful") return {};
     if (preset != "quality")

@@ -131,15 +131,19 @@ Vec3 albedoOf(int material, Vec3 p) {
     }
 }
 
+/// Light k's cosine at p where it is unshadowed, else 0 (light 0's is FrameInput::visibility).
+float litCosine(const Objects& s, Vec3 p, Vec3 n, int k) {
+    const Vec3 l = kLights[k] - p;
+    const float cosine = dot(n, l) / length(l);
+    return cosine <= 0 || occluded(s, p + 1e-3f * n, kLights[k]) ? 0.0f : cosine;
+}
+
 /// Demodulated outgoing radiance: direct light from both lights plus a smooth ambient term.
 Vec3 irradiance(const Objects& s, Vec3 p, Vec3 n) {
     Vec3 e = (0.04f + 0.03f * n.y) * Vec3{1, 1, 1};
     for (int k = 0; k < 2; ++k) {
-        Vec3 l = kLights[k] - p;
-        float d2 = dot(l, l);
-        float cosine = dot(n, l) / std::sqrt(d2);
-        if (cosine <= 0 || occluded(s, p + 1e-3f * n, kLights[k])) continue;
-        e += (cosine / d2) * kLightPower[k];
+        const Vec3 l = kLights[k] - p;
+        e += (litCosine(s, p, n, k) / dot(l, l)) * kLightPower[k];
     }
     return e;
 }
@@ -229,6 +233,7 @@ void ProceduralScene::render(int index, FrameData& f, int previous) const {
     for (ImageF* img : {&f.color, &f.albedo, &f.normal, &f.position, &f.reference})
         img->resize(w, h, 3);
     f.extras.assign(1, ImageF(w, h, 1));
+    f.visibility = ImageF(w, h, 1);
     f.motion = f.previousPosition = f.previousNormal = ImageF();
     if (opt_.motionVectors) {
         f.motion.resize(w, h, 2);
@@ -261,6 +266,7 @@ void ProceduralScene::render(int index, FrameData& f, int previous) const {
             store3(f.normal.data(), i, hit.n);
             store3(f.position.data(), i, p);
             f.extras[0].data()[i] = float(hit.material);
+            f.visibility.data()[i] = litCosine(now, p, hit.n, 0);
             if (opt_.motionVectors) {
                 Vec3 pp, pn;
                 previousOf(hit.material, p, hit.n, now, was, pp, pn);

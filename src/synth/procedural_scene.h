@@ -25,9 +25,9 @@ struct ProceduralSceneOptions {
 class ProceduralScene {
   public:
     explicit ProceduralScene(const ProceduralSceneOptions& options);
-    /// Renders frame `index`: noisy colour, albedo, normal, position, extras (material id),
-    /// reference (the exact truth), matrix and jitter; with motionVectors, motion and previous
-    /// positions and normals too.
+    /// Renders frame `index`: noisy colour, albedo, normal, position, extras (material id), the
+    /// key light's visibility, reference (the exact truth), matrix and jitter; with motionVectors,
+    /// motion and previous positions and normals too.
     void render(int index, FrameData& out) const { render(index, out, index - 1); }
     /// The same, with the motion vectors and previous positions pointing to frame `previous`
     /// (a sequence played backwards: index + 1).

@@ -34,6 +34,9 @@ const FilterCase kFilters[] = {
       {"block size 64", {{"blockSize", "64"}}},
       {"no regularisation: rank-deficient blocks", {{"noiseAmplitude", "0"}}},
       {"an extra feature", {{"features", "1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,p.y^2,p.z^2,extra0"}}},
+      {"the visibility after an extra",
+       {{"visibilityFeature", "true"},
+        {"features", "1,n.x,n.y,n.z,p.x,p.y,p.z,p.x^2,p.y^2,p.z^2,extra0"}}},
       {"block size 14, exponents 3, 0.5 and 2 on an extra",
        {{"blockSize", "14"}, {"features", "1,n.x,n.y,n.z,p.x,p.y^3,p.z^0.5,p.x^2,extra0^2"}}}}},
     {"svgf",
@@ -127,6 +130,7 @@ struct ProceduralFrames {
                 f.color.pixels[5] = NAN;
                 f.normal.pixels[3 * 17 + 1] = INFINITY;
                 f.position.pixels.back() = -INFINITY;
+                f.visibility.pixels[29] = NAN;
                 if (moving) {
                     f.motion.pixels[2 * 40] = NAN;
                     f.motion.pixels[2 * 41 + 1] = -INFINITY;

@@ -53,7 +53,7 @@ def test_same_bits_as_the_cli(sequence, tmp_path, name, extra):
     count = 0
     for fr in seq:
         out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"),
-                        extras=fr["extras"])
+                        extras=fr["extras"], visibility=fr.get("visibility"))
         expected = bmfr.read_exr(str(tmp_path / f"denoised_{fr['index']:04d}.exr"))
         assert out.shape == (32, 48, 3) and out.dtype == np.float32
         assert np.array_equal(out, expected), f"frame {fr['index']} differs from the CLI"
@@ -66,7 +66,7 @@ def test_the_quality_preset_gives_the_cli_bits(sequence, tmp_path):
     cli("denoise", sequence, "-o", tmp_path, "--preset", "quality", "--no-png", "--no-flip", "-q")
     assert bmfr.preset("bmfr", "quality") == {
         "taa_same_surface": "true", "exclude_emitters": "true", "second_grid": "true",
-        "clamp_fireflies": "true"}
+        "clamp_fireflies": "true", "visibility_feature": "true"}
     assert bmfr.preset("bmfr", "faithful") == {}
     with pytest.raises(ValueError, match="unknown preset 'fast'"):
         bmfr.preset("bmfr", "fast")
@@ -74,7 +74,7 @@ def test_the_quality_preset_gives_the_cli_bits(sequence, tmp_path):
     f = bmfr.Filter("bmfr", **sequence_settings(seq.info), **bmfr.preset("bmfr", "quality"))
     for fr in seq:
         out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"),
-                        extras=fr["extras"])
+                        extras=fr["extras"], visibility=fr.get("visibility"))
         expected = bmfr.read_exr(str(tmp_path / f"denoised_{fr['index']:04d}.exr"))
         assert np.array_equal(out, expected), f"frame {fr['index']} differs from the CLI"
 
