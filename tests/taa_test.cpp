@@ -3,6 +3,7 @@
 // reference's per-pixel code and the CPU backend's eight-wide rows.
 #include "backend/cpu/cpu_taa.h"
 #include "temporal/taa.h"
+#include <cmath>
 #include <gtest/gtest.h>
 #include <vector>
 
@@ -32,28 +33,24 @@ struct EdgeFrame {
 //   no tap accepted:        the current colour, 0.2
 constexpr float kAllTaps = 0.44f, kSameSurface = 0.28f, kNoTap = 0.2f;
 
-float referenceTaa(const EdgeFrame& f, const uint8_t* accept) {
+float referenceTaa(const EdgeFrame& f, const uint8_t* accept, bool toneMapped = false) {
+    TaaInputs a{
+        f.current.data(), nullptr,   f.history.data(), f.previousPixel.data(), f.w, f.h, 0.2f,
+        accept,           toneMapped};
     std::vector<float> ycocg;
     for (size_t i = 0; i < f.current.size(); i += 3) {
-        const Vec3 v = rgbToYCoCg({f.current[i], f.current[i + 1], f.current[i + 2]});
+        const Vec3 v = rgbToYCoCg(taaSpace(a, {f.current[i], f.current[i + 1], f.current[i + 2]}));
         ycocg.insert(ycocg.end(), {v.x, v.y, v.z});
     }
-    const TaaInputs a{f.current.data(),
-                      ycocg.data(),
-                      f.history.data(),
-                      f.previousPixel.data(),
-                      f.w,
-                      f.h,
-                      0.2f,
-                      accept};
+    a.ycocg = ycocg.data();
     return taaPixel(a, 1, 1).y;
 }
 
-float cpuTaa(const EdgeFrame& f, const uint8_t* accept) {
+float cpuTaa(const EdgeFrame& f, const uint8_t* accept, bool toneMapped = false) {
     ThreadPool pool(1);
     std::vector<float> scratch(cpu::taaScratchFloats(f.w, f.h)), out(f.current.size());
     cpu::temporalAntiAliasing(pool, f.current.data(), f.history.data(), f.previousPixel.data(),
-                              scratch.data(), out.data(), f.w, f.h, 0.2f, true, accept);
+                              scratch.data(), out.data(), f.w, f.h, 0.2f, true, accept, toneMapped);
     return out[3 * (f.w + 1) + 1];
 }
 
@@ -61,10 +58,31 @@ TEST(Taa, HistoryFromAllTapsOrOnlyTheSameSurfaceMatchesHandValues) {
     const EdgeFrame f;
     std::vector<uint8_t> all(size_t(f.w * f.h), 15), first(all.size(), 1), none(all.size(), 0);
     for (auto taa : {referenceTaa, cpuTaa}) {
-        EXPECT_NEAR(taa(f, nullptr), kAllTaps, 1e-6f);
-        EXPECT_NEAR(taa(f, all.data()), kAllTaps, 1e-6f);
-        EXPECT_NEAR(taa(f, first.data()), kSameSurface, 1e-6f);
-        EXPECT_NEAR(taa(f, none.data()), kNoTap, 1e-6f);
+        EXPECT_NEAR(taa(f, nullptr, false), kAllTaps, 1e-6f);
+        EXPECT_NEAR(taa(f, all.data(), false), kAllTaps, 1e-6f);
+        EXPECT_NEAR(taa(f, first.data(), false), kSameSurface, 1e-6f);
+        EXPECT_NEAR(taa(f, none.data(), false), kNoTap, 1e-6f);
+    }
+}
+
+TEST(Taa, OnToneMappedValuesBlendsDisplayValuesAndClipsAtOne) {
+    // The authors' TAA: pixel (1, 1) blended as display values e(v) = v^(1/2.2), then decoded.
+    const auto e = [](double v) { return std::pow(v, 1 / 2.2); };
+    const double allTaps = std::pow(0.8 * 0.5 * (e(0.3) + e(0.7)) + 0.2 * e(0.2), 2.2);
+    const double sameSurface = std::pow(0.8 * e(0.3) + 0.2 * e(0.2), 2.2);
+    EdgeFrame f;
+    std::vector<uint8_t> first(size_t(f.w * f.h), 1), none(first.size(), 0);
+    for (auto taa : {referenceTaa, cpuTaa}) {
+        EXPECT_NEAR(taa(f, nullptr, true), allTaps, 1e-5);
+        EXPECT_NEAR(taa(f, first.data(), true), sameSurface, 1e-5);
+        EXPECT_NEAR(taa(f, none.data(), true), kNoTap, 1e-5);
+        EXPECT_GT(std::fabs(taa(f, nullptr, true) - kAllTaps), 1e-3) << "not the linear blend";
+    }
+    // Above 1 the display value, and so the output, is 1.
+    for (int c = 0; c < 3; ++c) f.current[3 * (f.w + 1) + c] = 3.0f;
+    for (auto taa : {referenceTaa, cpuTaa}) {
+        EXPECT_NEAR(taa(f, none.data(), true), 1.0f, 1e-6f);
+        EXPECT_NEAR(taa(f, none.data(), false), 3.0f, 1e-6f);
     }
 }
 

@@ -14,7 +14,7 @@ namespace bmfr {
 enum class Backend {
     Reference, ///< one readable scalar pass per stage: the specification
     Cpu,       ///< threads and SIMD, passes fused (default)
-    Cuda       ///< NVIDIA GPUs; not built yet: choosing it is an error
+    Cuda       ///< NVIDIA GPUs, where the build found CUDA (else choosing it is an error)
 };
 
 struct TemporalSettings {
@@ -24,6 +24,7 @@ struct TemporalSettings {
     float taaBlendAlpha = 0.2f;         ///< TAA weight of the current frame
     bool taa = true;                    ///< temporal anti-aliasing on the output
     bool taaSameSurface = false;        ///< TAA history only from taps on the same surface
+    bool taaToneMapped = false;         ///< TAA on display values, as the authors' (clips at 1)
     float albedoEpsilon = 0.001f;       ///< albedo floor when (de)modulating
     bool colorIsDemodulated = false;    ///< the colour input is already divided by albedo
     int threads = 0;                    ///< worker threads, 0 = all cores

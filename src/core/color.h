@@ -22,5 +22,15 @@ BMFR_HD float gammaEncode(float v) {
     v = v > 0.0f ? std::pow(v, 1.0f / 2.2f) : 0.0f;
     return v < 1.0f ? v : 1.0f;
 }
+BMFR_HD Vec3 gammaEncode(Vec3 c) {
+    return {gammaEncode(c.x), gammaEncode(c.y), gammaEncode(c.z)};
+}
+/// The inverse of gammaEncode on [0, 1]: x^2.2 (0 below 0, where a display shows black).
+BMFR_HD float gammaDecode(float v) {
+    return v > 0.0f ? std::pow(v, 2.2f) : 0.0f;
+}
+BMFR_HD Vec3 gammaDecode(Vec3 v) {
+    return {gammaDecode(v.x), gammaDecode(v.y), gammaDecode(v.z)};
+}
 
 } // namespace bmfr

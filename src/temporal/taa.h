@@ -23,6 +23,10 @@ struct TaaInputs {
     /// in the surface behind an edge, and a pixel with none keeps its current colour
     /// (TemporalSettings::taaSameSurface); without it from every tap (the authors').
     const uint8_t* accept = nullptr;
+    /// TAA on display values, gammaEncode (the authors' code runs it on its tone-mapped
+    /// frame): the current frame, its clamp box and the history are encoded, the result decoded
+    /// back to linear, so values above 1 come out as 1 (TemporalSettings::taaToneMapped).
+    bool toneMapped = false;
 };
 
 /// A filter's TAA inputs (ycocg is the pass's own): `accept` is used only when the settings
@@ -30,8 +34,18 @@ struct TaaInputs {
 inline TaaInputs taaInputs(const float* current, const float* history, const float* previousPixel,
                            int width, int height, const TemporalSettings& s,
                            const uint8_t* accept) {
-    return {current, nullptr, history,         previousPixel,
-            width,   height,  s.taaBlendAlpha, s.taaSameSurface ? accept : nullptr};
+    return {current,        nullptr, history,         previousPixel,
+            width,          height,  s.taaBlendAlpha, s.taaSameSurface ? accept : nullptr,
+            s.taaToneMapped};
+}
+
+/// Where TAA blends a colour: itself, or its display value (TaaInputs::toneMapped).
+BMFR_HD Vec3 taaSpace(const TaaInputs& a, Vec3 c) {
+    return a.toneMapped ? gammaEncode(c) : c;
+}
+/// What TAA outputs for a result in its space: linear again.
+BMFR_HD Vec3 taaOutput(const TaaInputs& a, Vec3 v) {
+    return a.toneMapped ? gammaDecode(v) : v;
 }
 
 /// Clamp box of pixel (x, y): the mean of the 3x3 box and the 5-tap cross bounds, in YCoCg.
@@ -58,12 +72,12 @@ BMFR_HD void taaClampBox(const TaaInputs& a, int x, int y, Vec3& lo, Vec3& hi) {
 /// history) keeps its current colour.
 BMFR_HD Vec3 taaPixel(const TaaInputs& a, int x, int y) {
     const long i = long(y) * a.width + x;
-    const Vec3 c = load3(a.current, i);
+    const Vec3 c = taaSpace(a, load3(a.current, i));
     const Vec2 pp{a.previousPixel[2 * i], a.previousPixel[2 * i + 1]};
     const BilinearFootprint fp = bilinearFootprint(pp);
-    if (fp.x0 < -1 || fp.y0 < -1 || fp.x0 >= a.width || fp.y0 >= a.height) return c;
+    if (fp.x0 < -1 || fp.y0 < -1 || fp.x0 >= a.width || fp.y0 >= a.height) return taaOutput(a, c);
     const uint8_t taps = a.accept ? a.accept[i] : uint8_t(15);
-    if (taps == 0) return c;
+    if (taps == 0) return taaOutput(a, c);
     Vec3 lo, hi;
     taaClampBox(a, x, y, lo, hi);
     // Bilinear history, renormalised at the image border (and over the accepted taps).
@@ -72,15 +86,15 @@ BMFR_HD Vec3 taaPixel(const TaaInputs& a, int x, int y) {
     for (int t = 0; t < 4; ++t) {
         const int tx = tapX(fp, t), ty = tapY(fp, t);
         if (tx < 0 || ty < 0 || tx >= a.width || ty >= a.height || !(taps & (1 << t))) continue;
-        old += fp.weight[t] * load3(a.history, long(ty) * a.width + tx);
+        old += fp.weight[t] * taaSpace(a, load3(a.history, long(ty) * a.width + tx));
         total += fp.weight[t];
     }
     if (total > 0.0f)
         old = old / total;
     else if (a.accept)
-        return c;
+        return taaOutput(a, c);
     const Vec3 clamped = yCoCgToRgb(clamp(rgbToYCoCg(old), lo, hi));
-    return lerp(clamped, c, a.alpha);
+    return taaOutput(a, lerp(clamped, c, a.alpha));
 }
 
 } // namespace bmfr

@@ -32,6 +32,11 @@ template <class S> SettingsTable<S> temporalSettingsTable() {
          "test (the same surface), so edges do not blur under motion; false: all four taps, "
          "the authors'",
          BMFR_FIELD(S, taaSameSurface)},
+        {"taaToneMapped", "taa-tone-mapped", "", {},
+         "TAA blends display values clamp(x^(1/2.2), 0, 1), as the authors' code does on its "
+         "tone-mapped frame, and converts the result back to linear (x^2.2): values above 1 come "
+         "out as 1. False: TAA on linear radiance",
+         BMFR_FIELD(S, taaToneMapped)},
         {"albedoEpsilon", "albedo-epsilon", "", {1e-6, 1},
          "demodulation divides by max(albedo, eps) and re-modulation multiplies by the same",
          BMFR_FIELD(S, albedoEpsilon)},

@@ -13,9 +13,11 @@ size_t taaScratchFloats(int width, int height);
 /// history at `previousPixel` (2 floats per pixel), weight `alpha` for the current frame.
 /// `current`, `history` and `out` hold 3 floats per pixel. `scratch` holds
 /// taaScratchFloats(width, height) floats. With enabled = false, `out` gets `current`. `accept`
-/// (accept masks, or null) restricts the history to the accepted taps (TaaInputs::accept).
+/// (accept masks, or null) restricts the history to the accepted taps (TaaInputs::accept);
+/// toneMapped blends display values (TaaInputs::toneMapped).
 void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
                           const float* previousPixel, float* scratch, float* out, int width,
-                          int height, float alpha, bool enabled, const uint8_t* accept);
+                          int height, float alpha, bool enabled, const uint8_t* accept,
+                          bool toneMapped);
 
 } // namespace bmfr::cpu

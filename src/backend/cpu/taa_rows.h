@@ -2,6 +2,7 @@
 #pragma once
 #include "backend/cpu/reproject8.h"
 #include "backend/cpu/simd.h"
+#include "core/color.h"
 #include <cstddef>
 
 namespace bmfr::cpu {
@@ -18,10 +19,25 @@ struct ResolvedRows {
     static size_t rowFloats(int width) { return kPlanes * pitch(width); }
 };
 
-/// Writes eight pixels' RGB and YCoCg at x (all eight lanes; the row has room for them).
-BMFR_SIMD_INLINE void storeResolved8(float* row, size_t pitch, int x, const simd::f8 rgb[3]) {
+/// gammaEncode (toneMapped) or gammaDecode of eight pixels, lane by lane: taaSpace and
+/// taaOutput (temporal/taa.h) of TaaInputs::toneMapped.
+BMFR_SIMD_INLINE void gammaLanes8(simd::f8 v[3], bool encode) {
     using namespace simd;
-    f8 ycocg[3];
+    alignas(32) float t[8];
+    for (int c = 0; c < 3; ++c) {
+        store8(t, v[c]);
+        for (float& x : t) x = encode ? gammaEncode(x) : gammaDecode(x);
+        v[c] = load8(t);
+    }
+}
+
+/// Writes eight pixels' RGB and YCoCg at x (all eight lanes; the row has room for them), in
+/// TAA's space: display values when toneMapped.
+BMFR_SIMD_INLINE void storeResolved8(float* row, size_t pitch, int x, const simd::f8 linear[3],
+                                     bool toneMapped) {
+    using namespace simd;
+    f8 rgb[3] = {linear[0], linear[1], linear[2]}, ycocg[3];
+    if (toneMapped) gammaLanes8(rgb, true);
     rgbToYCoCg8(rgb, ycocg);
     float* p = row + ResolvedRows::kRowPad + x;
     for (int c = 0; c < 3; ++c)
@@ -42,11 +58,12 @@ BMFR_SIMD_INLINE void finishResolvedRow(float* row, size_t pitch, int width) {
 /// row lies outside the image the nearest inside one stands in, which leaves every min and max
 /// unchanged. `history` is the previous output (3 floats per pixel); `out` gets 3 floats per
 /// pixel. With enabled = false the row is copied. `accept` (the row's accept masks, or null)
-/// restricts the history to the accepted taps, as TaaInputs::accept.
+/// restricts the history to the accepted taps, as TaaInputs::accept. With toneMapped the rows
+/// hold display values (storeResolved8), the history is encoded and the output decoded.
 BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* down, size_t pitch,
                              const float* previousX, const float* previousY, const float* history,
                              float* out, int w, int h, float alpha, bool enabled,
-                             const uint8_t* accept) {
+                             const uint8_t* accept, bool toneMapped) {
     using namespace simd;
     const int pad = ResolvedRows::kRowPad;
     for (int x = 0; x < w; x += 8) {
@@ -57,11 +74,16 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
             storeXyz8(out + 3 * x, n, c);
             continue;
         }
+        if (toneMapped) {
+            f8 linear[3] = {c[0], c[1], c[2]};
+            gammaLanes8(linear, false);
+            storeXyz8(out + 3 * x, n, linear);
+        }
         const Footprint8 fp = footprint8(load8(previousX + x), load8(previousY + x));
         const i8 mask = accept ? loadBytes(accept + x, n) : i8{} + 15;
         const i8 use = (fp.x0 >= -1) & (fp.y0 >= -1) & (fp.x0 < w) & (fp.y0 < h) & (mask != 0);
         if (!anyLane(use & firstLanes(n))) {
-            storeXyz8(out + 3 * x, n, c);
+            if (!toneMapped) storeXyz8(out + 3 * x, n, c);
             continue;
         }
         f8 lo[3], hi[3];
@@ -83,7 +105,12 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
             taps.inside[2] & ((mask & 4) != 0), taps.inside[3] & ((mask & 8) != 0)};
         f8 old[3];
         const f8 total = weightedTaps<3>(
-            taps, fp.weight, tapUse, [&](int k, f8* v) { tapXyz(taps, history, k, v); }, old);
+            taps, fp.weight, tapUse,
+            [&](int k, f8* v) {
+                tapXyz(taps, history, k, v);
+                if (toneMapped) gammaLanes8(v, true);
+            },
+            old);
         const i8 some = total > 0.0f;
         for (int ch = 0; ch < 3; ++ch) old[ch] = some ? old[ch] / total : old[ch];
         f8 y[3], clamped[3], r[3];
@@ -92,6 +119,7 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
         yCoCgToRgb8(y, clamped);
         for (int ch = 0; ch < 3; ++ch)
             r[ch] = (accept ? use & some : use) ? lerp8(clamped[ch], c[ch], splat8(alpha)) : c[ch];
+        if (toneMapped) gammaLanes8(r, false);
         storeXyz8(out + 3 * x, n, r);
     }
 }

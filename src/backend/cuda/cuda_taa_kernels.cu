@@ -6,9 +6,9 @@
 namespace bmfr::cuda {
 
 namespace {
-__global__ void ycocgKernel(const float* in, float* out, long n) {
+__global__ void ycocgKernel(TaaInputs a, float* out, long n) {
     const long i = pixelIndex();
-    if (i < n) store3(out, i, rgbToYCoCg(load3(in, i)));
+    if (i < n) store3(out, i, rgbToYCoCg(taaSpace(a, load3(a.current, i))));
 }
 __global__ void taaKernel(TaaInputs a, float* out) {
     const long i = pixelIndex();
@@ -25,7 +25,7 @@ void launchTaa(const TaaInputs& in, float* ycocg, float* out, bool enabled, cuda
               "TAA copy");
         return;
     }
-    ycocgKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(in.current, ycocg, n);
+    ycocgKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(in, ycocg, n);
     check(cudaGetLastError(), "TAA YCoCg kernel");
     TaaInputs a = in;
     a.ycocg = ycocg;

@@ -11,7 +11,8 @@ void taaPass(ThreadPool& pool, const TaaInputs& in, float* ycocg, float* out, bo
     }
     // Each pixel's YCoCg once, instead of nine times in its neighbours' clamps.
     pool.parallelFor(h, 8, [&](long y0, long y1) {
-        for (long i = y0 * w; i < y1 * w; ++i) store3(ycocg, i, rgbToYCoCg(load3(in.current, i)));
+        for (long i = y0 * w; i < y1 * w; ++i)
+            store3(ycocg, i, rgbToYCoCg(taaSpace(in, load3(in.current, i))));
     });
     TaaInputs a = in;
     a.ycocg = ycocg;

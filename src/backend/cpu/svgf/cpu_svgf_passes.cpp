@@ -22,7 +22,8 @@ class CpuSvgfPasses final : public HostSvgfPasses {
                              buffers.previousPixel.data(), taaScratch_.data(),
                              buffers.output[h.cur].data(), h.width, h.height,
                              ctx.settings.taaBlendAlpha, ctx.settings.taa && h.hasHistory(),
-                             ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr);
+                             ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr,
+                             ctx.settings.taaToneMapped);
         times.add("taa", clock.lap());
         return bad;
     }
