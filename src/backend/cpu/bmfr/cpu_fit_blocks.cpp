@@ -5,6 +5,8 @@
 #include "filters/bmfr/fitting_kernel.h"
 #include "filters/bmfr/second_grid.h"
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 namespace bmfr::cpu {
@@ -288,6 +290,12 @@ void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int exc
                      const Scratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize;
+    if (!excluded && rows.inside) { // most blocks: no emitter, and every pixel owned
+        if (a.emitters.bits)
+            for (int ly = 0; ly < B; ++ly)
+                std::memset(a.emitters.bits + first + long(ly) * g.width, 0, size_t(B));
+        return;
+    }
     long emitters = 0;
     for (int k = 0; k < B * B; ++k) {
         const long idx =
@@ -381,11 +389,28 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
 namespace {
 
 /// Whether a pixel of `r` has no history, from the history-length plane (float or half).
-template <class T> bool anyHistoryPoor(const T* length, int width, const OwnedRect& r) {
+bool anyHistoryPoor(const float* length, int width, const OwnedRect& r) {
     for (int y = r.y0; y < r.y1; ++y) {
-        const T* row = length + long(y) * width;
+        const float* row = length + long(y) * width;
         bool poor = false;
-        for (int x = r.x0; x < r.x1; ++x) poor |= historyPoor(float(row[x]));
+        for (int x = r.x0; x < r.x1; ++x) poor |= historyPoor(row[x]);
+        if (poor) return true;
+    }
+    return false;
+}
+/// The same on half lengths, without a conversion per pixel: lengths are never negative, so
+/// their bit patterns order as their values, and historyPoor's limit is 1.
+bool anyHistoryPoor(const _Float16* length, int width, const OwnedRect& r) {
+    static_assert(sizeof(_Float16) == sizeof(uint16_t));
+    const _Float16 one = 1.0f;
+    uint16_t limit;
+    std::memcpy(&limit, &one, sizeof limit);
+    for (int y = r.y0; y < r.y1; ++y) {
+        uint16_t row[64];
+        const int n = r.x1 - r.x0;
+        std::memcpy(row, length + long(y) * width + r.x0, sizeof(uint16_t) * size_t(n));
+        bool poor = false;
+        for (int x = 0; x < n; ++x) poor |= row[x] <= limit;
         if (poor) return true;
     }
     return false;
