@@ -367,7 +367,8 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
                                                                 {"excludeEmitters", "true"},
                                                                 {"secondGrid", "true"},
                                                                 {"clampFireflies", "true"},
-                                                                {"visibilityFeature", "true"}}));
+                                                                {"visibilityFeature", "true"},
+                                                                {"visibilityTaps", "true"}}));
     EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
     EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
@@ -376,7 +377,7 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     EXPECT_NE(
         listed.output.find(
             "bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true clampFireflies=true "
-            "visibilityFeature=true"),
+            "visibilityFeature=true visibilityTaps=true"),
         std::string::npos)
         << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
@@ -393,11 +394,12 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         quality = denoise("quality", "--preset quality"),
         bySwitch = denoise("switch",
                            "--taa-same-surface --exclude-emitters --second-grid --clamp-fireflies "
-                           "--visibility-feature"),
+                           "--visibility-feature --visibility-taps"),
         faithful = denoise("faithful", "--preset faithful"), plain = denoise("plain", ""),
         overridden = denoise("override", "--preset quality --taa-same-surface false "
                                          "--exclude-emitters false --second-grid false "
-                                         "--clamp-fireflies false --visibility-feature false");
+                                         "--clamp-fireflies false --visibility-feature false "
+                                         "--visibility-taps false");
     ASSERT_FALSE(quality.empty());
     EXPECT_EQ(quality, bySwitch);
     EXPECT_EQ(faithful, plain);

@@ -49,11 +49,9 @@ std::vector<std::string> presetNames() {
 SettingValues presetSettings(const std::string& name, const std::string& preset) {
     // The quality preset: every switch that measured better than the paper on our sequences
     // (README, "Beyond the paper"). A filter gets the ones in its settings table.
-    static const SettingValues kQuality = {{"taaSameSurface", "true"},
-                                           {"excludeEmitters", "true"},
-                                           {"secondGrid", "true"},
-                                           {"clampFireflies", "true"},
-                                           {"visibilityFeature", "true"}};
+    static const SettingValues kQuality = {
+        {"taaSameSurface", "true"}, {"excludeEmitters", "true"},   {"secondGrid", "true"},
+        {"clampFireflies", "true"}, {"visibilityFeature", "true"}, {"visibilityTaps", "true"}};
     const std::vector<SettingDoc> docs = filterSettings(name);
     if (preset == "faithful") return {};
     if (preset != "quality")

@@ -66,7 +66,8 @@ def test_the_quality_preset_gives_the_cli_bits(sequence, tmp_path):
     cli("denoise", sequence, "-o", tmp_path, "--preset", "quality", "--no-png", "--no-flip", "-q")
     assert bmfr.preset("bmfr", "quality") == {
         "taa_same_surface": "true", "exclude_emitters": "true", "second_grid": "true",
-        "clamp_fireflies": "true", "visibility_feature": "true"}
+        "clamp_fireflies": "true", "visibility_feature": "true",
+        "visibility_taps": "true"}
     assert bmfr.preset("bmfr", "faithful") == {}
     with pytest.raises(ValueError, match="unknown preset 'fast'"):
         bmfr.preset("bmfr", "fast")

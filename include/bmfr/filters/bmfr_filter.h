@@ -33,6 +33,7 @@ struct BmfrSettings : TemporalSettings {
     bool secondGrid = false;        ///< pixels without history also fitted on a shifted grid
     bool clampFireflies = false;    ///< isolated pixels far above their block clamped in the fit
     bool visibilityFeature = false; ///< fit FrameInput::visibility as one more feature, if given
+    bool visibilityTaps = false; ///< no phase III / TAA history across FrameInput::visibility edges
     StageSwitches stages{};
 };
 

@@ -52,23 +52,23 @@ void BmfrDenoiser::Impl::fillNoise() {
 /// Sets `active` for this frame; true when its feature columns changed (the passes must be
 /// allocated again). Within a history the visibility must come with every frame or none.
 bool BmfrDenoiser::Impl::selectFeatures(const FrameInput& frame) {
-    const int extra =
-        settings.visibilityFeature && frame.visibility.data ? int(frame.extras.size()) : -1;
+    const bool reads = settings.visibilityFeature || settings.visibilityTaps;
+    const int extra = reads && frame.visibility.data ? int(frame.extras.size()) : -1;
     if (extra == visibilityExtra) return false;
     if (visibilityExtra != -2 && timeline.history.hasHistory() && !frame.reset)
         throw Error(visibilityExtra < 0 || extra < 0
                         ? std::string("this frame ") + (extra < 0 ? "lacks" : "brings") +
                               " a visibility buffer and the earlier frames " +
                               (extra < 0 ? "had one" : "did not") +
-                              " (visibilityFeature fits it as a feature): give it on every frame "
-                              "or none, or reset between"
+                              " (visibilityFeature and visibilityTaps read it): give it on every "
+                              "frame or none, or reset between"
                         : "this frame has " + std::to_string(frame.extras.size()) +
                               " extra buffers and a visibility buffer, the earlier frames " +
                               std::to_string(visibilityExtra) +
                               " (the visibility is fitted after the extras)");
     visibilityExtra = extra;
     active = settings;
-    if (extra >= 0) {
+    if (extra >= 0 && settings.visibilityFeature) {
         Feature v;
         v.source = FeatureSource::Extra;
         v.extraIndex = extra;

@@ -61,6 +61,11 @@ SettingsTable<S> ownSettings() {
          "cosine), fit it as one more feature column, so a hard shadow edge does not block up; "
          "give it on every frame or none",
          BMFR_FIELD(S, visibilityFeature)},
+        {"visibilityTaps", "visibility-taps", "", {},
+         "when frames carry a visibility buffer, phase III and the same-surface TAA take no "
+         "history tap whose pixel was lit (visibility above 0) last frame where this one is not, "
+         "or the reverse, so shadow edges stay sharp; give it on every frame or none",
+         BMFR_FIELD(S, visibilityTaps)},
         {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
          "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
          "median, above which a pixel may belong to an emitter",

@@ -77,6 +77,7 @@ struct Buffers {
     PlaneSet accumulatedFitted[2];   ///< 3 planes: phase III colour
     std::vector<float> output[2];    ///< 3 floats per pixel (the public image), +24 of padding
     std::vector<uint8_t> emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
+    std::vector<uint8_t> lit[2];     ///< BmfrSettings::visibilityTaps: litClass of each pixel
     std::atomic<long> emitterPixels[2] = {}; ///< how many bits are set, [slot]
 
     // This frame only.

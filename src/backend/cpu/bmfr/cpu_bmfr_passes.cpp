@@ -4,6 +4,7 @@
 #include "backend/cpu/taa_rows.h"
 #include "core/stopwatch.h"
 #include "filters/bmfr/fitting_kernel.h"
+#include "filters/bmfr/visibility_taps.h"
 
 namespace bmfr::cpu {
 
@@ -22,6 +23,7 @@ class CpuBmfrPasses final : public BmfrPasses {
             b_.accumulatedFitted[k].assign(3, b_.stride, s.halfHistory);
             b_.output[k].assign(3 * n + 24, 0.0f);
             b_.emitter[k].assign(s.excludeEmitters ? n : 0, 0);
+            b_.lit[k].assign(s.visibilityTaps ? n : 0, 0);
             b_.emitterPixels[k] = 0;
         }
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
@@ -59,6 +61,10 @@ class CpuBmfrPasses final : public BmfrPasses {
         if (emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
             b_.emitterPixels[t.cur] + b_.emitterPixels[1 - t.cur] > 0) {
             dropTapsAcrossEmitterEdges(ctx);
+            split.fitMs += clock.lap();
+        }
+        if (ctx.settings.visibilityTaps) {
+            dropTapsAcrossShadowEdges(ctx);
             split.fitMs += clock.lap();
         }
         resolve(ctx, b_);
@@ -109,6 +115,23 @@ class CpuBmfrPasses final : public BmfrPasses {
         ctx.pool.parallelFor(t.height, 8, [&](long y0, long y1) {
             for (long i = y0 * t.width; i < y1 * t.width; ++i)
                 accept[i] = sameEmitterTaps(accept[i], {px[i], py[i]}, prev, own[i], t.width);
+        });
+    }
+
+    /// sameLitTaps over the accept mask, with a visibility buffer.
+    void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx) {
+        const TemporalHistory& t = ctx.timeline.history;
+        const float* visibility = stagedVisibility(ctx.input, ctx.frame.visibility.data);
+        if (!visibility) return;
+        const uint8_t* prevLit = t.hasHistory() ? b_.lit[1 - t.cur].data() : nullptr;
+        uint8_t* lit = b_.lit[t.cur].data();
+        const float* px = b_.plane(b_.previousPixel, 0);
+        const float* py = b_.plane(b_.previousPixel, 1);
+        uint8_t* accept = b_.acceptMask.data();
+        ctx.pool.parallelFor(t.height, 8, [&](long y0, long y1) {
+            for (long i = y0 * t.width; i < y1 * t.width; ++i)
+                accept[i] =
+                    sameLitTaps(accept[i], {px[i], py[i]}, visibility, prevLit, lit, i, t.width);
         });
     }
 

@@ -5,6 +5,7 @@
 #include "backend/cuda/launch.h"
 #include "filters/bmfr/regularisation_noise.h"
 #include "filters/bmfr/second_grid.h"
+#include "filters/bmfr/visibility_taps.h"
 
 namespace bmfr::cuda {
 
@@ -27,6 +28,13 @@ __global__ void sameEmitterTapsKernel(uint8_t* accept, const float* pp, const ui
     if (i < n)
         accept[i] =
             sameEmitterTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, prevEmitter, emitter[i], width);
+}
+__global__ void sameLitTapsKernel(uint8_t* accept, const float* pp, const float* visibility,
+                                  const uint8_t* prevLit, uint8_t* lit, int width, long n) {
+    const long i = pixelIndex();
+    if (i < n)
+        accept[i] =
+            sameLitTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, visibility, prevLit, lit, i, width);
 }
 __global__ void blendSecondFitKernel(float* fitted, const float* second, const uint8_t* length,
                                      long n) {
@@ -64,6 +72,15 @@ void launchSameEmitterTaps(uint8_t* accept, const float* previousPixel, const ui
     sameEmitterTapsKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(
         accept, previousPixel, prevEmitter, emitter, width, n);
     check(cudaGetLastError(), "emitter taps kernel");
+}
+
+void launchSameLitTaps(uint8_t* accept, const float* previousPixel, const float* visibility,
+                       const uint8_t* prevLit, uint8_t* lit, int width, int height,
+                       cudaStream_t stream) {
+    const long n = long(width) * height;
+    sameLitTapsKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(
+        accept, previousPixel, visibility, prevLit, lit, width, n);
+    check(cudaGetLastError(), "shadow edge taps kernel");
 }
 
 void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* length, long pixels,

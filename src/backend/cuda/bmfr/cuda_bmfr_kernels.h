@@ -17,6 +17,11 @@ void launchAccumulateFitted(const FittedAccumulation& a, float* out, cudaStream_
 /// accept[i] = sameEmitterTaps(...): no history across an emitter's edge (excludeEmitters).
 void launchSameEmitterTaps(uint8_t* accept, const float* previousPixel, const uint8_t* prevEmitter,
                            const uint8_t* emitter, int width, int height, cudaStream_t stream);
+/// accept[i] = sameLitTaps(...): no history across a shadow edge (visibilityTaps); prevLit is
+/// null on a frame without history.
+void launchSameLitTaps(uint8_t* accept, const float* previousPixel, const float* visibility,
+                       const uint8_t* prevLit, uint8_t* lit, int width, int height,
+                       cudaStream_t stream);
 /// fitted = blendSecondFit(fitted, second) where the history length is 1 (secondGrid).
 void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* length, long pixels,
                           cudaStream_t stream);

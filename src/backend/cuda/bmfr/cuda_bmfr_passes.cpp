@@ -9,6 +9,7 @@
 #include "backend/cuda/device_frame.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/second_grid.h"
+#include "filters/bmfr/visibility_taps.h"
 
 namespace bmfr::cuda {
 
@@ -19,6 +20,7 @@ struct Buffers {
     DeviceImageF normal[2], position[2], accumulatedNoisy[2], accumulatedFitted[2], output[2];
     DeviceImageU8 historyLength[2];
     DeviceImageU8 emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
+    DeviceImageU8 lit[2];     ///< BmfrSettings::visibilityTaps: litClass of each pixel
     // This frame only.
     DeviceImageF previousPixel, fitted, remodulated, ycocg;
     DeviceImageF fittedSecond; ///< BmfrSettings::secondGrid: the shifted grid's fit
@@ -48,6 +50,7 @@ class CudaBmfrPasses final : public BmfrPasses {
             b.accumulatedNoisy[k].resize(w, h, 3), b.accumulatedFitted[k].resize(w, h, 3);
             b.output[k].resize(w, h, 3), b.historyLength[k].resize(w, h, 1);
             b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
+            b.lit[k].resize(s.visibilityTaps ? w : 0, s.visibilityTaps ? h : 0, 1);
             host_.output[k].resize(w, h, 3);
         }
         b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
@@ -106,6 +109,11 @@ class CudaBmfrPasses final : public BmfrPasses {
                                   st),
                   "fit copy");
         }
+        if (const float* visibility = stagedVisibility(in, ctx.frame.visibility.data);
+            s.visibilityTaps && visibility)
+            launchSameLitTaps(b.acceptMask.data(), b.previousPixel.data(), visibility,
+                              t.hasHistory() ? b.lit[prev].data() : nullptr, b.lit[cur].data(),
+                              t.width, t.height, st);
         frame_.mark("fit");
 
         launchAccumulateFitted(fittedAccumulation(ctx, in, b), b.remodulated.data(), st);

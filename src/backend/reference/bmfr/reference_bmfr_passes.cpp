@@ -7,6 +7,7 @@
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/bmfr_passes.h"
 #include "filters/bmfr/second_grid.h"
+#include "filters/bmfr/visibility_taps.h"
 #include <atomic>
 #include <cstring>
 
@@ -33,6 +34,7 @@ struct Buffers {
     ImageF accumulatedNoisy[2];    ///< phase I output, demodulated
     ImageU8 historyLength[2];      ///< phase I sample count, 1..255
     ImageU8 emitter[2];            ///< BmfrSettings::excludeEmitters: the fit's emitter bits
+    ImageU8 lit[2];                ///< BmfrSettings::visibilityTaps: litClass of each pixel
     ImageF accumulatedFitted[2];   ///< phase III accumulation, demodulated
     ImageF output[2];              ///< final (TAA) output, linear
     // This frame only.
@@ -108,6 +110,22 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
     });
 }
 
+/// sameLitTaps over the accept mask (visibilityTaps, with a visibility buffer).
+void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers& b) {
+    const TemporalHistory& t = ctx.timeline.history;
+    const float* visibility = stagedVisibility(ctx.input, ctx.frame.visibility.data);
+    if (!ctx.settings.visibilityTaps || !visibility) return;
+    const uint8_t* prevLit = t.hasHistory() ? b.lit[1 - t.cur].data() : nullptr;
+    uint8_t* lit = b.lit[t.cur].data();
+    const float* pp = b.previousPixel.data();
+    uint8_t* accept = b.acceptMask.data();
+    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
+        for (long i = y0 * t.width; i < y1 * t.width; ++i)
+            accept[i] = sameLitTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, visibility, prevLit, lit,
+                                    i, t.width);
+    });
+}
+
 void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
     const TemporalHistory& t = ctx.timeline.history;
     const FittedAccumulation a = fittedAccumulation(ctx, ctx.input, b);
@@ -128,6 +146,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
             b.accumulatedNoisy[k].resize(w, h, 3);
             b.historyLength[k].resize(w, h, 1);
             b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
+            b.lit[k].resize(s.visibilityTaps ? w : 0, s.visibilityTaps ? h : 0, 1);
             b.accumulatedFitted[k].resize(w, h, 3);
             b.output[k].resize(w, h, 3);
         }
@@ -159,6 +178,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         const InputCounters counters = accumulateNoisy(ctx, b);
         times.add("accumulate", clock.lap());
         fitBlocks(ctx, b);
+        dropTapsAcrossShadowEdges(ctx, b);
         times.add("fit", clock.lap());
         accumulateFitted(ctx, b);
         times.add("accumulate_fitted", clock.lap());

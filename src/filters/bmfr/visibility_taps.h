@@ -1,0 +1,29 @@
+// History across shadow edges (BmfrSettings::visibilityTaps): with the key light's noise-free
+// visibility, phase III and the same-surface TAA take no history tap from the other side of a
+// shadow edge, so the edge the fit draws from the visibility stays sharp under jitter and
+// motion. BMFR_HD: every backend runs these per pixel after the fit.
+#pragma once
+#include "filters/bmfr/emitter_exclusion.h"
+#include "temporal/pixel_input.h"
+
+namespace bmfr {
+
+/// The frame's staged visibility (the plane after its own extras), or null without one.
+inline const float* stagedVisibility(const InputPlanes& in, bool frameHasVisibility) {
+    return frameHasVisibility && in.extraCount > 0 ? in.extras[in.extraCount - 1] : nullptr;
+}
+
+/// 1 where the key light reaches pixel i (visibility above 0), else 0 (NaN included).
+BMFR_HD uint8_t litClass(const float* visibility, long i) {
+    return visibility[i] > 0.0f ? 1 : 0;
+}
+
+/// The accepted taps of pixel i whose pixel had its lit class last frame: sameEmitterTaps on
+/// lit classes. Sets lit[i] for this frame first; prevLit is null on a frame without history.
+BMFR_HD uint8_t sameLitTaps(uint8_t accept, Vec2 previousPixel, const float* visibility,
+                            const uint8_t* prevLit, uint8_t* lit, long i, int width) {
+    lit[i] = litClass(visibility, i);
+    return prevLit ? sameEmitterTaps(accept, previousPixel, prevLit, lit[i], width) : accept;
+}
+
+} // namespace bmfr
