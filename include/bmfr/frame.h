@@ -60,8 +60,8 @@ struct FrameInput {
     /// Optional noise-free visibility of the key light (a sun, a shadow-mapped main light) at
     /// the first hit, times the cosine: max(0, n . l) where the light is unshadowed, else 0;
     /// [0, 1], 1 channel. With BmfrSettings::visibilityFeature, BMFR fits it as one more
-    /// feature, so a hard shadow edge across a block does not block up. Leave data null when
-    /// unavailable.
+    /// feature, so a hard shadow edge across a block does not block up; with visibilityTaps no
+    /// history crosses its edges. Leave data null when unavailable.
     ImageView visibility;
     /// Optional motion vectors, 2 to 4 channels: for pixel (x, y), the
     /// continuous pixel coordinate of the same surface point in the previous frame is
