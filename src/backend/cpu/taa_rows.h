@@ -74,16 +74,13 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
             storeXyz8(out + 3 * x, n, c);
             continue;
         }
-        if (toneMapped) {
-            f8 linear[3] = {c[0], c[1], c[2]};
-            gammaLanes8(linear, false);
-            storeXyz8(out + 3 * x, n, linear);
-        }
         const Footprint8 fp = footprint8(load8(previousX + x), load8(previousY + x));
         const i8 mask = accept ? loadBytes(accept + x, n) : i8{} + 15;
         const i8 use = (fp.x0 >= -1) & (fp.y0 >= -1) & (fp.x0 < w) & (fp.y0 < h) & (mask != 0);
         if (!anyLane(use & firstLanes(n))) {
-            if (!toneMapped) storeXyz8(out + 3 * x, n, c);
+            f8 r[3] = {c[0], c[1], c[2]};
+            if (toneMapped) gammaLanes8(r, false);
+            storeXyz8(out + 3 * x, n, r);
             continue;
         }
         f8 lo[3], hi[3];
