@@ -138,6 +138,18 @@ template <class T> BMFR_SIMD_INLINE simd::f8 tapPlane(const Taps8& t, const T* p
     return t.split ? (t.upper ? load8(p + 1) : load8(p)) : load8(p);
 }
 
+/// Tap k of the eight lanes from a plane of one byte per pixel (emitter bits, lit classes).
+BMFR_SIMD_INLINE simd::i8 tapBytes(const Taps8& t, const uint8_t* plane, int k) {
+    using namespace simd;
+    if (!t.coherent) {
+        i8 v;
+        for (int l = 0; l < 8; ++l) v[l] = plane[t.index[k][l]];
+        return v;
+    }
+    const uint8_t* p = plane + t.at[k];
+    return t.split ? (t.upper ? loadBytes(p + 1, 8) : loadBytes(p, 8)) : loadBytes(p, 8);
+}
+
 /// Runs body() with the taps' addressing mode fixed: two copies of the loop, so the compiler
 /// drops the per-load choice between plain loads and per-lane gathers from each.
 template <typename Body> BMFR_SIMD_INLINE void forTaps(const Taps8& t, Body&& body) {

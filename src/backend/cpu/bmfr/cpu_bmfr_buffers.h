@@ -15,9 +15,10 @@ namespace bmfr::cpu {
 
 /// Per-thread scratch of the fitter (one block) and of the fused resolve pass (three rows).
 struct Scratch {
-    std::vector<float> clean; ///< M scaled feature columns, noise-free (used for the sum)
-    std::vector<float> work;  ///< M noised columns + 3 colour columns, overwritten by QR
-    std::vector<float> soa;   ///< (9 + InputPlanes::kMaxExtras) x W: a border block's normal, position, colour; extras
+    std::vector<float> clean;    ///< M scaled feature columns, noise-free (used for the sum)
+    std::vector<float> work;     ///< M noised columns + 3 colour columns, overwritten by QR
+    std::vector<float> soa;      ///< (9 + InputPlanes::kMaxExtras) x W: a border block's normal,
+                                 ///< position, colour; extras
     std::vector<int> imageIndex; ///< image pixel of each block pixel, -1 when not owned
     std::vector<float> ones;     ///< one block row of 1 (+8 of padding): the constant feature
     std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
@@ -83,8 +84,12 @@ struct Buffers {
     // This frame only.
     std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame
     std::vector<uint8_t> acceptMask;  ///< accepted bilinear taps, bit i = tap i (+8 padding)
-    std::vector<float> fitted;        ///< 3 planes: phase II colour
-    std::vector<float> fittedSecond;  ///< BmfrSettings::secondGrid: 3 planes, the shifted fit
+    /// With a tap filter (resolve's TapFilter): the accept mask less the taps it drops, as TAA
+    /// reads it. Phase III reads acceptMask and filters it again in registers.
+    std::vector<uint8_t> resolvedAccept;
+    bool acceptFiltered = false;     ///< this frame's resolve wrote resolvedAccept
+    std::vector<float> fitted;       ///< 3 planes: phase II colour
+    std::vector<float> fittedSecond; ///< BmfrSettings::secondGrid: 3 planes, the shifted fit
     std::vector<uint8_t>
         earlyRow; ///< rows phase I runs before the block rows (see accumulateAndFit)
 
@@ -113,6 +118,11 @@ template <class T> struct FramePlanes {
     float* previousPixel[2];
     float* fitted[3];
     uint8_t* accept;
+    uint8_t* resolvedAccept;
+    const uint8_t* emitter;     ///< this frame's emitter bits
+    const uint8_t* prevEmitter; ///< and the previous frame's
+    uint8_t* lit;               ///< this frame's lit classes
+    const uint8_t* prevLit;     ///< and the previous frame's
 
     FramePlanes(Buffers& b, int cur) {
         for (int c = 0; c < 3; ++c) {
@@ -132,6 +142,9 @@ template <class T> struct FramePlanes {
         }
         for (int c = 0; c < 2; ++c) previousPixel[c] = b.plane(b.previousPixel, c);
         accept = b.acceptMask.data();
+        resolvedAccept = b.resolvedAccept.data();
+        emitter = b.emitter[cur].data(), prevEmitter = b.emitter[1 - cur].data();
+        lit = b.lit[cur].data(), prevLit = b.lit[1 - cur].data();
     }
 };
 
@@ -145,12 +158,21 @@ BMFR_SIMD_INLINE void withFramePlanes(Buffers& b, int cur, bool half, Body&& bod
         body(FramePlanes<float>(b, cur));
 }
 
+/// The taps the resolve pass drops before phase III and TAA read the accept mask: those across
+/// an emitter's edge (sameEmitterTaps) and those across a shadow edge (sameLitTaps).
+struct TapFilter {
+    bool emitters = false;             ///< emitter bits are set in this frame or the previous
+    const float* visibility = nullptr; ///< the staged visibility under visibilityTaps
+    bool on() const { return emitters || visibility; }
+};
+
 /// What the row kernels of phase I and the resolve pass read.
 struct FrameArgs {
     const BmfrSettings& s;
     const InputPlanes& in;
     const TemporalHistory& t;
     Buffers& b;
+    TapFilter filter = {}; ///< the resolve pass's
 };
 
 /// Wall time of the pass that interleaves phase I and the fit, split between them in
@@ -176,8 +198,9 @@ void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, 
 /// BmfrSettings::secondGrid: fits the blocks of the shifted grid that own a pixel without
 /// history, and gives those pixels the mean of both fits.
 void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b);
-/// Phase III and TAA in one pass over rows: second accumulation, re-modulation, emission, TAA.
-void resolve(const BmfrPassContext& ctx, Buffers& b);
+/// Phase III and TAA in one pass over rows: the taps `filter` drops, second accumulation,
+/// re-modulation, emission, TAA.
+void resolve(const BmfrPassContext& ctx, Buffers& b, const TapFilter& filter);
 
 /// Householder QR of the M + 3 columns (each `rows` long, `stride` floats apart) and back
 /// substitution, as bmfr::solveHouseholder (filters/bmfr/householder_qr.h). Each step's column

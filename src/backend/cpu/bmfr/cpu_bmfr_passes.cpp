@@ -28,6 +28,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         }
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
         b_.acceptMask.assign(n + 8, 0);
+        b_.resolvedAccept.assign(s.excludeEmitters || s.visibilityTaps ? n + 8 : 0, 0);
         b_.fitted.assign(3 * b_.stride, 0.0f);
         b_.fittedSecond.assign(s.secondGrid ? 3 * b_.stride : 0, 0.0f);
         b_.earlyRow.assign(size_t(h), 0);
@@ -58,16 +59,13 @@ class CpuBmfrPasses final : public BmfrPasses {
             split.fitMs += clock.lap();
         }
         // Without an emitter in either frame no tap crosses an emitter's edge.
-        if (emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
-            b_.emitterPixels[t.cur] + b_.emitterPixels[1 - t.cur] > 0) {
-            dropTapsAcrossEmitterEdges(ctx);
-            split.fitMs += clock.lap();
-        }
-        if (ctx.settings.visibilityTaps) {
-            dropTapsAcrossShadowEdges(ctx);
-            split.fitMs += clock.lap();
-        }
-        resolve(ctx, b_);
+        TapFilter filter;
+        filter.emitters = emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
+                          b_.emitterPixels[t.cur] + b_.emitterPixels[1 - t.cur] > 0;
+        if (ctx.settings.visibilityTaps)
+            filter.visibility = stagedVisibility(ctx.input, ctx.frame.visibility.data);
+        b_.acceptFiltered = filter.on();
+        resolve(ctx, b_, filter);
         times.add("accumulate", split.accumulateMs);
         times.add("fit", split.fitMs);
         times.add("resolve", clock.lap());
@@ -94,7 +92,8 @@ class CpuBmfrPasses final : public BmfrPasses {
                 b_.debugFitted.data()[3 * i + c] = b_.plane(b_.fitted, c)[i];
             }
             b_.debugLength.data()[i] = b_.noisy[t.cur].at(3, size_t(i));
-            b_.debugAccept.data()[i] = b_.acceptMask[size_t(i)];
+            b_.debugAccept.data()[i] =
+                (b_.acceptFiltered ? b_.resolvedAccept : b_.acceptMask)[size_t(i)];
         }
     }
 
@@ -104,37 +103,6 @@ class CpuBmfrPasses final : public BmfrPasses {
     }
 
   private:
-    /// sameEmitterTaps over the accept mask, once the fit has set every emitter bit.
-    void dropTapsAcrossEmitterEdges(const BmfrPassContext& ctx) {
-        const TemporalHistory& t = ctx.timeline.history;
-        const uint8_t* own = b_.emitter[t.cur].data();
-        const uint8_t* prev = b_.emitter[1 - t.cur].data();
-        const float* px = b_.plane(b_.previousPixel, 0);
-        const float* py = b_.plane(b_.previousPixel, 1);
-        uint8_t* accept = b_.acceptMask.data();
-        ctx.pool.parallelFor(t.height, 8, [&](long y0, long y1) {
-            for (long i = y0 * t.width; i < y1 * t.width; ++i)
-                accept[i] = sameEmitterTaps(accept[i], {px[i], py[i]}, prev, own[i], t.width);
-        });
-    }
-
-    /// sameLitTaps over the accept mask, with a visibility buffer.
-    void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx) {
-        const TemporalHistory& t = ctx.timeline.history;
-        const float* visibility = stagedVisibility(ctx.input, ctx.frame.visibility.data);
-        if (!visibility) return;
-        const uint8_t* prevLit = t.hasHistory() ? b_.lit[1 - t.cur].data() : nullptr;
-        uint8_t* lit = b_.lit[t.cur].data();
-        const float* px = b_.plane(b_.previousPixel, 0);
-        const float* py = b_.plane(b_.previousPixel, 1);
-        uint8_t* accept = b_.acceptMask.data();
-        ctx.pool.parallelFor(t.height, 8, [&](long y0, long y1) {
-            for (long i = y0 * t.width; i < y1 * t.width; ++i)
-                accept[i] =
-                    sameLitTaps(accept[i], {px[i], py[i]}, visibility, prevLit, lit, i, t.width);
-        });
-    }
-
     Buffers b_;
 };
 

@@ -15,9 +15,32 @@ BMFR_SIMD_INLINE f8 secondBlendWeight8(f8 length, float minAlpha) {
     return w > minAlpha ? w : splat8(minAlpha);
 }
 
+/// The accepted taps of pixels [i, i + n) less those `a.filter` drops: sameEmitterTaps and
+/// sameLitTaps (filters/bmfr/) eight pixels at a time. Sets the owned pixels' lit classes.
+/// `taps` are the accepted taps' addresses, or null where no pixel has history.
+template <class T>
+BMFR_SIMD_INLINE i8 filterTaps(const FrameArgs& a, const FramePlanes<T>& pl, long i, int n,
+                               bool owned, i8 accept, const Taps8* taps) {
+    i8 lit{}, emitter{};
+    if (a.filter.visibility) {
+        lit = (loadFirst(a.filter.visibility + i, n) > 0.0f) & 1; // NaN is unlit, as litClass
+        if (owned) storeBytes(pl.lit + i, lit, n);
+    }
+    if (!taps) return accept;
+    if (a.filter.emitters) emitter = loadBytes(pl.emitter + i, n);
+    for (int k = 0; k < 4; ++k) {
+        const i8 has = (accept & (1 << k)) != 0;
+        i8 drop{};
+        if (a.filter.visibility) drop |= tapBytes(*taps, pl.prevLit, k) != lit;
+        if (a.filter.emitters) drop |= tapBytes(*taps, pl.prevEmitter, k) != emitter;
+        accept = (has & drop) ? accept & ~(1 << k) : accept;
+    }
+    return accept;
+}
+
 /// Phase III of pixels [i, i + n) into the resolved row at x: accumulateFittedPixel
-/// (filters/bmfr/accumulation_kernels.h) eight pixels at a time. The history is stored only when
-/// `owned`.
+/// (filters/bmfr/accumulation_kernels.h) eight pixels at a time, after filterTaps. The history,
+/// and the filtered accept masks, are stored only when `owned`.
 template <class T>
 BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes<T>& pl, long i, int x,
                                   int n, bool owned, float* row, size_t pitch) {
@@ -25,12 +48,21 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes<T>& pl, 
     const TemporalHistory& t = a.t;
     f8 c[3];
     for (int ch = 0; ch < 3; ++ch) c[ch] = load8(pl.fitted[ch] + i);
-    const i8 accept = loadBytes(pl.accept + i, n);
-    if (t.hasHistory() && s.stages.secondAccumulation && anyLane(accept != 0)) {
-        const Footprint8 fp =
-            footprint8(load8(pl.previousPixel[0] + i), load8(pl.previousPixel[1] + i));
-        const Taps8 taps = taps8(fp, t.width, t.height, accept != 0);
-        // Accepted taps are inside the image.
+    i8 accept = loadBytes(pl.accept + i, n);
+    const bool filter = a.filter.on();
+    Footprint8 fp;
+    Taps8 taps;
+    const bool reads =
+        t.hasHistory() && (filter || s.stages.secondAccumulation) && anyLane(accept != 0);
+    if (reads) {
+        fp = footprint8(load8(pl.previousPixel[0] + i), load8(pl.previousPixel[1] + i));
+        taps = taps8(fp, t.width, t.height, accept != 0); // accepted taps are inside the image
+    }
+    if (filter) {
+        accept = filterTaps(a, pl, i, n, owned, accept, reads ? &taps : nullptr);
+        if (owned) storeBytes(pl.resolvedAccept + i, accept, n);
+    }
+    if (reads && s.stages.secondAccumulation && anyLane(accept != 0)) {
         const i8 use[4] = {(accept & 1) != 0, (accept & 2) != 0, (accept & 4) != 0,
                            (accept & 8) != 0};
         f8 old[3];
@@ -74,6 +106,7 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
     float* out = a.b.output[a.t.cur].data();
     auto row = [&](long y) { return ring + size_t(y % 3) * ResolvedRows::rowFloats(w); };
     auto rows = [&] [[gnu::always_inline]] (const auto& pl) {
+        const uint8_t* accept = a.filter.on() ? pl.resolvedAccept : pl.accept;
         if (taa && y0 > 0) phase3Row(a, pl, y0 - 1, false, row(y0 - 1));
         phase3Row(a, pl, y0, true, row(y0));
         for (long y = y0; y < y1; ++y) {
@@ -83,7 +116,7 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
             const float* down = y + 1 < h ? row(y + 1) : mid;
             taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w, pl.previousPixel[1] + y * w,
                    history, out + 3 * y * w, w, h, a.s.taaBlendAlpha, taa,
-                   a.s.taaSameSurface ? pl.accept + y * w : nullptr, taa && a.s.taaToneMapped);
+                   a.s.taaSameSurface ? accept + y * w : nullptr, taa && a.s.taaToneMapped);
         }
     };
     withFramePlanes<kIsa>(a.b, a.t.cur, a.s.halfHistory, rows);
@@ -91,8 +124,8 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
 
 } // namespace
 
-void resolve(const BmfrPassContext& ctx, Buffers& b) {
-    const FrameArgs a{ctx.settings, ctx.input, ctx.timeline.history, b};
+void resolve(const BmfrPassContext& ctx, Buffers& b, const TapFilter& filter) {
+    const FrameArgs a{ctx.settings, ctx.input, ctx.timeline.history, b, filter};
     const long h = ctx.timeline.history.height, tasks = (h + kRowsPerTask - 1) / kRowsPerTask;
     ctx.pool.parallelFor(tasks, 1, [&](long k0, long k1) {
         float* ring = b.scratch[size_t(ThreadPool::currentThreadIndex())].rows.data();
