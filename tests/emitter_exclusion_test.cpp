@@ -6,6 +6,7 @@
 #include "filters/bmfr/householder_qr.h"
 #include <bmfr/features.h>
 #include <cmath>
+#include <cstring>
 #include <gtest/gtest.h>
 #include <vector>
 
@@ -145,6 +146,60 @@ TEST(FireflyClamp, IsolatedBrightPixelsComeDownToTheThresholdAndPatchesStay) {
     EXPECT_FLOAT_EQ(b[5 * 16 + 10], 6.0f); // the patch's centre, eight bright neighbours
     EXPECT_FLOAT_EQ(r[4 * 16 + 9], 6.0f);  // its corner, three
     EXPECT_FLOAT_EQ(r[0], 0.1f);
+}
+
+TEST(FireflyClamp, LeavesTheBlocksMedianBucketAsTheEmitterMaskReadsIt) {
+    // The CPU fit hands the clamp's median bucket to the emitter mask instead of counting the
+    // clamped block again: the bucket must be the one a count after the clamp finds. Blocks of
+    // noisy surface (log-uniform over four octaves) with up to 15 of their 64 counted pixels
+    // fireflies, each isolated.
+    uint32_t state = 12345;
+    auto uniform = [&] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24);
+    };
+    int clampedBlocks = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        std::vector<float> r(256), g(256), b(256);
+        for (size_t k = 0; k < 256; ++k) {
+            const float v = 0.02f * std::exp2(4.0f * uniform());
+            r[k] = v * (0.5f + uniform()), g[k] = v, b[k] = v * (0.5f + uniform());
+        }
+        const int fireflies = trial % 16;
+        for (int f = 0; f < fireflies; ++f) { // counted pixels (k % 4 == 0) two rows apart
+            const int k = (f / 4) * 64 + (f % 4) * 4;
+            r[size_t(k)] = g[size_t(k)] = b[size_t(k)] = 5.0f + 500.0f * uniform();
+        }
+        float* const z[3] = {r.data(), g.data(), b.data()};
+        int histogram[kMaskBuckets], median = -1;
+        uint8_t mask[256];
+        clampedBlocks += clampFireflies(16, z, histogram, mask, &median) > 0;
+        const auto lum = [&](int k) {
+            return luminance({r[size_t(k)], g[size_t(k)], b[size_t(k)]});
+        };
+        EXPECT_EQ(blockMedianBucket(256, lum, histogram), median) << trial;
+    }
+    EXPECT_GT(clampedBlocks, 200); // the fireflies were clamped
+}
+
+TEST(EmitterExclusion, TheBucketFromTheBitsIsFrexps) {
+    // maskBucket reads frexp's exponent and mantissa from the bits; against frexp itself over
+    // positive floats from subnormals to infinity.
+    auto viaFrexp = [](float lum) {
+        int e = 0;
+        const float m = std::frexp(lum, &e);
+        const int b = 2 * e + 47 + (m >= 0.70710678f ? 1 : 0);
+        return b < 1 ? 1 : b > kMaskBuckets - 1 ? kMaskBuckets - 1 : b;
+    };
+    for (uint32_t bits = 1; bits < 0x7F800000u; bits += 4099) {
+        float lum;
+        std::memcpy(&lum, &bits, sizeof lum);
+        ASSERT_EQ(maskBucket(lum), viaFrexp(lum)) << lum;
+    }
+    for (const float edge : {0.70710678f, 1.41421356f, 0.5f, 1.0f}) // half-octave edges
+        for (const float lum : {std::nextafter(edge, 0.0f), edge, std::nextafter(edge, 2.0f)})
+            EXPECT_EQ(maskBucket(lum), viaFrexp(lum)) << lum;
+    EXPECT_EQ(maskBucket(INFINITY), kMaskBuckets - 1);
 }
 
 TEST(EmitterExclusion, HistoryTapsAcrossAnEmittersEdgeAreDropped) {

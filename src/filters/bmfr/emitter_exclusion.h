@@ -16,6 +16,7 @@
 #include "temporal/reprojection.h"
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace bmfr {
 
@@ -26,10 +27,14 @@ inline constexpr int kMaskBuckets = 72;
 BMFR_HD int maskBucket(float lum) {
     if (!(lum > 0.0f)) return 0;
     // floor(2 log2(lum) + 49), bucket 1 at 2^-24 and 71 at 2^11, from lum = m 2^e (m in
-    // [1/2, 1)) without a logarithm: 2e + 47, plus one in the upper half-octave.
-    int e = 0;
-    const float m = std::frexp(lum, &e);
-    const int b = 2 * e + 47 + (m >= 0.70710678f ? 1 : 0);
+    // [1/2, 1)) without a logarithm: 2e + 47, plus one in the upper half-octave, m >= 1/sqrt 2.
+    // frexp's e and m read from the bits (a call per pixel otherwise): e is the biased exponent
+    // less 126, and m orders as its mantissa bits. Subnormals land in bucket 1 either way.
+    uint32_t bits;
+    std::memcpy(&bits, &lum, sizeof bits);
+    const int e = int(bits >> 23) - 126;
+    const uint32_t kUpperHalfOctave = 0x3504F3u; // the mantissa bits of 0.70710678f
+    const int b = 2 * e + 47 + ((bits & 0x7FFFFFu) >= kUpperHalfOctave ? 1 : 0);
     return b < 1 ? 1 : b > kMaskBuckets - 1 ? kMaskBuckets - 1 : b;
 }
 
@@ -39,16 +44,25 @@ BMFR_HD float maskBucketTop(int b) {
     return b == 0 ? 0.0f : std::exp2((float(b) + 1.0f - 49.0f) * 0.5f);
 }
 
-/// The luminance above which a pixel of the block is a candidate: `ratio` times the top of the
-/// bucket holding the median of the W counted pixels; 0 (no candidate) when that is zero, as
-/// in a block more than half black.
-BMFR_HD float maskThreshold(const int* histogram, int W, float ratio) {
+/// The bucket holding the median of the W counted pixels of a histogram.
+BMFR_HD int medianBucket(const int* histogram, int W) {
     int below = 0;
     for (int b = 0; b < kMaskBuckets; ++b) {
         below += histogram[b];
-        if (2 * below > W) return b == 0 ? 0.0f : ratio * maskBucketTop(b);
+        if (2 * below > W) return b;
     }
-    return 0.0f;
+    return 0;
+}
+
+/// The luminance above which a pixel of the block is a candidate: `ratio` times the top of the
+/// median's bucket; 0 (no candidate) when that is zero, as in a block more than half black.
+BMFR_HD float bucketThreshold(int medianBucket, float ratio) {
+    return medianBucket == 0 ? 0.0f : ratio * maskBucketTop(medianBucket);
+}
+
+/// bucketThreshold of a histogram of W counted pixels.
+BMFR_HD float maskThreshold(const int* histogram, int W, float ratio) {
+    return bucketThreshold(medianBucket(histogram, W), ratio);
 }
 
 /// Bits of one block pixel's mask byte, set by the three stages in order.
@@ -132,22 +146,31 @@ BMFR_HD bool maskEmitter(uint8_t m) {
 /// wide, and a quarter of the block places the median as well.
 inline constexpr int kMaskStride = 4;
 
-/// The threshold of a block of W pixels (a multiple of kMaskStride) from accumulated(k).
+/// The median bucket of a block of W pixels (a multiple of kMaskStride) from accumulated(k).
 template <class Accumulated>
-BMFR_HD float blockThreshold(int W, float ratio, Accumulated&& accumulated, int* histogram) {
+BMFR_HD int blockMedianBucket(int W, Accumulated&& accumulated, int* histogram) {
     for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
     for (int k = 0; k < W; k += kMaskStride) ++histogram[maskBucket(accumulated(k))];
-    return maskThreshold(histogram, W / kMaskStride, ratio);
+    return medianBucket(histogram, W / kMaskStride);
+}
+
+/// The threshold of a block of W pixels from accumulated(k).
+template <class Accumulated>
+BMFR_HD float blockThreshold(int W, float ratio, Accumulated&& accumulated, int* histogram) {
+    return bucketThreshold(blockMedianBucket(W, accumulated, histogram), ratio);
 }
 
 /// The whole mask of a B x B block, one stage after another. accumulated(k) is the accumulated
-/// luminance of block pixel k and pixel(k) its image pixel. Returns the number of excluded
-/// pixels; the mask is written only when there is a candidate (most blocks have none).
+/// luminance of block pixel k and pixel(k) its image pixel; `median` is the block's median
+/// bucket when known (clampFireflies leaves it unchanged), else -1. Returns the number of
+/// excluded pixels; the mask is written only when there is a candidate (most blocks have none).
 template <class Accumulated, class Pixel>
 BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputModes& modes,
-                        Accumulated&& accumulated, Pixel&& pixel, int* histogram, uint8_t* mask) {
+                        Accumulated&& accumulated, Pixel&& pixel, int* histogram, uint8_t* mask,
+                        int median = -1) {
     const int W = B * B;
-    const float threshold = blockThreshold(W, ratio, accumulated, histogram);
+    if (median < 0) median = blockMedianBucket(W, accumulated, histogram);
+    const float threshold = bucketThreshold(median, ratio);
     if (!(threshold > 0.0f)) return 0;
     int candidates = 0;
     for (int k = 0; k < W; ++k) candidates += accumulated(k) > threshold;

@@ -39,15 +39,24 @@ BMFR_HD float fireflyScale(const uint8_t* mask, int B, int k, float lum, float t
 }
 
 /// Clamps the fireflies of a B x B block's colour columns z[3] (W values each), with `mask`
-/// (W bytes) and `histogram` as scratch. Returns how many.
-BMFR_HD int clampFireflies(int B, float* const z[3], int* histogram, uint8_t* mask) {
+/// (W bytes) and `histogram` as scratch. Returns how many, and with `median` the block's median
+/// bucket. The clamp leaves that unchanged: a clamped pixel stays above kFireflyRatio times its
+/// top, so as many pixels as before lie at or below each bucket up to it.
+BMFR_HD int clampFireflies(int B, float* const z[3], int* histogram, uint8_t* mask,
+                           int* median = nullptr) {
     const int W = B * B;
-    auto lum = [&](int k) { return luminance({z[0][k], z[1][k], z[2][k]}); };
-    const float threshold = blockThreshold(W, kFireflyRatio, lum, histogram);
+    // Local copies of the planes: through z[], every mask store below would reload them.
+    const float *r = z[0], *g = z[1], *b = z[2];
+    auto lum = [=](int k) { return luminance({r[k], g[k], b[k]}); };
+    const int bucket = blockMedianBucket(W, lum, histogram);
+    if (median) *median = bucket;
+    const float threshold = bucketThreshold(bucket, kFireflyRatio);
     if (!(threshold > 0.0f)) return 0;
+    // Most blocks have no candidate: a loop that only counts them (it vectorises) says so.
     int candidates = 0;
-    for (int k = 0; k < W; ++k) candidates += (mask[k] = fireflyCandidate(lum(k), threshold));
+    for (int k = 0; k < W; ++k) candidates += fireflyCandidate(lum(k), threshold);
     if (candidates == 0) return 0;
+    for (int k = 0; k < W; ++k) mask[k] = fireflyCandidate(lum(k), threshold);
     for (int k = 0; k < W; ++k) mask[k] |= fireflyDense(mask, B, k);
     int clamped = 0;
     for (int k = 0; k < W; ++k) {
