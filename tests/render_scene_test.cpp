@@ -101,6 +101,21 @@ TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
     EXPECT_EQ(atrium.hiddenObjects, std::vector<std::string>{"Roof"});
     EXPECT_EQ(atrium.lightSampling, LightSampling::Split);
     EXPECT_EQ(atrium.bounces, 4);
+    // Every Sponza preset aims its sky samples at the atrium's opening: one portal, 26.2 x 6.8.
+    for (const char* name : {"sponza-atrium", "sponza-static", "sponza-light"}) {
+        const Environment env = loadSceneDescription(name, "/s", false).environment;
+        ASSERT_EQ(env.portals.size(), 1u) << name;
+        EXPECT_NEAR(length(cross(env.portals[0].edgeU, env.portals[0].edgeV)), 26.2f * 6.8f, 1e-3f);
+        EXPECT_NEAR(env.portals[0].corner.y, 22.3f, 1e-5f);
+    }
+    expectError(
+        [] {
+            parseSceneDescription(
+                nlohmann::json::parse(R"({"mesh": "builtin:cornell", "sky": {"radiance": [1, 1, 1],
+                    "portals": [{"centre": [0, 2, 0], "u": [1, 0, 0], "v": [2, 0, 0]}]}})"),
+                ".");
+        },
+        "a sky portal has zero area");
     EXPECT_EQ(loadSceneDescription("cornell-objects", "/s", false).animations.size(), 3u);
     EXPECT_FLOAT_EQ(loadSceneDescription("sponza-glossy", "/s", false).roughnessOverride, 0.1f);
     EXPECT_EQ(loadSceneDescription("sponza-light", "/s", false).quadLights.size(), 1u);

@@ -19,7 +19,7 @@ Integrator::Along Integrator::along(const SurfacePoint& sp, Vec3 wi, Rng& rng,
     next.origin = origin, next.direction = wi, next.spread = sp.alpha;
     next.hit = trace(origin, wi, 0.0f, sp.alpha, next.surface, next.lightQuad, t, rays);
     if (!next.hit) {
-        lights_.escaped(wi, sp.ns, r.emitted, r.emittedPdf, r.sun, r.sunPdf);
+        lights_.escaped(wi, sp.p, sp.ns, r.emitted, r.emittedPdf, r.sun, r.sunPdf);
         return r;
     }
     r.distance = t;

@@ -188,7 +188,7 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         if (!trace(origin, wi, width, spread, next, quad, t, rays)) {
             Vec3 sky, sun;
             float skyPdf, sunPdf;
-            lights_.escaped(wi, sp.ns, sky, skyPdf, sun, sunPdf);
+            lights_.escaped(wi, sp.p, sp.ns, sky, skyPdf, sun, sunPdf);
             Vec3 L = powerHeuristic(f.pdf, skyPdf) * sky + powerHeuristic(f.pdf, sunPdf) * sun;
             add(vertex, tD * L, tG * L);
             break;

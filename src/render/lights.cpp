@@ -45,6 +45,8 @@ LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, cons
         weights.push_back(distantWeight);
     }
     if (env.sky.x + env.sky.y + env.sky.z > 0) {
+        for (const SkyPortal& portal : env.portals)
+            portalArea_ += length(cross(portal.edgeU, portal.edgeV));
         skyEntry_ = int(entries_.size());
         entries_.push_back({Kind::Sky, 0, 0});
         weights.push_back(distantWeight);
@@ -84,11 +86,25 @@ LightSample LightSet::sample(int strategy, Vec3 p, Vec3 surfaceNormal, float uSe
     Vec3 q, n;
     float a = 0;
     if (e.kind == Kind::Sky) {
-        Vec3 local = cosineHemisphere(u1, u2);
-        s.wi = toWorld(local, surfaceNormal);
         s.distance = 1e30f;
         s.radiance = env_.sky;
-        s.pdf = e.probability * local.z / kPi;
+        if (portalArea_ == 0) {
+            const Vec3 local = cosineHemisphere(u1, u2);
+            s.wi = toWorld(local, surfaceNormal);
+            s.pdf = e.probability * local.z / kPi;
+            return s;
+        }
+        // u1 picks the half of the mixture, then is stretched back to [0, 1) within it.
+        if (u1 < kSkyPortalShare) {
+            const Vec3 d = portalPoint(u1 / kSkyPortalShare, u2) - p;
+            const float l = length(d);
+            if (!(l > 0)) return LightSample{};
+            s.wi = d / l;
+        } else {
+            const float u = std::min((u1 - kSkyPortalShare) / (1 - kSkyPortalShare), 0.99999994f);
+            s.wi = toWorld(cosineHemisphere(u, u2), surfaceNormal);
+        }
+        s.pdf = pdfSky(s.wi, p, surfaceNormal);
         return s;
     }
     if (e.kind == Kind::Sun) {
@@ -146,14 +162,54 @@ float LightSet::pdfSun() const {
     return sunEntry_ < 0 ? 0.0f : entries_[size_t(sunEntry_)].probability / sunSolidAngle_;
 }
 
-float LightSet::pdfSky(Vec3 d, Vec3 n) const {
-    if (skyEntry_ < 0) return 0.0f;
-    return entries_[size_t(skyEntry_)].probability * std::fmax(dot(d, n), 0.0f) / kPi;
+Vec3 LightSet::portalPoint(float s, float t) const {
+    // s picks the portal by area and is stretched back to [0, 1) within it.
+    float below = 0;
+    for (size_t i = 0; i < env_.portals.size(); ++i) {
+        const SkyPortal& q = env_.portals[i];
+        const float share = length(cross(q.edgeU, q.edgeV)) / portalArea_;
+        if (s < below + share || i + 1 == env_.portals.size()) {
+            const float u = std::clamp((s - below) / share, 0.0f, 1.0f);
+            return q.corner + u * q.edgeU + t * q.edgeV;
+        }
+        below += share;
+    }
+    return {};
 }
 
-void LightSet::escaped(Vec3 d, Vec3 n, Vec3& sky, float& skyPdf, Vec3& sun, float& sunPdf) const {
+float LightSet::pdfPortals(Vec3 d, Vec3 p) const {
+    // A point is picked uniformly over the portals' total area A: dist^2 / (A cos) per portal
+    // the ray from p along d crosses.
+    float pdf = 0;
+    for (const SkyPortal& q : env_.portals) {
+        const Vec3 n = cross(q.edgeU, q.edgeV);
+        const float denom = dot(n, d);
+        if (denom == 0) continue;
+        const float t = dot(n, q.corner - p) / denom;
+        if (!(t > 0)) continue;
+        const Vec3 x = p + t * d - q.corner;
+        const float u = dot(x, q.edgeU) / dot(q.edgeU, q.edgeU),
+                    v = dot(x, q.edgeV) / dot(q.edgeV, q.edgeV);
+        if (u < 0 || u > 1 || v < 0 || v > 1) continue;
+        const float cosL = std::fabs(denom) / length(n);
+        pdf += t * t / (portalArea_ * cosL);
+    }
+    return pdf;
+}
+
+float LightSet::pdfSky(Vec3 d, Vec3 p, Vec3 n) const {
+    if (skyEntry_ < 0) return 0.0f;
+    const float cosine = std::fmax(dot(d, n), 0.0f) / kPi;
+    const float mixture = portalArea_ > 0
+                              ? (1 - kSkyPortalShare) * cosine + kSkyPortalShare * pdfPortals(d, p)
+                              : cosine;
+    return entries_[size_t(skyEntry_)].probability * mixture;
+}
+
+void LightSet::escaped(Vec3 d, Vec3 p, Vec3 n, Vec3& sky, float& skyPdf, Vec3& sun,
+                       float& sunPdf) const {
     sky = env_.sky;
-    skyPdf = pdfSky(d, n);
+    skyPdf = pdfSky(d, p, n);
     sun = sunRadiance(d);
     sunPdf = pdfSun();
 }

@@ -1,6 +1,6 @@
 // Light sources and their sampling: emissive triangles (one-sided, front = winding), analytic
-// two-sided quads (may move per frame), a constant sky (cosine-sampled around the normal), and a
-// sun with angular size.
+// two-sided quads (may move per frame), a constant sky (cosine-sampled around the normal, and
+// through its portals when it has them), and a sun with angular size.
 #pragma once
 #include "render/scene.h"
 #include <vector>
@@ -20,10 +20,25 @@ struct Sun {
     bool enabled() const { return irradiance.x + irradiance.y + irradiance.z > 0; }
 };
 
+/// An opening through which the sky reaches an enclosed space (a courtyard's roof, a window):
+/// the parallelogram corner + s*edgeU + t*edgeV, s, t in [0, 1]. Sky samples aim at it, so a
+/// point that sees the sky only through it finds the sky far more often than by cosine
+/// sampling. It changes the noise, not the expected image: directions off the portal are still
+/// sampled, by the cosine half of the mixture.
+struct SkyPortal {
+    Vec3 corner, edgeU, edgeV;
+};
+
 struct Environment {
     Sun sun;
-    Vec3 sky{0, 0, 0}; ///< constant radiance of directions that escape the scene
+    Vec3 sky{0, 0, 0};              ///< constant radiance of directions that escape the scene
+    std::vector<SkyPortal> portals; ///< where the sky gets in; empty: sampled by cosine alone
 };
+
+/// With portals, the share of sky samples aimed at them; the rest are cosine-weighted, and keep
+/// the sky outside the portals sampled. On Sponza's atrium 0.9 leaves 41% of 1-spp pixels
+/// black where 0.5 leaves 51% (66.7% without the portal).
+inline constexpr float kSkyPortalShare = 0.9f;
 
 struct LightSample {
     Vec3 wi;
@@ -61,11 +76,11 @@ class LightSet {
     float pdfTriangle(int tri, Vec3 p, Vec3 q) const;
     float pdfQuad(int quad, Vec3 p, Vec3 q) const;
     float pdfSun() const;
-    /// Solid-angle pdf of sample() returning sky direction d at a point with normal n.
-    float pdfSky(Vec3 d, Vec3 n) const;
-    /// Radiance and light pdf of an escaping direction (sky plus sun disk), for MIS weighting:
-    /// returns the radiance split into its sky and sun parts.
-    void escaped(Vec3 d, Vec3 n, Vec3& sky, float& skyPdf, Vec3& sun, float& sunPdf) const;
+    /// Solid-angle pdf of sample() returning sky direction d at point p with normal n.
+    float pdfSky(Vec3 d, Vec3 p, Vec3 n) const;
+    /// Radiance and light pdf of a direction escaping from p (sky plus sun disk), for MIS
+    /// weighting: returns the radiance split into its sky and sun parts.
+    void escaped(Vec3 d, Vec3 p, Vec3 n, Vec3& sky, float& skyPdf, Vec3& sun, float& sunPdf) const;
     const std::vector<QuadLight>& quads() const { return quads_; }
     const Environment& environment() const { return env_; }
     /// Closest analytic quad light hit before tMax; returns its index or -1.
@@ -94,6 +109,11 @@ class LightSet {
     std::vector<int> quadEntry_;
     int sunEntry_ = -1, skyEntry_ = -1;
     float sunCosMax_ = 1, sunSolidAngle_ = 0;
+    float portalArea_ = 0; ///< of all sky portals together
+    /// The sky direction through portal point (s, t) in [0, 1]^2, portals chosen by area.
+    Vec3 portalPoint(float s, float t) const;
+    /// Solid-angle pdf of aiming at the portals along d from p (a sum where they overlap).
+    float pdfPortals(Vec3 d, Vec3 p) const;
     Vec3 sunRadiance_;
     float area(int tri) const;
 };

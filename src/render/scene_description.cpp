@@ -70,10 +70,15 @@ const std::string kCornellAnimations = R"("animations": [
 /// Every Sponza preset: the file's roof left out (it keeps all sun and sky out of the atrium),
 /// and the sun, the sky and the local lights sampled apart at each vertex.
 const std::string kOpenAtrium = R"("hide_objects": ["Roof"], "light_sampling": "split",)";
+/// The atrium's opening, where the hidden roof was: most sky samples aim at it, so the
+/// walls and floor below find the sky through it instead of mostly hitting the galleries.
+const std::string kAtriumPortal =
+    R"("portals": [{"centre": [-1.45, 22.3, -0.9], "u": [26.2, 0, 0], "v": [0, 0, 6.8]}])";
 /// The sunlit Sponza presets' sky and sun: steep, along the atrium's long axis.
 const std::string kSunAndSky = R"(
             "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
-            "sky": {"radiance": [3.0, 3.5, 4.5]},)";
+            "sky": {"radiance": [3.0, 3.5, 4.5], )" +
+                               kAtriumPortal + "},";
 
 const std::map<std::string, std::string>& presets() {
     static const std::map<std::string, std::string> p = {
@@ -121,7 +126,8 @@ const std::map<std::string, std::string>& presets() {
             "reference_spp": 4096,
             )" + kOpenAtrium +
                              R"(
-            "sky": {"radiance": [0.04, 0.05, 0.07]},
+            "sky": {"radiance": [0.04, 0.05, 0.07], )" +
+                             kAtriumPortal + R"(},
             "lights": [{"type": "quad", "centre": [8.0, 9.0, 0.0], "u": [0.6, 0, 0], "v": [0, 0, 0.6],
                         "radiance": [120, 105, 85],
                         "path": [{"frame": 0, "centre": [10.0, 9.0, -1.0]}, {"frame": 59, "centre": [-8.0, 9.0, 1.0]}]}],
@@ -228,8 +234,19 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
             throw Error(where + ": \"light_sampling\": \"split\" is for the paper's paths; "
                                 "\"paths\": \"mara\" takes \"direct_spp\" light samples instead");
         if (j.contains("sky")) {
-            requireKnownKeys(j["sky"], {"radiance"}, "scene description 'sky'");
+            requireKnownKeys(j["sky"], {"radiance", "portals"}, "scene description 'sky'");
             d.environment.sky = vec3(j["sky"].at("radiance"), "sky.radiance");
+            for (const json& q : j["sky"].value("portals", json::array())) {
+                requireKnownKeys(q, {"centre", "u", "v"}, "scene description sky portal");
+                SkyPortal portal;
+                portal.edgeU = vec3(q.at("u"), "sky portal u");
+                portal.edgeV = vec3(q.at("v"), "sky portal v");
+                portal.corner = vec3(q.at("centre"), "sky portal centre") -
+                                0.5f * (portal.edgeU + portal.edgeV);
+                if (!(length(cross(portal.edgeU, portal.edgeV)) > 1e-12f))
+                    throw Error("scene description: a sky portal has zero area (u x v = 0)");
+                d.environment.portals.push_back(portal);
+            }
         }
         if (j.contains("sun")) {
             const json& s = j["sun"];
