@@ -61,6 +61,17 @@ BMFR_SIMD_INLINE void gatherExtras(const Phase2& a, int ox, int oy, bool inside,
         if (f.source != FeatureSource::Extra) continue;
         const float* src = a.ctx.input.extras[f.extraIndex];
         float* dst = sc.soa.data() + (9 + size_t(f.extraIndex)) * size_t(W);
+        if (inside) { // rows of the image, eight values at a time
+            for (int ly = 0; ly < B; ++ly) {
+                const float* row = src + long(oy + ly) * g.width + ox;
+                for (int lx = 0; lx < B; lx += 8) {
+                    const int n = std::min(8, B - lx);
+                    const f8 v = loadFirst(row + lx, n);
+                    storeFirst(dst + ly * B + lx, finite8(v) ? v : f8{}, n);
+                }
+            }
+            continue;
+        }
         for (int ly = 0; ly < B; ++ly) {
             const int iy = inside ? oy + ly : mirrorIndex(oy + ly, g.height);
             for (int lx = 0; lx < B; ++lx) {
@@ -291,9 +302,12 @@ void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int exc
     const BlockGrid& g = a.grid;
     const int B = g.blockSize;
     if (!excluded && rows.inside) { // most blocks: no emitter, and every pixel owned
-        if (a.emitters.bits)
-            for (int ly = 0; ly < B; ++ly)
-                std::memset(a.emitters.bits + first + long(ly) * g.width, 0, size_t(B));
+        if (!a.emitters.bits) return;
+        for (int ly = 0; ly < B; ++ly) {
+            uint8_t* row = a.emitters.bits + first + long(ly) * g.width;
+            // The default block width as one fixed-size store, not a call per row.
+            B == 32 ? (void)std::memset(row, 0, 32) : (void)std::memset(row, 0, size_t(B));
+        }
         return;
     }
     long emitters = 0;
