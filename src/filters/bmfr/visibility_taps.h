@@ -1,7 +1,8 @@
 // History across shadow edges (BmfrSettings::visibilityTaps): with the key light's noise-free
 // visibility, phase III and the same-surface TAA take no history tap from the other side of a
 // shadow edge, so the edge the fit draws from the visibility stays sharp under jitter and
-// motion. BMFR_HD: every backend runs these per pixel after the fit.
+// motion. BMFR_HD: the reference and CUDA backends run these per pixel after the fit; the CPU
+// backend's resolve pass does the same eight pixels at a time (filterTaps in cpu_resolve.cpp).
 #pragma once
 #include "filters/bmfr/emitter_exclusion.h"
 #include "temporal/pixel_input.h"

@@ -1,5 +1,6 @@
 // The CPU backend's BMFR: planes, phase I interleaved with the fit block row by block row, and
-// phase III fused with TAA (see cpu_bmfr_buffers.h).
+// phase III fused with TAA and with the taps dropped across emitter and shadow edges (see
+// cpu_bmfr_buffers.h).
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "backend/cpu/taa_rows.h"
 #include "core/stopwatch.h"
