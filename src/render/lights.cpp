@@ -199,11 +199,11 @@ float LightSet::pdfPortals(Vec3 d, Vec3 p) const {
 
 float LightSet::pdfSky(Vec3 d, Vec3 p, Vec3 n) const {
     if (skyEntry_ < 0) return 0.0f;
+    const float probability = entries_[size_t(skyEntry_)].probability;
+    // Without portals, rounded as before they existed: scenes without one keep their bits.
+    if (portalArea_ == 0) return probability * std::fmax(dot(d, n), 0.0f) / kPi;
     const float cosine = std::fmax(dot(d, n), 0.0f) / kPi;
-    const float mixture = portalArea_ > 0
-                              ? (1 - kSkyPortalShare) * cosine + kSkyPortalShare * pdfPortals(d, p)
-                              : cosine;
-    return entries_[size_t(skyEntry_)].probability * mixture;
+    return probability * ((1 - kSkyPortalShare) * cosine + kSkyPortalShare * pdfPortals(d, p));
 }
 
 void LightSet::escaped(Vec3 d, Vec3 p, Vec3 n, Vec3& sky, float& skyPdf, Vec3& sun,
