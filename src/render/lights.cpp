@@ -2,8 +2,31 @@
 #include "core/color.h"
 #include "render/sampling.h"
 #include <algorithm>
+#include <cmath>
 
 namespace bmfr::render {
+
+namespace {
+
+/// Where the ray o + t d, t in (tMin, tMax), crosses the parallelogram corner + s u + r v
+/// (s, r in [0, 1]): its t and, when asked, the cosine between d and the normal. Quad lights
+/// and sky portals are both such parallelograms.
+bool crossParallelogram(Vec3 o, Vec3 d, Vec3 corner, Vec3 u, Vec3 v, float tMin, float tMax,
+                        float& t, float* cosine = nullptr) {
+    const Vec3 n = cross(u, v);
+    const float denom = dot(n, d);
+    if (std::fabs(denom) < 1e-12f) return false;
+    const float tt = dot(n, corner - o) / denom;
+    if (!(tt > tMin && tt < tMax)) return false;
+    const Vec3 x = o + tt * d - corner;
+    const float s = dot(x, u) / dot(u, u), r = dot(x, v) / dot(v, v);
+    if (s < 0 || s > 1 || r < 0 || r > 1) return false;
+    t = tt;
+    if (cosine) *cosine = std::fabs(denom) / length(n);
+    return true;
+}
+
+} // namespace
 
 float LightSet::area(int tri) const {
     const Vec3* p = &scene_.positions[3 * size_t(tri)];
@@ -180,20 +203,10 @@ Vec3 LightSet::portalPoint(float s, float t) const {
 float LightSet::pdfPortals(Vec3 d, Vec3 p) const {
     // A point is picked uniformly over the portals' total area A: dist^2 / (A cos) per portal
     // the ray from p along d crosses.
-    float pdf = 0;
-    for (const SkyPortal& q : env_.portals) {
-        const Vec3 n = cross(q.edgeU, q.edgeV);
-        const float denom = dot(n, d);
-        if (denom == 0) continue;
-        const float t = dot(n, q.corner - p) / denom;
-        if (!(t > 0)) continue;
-        const Vec3 x = p + t * d - q.corner;
-        const float u = dot(x, q.edgeU) / dot(q.edgeU, q.edgeU),
-                    v = dot(x, q.edgeV) / dot(q.edgeV, q.edgeV);
-        if (u < 0 || u > 1 || v < 0 || v > 1) continue;
-        const float cosL = std::fabs(denom) / length(n);
-        pdf += t * t / (portalArea_ * cosL);
-    }
+    float pdf = 0, t = 0, cosL = 0;
+    for (const SkyPortal& q : env_.portals)
+        if (crossParallelogram(p, d, q.corner, q.edgeU, q.edgeV, 0.0f, HUGE_VALF, t, &cosL))
+            pdf += t * t / (portalArea_ * cosL);
     return pdf;
 }
 
@@ -223,16 +236,9 @@ int LightSet::intersectQuads(Vec3 o, Vec3 d, float tMax, float& t) const {
     int best = -1;
     for (size_t i = 0; i < quads_.size(); ++i) {
         const QuadLight& q = quads_[i];
-        Vec3 n = cross(q.edgeU, q.edgeV);
-        float denom = dot(n, d);
-        if (std::fabs(denom) < 1e-12f) continue;
-        float tt = dot(n, q.corner - o) / denom;
-        if (tt <= 1e-4f || tt >= tMax) continue;
-        Vec3 x = o + tt * d - q.corner;
-        float uu = dot(x, q.edgeU) / dot(q.edgeU, q.edgeU),
-              vv = dot(x, q.edgeV) / dot(q.edgeV, q.edgeV);
-        if (uu < 0 || uu > 1 || vv < 0 || vv > 1) continue;
-        tMax = tt, t = tt, best = int(i);
+        float tt = 0;
+        if (crossParallelogram(o, d, q.corner, q.edgeU, q.edgeV, 1e-4f, tMax, tt))
+            tMax = tt, t = tt, best = int(i);
     }
     return best;
 }
