@@ -116,6 +116,30 @@ TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
                 ".");
         },
         "a sky portal has zero area");
+    // The sunlit presets aim their bounces at the sunlit floor, on the atrium's floor (y 3.98);
+    // the lamp-lit one has no sun and no guide.
+    for (const char* name : {"sponza-atrium", "sponza-static", "sponza-moving", "sponza-glossy"}) {
+        const Environment env = loadSceneDescription(name, "/s", false).environment;
+        ASSERT_EQ(env.bounceGuides.size(), 1u) << name;
+        EXPECT_NEAR(env.bounceGuides[0].corner.y, 3.99f, 1e-5f) << name;
+        EXPECT_LT(env.sun.direction.x, 0.0f) << name; // from the far end, lighting the near floor
+    }
+    EXPECT_TRUE(loadSceneDescription("sponza-light", "/s", false).environment.bounceGuides.empty());
+    const std::pair<const char*, const char*> badGuides[] = {
+        {R"([{"centre": [0, 0, 0], "u": [1, 0, 0], "v": [0, 0, 0]}])",
+         "a bounce guide has zero area"},
+        {R"([{"centre": [0, 0, 0], "u": [1, 0, 0], "w": [0, 0, 1]}])", "bounce guide"},
+    };
+    for (const auto& [guides, message] : badGuides)
+        expectError(
+            [&] {
+                parseSceneDescription(
+                    nlohmann::json::parse(
+                        std::string(R"({"mesh": "builtin:cornell", "bounce_guides": )") + guides +
+                        "}"),
+                    ".");
+            },
+            message);
     EXPECT_EQ(loadSceneDescription("cornell-objects", "/s", false).animations.size(), 3u);
     EXPECT_FLOAT_EQ(loadSceneDescription("sponza-glossy", "/s", false).roughnessOverride, 0.1f);
     EXPECT_EQ(loadSceneDescription("sponza-light", "/s", false).quadLights.size(), 1u);

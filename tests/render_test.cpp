@@ -309,6 +309,62 @@ TEST(Render, SkyThroughAPortalMatchesLambertsRectangleAndFindsTheSkyMoreOften) {
     }
 }
 
+TEST(Render, BounceGuidesKeepTheExpectationAndFindTheLitPatchMoreOften) {
+    // A ceiling (albedo a) at height 1 over a 1 x 1 patch (albedo b) that a low sun lights from
+    // under the ceiling's edge, or that emits: a ceiling point's radiance is a L F, L the patch's
+    // radiance and F its form factor. Guiding the ceiling's bounces at the patch must keep that
+    // (the throughput and both MIS weights use the mixture's pdf) and find the patch far more
+    // often than the cosine, which finds it about a fifth of the time.
+    const float a = 0.6f, b = 0.8f, h = 1.0f, emitted = 2.0f;
+    const Vec3 sunDirection = normalize(Vec3{1, 0.3f, 0});
+    const float sunIrradiance = 2.0f;
+    for (bool emitting : {false, true}) {
+        Scene s;
+        const int ceiling = addMaterial(s, {a, a, a}, {}),
+                  patch = emitting ? addMaterial(s, {}, {emitted, emitted, emitted})
+                                   : addMaterial(s, {b, b, b}, {});
+        addQuad(s, {-1.5f, h, -3}, {-1.5f, h, 3}, {1.5f, h, 3}, {1.5f, h, -3}, ceiling, {0, 0, 0});
+        addQuad(s, {-0.5f, 0, -0.5f}, {-0.5f, 0, 0.5f}, {0.5f, 0, 0.5f}, {0.5f, 0, -0.5f}, patch,
+                {0, 1, 0});
+        Environment env;
+        if (!emitting) {
+            env.sun.direction = sunDirection;
+            env.sun.irradiance = {sunIrradiance, sunIrradiance, sunIrradiance};
+        }
+        const float patchRadiance =
+            emitting ? emitted : b / 3.14159265f * sunIrradiance * sunDirection.y;
+        CameraPose pose; // looking up at the ceiling over the patch
+        pose.position = {0, 0.5f, 0}, pose.target = {0, h, 0}, pose.up = {1, 0, 0};
+        pose.fovY = 0.6f;
+        double black[2] = {};
+        for (bool guided : {false, true}) {
+            env.bounceGuides.clear();
+            if (guided) env.bounceGuides.push_back({{-0.5f, 0, -0.5f}, {1, 0, 0}, {0, 0, 1}});
+            const FrameData f = renderOnce(s, pose, env, 16, 16, 1, 256);
+            double expected = 0, reference = 0, noisy = 0;
+            const long n = f.reference.pixelCount();
+            for (long i = 0; i < n; ++i) {
+                const float* p = f.position.data() + 3 * i;
+                ASSERT_NEAR(p[1], h, 1e-4f); // every pixel sees the ceiling
+                expected +=
+                    a * patchRadiance * rectangleFormFactor(p[0], p[2], -0.5, 0.5, -0.5, 0.5, h);
+                reference += f.reference.data()[3 * i];
+                noisy += f.color.data()[3 * i];
+                black[guided] += f.color.data()[3 * i] <= 0.0f;
+            }
+            const std::string what = std::string(emitting ? "emitting" : "sunlit") +
+                                     (guided ? " patch, guided" : " patch, cosine");
+            EXPECT_NEAR(reference / double(n), expected / double(n), 0.01 * expected / n) << what;
+            EXPECT_NEAR(noisy / double(n), expected / double(n), 0.1 * expected / n) << what;
+            black[guided] /= double(n);
+        }
+        if (!emitting) {
+            EXPECT_GT(black[0], 0.6);
+            EXPECT_LT(black[1], 0.45 * black[0]);
+        }
+    }
+}
+
 /// A glossy floor (F0 0.5, roughness 0.3) and a matte wall under a sky and a sun.
 Scene glossyFloorAndWall(Environment& env) {
     Scene s;

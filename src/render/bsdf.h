@@ -20,8 +20,9 @@ struct SurfacePoint {
 };
 
 struct BsdfValue {
-    Vec3 diffuse, glossy; ///< BRDF values (not multiplied by the cosine)
-    float pdf = 0;        ///< solid-angle pdf of sampleBsdf producing wi
+    Vec3 diffuse, glossy;            ///< BRDF values (not multiplied by the cosine)
+    float pdf = 0;                   ///< solid-angle pdf of sampleBsdf producing wi
+    float cosinePdf = 0, ggxPdf = 0; ///< the diffuse and glossy lobes' own pdfs of wi
 };
 
 inline float ggxD(float cosH, float a2) {
@@ -56,6 +57,8 @@ inline BsdfValue evalBsdf(const SurfacePoint& s, Vec3 wi) {
     r.glossy = (D * smithG1(cosI, a2) * smithG1(cosO, a2) / (4 * cosI * cosO)) * schlick(s.f0, oh);
     float ps = glossyProbability(s);
     r.pdf = (1 - ps) * cosI / kPi + ps * D * cosH / (4 * oh);
+    r.cosinePdf = cosI / kPi;
+    r.ggxPdf = D * cosH / (4 * oh);
     return r;
 }
 

@@ -5,7 +5,8 @@ namespace bmfr::render {
 
 Integrator::Integrator(const Scene& scene, const RayAccel& accel, const LightSet& lights,
                        int bounces)
-    : scene_(scene), accel_(accel), lights_(lights), bounces_(bounces) {}
+    : scene_(scene), accel_(accel), lights_(lights), bounces_(bounces),
+      guides_(lights.environment().bounceGuides) {}
 
 void Integrator::shadeTriangle(int tri, float u, float v, Vec3 d, float coneWidth,
                                SurfacePoint& sp) const {
@@ -143,6 +144,7 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         const bool last = vertex == bounces_;
         const bool reflective = !isBlack(sp.diffuse) || !isBlack(sp.f0);
         const Vec3 origin = sp.p + offsetScale(sp.p) * sp.ng;
+        const float guided = guides_.share(sp.p, sp.ns);
         // Next event estimation: one sample per strategy (one, or local, sun and sky apart).
         // (With no lights the three numbers are still drawn, so paths keep their sequence.)
         for (int strategy = 0; strategy < std::max(1, lights_.strategies()); ++strategy) {
@@ -150,7 +152,7 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
             if (!reflective) continue;
             const LightSample ls = lights_.sample(strategy, sp.p, sp.ns, uSel, u1, u2);
             if (!(ls.pdf > 0)) continue;
-            const BsdfValue f = evalBsdf(sp, ls.wi);
+            const BsdfValue f = guides_.eval(sp, ls.wi, guided);
             const float c = dot(sp.ns, ls.wi);
             if (isBlack(f.diffuse) && isBlack(f.glossy)) continue;
             ++rays;
@@ -170,7 +172,7 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         // BSDF-sampled secondary ray.
         Vec3 wi;
         BsdfValue f;
-        if (!sampleBsdf(sp, uLobe, b1, b2, wi, f)) break;
+        if (!guides_.sample(sp, guided, uLobe, b1, b2, wi, f)) break;
         const float c = dot(sp.ns, wi) / f.pdf;
         if (vertex == 0) {
             tD = c * f.diffuse;

@@ -3,6 +3,7 @@
 // importance sampling, and a second shadow ray from the secondary hit; `bounces` secondary rays
 // in general. The reference averages the same estimator over many samples.
 #pragma once
+#include "render/bounce_guides.h"
 #include "render/bsdf.h"
 #include "render/lights.h"
 #include "render/ray_accel.h"
@@ -73,6 +74,7 @@ class Integrator {
     const RayAccel& accel_;
     const LightSet& lights_;
     int bounces_;
+    BounceGuides guides_; ///< the environment's, for the BSDF rays of sample()
 
     /// Closest surface (mesh or quad light) along a ray; fills the shading point.
     /// width: ray-cone footprint at o; spread: its growth per unit distance (radians).

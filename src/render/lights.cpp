@@ -6,28 +6,6 @@
 
 namespace bmfr::render {
 
-namespace {
-
-/// Where the ray o + t d, t in (tMin, tMax), crosses the parallelogram corner + s u + r v
-/// (s, r in [0, 1]): its t and, when asked, the cosine between d and the normal. Quad lights
-/// and sky portals are both such parallelograms.
-bool crossParallelogram(Vec3 o, Vec3 d, Vec3 corner, Vec3 u, Vec3 v, float tMin, float tMax,
-                        float& t, float* cosine = nullptr) {
-    const Vec3 n = cross(u, v);
-    const float denom = dot(n, d);
-    if (std::fabs(denom) < 1e-12f) return false;
-    const float tt = dot(n, corner - o) / denom;
-    if (!(tt > tMin && tt < tMax)) return false;
-    const Vec3 x = o + tt * d - corner;
-    const float s = dot(x, u) / dot(u, u), r = dot(x, v) / dot(v, v);
-    if (s < 0 || s > 1 || r < 0 || r > 1) return false;
-    t = tt;
-    if (cosine) *cosine = std::fabs(denom) / length(n);
-    return true;
-}
-
-} // namespace
-
 float LightSet::area(int tri) const {
     const Vec3* p = &scene_.positions[3 * size_t(tri)];
     return 0.5f * length(cross(p[1] - p[0], p[2] - p[0]));
@@ -35,7 +13,7 @@ float LightSet::area(int tri) const {
 
 LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, const Environment& env,
                    LightSampling sampling)
-    : scene_(scene), quads_(quads), env_(env) {
+    : scene_(scene), quads_(quads), env_(env), portals_(env.portals) {
     std::vector<float> weights;
     triangleEntry_.assign(scene.triangleCount(), -1);
     float localTotal = 0;
@@ -68,8 +46,6 @@ LightSet::LightSet(const Scene& scene, const std::vector<QuadLight>& quads, cons
         weights.push_back(distantWeight);
     }
     if (env.sky.x + env.sky.y + env.sky.z > 0) {
-        for (const SkyPortal& portal : env.portals)
-            portalArea_ += length(cross(portal.edgeU, portal.edgeV));
         skyEntry_ = int(entries_.size());
         entries_.push_back({Kind::Sky, 0, 0});
         weights.push_back(distantWeight);
@@ -111,7 +87,7 @@ LightSample LightSet::sample(int strategy, Vec3 p, Vec3 surfaceNormal, float uSe
     if (e.kind == Kind::Sky) {
         s.distance = 1e30f;
         s.radiance = env_.sky;
-        if (portalArea_ == 0) {
+        if (portals_.empty()) {
             const Vec3 local = cosineHemisphere(u1, u2);
             s.wi = toWorld(local, surfaceNormal);
             s.pdf = e.probability * local.z / kPi;
@@ -119,7 +95,7 @@ LightSample LightSet::sample(int strategy, Vec3 p, Vec3 surfaceNormal, float uSe
         }
         // u1 picks the half of the mixture, then is stretched back to [0, 1) within it.
         if (u1 < kSkyPortalShare) {
-            const Vec3 d = portalPoint(u1 / kSkyPortalShare, u2) - p;
+            const Vec3 d = portals_.point(u1 / kSkyPortalShare, u2) - p;
             const float l = length(d);
             if (!(l > 0)) return LightSample{};
             s.wi = d / l;
@@ -185,38 +161,13 @@ float LightSet::pdfSun() const {
     return sunEntry_ < 0 ? 0.0f : entries_[size_t(sunEntry_)].probability / sunSolidAngle_;
 }
 
-Vec3 LightSet::portalPoint(float s, float t) const {
-    // s picks the portal by area and is stretched back to [0, 1) within it.
-    float below = 0;
-    for (size_t i = 0; i < env_.portals.size(); ++i) {
-        const SkyPortal& q = env_.portals[i];
-        const float share = length(cross(q.edgeU, q.edgeV)) / portalArea_;
-        if (s < below + share || i + 1 == env_.portals.size()) {
-            const float u = std::clamp((s - below) / share, 0.0f, 1.0f);
-            return q.corner + u * q.edgeU + t * q.edgeV;
-        }
-        below += share;
-    }
-    return {};
-}
-
-float LightSet::pdfPortals(Vec3 d, Vec3 p) const {
-    // A point is picked uniformly over the portals' total area A: dist^2 / (A cos) per portal
-    // the ray from p along d crosses.
-    float pdf = 0, t = 0, cosL = 0;
-    for (const SkyPortal& q : env_.portals)
-        if (crossParallelogram(p, d, q.corner, q.edgeU, q.edgeV, 0.0f, HUGE_VALF, t, &cosL))
-            pdf += t * t / (portalArea_ * cosL);
-    return pdf;
-}
-
 float LightSet::pdfSky(Vec3 d, Vec3 p, Vec3 n) const {
     if (skyEntry_ < 0) return 0.0f;
     const float probability = entries_[size_t(skyEntry_)].probability;
     // Without portals, rounded as before they existed: scenes without one keep their bits.
-    if (portalArea_ == 0) return probability * std::fmax(dot(d, n), 0.0f) / kPi;
+    if (portals_.empty()) return probability * std::fmax(dot(d, n), 0.0f) / kPi;
     const float cosine = std::fmax(dot(d, n), 0.0f) / kPi;
-    return probability * ((1 - kSkyPortalShare) * cosine + kSkyPortalShare * pdfPortals(d, p));
+    return probability * ((1 - kSkyPortalShare) * cosine + kSkyPortalShare * portals_.pdf(d, p));
 }
 
 void LightSet::escaped(Vec3 d, Vec3 p, Vec3 n, Vec3& sky, float& skyPdf, Vec3& sun,

@@ -2,6 +2,7 @@
 // two-sided quads (may move per frame), a constant sky (cosine-sampled around the normal, and
 // through its portals when it has them), and a sun with angular size.
 #pragma once
+#include "render/parallelograms.h"
 #include "render/scene.h"
 #include <vector>
 
@@ -20,19 +21,19 @@ struct Sun {
     bool enabled() const { return irradiance.x + irradiance.y + irradiance.z > 0; }
 };
 
-/// An opening through which the sky reaches an enclosed space (a courtyard's roof, a window):
-/// the parallelogram corner + s*edgeU + t*edgeV, s, t in [0, 1]. Sky samples aim at it, so a
-/// point that sees the sky only through it finds the sky far more often than by cosine
-/// sampling. It changes the noise, not the expected image: directions off the portal are still
-/// sampled, by the cosine half of the mixture.
-struct SkyPortal {
-    Vec3 corner, edgeU, edgeV;
-};
+/// An opening through which the sky reaches an enclosed space (a courtyard's roof, a window).
+/// Sky samples aim at it, so a point that sees the sky only through it finds the sky far more
+/// often than by cosine sampling. It changes the noise, not the expected image: directions off
+/// the portal are still sampled, by the cosine half of the mixture.
+using SkyPortal = Parallelogram;
 
 struct Environment {
     Sun sun;
     Vec3 sky{0, 0, 0};              ///< constant radiance of directions that escape the scene
     std::vector<SkyPortal> portals; ///< where the sky gets in; empty: sampled by cosine alone
+    /// Where the indirect light mostly comes from (render/bounce_guides.h); empty: diffuse
+    /// bounces are cosine-sampled alone.
+    std::vector<Parallelogram> bounceGuides;
 };
 
 /// With portals, the share of sky samples aimed at them; the rest are cosine-weighted, and keep
@@ -109,11 +110,7 @@ class LightSet {
     std::vector<int> quadEntry_;
     int sunEntry_ = -1, skyEntry_ = -1;
     float sunCosMax_ = 1, sunSolidAngle_ = 0;
-    float portalArea_ = 0; ///< of all sky portals together
-    /// The sky direction through portal point (s, t) in [0, 1]^2, portals chosen by area.
-    Vec3 portalPoint(float s, float t) const;
-    /// Solid-angle pdf of aiming at the portals along d from p (a sum where they overlap).
-    float pdfPortals(Vec3 d, Vec3 p) const;
+    ParallelogramSet portals_; ///< the environment's sky portals
     Vec3 sunRadiance_;
     float area(int tri) const;
 };

@@ -37,6 +37,18 @@ Vec3 vec3(const json& j, const char* what) {
     return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
 }
 
+/// {"centre", "u", "v"}: a sky portal or a bounce guide (`what`).
+Parallelogram parallelogram(const json& q, const std::string& what) {
+    requireKnownKeys(q, {"centre", "u", "v"}, "scene description " + what);
+    Parallelogram r;
+    r.edgeU = vec3(q.at("u"), (what + " u").c_str());
+    r.edgeV = vec3(q.at("v"), (what + " v").c_str());
+    r.corner = vec3(q.at("centre"), (what + " centre").c_str()) - 0.5f * (r.edgeU + r.edgeV);
+    if (!(length(cross(r.edgeU, r.edgeV)) > 1e-12f))
+        throw Error("scene description: a " + what + " has zero area (u x v = 0)");
+    return r;
+}
+
 /// The moving objects of the cornell-objects presets.
 const std::string kCornellAnimations = R"("animations": [
                 {"object": "short_block", "keys": [
@@ -74,9 +86,14 @@ const std::string kOpenAtrium = R"("hide_objects": ["Roof"], "light_sampling": "
 /// walls and floor below find the sky through it instead of mostly hitting the galleries.
 const std::string kAtriumPortal =
     R"("portals": [{"centre": [-1.45, 22.3, -0.9], "u": [26.2, 0, 0], "v": [0, 0, 6.8]}])";
-/// The sunlit Sponza presets' sky and sun: steep, along the atrium's long axis.
-const std::string kSunAndSky = R"(
-            "sun": {"direction": [0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
+/// The part of the atrium's floor that the sun lights (from the visibility buffer of a top-down
+/// render): bounces aim most of their samples at it where it is in view.
+const std::string kSunlitFloor =
+    R"("bounce_guides": [{"centre": [2.0, 3.99, -1.34], "u": [21.6, 0, 0], "v": [0, 0, 5.0]}],)";
+/// The sunlit Sponza presets' sky and sun: steep, along the atrium's long axis, from the end
+/// the cameras look towards, so the floor before them is lit and the far end is in shadow.
+const std::string kSunAndSky = kSunlitFloor + R"(
+            "sun": {"direction": [-0.3, 1.0, 0.05], "angular_diameter_deg": 0.53, "irradiance": [30.0, 28.0, 25.0]},
             "sky": {"radiance": [3.0, 3.5, 4.5], )" +
                                kAtriumPortal + "},";
 
@@ -111,9 +128,9 @@ const std::map<std::string, std::string>& presets() {
             )" + kOpenAtrium + kSunAndSky +
                               R"(
             "camera": {"keyframes": [
-                {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
+                {"frame": 0,  "position": [12.5, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
                 {"frame": 30, "position": [9.0, 5.0, -2.0],  "target": [-4.0, 6.0, 0.0], "fov_deg": 50},
-                {"frame": 59, "position": [3.0, 5.2, -4.5],  "target": [-10.0, 6.5, 1.0], "fov_deg": 50}]}})"},
+                {"frame": 59, "position": [3.0, 5.2, -2.0],  "target": [-10.0, 6.5, 1.0], "fov_deg": 50}]}})"},
         {"sponza-static", R"({
             "mesh": "{scenes}/sponza/Sponza.gltf", "width": 1280, "height": 720, "frames": 60,
             "reference_spp": 4096,
@@ -149,8 +166,8 @@ const std::map<std::string, std::string>& presets() {
             )" + kOpenAtrium + kSunAndSky +
                               R"(
             "camera": {"keyframes": [
-                {"frame": 0,  "position": [15.0, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
-                {"frame": 59, "position": [3.0, 5.2, -4.5],  "target": [-10.0, 6.5, 1.0], "fov_deg": 50}]}})"},
+                {"frame": 0,  "position": [12.5, 4.6, 0.4],  "target": [0.0, 5.5, -0.6], "fov_deg": 50},
+                {"frame": 59, "position": [3.0, 5.2, -2.0],  "target": [-10.0, 6.5, 1.0], "fov_deg": 50}]}})"},
     };
     return p;
 }
@@ -198,7 +215,8 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
                           "paths",
                           "direct_spp",
                           "hide_objects",
-                          "light_sampling"},
+                          "light_sampling",
+                          "bounce_guides"},
                          where);
         d.mesh = j.at("mesh").get<std::string>();
         if (d.mesh.rfind("builtin:", 0) != 0 && fs::path(d.mesh).is_relative())
@@ -236,18 +254,11 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
         if (j.contains("sky")) {
             requireKnownKeys(j["sky"], {"radiance", "portals"}, "scene description 'sky'");
             d.environment.sky = vec3(j["sky"].at("radiance"), "sky.radiance");
-            for (const json& q : j["sky"].value("portals", json::array())) {
-                requireKnownKeys(q, {"centre", "u", "v"}, "scene description sky portal");
-                SkyPortal portal;
-                portal.edgeU = vec3(q.at("u"), "sky portal u");
-                portal.edgeV = vec3(q.at("v"), "sky portal v");
-                portal.corner = vec3(q.at("centre"), "sky portal centre") -
-                                0.5f * (portal.edgeU + portal.edgeV);
-                if (!(length(cross(portal.edgeU, portal.edgeV)) > 1e-12f))
-                    throw Error("scene description: a sky portal has zero area (u x v = 0)");
-                d.environment.portals.push_back(portal);
-            }
+            for (const json& q : j["sky"].value("portals", json::array()))
+                d.environment.portals.push_back(parallelogram(q, "sky portal"));
         }
+        for (const json& q : j.value("bounce_guides", json::array()))
+            d.environment.bounceGuides.push_back(parallelogram(q, "bounce guide"));
         if (j.contains("sun")) {
             const json& s = j["sun"];
             requireKnownKeys(s, {"direction", "angular_diameter_deg", "irradiance"},
