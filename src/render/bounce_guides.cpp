@@ -51,7 +51,7 @@ bool BounceGuides::sample(const SurfacePoint& s, float share, float uLobe, float
     const bool guided =
         uLobe < glossy ? uLobe < glossy * toGuidesG : uLobe - glossy < (1 - glossy) * toGuidesD;
     if (!guided) {
-        if (!sampleBsdf(s, uLobe, u1, u2, wi, value)) return false;
+        wi = sampleBsdfDirection(s, uLobe, u1, u2);
     } else {
         const Vec3 d = guides_.point(u1, u2) - s.p;
         const float l = length(d);

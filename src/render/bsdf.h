@@ -62,20 +62,25 @@ inline BsdfValue evalBsdf(const SurfacePoint& s, Vec3 wi) {
     return r;
 }
 
-/// Samples wi from the mixture of the cosine lobe and the GGX normal distribution.
-inline bool sampleBsdf(const SurfacePoint& s, float uLobe, float u1, float u2, Vec3& wi,
-                       BsdfValue& value) {
-    if (dot(s.ns, s.wo) <= 0) return false;
+/// A direction from the mixture of the cosine lobe and the GGX normal distribution: uLobe
+/// below glossyProbability picks the glossy lobe. The caller checks that wo is above the surface.
+inline Vec3 sampleBsdfDirection(const SurfacePoint& s, float uLobe, float u1, float u2) {
     if (uLobe < glossyProbability(s)) {
         float a2 = s.alpha * s.alpha;
         float cosH = std::sqrt((1 - u1) / (1 + (a2 - 1) * u1)),
               sinH = std::sqrt(std::fmax(0.0f, 1 - cosH * cosH));
         float phi = 2 * kPi * u2;
         Vec3 h = toWorld({sinH * std::cos(phi), sinH * std::sin(phi), cosH}, s.ns);
-        wi = 2 * dot(s.wo, h) * h - s.wo;
-    } else {
-        wi = toWorld(cosineHemisphere(u1, u2), s.ns);
+        return 2 * dot(s.wo, h) * h - s.wo;
     }
+    return toWorld(cosineHemisphere(u1, u2), s.ns);
+}
+
+/// Samples wi by sampleBsdfDirection and evaluates the BSDF there.
+inline bool sampleBsdf(const SurfacePoint& s, float uLobe, float u1, float u2, Vec3& wi,
+                       BsdfValue& value) {
+    if (dot(s.ns, s.wo) <= 0) return false;
+    wi = sampleBsdfDirection(s, uLobe, u1, u2);
     value = evalBsdf(s, wi);
     return value.pdf > 0;
 }

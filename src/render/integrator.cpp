@@ -144,7 +144,9 @@ PathContribution Integrator::sample(const PrimaryHit& first, Rng& rng, uint64_t&
         const bool last = vertex == bounces_;
         const bool reflective = !isBlack(sp.diffuse) || !isBlack(sp.f0);
         const Vec3 origin = sp.p + offsetScale(sp.p) * sp.ng;
-        const float guided = guides_.share(sp.p, sp.ns);
+        // The guides' share of the BSDF ray; at the last vertex none follows, and light
+        // samples take weight 1 without reading its pdf.
+        const float guided = last || !reflective ? 0.0f : guides_.share(sp.p, sp.ns);
         // Next event estimation: one sample per strategy (one, or local, sun and sky apart).
         // (With no lights the three numbers are still drawn, so paths keep their sequence.)
         for (int strategy = 0; strategy < std::max(1, lights_.strategies()); ++strategy) {
