@@ -101,6 +101,10 @@ TEST(RenderScene, PresetsParseAndAnUnknownNameListsThem) {
     EXPECT_EQ(atrium.hiddenObjects, std::vector<std::string>{"Roof"});
     EXPECT_EQ(atrium.lightSampling, LightSampling::Split);
     EXPECT_EQ(atrium.bounces, 4);
+    // The others trace two bounces, so that the arcades get the light bounced off the atrium.
+    for (const char* name : {"sponza-static", "sponza-moving", "sponza-glossy", "sponza-light"})
+        EXPECT_EQ(loadSceneDescription(name, "/s", false).bounces, 2) << name;
+    EXPECT_EQ(loadSceneDescription("cornell-moving", "/s", false).bounces, 1);
     // Every Sponza preset aims its sky samples at the atrium's opening: one portal, 26.2 x 6.8.
     for (const char* name : {"sponza-atrium", "sponza-static", "sponza-light"}) {
         const Environment env = loadSceneDescription(name, "/s", false).environment;
