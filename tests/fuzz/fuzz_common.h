@@ -13,15 +13,20 @@
 
 namespace bmfr::fuzz {
 
+/// This process's scratch folder, removed when the process exits normally (a crash keeps it).
 inline std::string scratchDir() {
-    static const std::string dir = [] {
-        const std::string d =
+    struct Folder {
+        std::string path =
             (std::filesystem::temp_directory_path() / ("bmfr_fuzz_" + std::to_string(::getpid())))
                 .string();
-        std::filesystem::create_directories(d);
-        return d;
-    }();
-    return dir;
+        Folder() { std::filesystem::create_directories(path); }
+        ~Folder() {
+            std::error_code ignored;
+            std::filesystem::remove_all(path, ignored);
+        }
+    };
+    static const Folder folder;
+    return folder.path;
 }
 
 inline void writeScratchAt(const std::string& path, const uint8_t* data, size_t size) {
