@@ -368,7 +368,9 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
                                                                 {"secondGrid", "true"},
                                                                 {"clampFireflies", "true"},
                                                                 {"visibilityFeature", "true"},
-                                                                {"visibilityTaps", "true"}}));
+                                                                {"visibilityTaps", "true"},
+                                                                {"blockSize", "16"},
+                                                                {"emitterRatio", "4"}}));
     EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
     EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
@@ -377,7 +379,7 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     EXPECT_NE(
         listed.output.find(
             "bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true clampFireflies=true "
-            "visibilityFeature=true visibilityTaps=true"),
+            "visibilityFeature=true visibilityTaps=true blockSize=16 emitterRatio=4"),
         std::string::npos)
         << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
@@ -394,12 +396,14 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         quality = denoise("quality", "--preset quality"),
         bySwitch = denoise("switch",
                            "--taa-same-surface --exclude-emitters --second-grid --clamp-fireflies "
-                           "--visibility-feature --visibility-taps"),
+                           "--visibility-feature --visibility-taps --block-size 16 "
+                           "--emitter-ratio 4"),
         faithful = denoise("faithful", "--preset faithful"), plain = denoise("plain", ""),
         overridden = denoise("override", "--preset quality --taa-same-surface false "
                                          "--exclude-emitters false --second-grid false "
                                          "--clamp-fireflies false --visibility-feature false "
-                                         "--visibility-taps false");
+                                         "--visibility-taps false --block-size 32 "
+                                         "--emitter-ratio 16");
     ASSERT_FALSE(quality.empty());
     EXPECT_EQ(quality, bySwitch);
     EXPECT_EQ(faithful, plain);

@@ -104,6 +104,33 @@ TEST(EmitterExclusion, AFlatBrightPatchIsTheEmitterAndTheSmearBesideItSitsOut) {
         }
 }
 
+TEST(EmitterExclusion, ALampOverMostOfASmallBlockAndItsTwoPixelSmearSitOut) {
+    // A 16-pixel block: the lamp's flat samples fill rows 0 to 8 (more than half of it), the
+    // history smeared it over rows 9 and 10 (this frame's samples there are the ceiling's), and
+    // the ceiling (0.1) fills rows 11 to 15. The threshold is 16 x the lower quartile's bucket
+    // top (1/8) = 2; with the median (the lamp's) nothing would be a candidate.
+    Planes p(16, 16, 0.1f);
+    for (int x = 0; x < 16; ++x) {
+        for (int y = 0; y < 9; ++y) p.set(x, y, 20.0f, 20.0f);
+        p.set(x, 9, 6.0f, 0.1f);
+        p.set(x, 10, 3.0f, 0.1f);
+    }
+    int scratch[kMaskBuckets];
+    const auto accumulated = [&](int k) { return p.accumulated[size_t(k)]; };
+    EXPECT_FLOAT_EQ(emitterThreshold(256, 16.0f, accumulated, scratch), 2.0f);
+    EXPECT_GT(blockThreshold(256, 16.0f, accumulated, scratch), 20.0f);
+    int excluded = 0;
+    const std::vector<uint8_t> mask = maskOf(p, 16.0f, excluded);
+    EXPECT_EQ(excluded, 11 * 16);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const uint8_t m = mask[size_t(y) * 16 + x];
+            EXPECT_EQ(maskEmitter(m), y < 9) << x << "," << y;
+            // Row 9 touches the lamp; row 10 only row 9, and is left out by the growth step.
+            EXPECT_EQ((m & kMaskExcluded) != 0, y < 11) << x << "," << y;
+        }
+}
+
 TEST(EmitterExclusion, FirefliesAndNoisyLitSurfacesStayInTheFit) {
     Planes p(16, 16, 0.1f);
     p.set(2, 2, 50.0f, 50.0f); // a firefly this frame
@@ -148,9 +175,9 @@ TEST(FireflyClamp, IsolatedBrightPixelsComeDownToTheThresholdAndPatchesStay) {
     EXPECT_FLOAT_EQ(r[0], 0.1f);
 }
 
-TEST(FireflyClamp, LeavesTheBlocksMedianBucketAsTheEmitterMaskReadsIt) {
-    // The CPU fit hands the clamp's median bucket to the emitter mask instead of counting the
-    // clamped block again: the bucket must be the one a count after the clamp finds. Blocks of
+TEST(FireflyClamp, LeavesTheBlocksQuartileBucketAsTheEmitterMaskReadsIt) {
+    // The CPU fit hands the clamp's lower-quartile bucket to the emitter mask instead of counting
+    // the clamped block again: the bucket must be the one a count after the clamp finds. Blocks of
     // noisy surface (log-uniform over four octaves) with up to 15 of their 64 counted pixels
     // fireflies, each isolated.
     uint32_t state = 12345;
@@ -171,13 +198,13 @@ TEST(FireflyClamp, LeavesTheBlocksMedianBucketAsTheEmitterMaskReadsIt) {
             r[size_t(k)] = g[size_t(k)] = b[size_t(k)] = 5.0f + 500.0f * uniform();
         }
         float* const z[3] = {r.data(), g.data(), b.data()};
-        int histogram[kMaskBuckets], median = -1;
+        int histogram[kMaskBuckets], quartile = -1;
         uint8_t mask[256];
-        clampedBlocks += clampFireflies(16, z, histogram, mask, &median) > 0;
+        clampedBlocks += clampFireflies(16, z, histogram, mask, &quartile) > 0;
         const auto lum = [&](int k) {
             return luminance({r[size_t(k)], g[size_t(k)], b[size_t(k)]});
         };
-        EXPECT_EQ(blockMedianBucket(256, lum, histogram), median) << trial;
+        EXPECT_EQ(blockQuantileBucket(256, lum, histogram, kEmitterQuantile), quartile) << trial;
     }
     EXPECT_GT(clampedBlocks, 200); // the fireflies were clamped
 }

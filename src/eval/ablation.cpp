@@ -98,14 +98,23 @@ AblationResult runAblation(const std::string& input, const std::string& output,
         st.flag(s) = false;
         r.stages.push_back(run(s, st.name));
     }
-    // The quality preset's switches (the improvements beyond the paper), each flipped in turn.
+    // The quality preset's switches (the improvements beyond the paper), each flipped in turn;
+    // its values (the block size, the emitter ratio) each set back to the faithful default.
+    const Settings paper;
     for (const auto& [key, value] : presetSettings("bmfr", "quality"))
         for (const auto& e : bmfrSettingsTable()) {
-            if (e.key != key || !std::holds_alternative<bool& (*)(Settings&)>(e.field)) continue;
-            const bool on = formatSetting(e, base) == "true";
+            if (e.key != key) continue;
             Settings s = base;
-            applySettings(bmfrSettingsTable(), s, {{key, on ? "false" : "true"}}, "bmfr");
-            r.stages.push_back(run(s, (on ? "without " : "with ") + key));
+            if (std::holds_alternative<bool& (*)(Settings&)>(e.field)) {
+                const bool on = formatSetting(e, base) == "true";
+                applySettings(bmfrSettingsTable(), s, {{key, on ? "false" : "true"}}, "bmfr");
+                r.stages.push_back(run(s, (on ? "without " : "with ") + key));
+                continue;
+            }
+            const std::string paperValue = formatSetting(e, paper);
+            if (paperValue == formatSetting(e, base)) continue;
+            applySettings(bmfrSettingsTable(), s, {{key, paperValue}}, "bmfr");
+            r.stages.push_back(run(s, key + " " + paperValue + " (faithful)"));
         }
 
     std::vector<Group> groups = {{"normals", "n.x,n.y,n.z"},

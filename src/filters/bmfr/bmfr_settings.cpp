@@ -41,7 +41,7 @@ SettingsTable<S> ownSettings() {
          "bit-exact work. Positions stay float32",
          BMFR_FIELD(S, halfHistory)},
         {"excludeEmitters", "exclude-emitters", "", {},
-         "leave out of each block's fit the pixels far above its median luminance "
+         "leave out of each block's fit the pixels far above its lower-quartile luminance "
          "(emitterRatio) around a flat, bright patch of current samples, as a light in view "
          "without an emission buffer: the light keeps its own sample, and no history crosses "
          "its edge. Does nothing with an emission buffer",
@@ -68,7 +68,7 @@ SettingsTable<S> ownSettings() {
          BMFR_FIELD(S, visibilityTaps)},
         {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
          "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
-         "median, above which a pixel may belong to an emitter",
+         "lower quartile, above which a pixel may belong to an emitter",
          BMFR_FIELD(S, emitterRatio)},
         {"demodulate", "demodulate", "", {}, "divide colour by albedo before filtering",
          BMFR_FIELD(S, stages.demodulate)},

@@ -3,9 +3,11 @@
 // it spreads the light into its dark neighbours, and the bilinear history smears it across the
 // light's edge. So:
 // - the mask: the block pixels whose accumulated, demodulated luminance is far above the
-//   block's median sit the least squares out when they are, or touch, a pixel whose current
+//   block's lower quartile sit the least squares out when they are, or touch, a pixel whose current
 //   sample is as bright and flat (its neighbours' samples agree: an emitter's own light carries
-//   no noise). A lit surface's noisy samples and fireflies are not flat, and stay in;
+//   no noise), or touch such a pixel that is in turn beside a seed: the history smears a
+//   light's edge two pixels wide. A lit surface's noisy samples and fireflies are not flat, and
+//   stay in;
 // - of those, a pixel whose current sample is above the threshold is the emitter this frame and
 //   keeps that sample; the others are the surface beside it and take the fit;
 // - a history tap whose emitter bit differs from the pixel's is dropped (phase III and TAA).
@@ -44,20 +46,31 @@ BMFR_HD float maskBucketTop(int b) {
     return b == 0 ? 0.0f : std::exp2((float(b) + 1.0f - 49.0f) * 0.5f);
 }
 
-/// The bucket holding the median of the W counted pixels of a histogram.
-BMFR_HD int medianBucket(const int* histogram, int W) {
+/// The bucket holding the quantile 1/q of the W counted pixels of a histogram.
+BMFR_HD int quantileBucket(const int* histogram, int W, int q) {
     int below = 0;
     for (int b = 0; b < kMaskBuckets; ++b) {
         below += histogram[b];
-        if (2 * below > W) return b;
+        if (q * below > W) return b;
     }
     return 0;
 }
 
+/// The bucket holding the median of the W counted pixels of a histogram.
+BMFR_HD int medianBucket(const int* histogram, int W) {
+    return quantileBucket(histogram, W, 2);
+}
+
+/// The emitter mask measures "far above" from the block's lower quartile (1/4), not its median:
+/// a light may cover more than half of a small block (a 16-pixel block across a lamp 8 pixels
+/// tall), and the median would then be the light itself and nothing would be left out.
+inline constexpr int kEmitterQuantile = 4;
+
 /// The luminance above which a pixel of the block is a candidate: `ratio` times the top of the
-/// median's bucket; 0 (no candidate) when that is zero, as in a block more than half black.
-BMFR_HD float bucketThreshold(int medianBucket, float ratio) {
-    return medianBucket == 0 ? 0.0f : ratio * maskBucketTop(medianBucket);
+/// reference bucket (a median or a quartile); 0 (no candidate) when that is zero, as in a block
+/// mostly black.
+BMFR_HD float bucketThreshold(int bucket, float ratio) {
+    return bucket == 0 ? 0.0f : ratio * maskBucketTop(bucket);
 }
 
 /// bucketThreshold of a histogram of W counted pixels.
@@ -66,7 +79,8 @@ BMFR_HD float maskThreshold(const int* histogram, int W, float ratio) {
 }
 
 /// Bits of one block pixel's mask byte, set by the three stages in order.
-inline constexpr uint8_t kMaskCandidate = 1, kMaskBright = 2, kMaskSeed = 4, kMaskExcluded = 8;
+inline constexpr uint8_t kMaskCandidate = 1, kMaskBright = 2, kMaskSeed = 4, kMaskExcluded = 8,
+                         kMaskGrown = 16;
 
 /// An emitter's own light carries no noise: its neighbours' current samples agree with its own
 /// to within this fraction, where a lit surface's 1-spp samples scatter far wider.
@@ -136,6 +150,20 @@ BMFR_HD uint8_t maskExcluded(const uint8_t* mask, int B, int k) {
     return (m & kMaskSeed) || maskNeighbours(mask, B, k, kMaskSeed) > 0 ? kMaskExcluded : 0;
 }
 
+/// Stage 4, block pixel k: a candidate that touches an excluded pixel sits the fit out too (its
+/// own bit, so that the step is one pixel whatever the order). The smear past a light's edge is
+/// two pixels wide, and its outer ring, left in, lifts a small block's fit around the light.
+BMFR_HD uint8_t maskGrown(const uint8_t* mask, int B, int k) {
+    const uint8_t m = mask[k];
+    if (!(m & kMaskCandidate) || (m & kMaskExcluded)) return 0;
+    return maskNeighbours(mask, B, k, kMaskExcluded) > 0 ? kMaskGrown : 0;
+}
+
+/// Stage 5, block pixel k: the grown pixels join the excluded ones.
+BMFR_HD uint8_t maskWithGrowth(uint8_t m) {
+    return m & kMaskGrown ? uint8_t(m | kMaskExcluded) : m;
+}
+
 /// Whether an excluded pixel is the emitter this frame (it then keeps its current sample) or
 /// the surface beside it (it takes the fit).
 BMFR_HD bool maskEmitter(uint8_t m) {
@@ -146,31 +174,45 @@ BMFR_HD bool maskEmitter(uint8_t m) {
 /// wide, and a quarter of the block places the median as well.
 inline constexpr int kMaskStride = 4;
 
-/// The median bucket of a block of W pixels (a multiple of kMaskStride) from accumulated(k).
+/// The quantile-1/q bucket of a block of W pixels (a multiple of kMaskStride) from
+/// accumulated(k); `histogram` keeps the count.
 template <class Accumulated>
-BMFR_HD int blockMedianBucket(int W, Accumulated&& accumulated, int* histogram) {
+BMFR_HD int blockQuantileBucket(int W, Accumulated&& accumulated, int* histogram, int q) {
     for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
     for (int k = 0; k < W; k += kMaskStride) ++histogram[maskBucket(accumulated(k))];
-    return medianBucket(histogram, W / kMaskStride);
+    return quantileBucket(histogram, W / kMaskStride, q);
 }
 
-/// The threshold of a block of W pixels from accumulated(k).
+/// The median bucket of a block of W pixels from accumulated(k).
+template <class Accumulated>
+BMFR_HD int blockMedianBucket(int W, Accumulated&& accumulated, int* histogram) {
+    return blockQuantileBucket(W, accumulated, histogram, 2);
+}
+
+/// The median threshold of a block of W pixels from accumulated(k).
 template <class Accumulated>
 BMFR_HD float blockThreshold(int W, float ratio, Accumulated&& accumulated, int* histogram) {
     return bucketThreshold(blockMedianBucket(W, accumulated, histogram), ratio);
 }
 
+/// The emitter mask's threshold of a block of W pixels: `ratio` times its lower quartile.
+template <class Accumulated>
+BMFR_HD float emitterThreshold(int W, float ratio, Accumulated&& accumulated, int* histogram) {
+    return bucketThreshold(blockQuantileBucket(W, accumulated, histogram, kEmitterQuantile), ratio);
+}
+
 /// The whole mask of a B x B block, one stage after another. accumulated(k) is the accumulated
-/// luminance of block pixel k and pixel(k) its image pixel; `median` is the block's median
-/// bucket when known (clampFireflies leaves it unchanged), else -1. Returns the number of
-/// excluded pixels; the mask is written only when there is a candidate (most blocks have none).
+/// luminance of block pixel k and pixel(k) its image pixel; `quartile` is the block's
+/// lower-quartile bucket when known (clampFireflies leaves it unchanged), else -1. Returns the
+/// number of excluded pixels; the mask is written only when there is a candidate (most blocks
+/// have none).
 template <class Accumulated, class Pixel>
 BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputModes& modes,
                         Accumulated&& accumulated, Pixel&& pixel, int* histogram, uint8_t* mask,
-                        int median = -1) {
+                        int quartile = -1) {
     const int W = B * B;
-    if (median < 0) median = blockMedianBucket(W, accumulated, histogram);
-    const float threshold = bucketThreshold(median, ratio);
+    if (quartile < 0) quartile = blockQuantileBucket(W, accumulated, histogram, kEmitterQuantile);
+    const float threshold = bucketThreshold(quartile, ratio);
     if (!(threshold > 0.0f)) return 0;
     int candidates = 0;
     for (int k = 0; k < W; ++k) candidates += accumulated(k) > threshold;
@@ -178,9 +220,11 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     for (int k = 0; k < W; ++k)
         mask[k] = maskCandidate(accumulated(k), in, modes, pixel(k), threshold);
     for (int k = 0; k < W; ++k) mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
+    for (int k = 0; k < W; ++k) mask[k] |= maskExcluded(mask, B, k);
+    for (int k = 0; k < W; ++k) mask[k] |= maskGrown(mask, B, k);
     int excluded = 0;
     for (int k = 0; k < W; ++k) {
-        mask[k] |= maskExcluded(mask, B, k);
+        mask[k] = maskWithGrowth(mask[k]);
         excluded += (mask[k] & kMaskExcluded) != 0;
     }
     return excluded;

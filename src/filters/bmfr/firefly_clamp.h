@@ -39,17 +39,18 @@ BMFR_HD float fireflyScale(const uint8_t* mask, int B, int k, float lum, float t
 }
 
 /// Clamps the fireflies of a B x B block's colour columns z[3] (W values each), with `mask`
-/// (W bytes) and `histogram` as scratch. Returns how many, and with `median` the block's median
-/// bucket. The clamp leaves that unchanged: a clamped pixel stays above kFireflyRatio times its
-/// top, so as many pixels as before lie at or below each bucket up to it.
+/// (W bytes) and `histogram` as scratch. Returns how many, and with `quartile` the block's
+/// lower-quartile bucket, which the emitter mask reads, from the same count. The clamp leaves it
+/// unchanged: a clamped pixel stays above kFireflyRatio times the median's top, so as many pixels
+/// as before lie at or below each bucket up to the median's.
 BMFR_HD int clampFireflies(int B, float* const z[3], int* histogram, uint8_t* mask,
-                           int* median = nullptr) {
+                           int* quartile = nullptr) {
     const int W = B * B;
     // Local copies of the planes: through z[], every mask store below would reload them.
     const float *r = z[0], *g = z[1], *b = z[2];
     auto lum = [=](int k) { return luminance({r[k], g[k], b[k]}); };
     const int bucket = blockMedianBucket(W, lum, histogram);
-    if (median) *median = bucket;
+    if (quartile) *quartile = quantileBucket(histogram, W / kMaskStride, kEmitterQuantile);
     const float threshold = bucketThreshold(bucket, kFireflyRatio);
     if (!(threshold > 0.0f)) return 0;
     // Most blocks have no candidate: a loop that only counts them (it vectorises) says so.

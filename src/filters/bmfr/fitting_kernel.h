@@ -62,11 +62,11 @@ struct BlockFitScratch {
 
 /// Leaves the emitter pixels of block (bx, by) out of the least squares: their rows of the
 /// M + 3 columns (`stride` floats apart, the colour last) become zero. Returns how many there
-/// are; `mask` says which, and which are the emitter this frame (maskEmitter). `median` as
+/// are; `mask` says which, and which are the emitter this frame (maskEmitter). `quartile` as
 /// emitterMask's.
 BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const EmitterExclusion& e,
                                int bx, int by, float* columns, int M, long stride, int* histogram,
-                               uint8_t* mask, int median = -1) {
+                               uint8_t* mask, int quartile = -1) {
     const int B = g.blockSize;
     const float* z[3] = {columns + M * stride, columns + (M + 1) * stride,
                          columns + (M + 2) * stride};
@@ -79,7 +79,7 @@ BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const 
             bool owned;
             return blockPixel(g, bx, by, k, owned);
         },
-        histogram, mask, median);
+        histogram, mask, quartile);
     if (excluded)
         for (int k = 0; k < B * B; ++k)
             if (mask[k] & kMaskExcluded)

@@ -338,17 +338,17 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
     const BlockRows rows = blockRows<kIsa>(a, ox, oy, sc);
     buildColumns(a, rows, sc);
     prefetchBlock(a, bx + 1, by); // the next block of this row (none after the last)
-    int median = -1;              // the block's median bucket, once the clamp has read it
+    int quartile = -1;            // the block's lower-quartile bucket, once the clamp has read it
     if (s.clampFireflies) {
         const long zs = qrColumnStride(W);
         float* const z[3] = {sc.work.data() + M * zs, sc.work.data() + (M + 1) * zs,
                              sc.work.data() + (M + 2) * zs};
-        clampFireflies(B, z, sc.histogram.data(), sc.mask.data(), &median);
+        clampFireflies(B, z, sc.histogram.data(), sc.mask.data(), &quartile);
     }
     const int excluded =
         a.emitters.on
             ? excludeEmitterRows(g, a.ctx.input, a.emitters, bx, by, sc.work.data(), M,
-                                 qrColumnStride(W), sc.histogram.data(), sc.mask.data(), median)
+                                 qrColumnStride(W), sc.histogram.data(), sc.mask.data(), quartile)
             : 0;
 
     float coeffs[kMaxFeatures * 3];

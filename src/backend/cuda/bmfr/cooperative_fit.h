@@ -152,8 +152,9 @@ BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by
         bool owned;
         return blockPixel(g, bx, by, k, owned);
     };
-    team.single(
-        [&] { st.maskThreshold = blockThreshold(W, a.emitters.ratio, accumulated, st.histogram); });
+    team.single([&] {
+        st.maskThreshold = emitterThreshold(W, a.emitters.ratio, accumulated, st.histogram);
+    });
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T)
             mask[k] = maskCandidate(accumulated(k), a.in, modes, pixel(k), st.maskThreshold);
@@ -166,10 +167,16 @@ BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T) mask[k] |= maskExcluded(mask, B, k);
     });
+    // Reads the neighbours' excluded bits and sets its own pixel's grown bit.
     team.parallel([&](int t) {
-        for (int k = t; k < W; k += T)
+        for (int k = t; k < W; k += T) mask[k] |= maskGrown(mask, B, k);
+    });
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) {
+            mask[k] = maskWithGrowth(mask[k]);
             if (mask[k] & kMaskExcluded)
                 for (int f = 0; f < M + 3; ++f) A[long(f) * W + k] = 0.0f;
+        }
     });
 }
 
