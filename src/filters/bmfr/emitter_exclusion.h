@@ -101,22 +101,27 @@ BMFR_HD uint8_t maskCandidate(float accumulated, const InputPlanes& in, const In
     return uint8_t(kMaskCandidate | (bright ? kMaskBright : 0));
 }
 
-/// The image neighbours of pixel i whose current samples are above the threshold and within
-/// kEmitterFlatness of `sample`, i's own luminance (across block edges: a light's edge row
-/// may be all of it a block holds).
-BMFR_HD int flatNeighbours(const InputPlanes& in, const InputModes& modes, long i, float sample,
-                           float threshold) {
+/// Whether at least `needed` image neighbours of pixel i have current samples above the
+/// threshold and within kEmitterFlatness of `sample`, i's own luminance (across block edges: a
+/// light's edge row may be all of it a block holds). Stops reading samples once it knows.
+BMFR_HD bool flatNeighbours(const InputPlanes& in, const InputModes& modes, long i, float sample,
+                            float threshold, int needed) {
     const int x = int(i % in.width), y = int(i / in.width);
     const float tolerance = kEmitterFlatness * sample;
-    int n = 0;
+    int flat = 0, left = 8;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
+            if (!(dx || dy)) continue;
+            --left;
             const int u = x + dx, v = y + dy;
-            if (!(dx || dy) || u < 0 || u >= in.width || v < 0 || v >= in.height) continue;
-            const float s = luminance(emitterSample(in, long(v) * in.width + u, modes));
-            n += s > threshold && std::fabs(s - sample) <= tolerance;
+            if (u >= 0 && u < in.width && v >= 0 && v < in.height) {
+                const float s = luminance(emitterSample(in, long(v) * in.width + u, modes));
+                flat += s > threshold && std::fabs(s - sample) <= tolerance;
+            }
+            if (flat >= needed) return true;
+            if (flat + left < needed) return false;
         }
-    return n;
+    return false;
 }
 
 /// Stage 2, pixel k (image pixel i): a bright candidate whose sample at least three
@@ -126,7 +131,7 @@ BMFR_HD uint8_t maskSeed(uint8_t m, const InputPlanes& in, const InputModes& mod
     const uint8_t both = kMaskCandidate | kMaskBright;
     if ((m & both) != both) return 0;
     const float s = luminance(emitterSample(in, i, modes));
-    return flatNeighbours(in, modes, i, s, threshold) >= 3 ? kMaskSeed : 0;
+    return flatNeighbours(in, modes, i, s, threshold, 3) ? kMaskSeed : 0;
 }
 
 /// The eight neighbours of block pixel k inside the block with `bit` set in `mask`.
@@ -204,8 +209,8 @@ BMFR_HD float emitterThreshold(int W, float ratio, Accumulated&& accumulated, in
 /// The whole mask of a B x B block, one stage after another. accumulated(k) is the accumulated
 /// luminance of block pixel k and pixel(k) its image pixel; `quartile` is the block's
 /// lower-quartile bucket when known (clampFireflies leaves it unchanged), else -1. Returns the
-/// number of excluded pixels; the mask is written only when there is a candidate (most blocks
-/// have none).
+/// number of excluded pixels; the mask means something only when that is above 0 (most blocks
+/// have no candidate, and it is not written).
 template <class Accumulated, class Pixel>
 BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputModes& modes,
                         Accumulated&& accumulated, Pixel&& pixel, int* histogram, uint8_t* mask,
@@ -217,9 +222,20 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     int candidates = 0;
     for (int k = 0; k < W; ++k) candidates += accumulated(k) > threshold;
     if (candidates == 0) return 0;
-    for (int k = 0; k < W; ++k)
+    // Without a bright candidate there is no seed, and without a seed nothing is excluded: most
+    // blocks with a candidate stop at one of these (a lit patch's noisy samples).
+    int bright = 0;
+    for (int k = 0; k < W; ++k) {
         mask[k] = maskCandidate(accumulated(k), in, modes, pixel(k), threshold);
-    for (int k = 0; k < W; ++k) mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
+        bright += (mask[k] & kMaskBright) != 0;
+    }
+    if (bright == 0) return 0;
+    int seeds = 0;
+    for (int k = 0; k < W; ++k) {
+        mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
+        seeds += (mask[k] & kMaskSeed) != 0;
+    }
+    if (seeds == 0) return 0;
     for (int k = 0; k < W; ++k) mask[k] |= maskExcluded(mask, B, k);
     for (int k = 0; k < W; ++k) mask[k] |= maskGrown(mask, B, k);
     int excluded = 0;
