@@ -170,6 +170,15 @@ TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
         EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
     EXPECT_TRUE(fs::exists(out / "ablation.json"));
     EXPECT_TRUE(fs::exists(out / "plot_greedy_rmse.png"));
+    // The faithful run has no preset values to set back; the quality run sets each to the
+    // faithful default in turn, beside flipping its switches.
+    EXPECT_EQ(r.output.find("(faithful)"), std::string::npos) << r.output;
+    fs::remove_all(out);
+    Result q = run("ablate " + in.string() + " -o " + out.string() + " --preset quality");
+    ASSERT_EQ(q.code, 0) << q.output;
+    for (const char* s :
+         {"without secondGrid", "blockSize 32 (faithful)", "emitterRatio 16 (faithful)"})
+        EXPECT_NE(q.output.find(s), std::string::npos) << s << "\n" << q.output;
     fs::remove_all(in);
     fs::remove_all(out);
 }

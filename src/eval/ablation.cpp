@@ -100,7 +100,7 @@ AblationResult runAblation(const std::string& input, const std::string& output,
     }
     // The quality preset's switches (the improvements beyond the paper), each flipped in turn;
     // its values (the block size, the emitter ratio) each set back to the faithful default.
-    const Settings paper;
+    const Settings faithful;
     for (const auto& [key, value] : presetSettings("bmfr", "quality"))
         for (const auto& e : bmfrSettingsTable()) {
             if (e.key != key) continue;
@@ -111,10 +111,10 @@ AblationResult runAblation(const std::string& input, const std::string& output,
                 r.stages.push_back(run(s, (on ? "without " : "with ") + key));
                 continue;
             }
-            const std::string paperValue = formatSetting(e, paper);
-            if (paperValue == formatSetting(e, base)) continue;
-            applySettings(bmfrSettingsTable(), s, {{key, paperValue}}, "bmfr");
-            r.stages.push_back(run(s, key + " " + paperValue + " (faithful)"));
+            const std::string faithfulValue = formatSetting(e, faithful);
+            if (faithfulValue == formatSetting(e, base)) continue;
+            applySettings(bmfrSettingsTable(), s, {{key, faithfulValue}}, "bmfr");
+            r.stages.push_back(run(s, key + " " + faithfulValue + " (faithful)"));
         }
 
     std::vector<Group> groups = {{"normals", "n.x,n.y,n.z"},

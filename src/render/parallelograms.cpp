@@ -20,7 +20,10 @@ bool crossParallelogram(Vec3 o, Vec3 d, Vec3 corner, Vec3 u, Vec3 v, float tMin,
 }
 
 ParallelogramSet::ParallelogramSet(std::vector<Parallelogram> shapes) : shapes_(std::move(shapes)) {
-    for (const Parallelogram& q : shapes_) area_ += length(cross(q.edgeU, q.edgeV));
+    for (const Parallelogram& q : shapes_) {
+        areas_.push_back(length(cross(q.edgeU, q.edgeV)));
+        area_ += areas_.back();
+    }
 }
 
 Vec3 ParallelogramSet::point(float s, float t) const {
@@ -28,7 +31,7 @@ Vec3 ParallelogramSet::point(float s, float t) const {
     float below = 0;
     for (size_t i = 0; i < shapes_.size(); ++i) {
         const Parallelogram& q = shapes_[i];
-        const float share = length(cross(q.edgeU, q.edgeV)) / area_;
+        const float share = areas_[i] / area_;
         if (s < below + share || i + 1 == shapes_.size()) {
             const float u = std::clamp((s - below) / share, 0.0f, 1.0f);
             return q.corner + u * q.edgeU + t * q.edgeV;

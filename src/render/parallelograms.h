@@ -32,6 +32,7 @@ class ParallelogramSet {
 
   private:
     std::vector<Parallelogram> shapes_;
+    std::vector<float> areas_; ///< of each parallelogram: point() runs on every guided bounce
     float area_ = 0;
 };
 

@@ -78,7 +78,7 @@ BMFR_HD float maskThreshold(const int* histogram, int W, float ratio) {
     return bucketThreshold(medianBucket(histogram, W), ratio);
 }
 
-/// Bits of one block pixel's mask byte, set by the three stages in order.
+/// Bits of one block pixel's mask byte, set by the stages below in order.
 inline constexpr uint8_t kMaskCandidate = 1, kMaskBright = 2, kMaskSeed = 4, kMaskExcluded = 8,
                          kMaskGrown = 16;
 
