@@ -2,6 +2,7 @@
 // command list, -q everywhere, -o for every output, errors in flag terms, --version, --json,
 // progress lines in logs, and the original-layout header that the authors' code compiles.
 #include "cli_runner.h"
+#include "test_support.h"
 #include <bmfr/version.h>
 #include <cstdlib>
 #include <filesystem>
@@ -19,19 +20,7 @@ using bmfr::testing::runCli;
 const char* const kCommands[] = {"demo",  "render", "denoise", "eval",     "ablate",
                                  "bench", "synth",  "tonemap", "settings", "soak"};
 
-fs::path scratch(const std::string& name) {
-    fs::path p =
-        fs::temp_directory_path() / ("bmfr_conv_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    return p;
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using bmfr::testing::slurp;
 
 TEST(CliConventions, NoCommandOrAnUnknownOneListsTheCommandsAndExits2) {
     for (const char* args : {"", "frob"}) {
@@ -107,7 +96,7 @@ TEST(CliConventions, EveryCommandTakesQuietAndWritesWithDashO) {
 }
 
 TEST(CliConventions, DenoiseRefusesToWriteIntoItsInputAndLeavesItAlone) {
-    const fs::path in = scratch("self");
+    const fs::path in = bmfr::testing::scratchPath("conv", "self");
     ASSERT_EQ(runCli("synth -o " + in.string() + " --width 16 --height 8 --frames 2 -q").code, 0);
     const std::string before = slurp(in / "sequence.json");
     const size_t files = size_t(std::distance(fs::directory_iterator(in), {}));
@@ -122,7 +111,9 @@ TEST(CliConventions, DenoiseRefusesToWriteIntoItsInputAndLeavesItAlone) {
 }
 
 TEST(CliConventions, ScoresAreLabelledWithTheFilterAndEvalPrintsJson) {
-    const fs::path in = scratch("json_in"), den = scratch("json_den"), out = scratch("json_out");
+    const fs::path in = bmfr::testing::scratchPath("conv", "json_in"),
+                   den = bmfr::testing::scratchPath("conv", "json_den"),
+                   out = bmfr::testing::scratchPath("conv", "json_out");
     ASSERT_EQ(runCli("synth -o " + in.string() + " --width 32 --height 24 --frames 3 -q").code, 0);
     const auto d = runCli("denoise " + in.string() + " -o " + den.string() + " --filter svgf " +
                           "--no-png --no-flip");
@@ -142,7 +133,9 @@ TEST(CliConventions, ScoresAreLabelledWithTheFilterAndEvalPrintsJson) {
 }
 
 TEST(CliConventions, LogsGetLinesNotCarriageReturnsAndHearFromLongSteps) {
-    const fs::path in = scratch("log_in"), out = scratch("log_out"), r = scratch("log_r");
+    const fs::path in = bmfr::testing::scratchPath("conv", "log_in"),
+                   out = bmfr::testing::scratchPath("conv", "log_out"),
+                   r = bmfr::testing::scratchPath("conv", "log_r");
     ASSERT_EQ(runCli("synth -o " + in.string() + " --width 32 --height 32 --frames 2 -q").code, 0);
     // Output is a pipe here, not a terminal.
     const auto a = runCli("ablate " + in.string() + " -o " + out.string());
@@ -161,7 +154,7 @@ TEST(CliConventions, LogsGetLinesNotCarriageReturnsAndHearFromLongSteps) {
 }
 
 TEST(CliConventions, TheOriginalLayoutHeaderCompilesWithTheSystemCompiler) {
-    const fs::path in = scratch("header");
+    const fs::path in = bmfr::testing::scratchPath("conv", "header");
     ASSERT_EQ(
         runCli("synth -o " + in.string() + " --width 16 --height 8 --frames 3 --layout bmfr -q")
             .code,

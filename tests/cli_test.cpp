@@ -3,6 +3,7 @@
 #include "backend/cuda/cuda_device.h"
 #include "cli_runner.h"
 #include "io/exr.h"
+#include "test_support.h"
 #include <array>
 #include <bmfr/error.h>
 #include <bmfr/filter.h>
@@ -24,15 +25,9 @@ Result run(const std::string& args) {
     return bmfr::testing::runCli(args);
 }
 
-fs::path scratch(const std::string& name) {
-    fs::path p =
-        fs::temp_directory_path() / ("bmfr_cli_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    return p;
-}
-
 TEST(Cli, SynthThenDenoiseWritesImagesDebugBuffersAndScores) {
-    fs::path in = scratch("in"), out = scratch("out");
+    fs::path in = bmfr::testing::scratchPath("cli", "in"),
+             out = bmfr::testing::scratchPath("cli", "out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 64 --height 48 --frames 4 -q").code, 0);
     Result r = run("denoise " + in.string() + " -o " + out.string() + " --debug --frames 1:4");
     ASSERT_EQ(r.code, 0) << r.output;
@@ -52,7 +47,8 @@ TEST(Cli, SynthThenDenoiseWritesImagesDebugBuffersAndScores) {
 }
 
 TEST(Cli, OriginalLayoutIsDetected) {
-    fs::path in = scratch("orig"), out = scratch("orig_out");
+    fs::path in = bmfr::testing::scratchPath("cli", "orig"),
+             out = bmfr::testing::scratchPath("cli", "orig_out");
     ASSERT_EQ(
         run("synth -o " + in.string() + " --width 40 --height 30 --frames 3 --layout bmfr -q").code,
         0);
@@ -69,7 +65,8 @@ TEST(Cli, BadInputExitsNonZeroWithAReason) {
     EXPECT_NE(missing.output.find("input directory not found: /nonexistent/seq"), std::string::npos)
         << missing.output;
 
-    fs::path in = scratch("bad"), out = scratch("bad_out");
+    fs::path in = bmfr::testing::scratchPath("cli", "bad"),
+             out = bmfr::testing::scratchPath("cli", "bad_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 32 --height 32 --frames 2 -q").code, 0);
     std::ofstream(in / "normal_0001.exr") << "garbage";
     Result broken = run("denoise " + in.string() + " -o " + out.string() + " -q");
@@ -88,7 +85,8 @@ TEST(Cli, BadInputExitsNonZeroWithAReason) {
 }
 
 TEST(Cli, NanInputsGiveOneWarningLine) {
-    fs::path in = scratch("nan"), out = scratch("nan_out");
+    fs::path in = bmfr::testing::scratchPath("cli", "nan"),
+             out = bmfr::testing::scratchPath("cli", "nan_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 32 --height 32 --frames 3 -q").code, 0);
     for (int frame : {1, 2}) {
         const std::string file = (in / ("color_000" + std::to_string(frame) + ".exr")).string();
@@ -115,8 +113,10 @@ TEST(Cli, NanInputsGiveOneWarningLine) {
 namespace {
 
 TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
-    fs::path in = scratch("eval_in"), den = scratch("eval_den"), noTaa = scratch("eval_notaa"),
-             out = scratch("eval_out");
+    fs::path in = bmfr::testing::scratchPath("cli", "eval_in"),
+             den = bmfr::testing::scratchPath("cli", "eval_den"),
+             noTaa = bmfr::testing::scratchPath("cli", "eval_notaa"),
+             out = bmfr::testing::scratchPath("cli", "eval_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 64 --height 48 --frames 4 -q").code, 0);
     ASSERT_EQ(run("denoise " + in.string() + " -o " + den.string() + " -q --no-png").code, 0);
     ASSERT_EQ(
@@ -161,7 +161,8 @@ TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
 }
 
 TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
-    fs::path in = scratch("ablate_in"), out = scratch("ablate_out");
+    fs::path in = bmfr::testing::scratchPath("cli", "ablate_in"),
+             out = bmfr::testing::scratchPath("cli", "ablate_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 48 --height 32 --frames 3 -q").code, 0);
     Result r = run("ablate " + in.string() + " -o " + out.string());
     ASSERT_EQ(r.code, 0) << r.output;
@@ -188,7 +189,8 @@ TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
 namespace {
 
 TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
-    fs::path in = scratch("svgf_in"), out = scratch("svgf_out");
+    fs::path in = bmfr::testing::scratchPath("cli", "svgf_in"),
+             out = bmfr::testing::scratchPath("cli", "svgf_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 64 --height 48 --frames 3 -q").code, 0);
     Result r = run("denoise " + in.string() + " -o " + out.string() +
                    " --filter svgf --sample-fraction 0.5 --no-png");
@@ -204,7 +206,9 @@ TEST(Cli, DenoiseWithSvgfAndFewerThanOneSample) {
 }
 
 TEST(Cli, MovingObjectsRenderWithMotionAndDenoiseSaysHowItReprojects) {
-    fs::path in = scratch("objects_in"), out = scratch("objects_out"), cam = scratch("objects_cam");
+    fs::path in = bmfr::testing::scratchPath("cli", "objects_in"),
+             out = bmfr::testing::scratchPath("cli", "objects_out"),
+             cam = bmfr::testing::scratchPath("cli", "objects_cam");
     ASSERT_EQ(run("render -s cornell-objects --width 40 --height 30 --frames 3 --no-reference -q "
                   "-o " +
                   in.string())
@@ -230,7 +234,9 @@ TEST(Cli, MovingObjectsRenderWithMotionAndDenoiseSaysHowItReprojects) {
 }
 
 TEST(Cli, WalrFiltersTheColourOrTheRenderedDiffuseIndirectLight) {
-    fs::path in = scratch("walr_in"), out = scratch("walr_out"), synth = scratch("walr_synth");
+    fs::path in = bmfr::testing::scratchPath("cli", "walr_in"),
+             out = bmfr::testing::scratchPath("cli", "walr_out"),
+             synth = bmfr::testing::scratchPath("cli", "walr_synth");
     ASSERT_EQ(run("render -s cornell-moving --width 40 --height 30 --frames 2 --no-reference -q "
                   "-o " +
                   in.string())
@@ -255,7 +261,9 @@ TEST(Cli, WalrFiltersTheColourOrTheRenderedDiffuseIndirectLight) {
 }
 
 TEST(Cli, Mara2017FiltersTheFactoredPathsOrWarnsOnceWithoutThem) {
-    fs::path in = scratch("mara_in"), out = scratch("mara_out"), plain = scratch("mara_plain");
+    fs::path in = bmfr::testing::scratchPath("cli", "mara_in"),
+             out = bmfr::testing::scratchPath("cli", "mara_out"),
+             plain = bmfr::testing::scratchPath("cli", "mara_plain");
     Result rendered = run("render -s cornell-moving --width 40 --height 30 --frames 2 "
                           "--no-reference -q --paths mara --direct-spp 4 -o " +
                           in.string());
@@ -291,7 +299,8 @@ TEST(Cli, Mara2017FiltersTheFactoredPathsOrWarnsOnceWithoutThem) {
 }
 
 TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
-    fs::path in = scratch("set_in"), out = scratch("set_out");
+    fs::path in = bmfr::testing::scratchPath("cli", "set_in"),
+             out = bmfr::testing::scratchPath("cli", "set_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);
     const std::string base = "denoise " + in.string() + " -o " + out.string() + " -q --no-png ";
     EXPECT_EQ(run(base + "--set blockSize=16 --backend reference --disable fitting").code, 0);
@@ -322,7 +331,8 @@ TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
 // Without a GPU (or without CUDA in the build), the cuda backend is one clear error, exit 1;
 // with one, it denoises as the CPU backend does.
 TEST(Cli, CudaBackendDenoisesOrSaysWhyNot) {
-    fs::path in = scratch("cuda_in"), out = scratch("cuda_out");
+    fs::path in = bmfr::testing::scratchPath("cli", "cuda_in"),
+             out = bmfr::testing::scratchPath("cli", "cuda_out");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 24 --frames 2 -q").code, 0);
     bool device = true;
     try {
@@ -393,10 +403,10 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
     // --preset faithful those of no flags; a flag after the preset overrides it.
-    fs::path in = scratch("preset_in");
+    fs::path in = bmfr::testing::scratchPath("cli", "preset_in");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 30 --frames 4 -q").code, 0);
     auto denoise = [&](const std::string& name, const std::string& flags) {
-        const fs::path out = scratch("preset_" + name);
+        const fs::path out = bmfr::testing::scratchPath("cli", "preset_" + name);
         const Result r = run("denoise " + in.string() + " -o " + out.string() + " -q " + flags);
         EXPECT_EQ(r.code, 0) << r.output;
         return pixelsOf(out / "denoised_0003.exr");
@@ -418,10 +428,10 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     EXPECT_EQ(faithful, plain);
     EXPECT_EQ(overridden, plain);
     EXPECT_NE(quality, plain);
-    EXPECT_NE(
-        run("denoise " + in.string() + " -o " + scratch("preset_bad").string() + " --preset fast")
-            .code,
-        0);
+    EXPECT_NE(run("denoise " + in.string() + " -o " +
+                  bmfr::testing::scratchPath("cli", "preset_bad").string() + " --preset fast")
+                  .code,
+              0);
     fs::remove_all(in);
 }
 

@@ -12,7 +12,7 @@
 namespace bmfr {
 namespace {
 
-struct NeedsGpu : testing::Test {
+struct NeedsGpu : ::testing::Test {
     void SetUp() override {
         try {
             cuda::requireDevice();

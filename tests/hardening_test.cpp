@@ -33,10 +33,6 @@ fs::path repro(const char* name) {
 #define REQUIRE_REPRO(name)                                                                        \
     if (!fs::exists(repro(name))) GTEST_SKIP() << "no ../shared/repro/" << name
 
-fs::path freshDir(const std::string& name) {
-    return testing::freshDir("hard", name);
-}
-
 using testing::errorOf;
 #define EXPECT_ERROR(call, needle)                                                                 \
     do {                                                                                           \
@@ -49,12 +45,7 @@ Result run(const std::string& args) {
     return bmfr::testing::runCli(args);
 }
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using testing::slurp;
 
 /// The procedural scene's first `n` frames at w x h.
 std::vector<FrameData> proceduralFrames(int w, int h, int n) {
@@ -80,7 +71,7 @@ render::SequenceRenderReport renderInto(const render::SceneDescription& d, const
 
 // 1. Data loss: a folder holding another dataset is refused, and nothing in it is touched.
 TEST(Hardening, RenderRefusesAFolderHoldingAnotherDataset) {
-    const fs::path dir = freshDir("dataset");
+    const fs::path dir = testing::freshDir("hard", "dataset");
     writeBmfrLayout(dir.string(), proceduralFrames(12, 8, 2), 0.01f, 1.0f);
     const std::string before = slurp(dir / "camera_matrices.h");
     EXPECT_ERROR(renderInto(tinyScene(), dir, "bmfr"), "refusing to write into it");
@@ -92,7 +83,7 @@ TEST(Hardening, RenderRefusesAFolderHoldingAnotherDataset) {
 }
 
 TEST(Hardening, RenderResumesOnlyTheSameSceneAndSettings) {
-    const fs::path dir = freshDir("fingerprint");
+    const fs::path dir = testing::freshDir("hard", "fingerprint");
     render::SceneDescription d = tinyScene();
     EXPECT_EQ(renderInto(d, dir, "manifest").rendered, 2);
     EXPECT_EQ(renderInto(d, dir, "manifest").skipped, 2);
@@ -106,7 +97,7 @@ TEST(Hardening, RenderResumesOnlyTheSameSceneAndSettings) {
 }
 
 TEST(Hardening, BmfrLayoutHeaderIsWrittenAfterItsFrames) {
-    const fs::path dir = freshDir("header_last");
+    const fs::path dir = testing::freshDir("hard", "header_last");
     std::atomic<bool> cancel{true}; // stopped before the first frame
     render::renderSequence(
         tinyScene(), {dir.string(), "bmfr", true}, &cancel, [](int, int) {},
@@ -170,7 +161,7 @@ TEST(Hardening, ExrClaimingAHugeImageFailsFast) {
 TEST(Hardening, ManifestSizesAreCheckedIntegers) {
     REQUIRE_REPRO("manifest-width-1e20.json");
     for (const char* name : {"manifest-width-1e20.json", "manifest-width-wrap.json"}) {
-        const fs::path dir = freshDir("manifest");
+        const fs::path dir = testing::freshDir("hard", "manifest");
         fs::copy_file(repro(name), dir / "sequence.json");
         EXPECT_ERROR(SequenceReader::open(dir.string()), "width");
         fs::remove_all(dir);
@@ -178,7 +169,7 @@ TEST(Hardening, ManifestSizesAreCheckedIntegers) {
 }
 
 TEST(Hardening, ManifestKeysAreChecked) {
-    const fs::path dir = freshDir("manifest_keys");
+    const fs::path dir = testing::freshDir("hard", "manifest_keys");
     ProceduralSceneOptions o;
     o.width = 8, o.height = 4, o.frames = 1;
     ManifestWriter(dir.string(), ProceduralScene(o).info())
@@ -202,7 +193,7 @@ TEST(Hardening, SynthRejectsANonFiniteCameraSpeed) {
 
 // 6. Writes are checked: a failure names the path and the reason and leaves no partial file.
 TEST(Hardening, FailedWritesAreErrorsWithThePath) {
-    const fs::path dir = freshDir("writes");
+    const fs::path dir = testing::freshDir("hard", "writes");
     std::ofstream(dir / "file") << "x";
     const std::string bad = (dir / "file" / "report.json").string(); // a file as a folder
     EXPECT_ERROR(writeFileAtomically(bad, std::string("{}")), "cannot write " + bad);
@@ -219,7 +210,7 @@ TEST(Hardening, FailedWritesAreErrorsWithThePath) {
 
 // 7. The smaller ones.
 TEST(Hardening, TonemapNeverOverwritesItsInput) {
-    const fs::path dir = freshDir("tonemap");
+    const fs::path dir = testing::freshDir("hard", "tonemap");
     ImageF img(4, 3, 3);
     writeExr((dir / "x.exr").string(), img);
     const std::string before = slurp(dir / "x.exr");
@@ -231,7 +222,7 @@ TEST(Hardening, TonemapNeverOverwritesItsInput) {
 }
 
 TEST(Hardening, IncompleteSequencesAreErrors) {
-    const fs::path dir = freshDir("gaps");
+    const fs::path dir = testing::freshDir("hard", "gaps");
     ProceduralSceneOptions o;
     o.width = 12, o.height = 8, o.frames = 4;
     const ProceduralScene scene(o);
@@ -252,7 +243,7 @@ TEST(Hardening, IncompleteSequencesAreErrors) {
 }
 
 TEST(Hardening, ExrChannelsAreNeverInventedOrEmpty) {
-    const fs::path dir = freshDir("channels");
+    const fs::path dir = testing::freshDir("hard", "channels");
     ImageF one(5, 4, 1);
     writeExr((dir / "y.exr").string(), one);
     EXPECT_ERROR(readExr((dir / "y.exr").string(), 3), "expected R,G,B");
@@ -263,7 +254,7 @@ TEST(Hardening, ExrChannelsAreNeverInventedOrEmpty) {
 
 TEST(Hardening, CommandLineBoundsAreChecked) {
     EXPECT_ERROR(parseFrameRange("0:99999999999", 10), "the sequence has frames 0:10");
-    const fs::path dir = freshDir("eval");
+    const fs::path dir = testing::freshDir("hard", "eval");
     ASSERT_EQ(
         run("synth -o " + (dir / "in").string() + " --width 16 --height 8 --frames 2 -q").code, 0);
     const std::string base = "eval -r " + (dir / "in").string() + " -m noisy -o " +

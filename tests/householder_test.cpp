@@ -4,6 +4,7 @@
 #include "backend/cuda/bmfr/cooperative_fit.h"
 #include "core/hash.h"
 #include "filters/bmfr/householder_qr.h"
+#include "test_support.h"
 #include <Eigen/Dense>
 #include <cmath>
 #include <gtest/gtest.h>
@@ -12,7 +13,7 @@
 namespace bmfr {
 namespace {
 
-constexpr int W = 1024;
+constexpr int kRows = 1024;
 
 /// The CUDA backend's block-cooperative QR, run on the host by a team of 256 (the GPU's).
 int solveHouseholderTeam(float* columns, int M, int rows, float* coeffs) {
@@ -33,38 +34,36 @@ const NamedSolver kSolvers[] = {{"reference", &solveHouseholder},
                                 {"fast", &cpu::solveHouseholderFast},
                                 {"cuda team", &solveHouseholderTeam}};
 
-float uniform(uint32_t a, uint32_t b, uint32_t c) {
-    return unitFloat(hashKeys(a, b, c));
-}
+using testing::uniform;
 
 /// Column-major block: M feature columns then 3 colour columns.
 struct Block {
     int M;
     std::vector<float> cols;
-    Block(int m) : M(m), cols(size_t(m + 3) * W) {}
-    float& at(int col, int row) { return cols[size_t(col) * W + row]; }
+    Block(int m) : M(m), cols(size_t(m + 3) * kRows) {}
+    float& at(int col, int row) { return cols[size_t(col) * kRows + row]; }
 };
 
 /// Adds U[-eps, eps] to every feature column but the constant one (column 0).
 void regularise(Block& b, float eps, uint32_t seed) {
     for (int f = 1; f < b.M; ++f)
-        for (int k = 0; k < W; ++k) b.at(f, k) += eps * (2 * uniform(seed, f, k) - 1);
+        for (int k = 0; k < kRows; ++k) b.at(f, k) += eps * (2 * uniform(seed, f, k) - 1);
 }
 
 void compareOne(const Block& b, double tolerance, const char* what, Solver solve) {
-    Eigen::MatrixXd A(W, b.M), Z(W, 3);
-    for (int k = 0; k < W; ++k) {
-        for (int f = 0; f < b.M; ++f) A(k, f) = b.cols[size_t(f) * W + k];
-        for (int c = 0; c < 3; ++c) Z(k, c) = b.cols[size_t(b.M + c) * W + k];
+    Eigen::MatrixXd A(kRows, b.M), Z(kRows, 3);
+    for (int k = 0; k < kRows; ++k) {
+        for (int f = 0; f < b.M; ++f) A(k, f) = b.cols[size_t(f) * kRows + k];
+        for (int c = 0; c < 3; ++c) Z(k, c) = b.cols[size_t(b.M + c) * kRows + k];
     }
     Eigen::MatrixXd ref = A * A.colPivHouseholderQr().solve(Z);
     std::vector<float> coeffs(size_t(b.M) * 3);
     std::vector<float> work = b.cols;
-    solve(work.data(), b.M, W, coeffs.data());
+    solve(work.data(), b.M, kRows, coeffs.data());
     double scale = Z.cwiseAbs().maxCoeff();
     for (float c : coeffs) ASSERT_TRUE(std::isfinite(c)) << what;
     double worst = 0;
-    for (int k = 0; k < W; ++k)
+    for (int k = 0; k < kRows; ++k)
         for (int c = 0; c < 3; ++c) {
             double ours = 0;
             for (int f = 0; f < b.M; ++f) ours += double(coeffs[f * 3 + c]) * A(k, f);
@@ -84,7 +83,7 @@ void compare(Block b, double tolerance, const char* what) {
 TEST(Householder, MatchesDoubleLeastSquaresOnRandomBlocks) {
     for (uint32_t trial = 0; trial < 20; ++trial) {
         Block b(10);
-        for (int k = 0; k < W; ++k) {
+        for (int k = 0; k < kRows; ++k) {
             b.at(0, k) = 1.0f;
             for (int f = 1; f < 10; ++f) b.at(f, k) = 2 * uniform(trial, f, k) - 1;
             for (int c = 0; c < 3; ++c)
@@ -97,7 +96,7 @@ TEST(Householder, MatchesDoubleLeastSquaresOnRandomBlocks) {
 TEST(Householder, RankDeficientBlocksWithRegularisationMatchAndStayFinite) {
     // Flat wall: constant normal, position varies in one axis only; the squares duplicate it.
     Block wall(10);
-    for (int k = 0; k < W; ++k) {
+    for (int k = 0; k < kRows; ++k) {
         float x = float(k % 32) / 31.0f;
         const float cols[10] = {1, 0, 0, 1, x, 0.5f, 0.25f, x * x, 0.25f, 0.0625f};
         for (int f = 0; f < 10; ++f) wall.at(f, k) = cols[f];
@@ -108,7 +107,7 @@ TEST(Householder, RankDeficientBlocksWithRegularisationMatchAndStayFinite) {
 
     // Empty sky: every feature constant (all zero apart from the constant column).
     Block sky(10);
-    for (int k = 0; k < W; ++k) {
+    for (int k = 0; k < kRows; ++k) {
         sky.at(0, k) = 1.0f;
         for (int c = 0; c < 3; ++c) sky.at(10 + c, k) = 0.8f + 0.2f * uniform(9, c, k);
     }
@@ -119,19 +118,19 @@ TEST(Householder, RankDeficientBlocksWithRegularisationMatchAndStayFinite) {
 TEST(Householder, UnregularisedRankDeficiencyGivesFiniteMeanFit) {
     // Without noise the dependent columns are dropped: the fit is still the block mean.
     Block b(10);
-    for (int k = 0; k < W; ++k) {
+    for (int k = 0; k < kRows; ++k) {
         b.at(0, k) = 1.0f;
         for (int f = 1; f < 10; ++f) b.at(f, k) = 0.3f;
         for (int c = 0; c < 3; ++c) b.at(10 + c, k) = float(k % 7);
     }
     double mean = 0;
-    for (int k = 0; k < W; ++k) mean += k % 7;
-    mean /= W;
+    for (int k = 0; k < kRows; ++k) mean += k % 7;
+    mean /= kRows;
     for (const NamedSolver& solver : kSolvers) {
         SCOPED_TRACE(solver.name);
         std::vector<float> coeffs(30);
         std::vector<float> work = b.cols;
-        int dropped = solver.solve(work.data(), 10, W, coeffs.data());
+        int dropped = solver.solve(work.data(), 10, kRows, coeffs.data());
         EXPECT_EQ(dropped, 9);
         for (float c : coeffs) ASSERT_TRUE(std::isfinite(c));
         EXPECT_NEAR(coeffs[0], mean, 1e-4);
@@ -140,9 +139,10 @@ TEST(Householder, UnregularisedRankDeficiencyGivesFiniteMeanFit) {
 
 // The fast and the CUDA team solvers' tolerance against the reference: coefficients of
 // well-conditioned blocks within 1e-4 relative (only the summation order differs), the same columns
-// dropped, and any row count (heads and tails around the 8-wide body).
+// dropped, and any row count (masked heads when rows are whole vectors, scalar heads and tails
+// around the body when not).
 TEST(Householder, FastSolverMatchesReferenceForAnyRowCount) {
-    for (int rows : {64, 81, 144, 1024, 4096}) {
+    for (int rows : {64, 72, 81, 144, 256, 1024, 4096}) {
         for (uint32_t trial = 0; trial < 5; ++trial) {
             const int M = 10;
             std::vector<float> cols(size_t(M + 3) * rows);

@@ -26,7 +26,7 @@ using testing::errorOf;
 
 /// One frame's stage buffers over a plane z = 0 facing +z, 1 cm per pixel, wired into a
 /// MaraFrame with the default settings at this width.
-struct Field {
+struct MaraPlane {
     int w, h;
     std::vector<float> pos, nrm, matte, glossy, expected, prevPixel, temporal, conf, rowMin, radius,
         median, matteOut, history, prevMatte, prevGlossy, prevPos, glossyTemporal, glossyHistory,
@@ -35,7 +35,7 @@ struct Field {
     std::vector<uint8_t> prevCount, count, accept;
     MaraFrame f;
 
-    Field(int width, int height, const Mara2017Settings& s = {})
+    MaraPlane(int width, int height, const Mara2017Settings& s = {})
         : w(width), h(height), f(maraFrameSettings(s, width)) {
         const size_t n = size_t(w) * size_t(h);
         for (auto* v : {&pos, &nrm, &matte, &glossy, &expected, &temporal, &median, &matteOut,
@@ -120,7 +120,7 @@ TEST(Mara2017, M1ConfidenceFallsFromHAtD0ToZeroAtD1) {
 }
 
 TEST(Mara2017, M3DisoccludedPixelTakesTheCurrentSample) {
-    Field a(12, 10);
+    MaraPlane a(12, 10);
     a.matte = randomValues(a.matte.size(), 0, 1, 1);
     a.prevMatte.assign(a.prevMatte.size(), 7.0f);
     a.perfectHistory(20);
@@ -142,7 +142,7 @@ TEST(Mara2017, M4ClampedHistoryLiesInTheNew3x3) {
     for (bool clamp : {true, false}) {
         Mara2017Settings s;
         s.hysteresis = 1.0f, s.cumulativeStart = false, s.clampHistory = clamp;
-        Field a(16, 12, s);
+        MaraPlane a(16, 12, s);
         a.matte = randomValues(a.matte.size(), 0, 1, 2);
         a.prevMatte = randomValues(a.prevMatte.size(), -1, 3, 3);
         a.perfectHistory(30);
@@ -173,7 +173,7 @@ TEST(Mara2017, CumulativeStartAveragesUntilTheHysteresisTakesOver) {
     for (bool cumulative : {true, false}) {
         Mara2017Settings s;
         s.cumulativeStart = cumulative, s.clampHistory = false;
-        Field a(4, 4, s);
+        MaraPlane a(4, 4, s);
         a.matte.assign(a.matte.size(), 1.0f);
         a.perfectHistory(3); // three frames of history averaging 0
         a.each([&](int x, int y) { maraMatteTemporalPixel(a.f, x, y); });
@@ -186,7 +186,7 @@ TEST(Mara2017, CumulativeStartAveragesUntilTheHysteresisTakesOver) {
 }
 
 /// Stage 5 by brute force: the min of c over the (2R + 1)^2 box inside the image.
-float bruteRadius(Field& a, int x, int y) {
+float bruteRadius(MaraPlane& a, int x, int y) {
     float m = INFINITY;
     for (int qy = std::max(0, y - a.f.maxRadius); qy <= std::min(a.h - 1, y + a.f.maxRadius); ++qy)
         for (int qx = std::max(0, x - a.f.maxRadius); qx <= std::min(a.w - 1, x + a.f.maxRadius);
@@ -196,13 +196,13 @@ float bruteRadius(Field& a, int x, int y) {
     return a.conf[size_t(y) * size_t(a.w) + size_t(x)] < 0.5f ? 6.0f * r : r;
 }
 
-void runStage5(Field& a) {
+void runStage5(MaraPlane& a) {
     a.each([&](int x, int y) { maraRowMinPixel(a.f, x, y); });
     a.each([&](int x, int y) { maraColumnMinPixel(a.f, x, y); });
 }
 
 TEST(Mara2017, M5DisocclusionRadiusIsTheSeparableMinOfTheBox) {
-    Field a(60, 40); // R = W/20 = 3
+    MaraPlane a(60, 40); // R = W/20 = 3
     ASSERT_EQ(a.f.maxRadius, 3);
     const int R = a.f.maxRadius;
     // All confident: r = (1 - h) R everywhere.
@@ -246,7 +246,7 @@ TEST(Mara2017, CpuRunningMinEqualsTheBruteForceMin) {
 
 TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     const int w = 101, h = 23; // tails and borders on both sides
-    Field a(w, h);
+    MaraPlane a(w, h);
     std::vector<float> bump = randomValues(size_t(w * h), -0.02f, 0.02f, 7);
     std::vector<float> tilt = randomValues(size_t(2 * w * h), -0.3f, 0.3f, 8);
     a.temporal = randomValues(a.temporal.size(), 0, 2, 9);
@@ -271,7 +271,7 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     cpu::MaraTapTables tables;
     tables.build(a.f);
     for (size_t k = 0; k < a.radius.size(); k += 3) a.radius[k] = tables.radius[k % 4];
-    Field b = a;
+    MaraPlane b = a;
     a.each([&](int x, int y) { maraPreBilateralPixel(a.f, x, y); });
     a.each([&](int x, int y) { maraFinalBilateralPixel(a.f, a.glossy.data(), x, y); });
     b.wire();
@@ -300,7 +300,7 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
 }
 
 TEST(Mara2017, M6MedianRemovesAFireflyAndKeepsAStep) {
-    Field a(9, 9);
+    MaraPlane a(9, 9);
     a.temporal.assign(a.temporal.size(), 0.5f);
     store3(a.temporal.data(), 4 * 9 + 4, {100, 100, 100});
     a.each([&](int x, int y) { maraMedianPixel(a.f, x, y); });
@@ -380,14 +380,14 @@ TEST(Mara2017, M8GlossySigmaLimitsAndSeparability) {
     EXPECT_NEAR(maraGlossySigma(0.01f, 7, 0.1f, 1e-4f), 4.4f, 0.05f); // the notes' table
     EXPECT_NEAR(maraGlossySigma(0.5f, 7, 0.1f, 1e-4f), 6.5f, 0.05f);
     // Roughness 0: the identity.
-    Field a(20, 10);
+    MaraPlane a(20, 10);
     a.glossy = randomValues(a.glossy.size(), 0, 1, 5);
     a.each([&](int x, int y) {
         maraGlossyPassPixel(a.f, a.glossy.data(), a.glossyRow.data(), x, y, 1, 0);
     });
     EXPECT_EQ(a.pixels(a.glossyRow), a.pixels(a.glossy));
     // H then V of an impulse with unit edge weights is the normalised 2D Gaussian.
-    Field b(81, 81);
+    MaraPlane b(81, 81);
     b.rough.assign(b.rough.size(), 0.5f);
     const float sigma = maraGlossySigma(0.5f, 7, 0.1f, 1e-4f);
     store3(b.glossy.data(), 40L * 81 + 40, {1, 1, 1});
@@ -412,7 +412,7 @@ TEST(Mara2017, M8GlossySigmaLimitsAndSeparability) {
 }
 
 TEST(Mara2017, M9NoBilateralStageCrossesAPlaneStep) {
-    Field a(40, 30);
+    MaraPlane a(40, 30);
     a.each([&](int x, int y) {
         a.setPosition(long(y) * a.w + x,
                       {float(x) * 0.01f, float(y) * 0.01f, x < 20 ? 0.0f : 1.0f});
@@ -455,7 +455,7 @@ TEST(Mara2017, M9NoBilateralStageCrossesAPlaneStep) {
 
 TEST(Mara2017, M10VirtualPositionLandsOnThePreviousReflection) {
     const int w = 256, h = 192;
-    Field a(w, h);
+    MaraPlane a(w, h);
     // A mirror at z = 0 seen from z = 3; the reflected point P = (0.4, 0.3, 1), mirror image P'.
     const Vec3 eye{0, 0, 3}, was{-0.5f, 0.3f, 3}, image{0.4f, 0.3f, -1};
     const Vec3 x = eye + 0.75f * (image - eye); // where the ray to P' crosses the mirror

@@ -86,10 +86,6 @@ void expectChannels(const ImageF& img, const std::vector<std::string>& names) {
 
 using testing::errorOf;
 
-fs::path freshDir(const std::string& name) {
-    return testing::freshDir("ml", name);
-}
-
 const std::vector<std::string> kCyclesChannels = {"ViewLayer.Combined.R",
                                                   "ViewLayer.Combined.G",
                                                   "ViewLayer.Combined.B",
@@ -112,7 +108,7 @@ const std::vector<std::string> kCyclesChannels = {"ViewLayer.Combined.R",
                                                   "ViewLayer.Depth.Z"};
 
 TEST(MultilayerExr, LayersAndChannelNamesAsCyclesWritesThem) {
-    const fs::path dir = freshDir("layers");
+    const fs::path dir = testing::freshDir("ml", "layers");
     const fs::path f = dir / "frame.exr";
     writeLayered(f, kCyclesChannels);
     expectChannels(readExr(f.string(), 3, "ViewLayer.Combined"),
@@ -132,7 +128,7 @@ TEST(MultilayerExr, LayersAndChannelNamesAsCyclesWritesThem) {
 }
 
 TEST(MultilayerExr, MultiPartFilesNameLayersByPart) {
-    const fs::path dir = freshDir("parts");
+    const fs::path dir = testing::freshDir("ml", "parts");
     const fs::path f = dir / "parts.exr";
     writeMultiPart(f, {{"ViewLayer.Combined", "RGB"}, {"ViewLayer.Normal", "XYZ"}});
     EXPECT_EQ(exrChannelNames(f.string()).size(), 6u);
@@ -144,7 +140,7 @@ TEST(MultilayerExr, MultiPartFilesNameLayersByPart) {
 }
 
 TEST(MultilayerExr, SequencesUseTheDefaultPassesAndChannelOverrides) {
-    const fs::path dir = freshDir("sequence");
+    const fs::path dir = testing::freshDir("ml", "sequence");
     writeLayered(dir / "frame_0000.exr", kCyclesChannels);
     std::ofstream(dir / "sequence.json") << R"({"format": "bmfr-sequence", "version": 1,
         "width": 6, "height": 4, "frames": [{"color": "frame_0000.exr",

@@ -22,10 +22,6 @@ fs::path scenesDir() {
     return {};
 }
 
-fs::path freshDir(const std::string& name) {
-    return testing::freshDir("render", name);
-}
-
 void expectError(const std::function<void()>& f, const std::string& needle) {
     try {
         f();
@@ -64,7 +60,7 @@ TEST(RenderScene, CornellObjLoadsItsLight) {
 }
 
 TEST(RenderScene, MissingTextureIsAWarningAndAFlatColour) {
-    fs::path d = freshDir("missing_tex");
+    fs::path d = testing::freshDir("render", "missing_tex");
     std::ofstream(d / "m.mtl") << "newmtl wall\nKd 0.5 0.4 0.3\nmap_Kd does_not_exist.png\n";
     std::ofstream(d / "m.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wall\nf 1 2 3\n";
     Scene s = loadScene((d / "m.obj").string());
@@ -76,7 +72,7 @@ TEST(RenderScene, MissingTextureIsAWarningAndAFlatColour) {
 }
 
 TEST(RenderScene, UnsupportedGltfFeatureAndBadFilesAreClearErrors) {
-    fs::path d = freshDir("gltf");
+    fs::path d = testing::freshDir("render", "gltf");
     std::ofstream(d / "draco.gltf") << R"({"asset": {"version": "2.0"},
         "extensionsUsed": ["KHR_draco_mesh_compression"],
         "extensionsRequired": ["KHR_draco_mesh_compression"], "scenes": [{"nodes": []}]})";
@@ -182,7 +178,7 @@ TEST(RenderScene, HiddenObjectsLeaveTheSceneAndAnUnknownNameListsTheObjects) {
 }
 
 TEST(RenderScene, SceneWithoutLightIsAnError) {
-    fs::path d = freshDir("dark");
+    fs::path d = testing::freshDir("render", "dark");
     std::ofstream(d / "m.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     std::ofstream(d / "dark.json") << R"({"mesh": "m.obj", "width": 8, "height": 8, "frames": 1,
         "camera": {"keyframes": [{"position": [0, 0, 3], "target": [0, 0, 0]}]}})";
@@ -197,7 +193,7 @@ TEST(RenderScene, SceneWithoutLightIsAnError) {
 }
 
 TEST(RenderScene, ResumeSkipsFinishedFramesAndBothLayoutsAreReadable) {
-    fs::path d = freshDir("resume");
+    fs::path d = testing::freshDir("render", "resume");
     SceneDescription desc = loadSceneDescription("cornell-moving", ".");
     desc.width = 24, desc.height = 16, desc.frames = 3, desc.referenceSpp = 4;
     auto run = [&](const std::string& layout) {
@@ -248,7 +244,7 @@ TEST(RenderScene, ResumeSkipsFinishedFramesAndBothLayoutsAreReadable) {
 }
 
 TEST(RenderScene, CancelStopsWithoutWritingAFrame) {
-    fs::path d = freshDir("cancel");
+    fs::path d = testing::freshDir("render", "cancel");
     SceneDescription desc = loadSceneDescription("cornell-moving", ".");
     desc.width = 16, desc.height = 16, desc.frames = 2, desc.referenceSpp = 2;
     std::atomic<bool> cancel{true};

@@ -4,6 +4,7 @@
 #include "eval/crops.h"
 #include "eval/frame_scores.h"
 #include "eval/plot.h"
+#include "test_support.h"
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -144,20 +145,12 @@ TEST(ReportCrops, InsetsGoWhereMethodsDifferFromDistinctRegions) {
     EXPECT_TRUE(centreNear(single[0], 20, 20));
 }
 
-fs::path scratch(const std::string& name) {
-    const fs::path p =
-        fs::temp_directory_path() / ("bmfr_report_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(p);
-    return p;
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
+using testing::slurp;
 
 TEST(ReportOutputs, NamesAreEscapedAndTablesShareOneNumericSchema) {
-    const fs::path in = scratch("in"), den = scratch("den"), out = scratch("out");
+    const fs::path in = testing::scratchPath("report", "in"),
+                   den = testing::scratchPath("report", "den"),
+                   out = testing::scratchPath("report", "out");
     ASSERT_EQ(runCli("synth -o " + in.string() + " --width 48 --height 32 --frames 3 -q").code, 0);
     ASSERT_EQ(runCli("denoise " + in.string() + " -o " + den.string() + " -q --no-png").code, 0);
     const std::string evil = "<script>alert(1)</script>\\\"x, y";
@@ -211,8 +204,10 @@ TEST(ReportOutputs, NamesAreEscapedAndTablesShareOneNumericSchema) {
 }
 
 TEST(ReportOutputs, VideosNeedFfmpegAndTheReportIsWrittenWithout) {
-    const fs::path in = scratch("vin"), den = scratch("vden"), out = scratch("vout"),
-                   noFfmpeg = scratch("vnone");
+    const fs::path in = testing::scratchPath("report", "vin"),
+                   den = testing::scratchPath("report", "vden"),
+                   out = testing::scratchPath("report", "vout"),
+                   noFfmpeg = testing::scratchPath("report", "vnone");
     ASSERT_EQ(runCli("synth -o " + in.string() + " --width 48 --height 32 --frames 4 -q").code, 0);
     ASSERT_EQ(runCli("denoise " + in.string() + " -o " + den.string() + " -q --no-png").code, 0);
     const std::string args = "eval -r " + in.string() + " -m noisy -m bmfr=" + den.string() +

@@ -14,10 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path freshDir(const std::string& name) {
-    return testing::freshDir("test", name);
-}
-
 ImageF filled(int w, int h, float base) {
     ImageF img(w, h, 3);
     for (size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = base + 0.001f * float(i);
@@ -26,7 +22,7 @@ ImageF filled(int w, int h, float base) {
 
 /// A 2-frame, 5x3 sequence in the original layout, with camera_matrices.h written by hand.
 fs::path writeOriginalLayout() {
-    fs::path d = freshDir("original");
+    fs::path d = testing::freshDir("test", "original");
     for (int n = 0; n < 2; ++n) {
         writeExr((d / ("color" + std::to_string(n) + ".exr")).string(), filled(5, 3, 1.0f + n));
         writeExr((d / ("albedo" + std::to_string(n) + ".exr")).string(), filled(5, 3, 0.5f));
@@ -119,7 +115,7 @@ TEST(SequenceIO, BadFilesNameTheFileAndFrame) {
     fs::remove_all(d);
 
     EXPECT_THROW(SequenceReader::open("/nonexistent/bmfr"), Error);
-    fs::path empty = freshDir("empty");
+    fs::path empty = testing::freshDir("test", "empty");
     EXPECT_THROW(SequenceReader::open(empty.string()), Error);
     fs::remove_all(empty);
 }
@@ -129,7 +125,8 @@ TEST(SequenceIO, ManifestAndOriginalLayoutRoundTrip) {
     o.width = 24, o.height = 16, o.frames = 3;
     ProceduralScene scene(o);
     std::vector<FrameData> frames(3);
-    fs::path dm = freshDir("manifest"), db = freshDir("bmfrlayout");
+    fs::path dm = testing::freshDir("test", "manifest"),
+             db = testing::freshDir("test", "bmfrlayout");
     {
         ManifestWriter w(dm.string(), scene.info());
         for (int i = 0; i < 3; ++i) scene.render(i, frames[i]), w.addFrame(i, frames[i]);
@@ -165,7 +162,7 @@ TEST(SequenceIO, ManifestAndOriginalLayoutRoundTrip) {
 }
 
 TEST(SequenceIO, ZeroSizeManifestIsRejected) {
-    fs::path d = freshDir("zero");
+    fs::path d = testing::freshDir("test", "zero");
     std::ofstream(d / "sequence.json")
         << R"({"format": "bmfr-sequence", "version": 1, "width": 0, "height": 10, "frames": []})";
     try {

@@ -5,6 +5,7 @@
 #include "backend/cuda/bmfr/cooperative_fit.h"
 #include "core/hash.h"
 #include "filters/bmfr/regularisation_noise.h"
+#include "test_support.h"
 #include <algorithm>
 #include <bmfr/features.h>
 #include <cmath>
@@ -15,9 +16,7 @@
 namespace bmfr {
 namespace {
 
-float uniform(uint32_t a, uint32_t b, uint32_t c) {
-    return unitFloat(hashKeys(a, b, c));
-}
+using testing::uniform;
 
 /// A w x h frame of smooth features (a tilted floor meeting a wall), an extra buffer, and a
 /// noisy colour that the features can mostly explain.

@@ -1,9 +1,12 @@
 // Small helpers the test suites share: scratch folders and the message of an expected error.
 #pragma once
+#include "core/hash.h"
 #include <bmfr/error.h>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <gtest/gtest.h>
+#include <iterator>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -26,16 +29,34 @@ class ScratchFolders {
     std::vector<std::filesystem::path> folders_;
 };
 
-/// An empty folder under the system's temporary directory, unique to this process.
-inline std::filesystem::path freshDir(const std::string& suite, const std::string& name) {
+/// A path under the system's temporary directory, unique to this process and not there: for
+/// the folders that a command under test makes itself. Removed at exit as freshDir's.
+inline std::filesystem::path scratchPath(const std::string& suite, const std::string& name) {
     static ScratchFolders made;
     const std::filesystem::path p =
         std::filesystem::temp_directory_path() /
         ("bmfr_" + suite + "_" + name + "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(p);
-    std::filesystem::create_directories(p);
     made.add(p);
     return p;
+}
+
+/// An empty folder under the system's temporary directory, unique to this process.
+inline std::filesystem::path freshDir(const std::string& suite, const std::string& name) {
+    const std::filesystem::path p = scratchPath(suite, name);
+    std::filesystem::create_directories(p);
+    return p;
+}
+
+/// A file's bytes.
+inline std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+/// A number in [0, 1) that depends only on three keys: repeatable test data.
+inline float uniform(uint32_t a, uint32_t b, uint32_t c) {
+    return unitFloat(hashKeys(a, b, c));
 }
 
 /// What `f` throws as bmfr::Error, or "(no error)".

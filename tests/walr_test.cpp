@@ -23,10 +23,10 @@ namespace {
 using testing::errorOf;
 
 /// A synthetic G-buffer: positions, normals (for the edge weights), depth, features and signal.
-struct Field {
+struct WalrGBuffer {
     int w = 0, h = 0;
     std::vector<float> pos, nrm, depth, feat, sig;
-    Field(int width, int height)
+    WalrGBuffer(int width, int height)
         : w(width), h(height), pos(size_t(3 * w * h)), nrm(size_t(3 * w * h)),
           depth(size_t(w * h), 10.0f), feat(size_t(2 * w * h), 0.5f), sig(size_t(3 * w * h)) {
         for (long i = 0; i < long(w) * h; ++i) {
@@ -56,7 +56,7 @@ struct WalrRun {
 
 /// WALR's spatial filter through the kernels: T iterations, then the solve; with `eightWide`,
 /// the CPU backend's interleaved iterations and solve instead of the scalar kernels on planes.
-WalrRun runWalr(const Field& f, const EdgeGuide& g, int iterations, bool keepW = false,
+WalrRun runWalr(const WalrGBuffer& f, const EdgeGuide& g, int iterations, bool keepW = false,
                 float eps = 1e-4f, uint32_t frame = 0, bool eightWide = false) {
     const long n = f.size();
     const AverageLayout layout = eightWide ? AverageLayout{1, 16} : AverageLayout{n, 1};
@@ -105,7 +105,7 @@ float rnd(uint32_t a, uint32_t b) {
 }
 
 /// Smoothly varying features (no pivot clamp fires) and normals tilted with them.
-void varyFeatures(Field& f) {
+void varyFeatures(WalrGBuffer& f) {
     for (long i = 0; i < f.size(); ++i) {
         const float x = float(i % f.w) / float(f.w), y = float(i / f.w) / float(f.h);
         f.feat[size_t(2 * i)] = 0.5f + 0.3f * std::sin(9.0f * x + 2.0f * y);
@@ -115,7 +115,7 @@ void varyFeatures(Field& f) {
 
 // W1: a signal that is exactly linear in the features is reproduced, for any weights.
 TEST(Walr, W1ReproducesASignalLinearInTheFeatures) {
-    Field f(121, 121);
+    WalrGBuffer f(121, 121);
     varyFeatures(f);
     for (long i = 0; i < f.size(); ++i) {
         // A tilted normal field, so that the edge weights are not all 1.
@@ -136,7 +136,7 @@ TEST(Walr, W1ReproducesASignalLinearInTheFeatures) {
 // W2 and W3: constant normals make the ε clamp fire; a constant stays constant and any signal
 // reduces to the edge-aware mean.
 TEST(Walr, W2W3FlatNormalsGiveTheEdgeAwareMean) {
-    Field f(90, 70);
+    WalrGBuffer f(90, 70);
     for (long i = 0; i < f.size(); ++i) store3(f.sig.data(), i, {2.5f, 2.5f, 2.5f});
     WalrRun r = runWalr(f, f.guide(), 4);
     for (float v : r.out) ASSERT_NEAR(v, 2.5f, 2e-5f);
@@ -149,9 +149,9 @@ TEST(Walr, W2W3FlatNormalsGiveTheEdgeAwareMean) {
 
 // W4: the output is linear in the signal (the weights depend only on geometry).
 TEST(Walr, W4OutputIsLinearInTheSignal) {
-    Field a(80, 60);
+    WalrGBuffer a(80, 60);
     varyFeatures(a);
-    Field b = a, c = a;
+    WalrGBuffer b = a, c = a;
     for (long i = 0; i < a.size(); ++i) {
         const Vec3 va{rnd(uint32_t(i), 4), rnd(uint32_t(i), 5), rnd(uint32_t(i), 6)};
         const Vec3 vb{rnd(uint32_t(i), 7), rnd(uint32_t(i), 8), rnd(uint32_t(i), 9)};
@@ -167,7 +167,7 @@ TEST(Walr, W4OutputIsLinearInTheSignal) {
     }
     // An affine remap of the features ([0, 1] to [-1, 1], as the paper allows either) changes
     // nothing while no pivot clamp fires.
-    Field d = a;
+    WalrGBuffer d = a;
     for (float& v : d.feat) v = 2.0f * v - 1.0f;
     const WalrRun rd = runWalr(d, d.guide(), 3);
     for (size_t k = 0; k < ra.out.size(); ++k) {
@@ -179,7 +179,7 @@ TEST(Walr, W4OutputIsLinearInTheSignal) {
 // W5: with every weight 1, T = 4 averages each pixel of the 81x81 window exactly once.
 TEST(Walr, W5ImpulseCoversTheWindowExactlyOnce) {
     for (int T : {3, 4}) {
-        Field f(161, 161); // every pixel whose window holds the impulse is inside
+        WalrGBuffer f(161, 161); // every pixel whose window holds the impulse is inside
         const long centre = 80 * 161 + 80;
         store3(f.sig.data(), centre, {1, 1, 1});
         const WalrRun r = runWalr(f, f.guide(true, true, 1.0f, 2.0f), T);
@@ -203,7 +203,7 @@ TEST(Walr, W5ImpulseCoversTheWindowExactlyOnce) {
 
 // W5 (second part) and the oracle: with every weight 1, WALR equals REFWLR in the interior.
 TEST(Walr, EqualsRefwlrInTheInteriorWhenAllWeightsAreOne) {
-    Field f(101, 97);
+    WalrGBuffer f(101, 97);
     varyFeatures(f);
     for (long i = 0; i < f.size(); ++i) {
         store3(f.pos.data(), i, {0, 0, 10}); // one point: every plane distance is 0
@@ -221,14 +221,14 @@ TEST(Walr, EqualsRefwlrInTheInteriorWhenAllWeightsAreOne) {
 
 // W6: two parallel planes further apart than the ramp: what happens on B never reaches A.
 TEST(Walr, W6DepthStepSeparatesThePlanesExactly) {
-    Field f(120, 60);
+    WalrGBuffer f(120, 60);
     varyFeatures(f);
     for (long i = 0; i < f.size(); ++i) {
         const int x = int(i % f.w);
         f.setPosition(i, {float(x) * 0.01f, float(i / f.w) * 0.01f, x < 60 ? 10.0f : 12.0f});
         store3(f.sig.data(), i, {rnd(uint32_t(i), 13), 0.5f, 0.5f});
     }
-    Field g = f;
+    WalrGBuffer g = f;
     for (long i = 0; i < f.size(); ++i)
         if (i % f.w >= 60) store3(g.sig.data(), i, {5.0f * rnd(uint32_t(i), 14), 9.0f, 0.0f});
     const WalrRun a = runWalr(f, f.guide(), 4), b = runWalr(g, g.guide(), 4);
@@ -242,7 +242,7 @@ TEST(Walr, W6DepthStepSeparatesThePlanesExactly) {
 // only the tap's end leaks the right side's light into the left.
 TEST(Walr, W7EdgeTracingStopsLeaksPastAThinOccluder) {
     const int strip = 60;
-    Field f(121, 60);
+    WalrGBuffer f(121, 60);
     for (long i = 0; i < f.size(); ++i) {
         const int x = int(i % f.w);
         f.setPosition(i, {float(x) * 0.01f, float(i / f.w) * 0.01f, x == strip ? 9.0f : 10.0f});
@@ -303,7 +303,7 @@ TEST(Walr, W8ClampedCholeskySolvesTheRidgedSystem) {
 // W9: on a curved surface with normal-dependent light, the regression keeps the gradient that
 // the same-sized edge-aware mean flattens.
 TEST(Walr, W9KeepsGradientsTheMeanFlattens) {
-    Field f(121, 121);
+    WalrGBuffer f(121, 121);
     const ViewBasis view; // camera at the origin looking down -z
     const Vec3 light = normalize(Vec3{0.6f, -0.3f, 1.0f});
     double errWalr = 0, errMean = 0;
@@ -355,7 +355,7 @@ TEST(Walr, W11OctahedralFeaturesAreContinuousOverVisibleNormals) {
 // The CPU backend's eight-wide iterations and solve are the reference's bit for bit, edges,
 // tracing, replacement and W included.
 TEST(Walr, EightWideIterationsMatchTheScalarKernelBitForBit) {
-    Field f(133, 71);
+    WalrGBuffer f(133, 71);
     varyFeatures(f);
     for (long i = 0; i < f.size(); ++i) {
         const int x = int(i % f.w), y = int(i / f.w);

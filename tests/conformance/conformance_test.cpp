@@ -181,7 +181,7 @@ struct PaddedRgba {
 };
 
 /// Parameters: (backend, filter name).
-struct Conformance : testing::TestWithParam<std::tuple<std::string, std::string>> {
+struct Conformance : ::testing::TestWithParam<std::tuple<std::string, std::string>> {
     std::string backend() const {
         const std::string b = std::get<0>(GetParam());
         return b.substr(0, b.find('_'));
@@ -311,9 +311,9 @@ std::vector<std::string> filterCases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllBackendsAndFilters, Conformance,
-                         testing::Combine(testing::ValuesIn(kBackends),
-                                          testing::ValuesIn(filterCases())),
-                         [](const testing::TestParamInfo<Conformance::ParamType>& p) {
+                         ::testing::Combine(::testing::ValuesIn(kBackends),
+                                            ::testing::ValuesIn(filterCases())),
+                         [](const ::testing::TestParamInfo<Conformance::ParamType>& p) {
                              return std::get<0>(p.param) + "_" + std::get<1>(p.param);
                          });
 

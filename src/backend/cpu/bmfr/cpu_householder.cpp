@@ -46,18 +46,43 @@ template <class V> BMFR_SIMD_INLINE int alignedRow(int row, int rows) {
     return std::min((row + kLanes<V> - 1) & ~(kLanes<V> - 1), rows);
 }
 
+/// The row index of each lane of the vector that starts at row i.
+template <class V> BMFR_SIMD_INLINE V rowsFrom(int i) {
+    V v;
+    for (int l = 0; l < kLanes<V>; ++l) v[l] = float(i + l);
+    return v;
+}
+
+/// Whether the sweeps run their head rows as masked vectors: rows is a whole number of vectors
+/// (every block, whose W is a multiple of 64). Else the rows before the first whole vector, up
+/// to fifteen per column on the AVX-512 path and a large share of a small block's, go one by one.
+template <class V> BMFR_SIMD_INLINE bool vectorHead(int rows) {
+    return rows % kLanes<V> == 0;
+}
+
 /// d[g] = v . a_g over rows [begin, rows) for `count` columns a_g, `stride` floats apart.
 template <class V, int count>
 BMFR_SIMD_INLINE void dotGroupOf(const float* v, const float* a, int rows, long stride, int begin,
                                  float* d) {
     constexpr int L = kLanes<V>;
+    V acc[kGroup] = {};
+    if (vectorHead<V>(rows)) {
+        // The vector holding row `begin` with the rows before it masked out, then whole ones.
+        const int first = begin & ~(L - 1);
+        for (int i = first; i < rows; i += L) {
+            V x = loadV<V>(v + i);
+            if (i == first) x = rowsFrom<V>(i) >= float(begin) ? x : V{};
+            for (int g = 0; g < count; ++g) acc[g] += x * loadV<V>(a + long(g) * stride + i);
+        }
+        for (int g = 0; g < count; ++g) d[g] = hsumV(acc[g]);
+        return;
+    }
     const int body = alignedRow<V>(begin, rows), tail = body + (rows - body) / L * L;
     float head[count] = {};
     for (int i = begin; i < body; ++i)
         for (int g = 0; g < count; ++g) head[g] += v[i] * a[long(g) * stride + i];
     for (int i = tail; i < rows; ++i)
         for (int g = 0; g < count; ++g) head[g] += v[i] * a[long(g) * stride + i];
-    V acc[kGroup] = {};
     for (int i = body; i < tail; i += L) {
         const V x = loadV<V>(v + i);
         for (int g = 0; g < count; ++g) acc[g] += x * loadV<V>(a + long(g) * stride + i);
@@ -88,6 +113,40 @@ template <class V, int count, bool look, bool self>
 BMFR_SIMD_INLINE void updateGroupOf(const float* v, float* a, int rows, long stride, int k,
                                     const float* f, const float* next, float* d) {
     constexpr int L = kLanes<V>;
+    V fs[count], acc[count] = {};
+    for (int g = 0; g < count; ++g) fs[g] = splatV<V>(f[g]);
+    // Rows [i, i + L): update from row k, dot products from row k + 1 (k + 2 for the next
+    // reflector's own sum of squares), the rows before them masked out in the vectors holding
+    // them.
+    auto sweep = [&](int i, auto masked) {
+        const V x = loadV<V>(v + i);
+        V col[count];
+        for (int g = 0; g < count; ++g) {
+            float* p = a + long(g) * stride + i;
+            const V old = loadV<V>(p);
+            col[g] = old - fs[g] * x;
+            if constexpr (masked) col[g] = rowsFrom<V>(i) >= float(k) ? col[g] : old;
+            storeV(p, col[g]);
+        }
+        if constexpr (!look) return;
+        const V u = self ? col[0] : loadV<V>(next + i);
+        for (int g = 0; g < count; ++g) {
+            V term = u * col[g];
+            if constexpr (masked) {
+                const int from = self && g == 0 ? k + 2 : k + 1;
+                term = rowsFrom<V>(i) >= float(from) ? term : V{};
+            }
+            acc[g] += term;
+        }
+    };
+    if (vectorHead<V>(rows)) {
+        const int first = k & ~(L - 1), body = std::min((k + 2 + L - 1) & ~(L - 1), rows);
+        for (int i = first; i < body; i += L) sweep(i, std::true_type{});
+        for (int i = body; i < rows; i += L) sweep(i, std::false_type{});
+        if (look)
+            for (int g = 0; g < count; ++g) d[g] = hsumV(acc[g]);
+        return;
+    }
     const int body = alignedRow<V>(k + 2, rows), tail = body + (rows - body) / L * L;
     auto scalarRows = [&](int i0, int i1, float* sum) {
         for (int i = i0; i < i1; ++i)
@@ -100,20 +159,7 @@ BMFR_SIMD_INLINE void updateGroupOf(const float* v, float* a, int rows, long str
     float head[count] = {}, rest[count] = {};
     scalarRows(k, body, head);
     scalarRows(tail, rows, rest);
-    V fs[count], acc[count] = {};
-    for (int g = 0; g < count; ++g) fs[g] = splatV<V>(f[g]);
-    for (int i = body; i < tail; i += L) {
-        const V x = loadV<V>(v + i);
-        V col[count];
-        for (int g = 0; g < count; ++g) {
-            float* p = a + long(g) * stride + i;
-            col[g] = loadV<V>(p) - fs[g] * x;
-            storeV(p, col[g]);
-        }
-        if (!look) continue;
-        const V u = self ? col[0] : loadV<V>(next + i);
-        for (int g = 0; g < count; ++g) acc[g] += u * col[g];
-    }
+    for (int i = body; i < tail; i += L) sweep(i, std::false_type{});
     if (look)
         for (int g = 0; g < count; ++g) d[g] = head[g] + hsumV(acc[g]) + rest[g];
 }
