@@ -224,14 +224,17 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     if (candidates == 0) return 0;
     // Without a bright candidate there is no seed, and without a seed nothing is excluded: most
     // blocks with a candidate stop at one of these (a lit patch's noisy samples).
+    // pixel(k) (divisions, and mirroring at the border) only for the few pixels that need it.
     int bright = 0;
     for (int k = 0; k < W; ++k) {
-        mask[k] = maskCandidate(accumulated(k), in, modes, pixel(k), threshold);
+        const float a = accumulated(k);
+        mask[k] = a > threshold ? maskCandidate(a, in, modes, pixel(k), threshold) : 0;
         bright += (mask[k] & kMaskBright) != 0;
     }
     if (bright == 0) return 0;
     int seeds = 0;
     for (int k = 0; k < W; ++k) {
+        if (!(mask[k] & kMaskBright)) continue;
         mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
         seeds += (mask[k] & kMaskSeed) != 0;
     }

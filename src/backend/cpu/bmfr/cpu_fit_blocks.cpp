@@ -173,13 +173,15 @@ BMFR_SIMD_INLINE void prefetchBlock(const Phase2& a, int bx, int by) {
 }
 
 /// Calls fn(offset in the source, offset in the block, lanes) for each run of up to eight pixels
-/// of each block row. 32-pixel rows (the default) unroll.
+/// of each block row. The presets' 32- and 16-pixel rows unroll, whole runs only.
 template <class Fn> BMFR_SIMD_INLINE void forRowRuns(int B, long pitch, Fn&& fn) {
-    if (B == 32) {
-        for (int ly = 0; ly < 32; ++ly)
-            for (int lx = 0; lx < 32; lx += 8) fn(ly * pitch + lx, ly * 32 + lx, 8);
-        return;
-    }
+    auto fixed = [&](auto width) {
+        constexpr int C = decltype(width)::value;
+        for (int ly = 0; ly < C; ++ly)
+            for (int lx = 0; lx < C; lx += 8) fn(ly * pitch + lx, ly * C + lx, 8);
+    };
+    if (B == 32) return fixed(std::integral_constant<int, 32>{});
+    if (B == 16) return fixed(std::integral_constant<int, 16>{});
     for (int ly = 0; ly < B; ++ly)
         for (int lx = 0; lx < B; lx += 8) fn(ly * pitch + lx, ly * B + lx, std::min(8, B - lx));
 }
@@ -305,8 +307,13 @@ void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int exc
         if (!a.emitters.bits) return;
         for (int ly = 0; ly < B; ++ly) {
             uint8_t* row = a.emitters.bits + first + long(ly) * g.width;
-            // The default block width as one fixed-size store, not a call per row.
-            B == 32 ? (void)std::memset(row, 0, 32) : (void)std::memset(row, 0, size_t(B));
+            // The two presets' block widths as fixed-size stores, not a call per row.
+            if (B == 32)
+                std::memset(row, 0, 32);
+            else if (B == 16)
+                std::memset(row, 0, 16);
+            else
+                std::memset(row, 0, size_t(B));
         }
         return;
     }
