@@ -43,13 +43,21 @@ struct Planes {
     }
 };
 
-/// The mask of a B x B image that is one block.
+/// The mask of a B x B image that is one block. Also checks that the path for blocks inside the
+/// image (which keeps the block's samples while it tests seeds) gives the same mask.
 std::vector<uint8_t> maskOf(const Planes& p, float ratio, int& excluded) {
-    std::vector<uint8_t> mask(size_t(p.w) * p.h);
+    std::vector<uint8_t> mask(size_t(p.w) * p.h), inside(mask.size());
     int histogram[kMaskBuckets];
-    excluded = emitterMask(
-        p.w, ratio, p.in(), InputModes{}, [&](int k) { return p.accumulated[size_t(k)]; },
-        [](int k) { return long(k); }, histogram, mask.data());
+    auto accumulated = [&](int k) { return p.accumulated[size_t(k)]; };
+    auto pixel = [](int k) { return long(k); };
+    excluded =
+        emitterMask(p.w, ratio, p.in(), InputModes{}, accumulated, pixel, histogram, mask.data());
+    const int insideExcluded = emitterMask(p.w, ratio, p.in(), InputModes{}, accumulated, pixel,
+                                           histogram, inside.data(), -1, 0);
+    EXPECT_EQ(insideExcluded, excluded);
+    if (excluded > 0) {
+        EXPECT_EQ(inside, mask);
+    }
     return mask;
 }
 

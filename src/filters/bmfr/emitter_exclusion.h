@@ -101,12 +101,13 @@ BMFR_HD uint8_t maskCandidate(float accumulated, const InputPlanes& in, const In
     return uint8_t(kMaskCandidate | (bright ? kMaskBright : 0));
 }
 
-/// Whether at least `needed` image neighbours of pixel i have current samples above the
-/// threshold and within kEmitterFlatness of `sample`, i's own luminance (across block edges: a
-/// light's edge row may be all of it a block holds). Stops reading samples once it knows.
-BMFR_HD bool flatNeighbours(const InputPlanes& in, const InputModes& modes, long i, float sample,
-                            float threshold, int needed) {
-    const int x = int(i % in.width), y = int(i / in.width);
+/// Whether at least `needed` image neighbours of pixel (x, y) have current samples above the
+/// threshold and within kEmitterFlatness of `sample`, its own luminance (across block edges: a
+/// light's edge row may be all of it a block holds). lum(u, v) is the luminance of pixel (u, v)'s
+/// current sample. Stops reading samples once it knows.
+template <class Lum>
+BMFR_HD bool flatNeighboursOf(int x, int y, int width, int height, float sample, float threshold,
+                              int needed, Lum&& lum) {
     const float tolerance = kEmitterFlatness * sample;
     int flat = 0, left = 8;
     for (int dy = -1; dy <= 1; ++dy)
@@ -114,14 +115,22 @@ BMFR_HD bool flatNeighbours(const InputPlanes& in, const InputModes& modes, long
             if (!(dx || dy)) continue;
             --left;
             const int u = x + dx, v = y + dy;
-            if (u >= 0 && u < in.width && v >= 0 && v < in.height) {
-                const float s = luminance(emitterSample(in, long(v) * in.width + u, modes));
+            if (u >= 0 && u < width && v >= 0 && v < height) {
+                const float s = lum(u, v);
                 flat += s > threshold && std::fabs(s - sample) <= tolerance;
             }
             if (flat >= needed) return true;
             if (flat + left < needed) return false;
         }
     return false;
+}
+
+/// flatNeighboursOf image pixel i, reading the samples from the input.
+BMFR_HD bool flatNeighbours(const InputPlanes& in, const InputModes& modes, long i, float sample,
+                            float threshold, int needed) {
+    return flatNeighboursOf(
+        int(i % in.width), int(i / in.width), in.width, in.height, sample, threshold, needed,
+        [&](int u, int v) { return luminance(emitterSample(in, long(v) * in.width + u, modes)); });
 }
 
 /// Stage 2, pixel k (image pixel i): a bright candidate whose sample at least three
@@ -175,6 +184,9 @@ BMFR_HD bool maskEmitter(uint8_t m) {
     return (m & kMaskExcluded) && (m & kMaskBright);
 }
 
+/// The largest block (64 x 64) whose current samples emitterMask keeps while it tests seeds.
+inline constexpr int kMaskCachePixels = 64 * 64;
+
 /// The block's median is read from every kMaskStride-th pixel: a bucket is a factor of sqrt 2
 /// wide, and a quarter of the block places the median as well.
 inline constexpr int kMaskStride = 4;
@@ -208,13 +220,15 @@ BMFR_HD float emitterThreshold(int W, float ratio, Accumulated&& accumulated, in
 
 /// The whole mask of a B x B block, one stage after another. accumulated(k) is the accumulated
 /// luminance of block pixel k and pixel(k) its image pixel; `quartile` is the block's
-/// lower-quartile bucket when known (clampFireflies leaves it unchanged), else -1. Returns the
+/// lower-quartile bucket when known (clampFireflies leaves it unchanged), else -1; `origin` is
+/// pixel(0) when the block lies inside the image (pixel(k) is then origin + (k / B) rows + k % B),
+/// else -1. Returns the
 /// number of excluded pixels; the mask means something only when that is above 0 (most blocks
 /// have no candidate, and it is not written).
 template <class Accumulated, class Pixel>
 BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputModes& modes,
                         Accumulated&& accumulated, Pixel&& pixel, int* histogram, uint8_t* mask,
-                        int quartile = -1) {
+                        int quartile = -1, long origin = -1) {
     const int W = B * B;
     if (quartile < 0) quartile = blockQuantileBucket(W, accumulated, histogram, kEmitterQuantile);
     const float threshold = bucketThreshold(quartile, ratio);
@@ -224,19 +238,48 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     if (candidates == 0) return 0;
     // Without a bright candidate there is no seed, and without a seed nothing is excluded: most
     // blocks with a candidate stop at one of these (a lit patch's noisy samples).
-    // pixel(k) (divisions, and mirroring at the border) only for the few pixels that need it.
-    int bright = 0;
-    for (int k = 0; k < W; ++k) {
-        const float a = accumulated(k);
-        mask[k] = a > threshold ? maskCandidate(a, in, modes, pixel(k), threshold) : 0;
-        bright += (mask[k] & kMaskBright) != 0;
-    }
-    if (bright == 0) return 0;
     int seeds = 0;
-    for (int k = 0; k < W; ++k) {
-        if (!(mask[k] & kMaskBright)) continue;
-        mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
-        seeds += (mask[k] & kMaskSeed) != 0;
+    if (origin >= 0 && W <= kMaskCachePixels) {
+        // A block inside the image: each block pixel's current sample is read once, however
+        // many seed tests look at it (a lit patch's bright candidates are each other's
+        // neighbours). The same stages 1 and 2 as below.
+        float samples[kMaskCachePixels];
+        for (int k = 0; k < W; ++k) samples[k] = -1.0f; // luminance of a finite sample is >= 0
+        const int ox = int(origin % in.width), oy = int(origin / in.width);
+        auto lum = [&](int u, int v) {
+            const int lx = u - ox, ly = v - oy;
+            const long i = long(v) * in.width + u;
+            if (lx < 0 || lx >= B || ly < 0 || ly >= B)
+                return luminance(emitterSample(in, i, modes));
+            float& s = samples[ly * B + lx];
+            if (!(s >= 0.0f)) s = luminance(emitterSample(in, i, modes));
+            return s;
+        };
+        for (int k = 0; k < W; ++k) {
+            mask[k] = 0;
+            if (!(accumulated(k) > threshold)) continue;
+            const int x = ox + k % B, y = oy + k / B;
+            const float s = lum(x, y);
+            mask[k] = kMaskCandidate;
+            if (!(s > threshold)) continue;
+            mask[k] |= kMaskBright;
+            if (flatNeighboursOf(x, y, in.width, in.height, s, threshold, 3, lum))
+                mask[k] |= kMaskSeed, ++seeds;
+        }
+    } else {
+        // pixel(k) (divisions, and mirroring at the border) only for the pixels that need it.
+        int bright = 0;
+        for (int k = 0; k < W; ++k) {
+            const float a = accumulated(k);
+            mask[k] = a > threshold ? maskCandidate(a, in, modes, pixel(k), threshold) : 0;
+            bright += (mask[k] & kMaskBright) != 0;
+        }
+        if (bright == 0) return 0;
+        for (int k = 0; k < W; ++k) {
+            if (!(mask[k] & kMaskBright)) continue;
+            mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
+            seeds += (mask[k] & kMaskSeed) != 0;
+        }
     }
     if (seeds == 0) return 0;
     for (int k = 0; k < W; ++k) mask[k] |= maskExcluded(mask, B, k);

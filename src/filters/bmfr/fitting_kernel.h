@@ -70,6 +70,8 @@ BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const 
     const int B = g.blockSize;
     const float* z[3] = {columns + M * stride, columns + (M + 1) * stride,
                          columns + (M + 2) * stride};
+    const int ox = g.originX(bx), oy = g.originY(by);
+    const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     const int excluded = emitterMask(
         B, e.ratio, in, e.modes,
         [&](int k) {
@@ -79,7 +81,7 @@ BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const 
             bool owned;
             return blockPixel(g, bx, by, k, owned);
         },
-        histogram, mask, quartile);
+        histogram, mask, quartile, inside ? long(oy) * g.width + ox : -1);
     if (excluded)
         for (int k = 0; k < B * B; ++k)
             if (mask[k] & kMaskExcluded)
