@@ -236,50 +236,38 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     int candidates = 0;
     for (int k = 0; k < W; ++k) candidates += accumulated(k) > threshold;
     if (candidates == 0) return 0;
-    // Without a bright candidate there is no seed, and without a seed nothing is excluded: most
-    // blocks with a candidate stop at one of these (a lit patch's noisy samples).
+    // Without a seed nothing is excluded: most blocks with a candidate stop there (a lit
+    // patch's noisy samples).
+    // Stages 1 and 2 (maskCandidate, maskSeed) in one pass: a pixel's current sample is read
+    // once for its own tests and, in a block inside the image, once for all its neighbours' seed
+    // tests too (a lit patch's bright candidates are each other's neighbours). pixel(k)
+    // (divisions, and mirroring at the border) only for candidates.
+    const bool inside = origin >= 0 && W <= kMaskCachePixels;
+    float samples[kMaskCachePixels];
+    if (inside)
+        for (int k = 0; k < W; ++k) samples[k] = -1.0f; // a finite sample's luminance is >= 0
+    const int ox = inside ? int(origin % in.width) : 0, oy = inside ? int(origin / in.width) : 0;
+    auto lum = [&](int u, int v) {
+        const int lx = u - ox, ly = v - oy;
+        const long i = long(v) * in.width + u;
+        if (!inside || lx < 0 || lx >= B || ly < 0 || ly >= B)
+            return luminance(emitterSample(in, i, modes));
+        float& s = samples[ly * B + lx];
+        if (!(s >= 0.0f)) s = luminance(emitterSample(in, i, modes));
+        return s;
+    };
     int seeds = 0;
-    if (origin >= 0 && W <= kMaskCachePixels) {
-        // A block inside the image: each block pixel's current sample is read once, however
-        // many seed tests look at it (a lit patch's bright candidates are each other's
-        // neighbours). The same stages 1 and 2 as below.
-        float samples[kMaskCachePixels];
-        for (int k = 0; k < W; ++k) samples[k] = -1.0f; // luminance of a finite sample is >= 0
-        const int ox = int(origin % in.width), oy = int(origin / in.width);
-        auto lum = [&](int u, int v) {
-            const int lx = u - ox, ly = v - oy;
-            const long i = long(v) * in.width + u;
-            if (lx < 0 || lx >= B || ly < 0 || ly >= B)
-                return luminance(emitterSample(in, i, modes));
-            float& s = samples[ly * B + lx];
-            if (!(s >= 0.0f)) s = luminance(emitterSample(in, i, modes));
-            return s;
-        };
-        for (int k = 0; k < W; ++k) {
-            mask[k] = 0;
-            if (!(accumulated(k) > threshold)) continue;
-            const int x = ox + k % B, y = oy + k / B;
-            const float s = lum(x, y);
-            mask[k] = kMaskCandidate;
-            if (!(s > threshold)) continue;
-            mask[k] |= kMaskBright;
-            if (flatNeighboursOf(x, y, in.width, in.height, s, threshold, 3, lum))
-                mask[k] |= kMaskSeed, ++seeds;
-        }
-    } else {
-        // pixel(k) (divisions, and mirroring at the border) only for the pixels that need it.
-        int bright = 0;
-        for (int k = 0; k < W; ++k) {
-            const float a = accumulated(k);
-            mask[k] = a > threshold ? maskCandidate(a, in, modes, pixel(k), threshold) : 0;
-            bright += (mask[k] & kMaskBright) != 0;
-        }
-        if (bright == 0) return 0;
-        for (int k = 0; k < W; ++k) {
-            if (!(mask[k] & kMaskBright)) continue;
-            mask[k] |= maskSeed(mask[k], in, modes, pixel(k), threshold);
-            seeds += (mask[k] & kMaskSeed) != 0;
-        }
+    for (int k = 0; k < W; ++k) {
+        mask[k] = 0;
+        if (!(accumulated(k) > threshold)) continue;
+        const long i = inside ? origin + long(k / B) * in.width + k % B : pixel(k);
+        const int x = int(i % in.width), y = int(i / in.width);
+        const float s = lum(x, y);
+        mask[k] = kMaskCandidate;
+        if (!(s > threshold)) continue;
+        mask[k] |= kMaskBright;
+        if (flatNeighboursOf(x, y, in.width, in.height, s, threshold, 3, lum))
+            mask[k] |= kMaskSeed, ++seeds;
     }
     if (seeds == 0) return 0;
     for (int k = 0; k < W; ++k) mask[k] |= maskExcluded(mask, B, k);
