@@ -31,15 +31,15 @@ typedef int32_t i8 __attribute__((vector_size(32)));
 #define BMFR_SIMD_TARGET_AVX2
 #define BMFR_SIMD_F16C 0
 #endif
-#define BMFR_SIMD_DISPATCH(Ret, name, Params, Args)                                                \
+#define BMFR_SIMD_DISPATCH_WITH(Attr, Ret, name, Params, Args)                                                \
     template <::bmfr::cpu::Isa kIsa> BMFR_SIMD_INLINE Ret name##Body Params;                       \
-    BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] Ret name##Avx512 Params {                            \
+    BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] Attr Ret name##Avx512 Params {                            \
         return name##Body<::bmfr::cpu::Isa::Avx512> Args;                                          \
     }                                                                                              \
-    BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] Ret name##Avx2 Params {                                \
+    BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] Attr Ret name##Avx2 Params {                                \
         return name##Body<::bmfr::cpu::Isa::Avx2> Args;                                            \
     }                                                                                              \
-    [[gnu::noinline]] Ret name##Baseline Params {                                                  \
+    [[gnu::noinline]] Attr Ret name##Baseline Params {                                                  \
         return name##Body<::bmfr::cpu::Isa::Baseline> Args;                                        \
     }                                                                                              \
     Ret name Params {                                                                              \
@@ -53,6 +53,12 @@ typedef int32_t i8 __attribute__((vector_size(32)));
         }                                                                                          \
     }                                                                                              \
     template <::bmfr::cpu::Isa kIsa> BMFR_SIMD_INLINE Ret name##Body Params
+#define BMFR_SIMD_DISPATCH(Ret, name, Params, Args)                                                \
+    BMFR_SIMD_DISPATCH_WITH(, Ret, name, Params, Args)
+// The same with every call in the body inlined too (GCC's flatten), so that header functions it
+// calls, which are compiled for the baseline when left out of line, take the path's vectors.
+#define BMFR_SIMD_DISPATCH_FLAT(Ret, name, Params, Args)                                           \
+    BMFR_SIMD_DISPATCH_WITH([[gnu::flatten]], Ret, name, Params, Args)
 
 BMFR_SIMD_INLINE f8 load8(const float* p) {
     f8 v;

@@ -24,6 +24,7 @@ struct Scratch {
     std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
     std::vector<uint8_t> mask;   ///< the emitter mask (emitter_exclusion.h)
     std::vector<int> histogram;  ///< and its luminance histogram
+    std::vector<int> blocks;     ///< a row's blocks that the second grid fits
 };
 
 /// Planes of one value per pixel, stored as float or, with BmfrSettings::halfHistory, as half

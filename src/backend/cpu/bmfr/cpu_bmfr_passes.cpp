@@ -44,6 +44,7 @@ class CpuBmfrPasses final : public BmfrPasses {
             sc.rows.assign(3 * ResolvedRows::rowFloats(w), 0.0f);
             sc.mask.assign(W, 0);
             sc.histogram.assign(kMaskBuckets, 0);
+            sc.blocks.reserve(size_t(w / s.blockSize + 2));
         }
     }
 

@@ -1,3 +1,4 @@
+#include "backend/cpu/bmfr/cpu_block_masks.h"
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "backend/cpu/simd.h"
 #include "filters/bmfr/block_grid.h"
@@ -334,8 +335,10 @@ void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int exc
     if (emitters) a.b.emitterPixels[a.ctx.timeline.history.cur] += emitters;
 }
 
-BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc),
-                   (a, bx, by, sc)) {
+/// Fits block (bx, by), and asks for block (nextX, nextY)'s rows while it does.
+BMFR_SIMD_DISPATCH(void, fitBlock,
+                   (const Phase2& a, int bx, int by, Scratch& sc, int nextX, int nextY),
+                   (a, bx, by, sc, nextX, nextY)) {
     const BmfrSettings& s = a.ctx.settings;
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B, M = int(s.features.size());
@@ -344,18 +347,11 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
     if (ox + B <= 0 || oy + B <= 0 || ox >= g.width || oy >= g.height) return;
     const BlockRows rows = blockRows<kIsa>(a, ox, oy, sc);
     buildColumns(a, rows, sc);
-    prefetchBlock(a, bx + 1, by); // the next block of this row (none after the last)
-    int quartile = -1;            // the block's lower-quartile bucket, once the clamp has read it
-    if (s.clampFireflies) {
-        const long zs = qrColumnStride(W);
-        float* const z[3] = {sc.work.data() + M * zs, sc.work.data() + (M + 1) * zs,
-                             sc.work.data() + (M + 2) * zs};
-        clampFireflies(B, z, sc.histogram.data(), sc.mask.data(), &quartile);
-    }
+    prefetchBlock(a, nextX, nextY);
     const int excluded =
-        a.emitters.on
-            ? excludeEmitterRows(g, a.ctx.input, a.emitters, bx, by, sc.work.data(), M,
-                                 qrColumnStride(W), sc.histogram.data(), sc.mask.data(), quartile)
+        s.clampFireflies || a.emitters.on
+            ? clampAndMaskBlock({g, a.ctx.input, a.emitters, s.clampFireflies, M, qrColumnStride(W)},
+                                bx, by, sc.work.data(), sc)
             : 0;
 
     float coeffs[kMaxFeatures * 3];
@@ -411,33 +407,64 @@ BMFR_SIMD_DISPATCH(void, fitBlock, (const Phase2& a, int bx, int by, Scratch& sc
 
 namespace {
 
-/// Whether a pixel of `r` has no history, from the history-length plane (float or half).
-bool anyHistoryPoor(const float* length, int width, const OwnedRect& r) {
-    for (int y = r.y0; y < r.y1; ++y) {
-        const float* row = length + long(y) * width;
-        bool poor = false;
-        for (int x = r.x0; x < r.x1; ++x) poor |= historyPoor(row[x]);
-        if (poor) return true;
+/// historyPoor over the history-length plane, float or half. Half lengths are compared as their
+/// bits, without a conversion per pixel (a library call on the baseline path): lengths are never
+/// negative, so their bit patterns order as their values, signed 16-bit integers included.
+struct PoorLengths {
+    typedef int16_t __attribute__((may_alias)) HalfBits;
+    const float* length = nullptr;
+    const HalfBits* bits = nullptr;
+    int16_t limit = 0; ///< the bits of half 1, historyPoor's limit
+
+    explicit PoorLengths(const PlaneSet& noisy) { // channel 3: the history length
+        if (!noisy.half) {
+            length = noisy.plane<float>(3);
+            return;
+        }
+        static_assert(sizeof(_Float16) == sizeof(int16_t));
+        bits = reinterpret_cast<const HalfBits*>(noisy.plane<_Float16>(3));
+        const _Float16 one = 1.0f;
+        std::memcpy(&limit, &one, sizeof limit);
     }
-    return false;
-}
-/// The same on half lengths, without a conversion per pixel: lengths are never negative, so
-/// their bit patterns order as their values, and historyPoor's limit is 1.
-bool anyHistoryPoor(const _Float16* length, int width, const OwnedRect& r) {
-    static_assert(sizeof(_Float16) == sizeof(uint16_t));
-    const _Float16 one = 1.0f;
-    uint16_t limit;
-    std::memcpy(&limit, &one, sizeof limit);
-    for (int y = r.y0; y < r.y1; ++y) {
-        uint16_t row[64];
-        const int n = r.x1 - r.x0;
-        std::memcpy(row, length + long(y) * width + r.x0, sizeof(uint16_t) * size_t(n));
-        bool poor = false;
-        for (int x = 0; x < n; ++x) poor |= row[x] <= limit;
-        if (poor) return true;
+    /// Calls fn(poor) with poor(i) the test of pixel i, in the plane's own type.
+    template <class Fn> void with(Fn&& fn) const {
+        if (bits) return fn([b = bits, l = limit](size_t i) { return b[i] <= l; });
+        fn([f = length](size_t i) { return historyPoor(f[i]); });
     }
-    return false;
-}
+    /// Whether a pixel of `r` has no history.
+    bool any(const OwnedRect& r, int width) const {
+        bool poor = false;
+        with([&](auto test) {
+            for (int y = r.y0; y < r.y1 && !poor; ++y) {
+                const size_t row = size_t(y) * size_t(width);
+                int any = 0; // a local or-reduction, so that the loop vectorises
+                for (int x = r.x0; x < r.x1; ++x) any |= test(row + size_t(x));
+                poor = any != 0;
+            }
+        });
+        return poor;
+    }
+    /// The history-poor pixels of `r` take the mean of both grids' fits.
+    void blend(const OwnedRect& r, int width, float* const fitted[3],
+               const float* const second[3]) const {
+        with([&](auto test) {
+            for (int y = r.y0; y < r.y1; ++y) {
+                const size_t row = size_t(y) * size_t(width) + size_t(r.x0);
+                const int n = r.x1 - r.x0;
+                // The row's tests first, into a local mask: the half lengths' may_alias type would
+                // otherwise keep the blend below from vectorising.
+                float take[kMaxBlockSize];
+                for (int x = 0; x < n; ++x) take[x] = test(row + size_t(x)) ? 1.0f : 0.0f;
+                for (int ch = 0; ch < 3; ++ch) {
+                    float* __restrict f = fitted[ch] + row;
+                    const float* __restrict o = second[ch] + row;
+                    for (int x = 0; x < n; ++x)
+                        f[x] = take[x] != 0.0f ? blendSecondFit(f[x], o[x]) : f[x];
+                }
+            }
+        });
+    }
+};
 
 } // namespace
 
@@ -446,34 +473,32 @@ void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b) {
     const BlockGrid g =
         secondGrid(makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex));
     const Phase2 a{ctx, b, g, true};
-    const PlaneSet& noisy = b.noisy[t.cur]; // channel 3: the history length
+    const PoorLengths poor(b.noisy[t.cur]);
+    float* const fitted[3] = {b.plane(b.fitted, 0), b.plane(b.fitted, 1), b.plane(b.fitted, 2)};
     ctx.pool.parallelFor(g.blocksY, 1, [&](long by0, long by1) {
         Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
-        for (long by = by0; by < by1; ++by)
-            for (int bx = 0; bx < g.blocksX; ++bx) {
-                const OwnedRect r = ownedRect(g, bx, int(by));
-                const bool poor = noisy.half ? anyHistoryPoor(noisy.plane<_Float16>(3), g.width, r)
-                                             : anyHistoryPoor(noisy.plane<float>(3), g.width, r);
-                if (!poor) continue;
-                fitBlock(a, bx, int(by), sc);
+        for (long by = by0; by < by1; ++by) {
+            // The row's blocks with a pixel without history: a tenth of them under a moving
+            // camera. Listed first, so that each fit can ask for the next one's rows: they are
+            // rarely still in cache after phase I.
+            sc.blocks.clear();
+            for (int bx = 0; bx < g.blocksX; ++bx)
+                if (poor.any(ownedRect(g, bx, int(by)), g.width)) sc.blocks.push_back(bx);
+            for (size_t n = 0; n < sc.blocks.size(); ++n) {
+                const int bx = sc.blocks[n];
+                const int next = n + 1 < sc.blocks.size() ? sc.blocks[n + 1] : g.blocksX;
+                fitBlock(a, bx, int(by), sc, next, int(by));
                 // The blocks of a grid own disjoint pixels: each blends its own.
-                for (int y = r.y0; y < r.y1; ++y)
-                    for (int x = r.x0; x < r.x1; ++x) {
-                        const size_t i = size_t(y) * size_t(g.width) + size_t(x);
-                        if (!historyPoor(noisy.at(3, i))) continue;
-                        for (int ch = 0; ch < 3; ++ch) {
-                            float& f = b.plane(b.fitted, ch)[i];
-                            f = blendSecondFit(f, a.out[ch][i]);
-                        }
-                    }
+                poor.blend(ownedRect(g, bx, int(by)), g.width, fitted, a.out);
             }
+        }
     });
 }
 
 void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
                  Scratch& sc) {
     const Phase2 a{ctx, b, grid};
-    for (int bx = 0; bx < grid.blocksX; ++bx) fitBlock(a, bx, by, sc);
+    for (int bx = 0; bx < grid.blocksX; ++bx) fitBlock(a, bx, by, sc, bx + 1, by);
 }
 
 } // namespace bmfr::cpu
