@@ -31,8 +31,8 @@ typedef int32_t i8 __attribute__((vector_size(32)));
 #define BMFR_SIMD_TARGET_AVX2
 #define BMFR_SIMD_F16C 0
 #endif
-#define BMFR_SIMD_DISPATCH_WITH(Attr, Ret, name, Params, Args)                                                \
-    template <::bmfr::cpu::Isa kIsa> BMFR_SIMD_INLINE Ret name##Body Params;                       \
+#define BMFR_SIMD_DISPATCH_WITH(Attr, BodyInline, Ret, name, Params, Args)                                                \
+    template <::bmfr::cpu::Isa kIsa> BodyInline Ret name##Body Params;                       \
     BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] Attr Ret name##Avx512 Params {                            \
         return name##Body<::bmfr::cpu::Isa::Avx512> Args;                                          \
     }                                                                                              \
@@ -52,13 +52,13 @@ typedef int32_t i8 __attribute__((vector_size(32)));
             return name##Baseline Args;                                                            \
         }                                                                                          \
     }                                                                                              \
-    template <::bmfr::cpu::Isa kIsa> BMFR_SIMD_INLINE Ret name##Body Params
+    template <::bmfr::cpu::Isa kIsa> BodyInline Ret name##Body Params
 #define BMFR_SIMD_DISPATCH(Ret, name, Params, Args)                                                \
-    BMFR_SIMD_DISPATCH_WITH(, Ret, name, Params, Args)
+    BMFR_SIMD_DISPATCH_WITH(, BMFR_SIMD_INLINE, Ret, name, Params, Args)
 // The same with every call in the body inlined too (GCC's flatten), so that header functions it
 // calls, which are compiled for the baseline when left out of line, take the path's vectors.
 #define BMFR_SIMD_DISPATCH_FLAT(Ret, name, Params, Args)                                           \
-    BMFR_SIMD_DISPATCH_WITH([[gnu::flatten]], Ret, name, Params, Args)
+    BMFR_SIMD_DISPATCH_WITH(__attribute__((flatten)), inline, Ret, name, Params, Args)
 
 BMFR_SIMD_INLINE f8 load8(const float* p) {
     f8 v;

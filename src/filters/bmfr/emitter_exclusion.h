@@ -257,18 +257,22 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
         return s;
     };
     int seeds = 0;
-    for (int k = 0; k < W; ++k) {
-        mask[k] = 0;
-        if (!(accumulated(k) > threshold)) continue;
-        const long i = inside ? origin + long(k / B) * in.width + k % B : pixel(k);
-        const int x = int(i % in.width), y = int(i / in.width);
-        const float s = lum(x, y);
-        mask[k] = kMaskCandidate;
-        if (!(s > threshold)) continue;
-        mask[k] |= kMaskBright;
-        if (flatNeighboursOf(x, y, in.width, in.height, s, threshold, 3, lum))
-            mask[k] |= kMaskSeed, ++seeds;
-    }
+    for (int ly = 0, k = 0; ly < B; ++ly)
+        for (int lx = 0; lx < B; ++lx, ++k) {
+            mask[k] = 0;
+            if (!(accumulated(k) > threshold)) continue;
+            int x = ox + lx, y = oy + ly; // inside the image
+            if (!inside) {
+                const long i = pixel(k);
+                x = int(i % in.width), y = int(i / in.width);
+            }
+            const float s = lum(x, y);
+            mask[k] = kMaskCandidate;
+            if (!(s > threshold)) continue;
+            mask[k] |= kMaskBright;
+            if (flatNeighboursOf(x, y, in.width, in.height, s, threshold, 3, lum))
+                mask[k] |= kMaskSeed, ++seeds;
+        }
     if (seeds == 0) return 0;
     for (int k = 0; k < W; ++k) mask[k] |= maskExcluded(mask, B, k);
     for (int k = 0; k < W; ++k) mask[k] |= maskGrown(mask, B, k);
