@@ -94,6 +94,10 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
                 const size_t pixels = size_t(own.last - own.first) * size_t(t.width);
                 for (int ch = 0; ch < 3; ++ch)
                     b.noisy[t.cur].copyOut(ch, from, pixels, b.plane(b.fitted, ch) + from);
+                // The fit writes the tap classes; without it they are the lit classes alone.
+                if (!b.tapClass[t.cur].empty())
+                    litClasses(tapVisibility(ctx), long(from), long(pixels),
+                               b.tapClass[t.cur].data());
             }
             accumulateNs += ns(t0, t1);
             fitNs += ns(t1, Clock::now());

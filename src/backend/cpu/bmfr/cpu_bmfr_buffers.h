@@ -6,6 +6,7 @@
 #include "core/image.h"
 #include "filters/bmfr/block_grid.h"
 #include "filters/bmfr/bmfr_passes.h"
+#include "filters/bmfr/visibility_taps.h"
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -78,9 +79,10 @@ struct Buffers {
     PlaneSet noisy[2];               ///< 4 planes: phase I colour (demodulated), history length
     PlaneSet accumulatedFitted[2];   ///< 3 planes: phase III colour
     std::vector<float> output[2];    ///< 3 floats per pixel (the public image), +24 of padding
-    std::vector<uint8_t> emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
-    std::vector<uint8_t> lit[2];     ///< BmfrSettings::visibilityTaps: litClass of each pixel
-    std::atomic<long> emitterPixels[2] = {}; ///< how many bits are set, [slot]
+    /// BmfrSettings::excludeEmitters or visibilityTaps: each pixel's tap class (kTapLit,
+    /// kTapEmitter), which the fit writes.
+    std::vector<uint8_t> tapClass[2];
+    std::atomic<long> emitterPixels[2] = {}; ///< how many kTapEmitter bits are set, [slot]
 
     // This frame only.
     std::vector<float> previousPixel; ///< 2 planes: continuous pixel in the previous frame
@@ -120,10 +122,8 @@ template <class T> struct FramePlanes {
     float* fitted[3];
     uint8_t* accept;
     uint8_t* resolvedAccept;
-    const uint8_t* emitter;     ///< this frame's emitter bits
-    const uint8_t* prevEmitter; ///< and the previous frame's
-    uint8_t* lit;               ///< this frame's lit classes
-    const uint8_t* prevLit;     ///< and the previous frame's
+    const uint8_t* tapClass;     ///< this frame's tap classes
+    const uint8_t* prevTapClass; ///< and the previous frame's
 
     FramePlanes(Buffers& b, int cur) {
         for (int c = 0; c < 3; ++c) {
@@ -144,8 +144,7 @@ template <class T> struct FramePlanes {
         for (int c = 0; c < 2; ++c) previousPixel[c] = b.plane(b.previousPixel, c);
         accept = b.acceptMask.data();
         resolvedAccept = b.resolvedAccept.data();
-        emitter = b.emitter[cur].data(), prevEmitter = b.emitter[1 - cur].data();
-        lit = b.lit[cur].data(), prevLit = b.lit[1 - cur].data();
+        tapClass = b.tapClass[cur].data(), prevTapClass = b.tapClass[1 - cur].data();
     }
 };
 
@@ -159,12 +158,20 @@ BMFR_SIMD_INLINE void withFramePlanes(Buffers& b, int cur, bool half, Body&& bod
         body(FramePlanes<float>(b, cur));
 }
 
+/// The bits of a pixel's tap class: whether the key light reaches it (litClass, under
+/// BmfrSettings::visibilityTaps) and whether it is an emitter's own sample (maskEmitter).
+inline constexpr uint8_t kTapLit = 1, kTapEmitter = 2;
+
 /// The taps the resolve pass drops before phase III and TAA read the accept mask: those across
-/// an emitter's edge (sameEmitterTaps) and those across a shadow edge (sameLitTaps).
+/// an emitter's edge (sameEmitterTaps) and those across a shadow edge (sameLitTaps), as the
+/// taps whose class differs from their pixel's in an active bit. The fit writes the classes, so
+/// that the resolve pass reads one byte plane instead of the visibility and two bit planes.
 struct TapFilter {
     bool emitters = false;             ///< emitter bits are set in this frame or the previous
     const float* visibility = nullptr; ///< the staged visibility under visibilityTaps
     bool on() const { return emitters || visibility; }
+    /// The class bits that count.
+    uint8_t bits() const { return uint8_t((visibility ? kTapLit : 0) | (emitters ? kTapEmitter : 0)); }
 };
 
 /// What the row kernels of phase I and the resolve pass read.
@@ -196,6 +203,15 @@ void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, InputCounters& co
 /// substitution, weighted sum. Reads only the rows the blocks cover, mirrored at the edges.
 void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
                  Scratch& sc);
+/// The visibility the tap classes read: the frame's staged one under
+/// BmfrSettings::visibilityTaps, else null.
+inline const float* tapVisibility(const BmfrPassContext& ctx) {
+    return ctx.settings.visibilityTaps ? stagedVisibility(ctx.input, ctx.frame.visibility.data)
+                                       : nullptr;
+}
+/// The tap classes of pixels [from, from + n) without an emitter: kTapLit where `visibility`
+/// (null: none) is above 0.
+void litClasses(const float* visibility, long from, long n, uint8_t* classes);
 /// BmfrSettings::secondGrid: fits the blocks of the shifted grid that own a pixel without
 /// history, and gives those pixels the mean of both fits.
 void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b);

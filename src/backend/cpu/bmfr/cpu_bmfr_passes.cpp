@@ -5,7 +5,6 @@
 #include "backend/cpu/taa_rows.h"
 #include "core/stopwatch.h"
 #include "filters/bmfr/fitting_kernel.h"
-#include "filters/bmfr/visibility_taps.h"
 
 namespace bmfr::cpu {
 
@@ -23,8 +22,7 @@ class CpuBmfrPasses final : public BmfrPasses {
             b_.noisy[k].assign(4, b_.stride, s.halfHistory);
             b_.accumulatedFitted[k].assign(3, b_.stride, s.halfHistory);
             b_.output[k].assign(3 * n + 24, 0.0f);
-            b_.emitter[k].assign(s.excludeEmitters ? n : 0, 0);
-            b_.lit[k].assign(s.visibilityTaps ? n : 0, 0);
+            b_.tapClass[k].assign(s.excludeEmitters || s.visibilityTaps ? n + 8 : 0, 0);
             b_.emitterPixels[k] = 0;
         }
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
@@ -54,6 +52,8 @@ class CpuBmfrPasses final : public BmfrPasses {
         StageSplit split;
         const TemporalHistory& t = ctx.timeline.history;
         b_.emitterPixels[t.cur] = 0;
+        TapFilter filter;
+        filter.visibility = tapVisibility(ctx);
         InputCounters counters = accumulateAndFit(ctx, b_, split);
         Stopwatch clock;
         if (ctx.settings.secondGrid && ctx.settings.stages.fitting) {
@@ -61,11 +61,8 @@ class CpuBmfrPasses final : public BmfrPasses {
             split.fitMs += clock.lap();
         }
         // Without an emitter in either frame no tap crosses an emitter's edge.
-        TapFilter filter;
         filter.emitters = emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
                           b_.emitterPixels[t.cur] + b_.emitterPixels[1 - t.cur] > 0;
-        if (ctx.settings.visibilityTaps)
-            filter.visibility = stagedVisibility(ctx.input, ctx.frame.visibility.data);
         b_.acceptFiltered = filter.on();
         resolve(ctx, b_, filter);
         times.add("accumulate", split.accumulateMs);

@@ -24,15 +24,18 @@ struct Phase2 {
     /// plane set (float, or half under BmfrSettings::halfHistory).
     const PlaneSet* set[9];
     int channel[9];
-    EmitterExclusion emitters;
-    float* out[3]; ///< the fitted planes, or with `second` the second grid's
+    EmitterExclusion emitters; ///< its bits unused: the tap classes hold them
+    float* out[3];             ///< the fitted planes, or with `second` the second grid's
+    /// The tap classes the fit writes (TapFilter); null for the second grid and without
+    /// excludeEmitters or visibilityTaps. `visibility` sets kTapLit where it is above 0.
+    uint8_t* classes = nullptr;
+    const float* visibility = nullptr;
 
     Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g, bool second = false)
-        : ctx(c), b(buffers), grid(g),
-          emitters(
-              emitterExclusion(c.settings, c.input,
-                               second ? nullptr : buffers.emitter[c.timeline.history.cur].data())) {
+        : ctx(c), b(buffers), grid(g), emitters(emitterExclusion(c.settings, c.input, nullptr)) {
         for (int ch = 0; ch < 3; ++ch) out[ch] = b.plane(second ? b.fittedSecond : b.fitted, ch);
+        std::vector<uint8_t>& tapClass = buffers.tapClass[c.timeline.history.cur];
+        if (!second && !tapClass.empty()) classes = tapClass.data(), visibility = tapVisibility(c);
         const int cur = c.timeline.history.cur;
         for (int ch = 0; ch < 3; ++ch) {
             set[ch] = &b.normal[cur], set[3 + ch] = &b.position[cur], set[6 + ch] = &b.noisy[cur];
@@ -298,24 +301,29 @@ BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch&
     }
 }
 
+} // namespace
+
+void litClasses(const float* visibility, long from, long n, uint8_t* classes) {
+    uint8_t* out = classes + from;
+    if (!visibility) return (void)std::memset(out, 0, size_t(n));
+    const float* v = visibility + from;
+    for (long x = 0; x < n; ++x) out[x] = litClass(v, x) ? kTapLit : 0; // vectorises
+}
+
+namespace {
+
 /// After the weighted sum: the excluded pixels that are the emitter this frame take their own
-/// sample (emitter_exclusion.h), and every owned pixel gets its emitter bit.
-void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int excluded,
-                     const Scratch& sc) {
+/// sample (emitter_exclusion.h), and every owned pixel gets its tap class.
+void finishBlock(const Phase2& a, const BlockRows& rows, long first, int excluded,
+                 const Scratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize;
+    auto lit = [&](long idx) {
+        return a.visibility && litClass(a.visibility, idx) ? kTapLit : uint8_t{0};
+    };
     if (!excluded && rows.inside) { // most blocks: no emitter, and every pixel owned
-        if (!a.emitters.bits) return;
-        for (int ly = 0; ly < B; ++ly) {
-            uint8_t* row = a.emitters.bits + first + long(ly) * g.width;
-            // The two presets' block widths as fixed-size stores, not a call per row.
-            if (B == 32)
-                std::memset(row, 0, 32);
-            else if (B == 16)
-                std::memset(row, 0, 16);
-            else
-                std::memset(row, 0, size_t(B));
-        }
+        if (!a.classes) return;
+        for (int ly = 0; ly < B; ++ly) litClasses(a.visibility, first + long(ly) * g.width, B, a.classes);
         return;
     }
     long emitters = 0;
@@ -328,8 +336,8 @@ void restoreEmitters(const Phase2& a, const BlockRows& rows, long first, int exc
             const Vec3 c = emitterSample(a.ctx.input, idx, a.emitters.modes);
             for (int ch = 0; ch < 3; ++ch) a.out[ch][idx] = c[ch];
         }
-        if (!a.emitters.bits) continue;
-        a.emitters.bits[idx] = emitter;
+        if (!a.classes) continue;
+        a.classes[idx] = uint8_t(lit(idx) | (emitter ? kTapEmitter : 0));
         emitters += emitter;
     }
     if (emitters) a.b.emitterPixels[a.ctx.timeline.history.cur] += emitters;
@@ -400,7 +408,7 @@ BMFR_SIMD_DISPATCH(void, fitBlock,
                     sum[c][l] += coeffs[f * 3 + c] * clean[long(f) * W + k + l];
         scatter(k, n, sum);
     }
-    if (a.emitters.on) restoreEmitters(a, rows, first, excluded, sc);
+    if (a.emitters.on || a.classes) finishBlock(a, rows, first, excluded, sc);
 }
 
 } // namespace

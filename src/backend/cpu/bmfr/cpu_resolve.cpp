@@ -16,23 +16,14 @@ BMFR_SIMD_INLINE f8 secondBlendWeight8(f8 length, float minAlpha) {
 }
 
 /// The accepted taps of pixels [i, i + n) less those `a.filter` drops: sameEmitterTaps and
-/// sameLitTaps (filters/bmfr/) eight pixels at a time. Sets the owned pixels' lit classes.
-/// `taps` are the accepted taps' addresses, or null where no pixel has history.
+/// sameLitTaps (filters/bmfr/) eight pixels at a time, from the tap classes the fit wrote.
 template <class T>
 BMFR_SIMD_INLINE i8 filterTaps(const FrameArgs& a, const FramePlanes<T>& pl, long i, int n,
-                               bool owned, i8 accept, const Taps8* taps) {
-    i8 lit{}, emitter{};
-    if (a.filter.visibility) {
-        lit = (loadFirst(a.filter.visibility + i, n) > 0.0f) & 1; // NaN is unlit, as litClass
-        if (owned) storeBytes(pl.lit + i, lit, n);
-    }
-    if (!taps) return accept;
-    if (a.filter.emitters) emitter = loadBytes(pl.emitter + i, n);
+                               i8 accept, const Taps8& taps) {
+    const i8 own = loadBytes(pl.tapClass + i, n), bits = i8{} + int(a.filter.bits());
     for (int k = 0; k < 4; ++k) {
         const i8 has = (accept & (1 << k)) != 0;
-        i8 drop{};
-        if (a.filter.visibility) drop |= tapBytes(*taps, pl.prevLit, k) != lit;
-        if (a.filter.emitters) drop |= tapBytes(*taps, pl.prevEmitter, k) != emitter;
+        const i8 drop = ((tapBytes(taps, pl.prevTapClass, k) ^ own) & bits) != 0;
         accept = (has & drop) ? accept & ~(1 << k) : accept;
     }
     return accept;
@@ -59,7 +50,7 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes<T>& pl, 
         taps = taps8(fp, t.width, t.height, accept != 0); // accepted taps are inside the image
     }
     if (filter) {
-        accept = filterTaps(a, pl, i, n, owned, accept, reads ? &taps : nullptr);
+        if (reads) accept = filterTaps(a, pl, i, n, accept, taps);
         if (owned) storeBytes(pl.resolvedAccept + i, accept, n);
     }
     if (reads && s.stages.secondAccumulation && anyLane(accept != 0)) {
