@@ -26,9 +26,15 @@ template <class V> BMFR_SIMD_INLINE void storeV(float* p, V v) {
     std::memcpy(p, &v, sizeof v);
 }
 template <class V> BMFR_SIMD_INLINE V splatV(float a) {
-    V v{};
-    for (int l = 0; l < kLanes<V>; ++l) v[l] = a;
-    return v;
+    if constexpr (kLanes<V> == 8) {
+        return simd::splat8(a);
+    } else {
+        const f8 h = simd::splat8(a);
+        V v;
+        std::memcpy(&v, &h, sizeof h);
+        std::memcpy(reinterpret_cast<char*>(&v) + sizeof h, &h, sizeof h);
+        return v;
+    }
 }
 /// Sum of the lanes as a fixed tree (repeatable): halves added until eight remain, then hsum8.
 template <class V> BMFR_SIMD_INLINE float hsumV(V v) {
@@ -41,6 +47,7 @@ template <class V> BMFR_SIMD_INLINE float hsumV(V v) {
         return hsum8(lo + hi);
     }
 }
+
 /// The first row at or after `row` where whole vectors start.
 template <class V> BMFR_SIMD_INLINE int alignedRow(int row, int rows) {
     return std::min((row + kLanes<V> - 1) & ~(kLanes<V> - 1), rows);
