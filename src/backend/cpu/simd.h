@@ -282,15 +282,13 @@ BMFR_SIMD_INLINE void storeBytes(uint8_t* p, i8 v, int n) {
 }
 /// n (1 to 8) bytes as the first n lanes; lanes n to 7 read as 0.
 BMFR_SIMD_INLINE i8 loadBytes(const uint8_t* p, int n) {
-    typedef uint32_t u8 __attribute__((vector_size(32)));
-    uint32_t w[2] = {};
+    typedef uint8_t bytes8 __attribute__((vector_size(8)));
+    bytes8 b = {};
     if (n == 8) // the common case as one fixed-size load, not a variable-length copy
-        std::memcpy(w, p, 8);
+        std::memcpy(&b, p, 8);
     else
-        std::memcpy(w, p, size_t(n));
-    const u8 r =
-        u8{w[0], w[0], w[0], w[0], w[1], w[1], w[1], w[1]} >> u8{0, 8, 16, 24, 0, 8, 16, 24};
-    return i8(r & 255u);
+        std::memcpy(&b, p, size_t(n));
+    return __builtin_convertvector(b, i8); // one zero-extending load (vpmovzxbd) on AVX2
 }
 /// base[index[l]] for each lane, of a float or half plane.
 template <class T> BMFR_SIMD_INLINE f8 gather8(const T* base, i8 index) {
