@@ -31,15 +31,15 @@ typedef int32_t i8 __attribute__((vector_size(32)));
 #define BMFR_SIMD_TARGET_AVX2
 #define BMFR_SIMD_F16C 0
 #endif
-#define BMFR_SIMD_DISPATCH_WITH(Attr, BodyInline, Ret, name, Params, Args)                                                \
-    template <::bmfr::cpu::Isa kIsa> BodyInline Ret name##Body Params;                       \
-    BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] Attr Ret name##Avx512 Params {                            \
+#define BMFR_SIMD_DISPATCH_WITH(Attr, BodyInline, Ret, name, Params, Args)                         \
+    template <::bmfr::cpu::Isa kIsa> BodyInline Ret name##Body Params;                             \
+    BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] Attr Ret name##Avx512 Params {                       \
         return name##Body<::bmfr::cpu::Isa::Avx512> Args;                                          \
     }                                                                                              \
-    BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] Attr Ret name##Avx2 Params {                                \
+    BMFR_SIMD_TARGET_AVX2 [[gnu::noinline]] Attr Ret name##Avx2 Params {                           \
         return name##Body<::bmfr::cpu::Isa::Avx2> Args;                                            \
     }                                                                                              \
-    [[gnu::noinline]] Attr Ret name##Baseline Params {                                                  \
+    [[gnu::noinline]] Attr Ret name##Baseline Params {                                             \
         return name##Body<::bmfr::cpu::Isa::Baseline> Args;                                        \
     }                                                                                              \
     Ret name Params {                                                                              \

@@ -74,11 +74,11 @@ struct Buffers {
     size_t stride = 0;
 
     // History, [slot].
-    PlaneSet position[2];            ///< 3 planes: position xyz (sanitised), always float
-    PlaneSet normal[2];              ///< 3 planes: normal xyz (sanitised)
-    PlaneSet noisy[2];               ///< 4 planes: phase I colour (demodulated), history length
-    PlaneSet accumulatedFitted[2];   ///< 3 planes: phase III colour
-    std::vector<float> output[2];    ///< 3 floats per pixel (the public image), +24 of padding
+    PlaneSet position[2];          ///< 3 planes: position xyz (sanitised), always float
+    PlaneSet normal[2];            ///< 3 planes: normal xyz (sanitised)
+    PlaneSet noisy[2];             ///< 4 planes: phase I colour (demodulated), history length
+    PlaneSet accumulatedFitted[2]; ///< 3 planes: phase III colour
+    std::vector<float> output[2];  ///< 3 floats per pixel (the public image), +24 of padding
     /// BmfrSettings::excludeEmitters or visibilityTaps: each pixel's tap class (kTapLit,
     /// kTapEmitter), which the fit writes.
     std::vector<uint8_t> tapClass[2];
@@ -171,7 +171,9 @@ struct TapFilter {
     const float* visibility = nullptr; ///< the staged visibility under visibilityTaps
     bool on() const { return emitters || visibility; }
     /// The class bits that count.
-    uint8_t bits() const { return uint8_t((visibility ? kTapLit : 0) | (emitters ? kTapEmitter : 0)); }
+    uint8_t bits() const {
+        return uint8_t((visibility ? kTapLit : 0) | (emitters ? kTapEmitter : 0));
+    }
 };
 
 /// What the row kernels of phase I and the resolve pass read.

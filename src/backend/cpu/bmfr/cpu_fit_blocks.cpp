@@ -323,7 +323,8 @@ void finishBlock(const Phase2& a, const BlockRows& rows, long first, int exclude
     };
     if (!excluded && rows.inside) { // most blocks: no emitter, and every pixel owned
         if (!a.classes) return;
-        for (int ly = 0; ly < B; ++ly) litClasses(a.visibility, first + long(ly) * g.width, B, a.classes);
+        for (int ly = 0; ly < B; ++ly)
+            litClasses(a.visibility, first + long(ly) * g.width, B, a.classes);
         return;
     }
     long emitters = 0;
@@ -356,11 +357,11 @@ BMFR_SIMD_DISPATCH(void, fitBlock,
     const BlockRows rows = blockRows<kIsa>(a, ox, oy, sc);
     buildColumns(a, rows, sc);
     prefetchBlock(a, nextX, nextY);
-    const int excluded =
-        s.clampFireflies || a.emitters.on
-            ? clampAndMaskBlock({g, a.ctx.input, a.emitters, s.clampFireflies, M, qrColumnStride(W)},
-                                bx, by, sc.work.data(), sc)
-            : 0;
+    const int excluded = s.clampFireflies || a.emitters.on
+                             ? clampAndMaskBlock({g, a.ctx.input, a.emitters, s.clampFireflies, M,
+                                                  qrColumnStride(W)},
+                                                 bx, by, sc.work.data(), sc)
+                             : 0;
 
     float coeffs[kMaxFeatures * 3];
     solveHouseholderFast(sc.work.data(), M, W, qrColumnStride(W), coeffs);
