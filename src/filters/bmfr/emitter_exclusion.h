@@ -187,6 +187,10 @@ BMFR_HD bool maskEmitter(uint8_t m) {
 /// The largest block (64 x 64) whose current samples emitterMask keeps while it tests seeds.
 inline constexpr int kMaskCachePixels = 64 * 64;
 
+/// A block with more than W / kMaskDenseCandidates candidates reads every current sample up
+/// front, not as its seed tests ask for them.
+inline constexpr int kMaskDenseCandidates = 8;
+
 /// The block's median is read from every kMaskStride-th pixel: a bucket is a factor of sqrt 2
 /// wide, and a quarter of the block places the median as well.
 inline constexpr int kMaskStride = 4;
@@ -244,9 +248,17 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     // (divisions, and mirroring at the border) only for candidates.
     const bool inside = origin >= 0 && W <= kMaskCachePixels;
     float samples[kMaskCachePixels];
-    if (inside)
-        for (int k = 0; k < W; ++k) samples[k] = -1.0f; // a finite sample's luminance is >= 0
     const int ox = inside ? int(origin % in.width) : 0, oy = inside ? int(origin / in.width) : 0;
+    if (inside && kMaskDenseCandidates * candidates > W) {
+        // Many candidates, as in a block without history (one noisy sample per pixel): nearly
+        // every sample is read, so all are, in one loop the compiler can vectorise.
+        for (int ly = 0; ly < B; ++ly)
+            for (int lx = 0; lx < B; ++lx)
+                samples[ly * B + lx] =
+                    luminance(emitterSample(in, long(oy + ly) * in.width + ox + lx, modes));
+    } else if (inside) {
+        for (int k = 0; k < W; ++k) samples[k] = -1.0f; // a finite sample's luminance is >= 0
+    }
     auto lum = [&](int u, int v) {
         const int lx = u - ox, ly = v - oy;
         const long i = long(v) * in.width + u;
