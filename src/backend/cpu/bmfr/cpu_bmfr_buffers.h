@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <cstring>
 #include <vector>
 
 namespace bmfr::cpu {
@@ -212,8 +213,13 @@ inline const float* tapVisibility(const BmfrPassContext& ctx) {
                                        : nullptr;
 }
 /// The tap classes of pixels [from, from + n) without an emitter: kTapLit where `visibility`
-/// (null: none) is above 0.
-void litClasses(const float* visibility, long from, long n, uint8_t* classes);
+/// (null: none) is above 0. Inlined, as the fitter calls it for each row of a block.
+BMFR_SIMD_INLINE void litClasses(const float* visibility, long from, long n, uint8_t* classes) {
+    uint8_t* out = classes + from;
+    if (!visibility) return (void)std::memset(out, 0, size_t(n));
+    const float* v = visibility + from;
+    for (long x = 0; x < n; ++x) out[x] = litClass(v, x) ? kTapLit : 0; // vectorises
+}
 /// BmfrSettings::secondGrid: fits the blocks of the shifted grid that own a pixel without
 /// history, and gives those pixels the mean of both fits.
 void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b);

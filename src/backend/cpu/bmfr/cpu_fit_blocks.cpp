@@ -301,17 +301,6 @@ BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch&
     }
 }
 
-} // namespace
-
-void litClasses(const float* visibility, long from, long n, uint8_t* classes) {
-    uint8_t* out = classes + from;
-    if (!visibility) return (void)std::memset(out, 0, size_t(n));
-    const float* v = visibility + from;
-    for (long x = 0; x < n; ++x) out[x] = litClass(v, x) ? kTapLit : 0; // vectorises
-}
-
-namespace {
-
 /// After the weighted sum: the excluded pixels that are the emitter this frame take their own
 /// sample (emitter_exclusion.h), and every owned pixel gets its tap class.
 void finishBlock(const Phase2& a, const BlockRows& rows, long first, int excluded,
