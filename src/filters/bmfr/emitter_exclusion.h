@@ -251,7 +251,7 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     const int ox = inside ? int(origin % in.width) : 0, oy = inside ? int(origin / in.width) : 0;
     if (inside && kMaskDenseCandidates * candidates > W) {
         // Many candidates, as in a block without history (one noisy sample per pixel): nearly
-        // every sample is read, so all are, in one loop the compiler can vectorise.
+        // every sample is read, so all are, in one loop without a cache test per lookup.
         for (int ly = 0; ly < B; ++ly)
             for (int lx = 0; lx < B; ++lx)
                 samples[ly * B + lx] =

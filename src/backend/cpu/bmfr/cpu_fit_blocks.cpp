@@ -307,9 +307,6 @@ void finishBlock(const Phase2& a, const BlockRows& rows, long first, int exclude
                  const Scratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize;
-    auto lit = [&](long idx) {
-        return a.visibility && litClass(a.visibility, idx) ? kTapLit : uint8_t{0};
-    };
     if (!excluded && rows.inside) { // most blocks: no emitter, and every pixel owned
         if (!a.classes) return;
         for (int ly = 0; ly < B; ++ly)
@@ -327,7 +324,8 @@ void finishBlock(const Phase2& a, const BlockRows& rows, long first, int exclude
             for (int ch = 0; ch < 3; ++ch) a.out[ch][idx] = c[ch];
         }
         if (!a.classes) continue;
-        a.classes[idx] = uint8_t(lit(idx) | (emitter ? kTapEmitter : 0));
+        litClasses(a.visibility, idx, 1, a.classes);
+        if (emitter) a.classes[idx] |= kTapEmitter;
         emitters += emitter;
     }
     if (emitters) a.b.emitterPixels[a.ctx.timeline.history.cur] += emitters;
@@ -446,20 +444,13 @@ struct PoorLengths {
     void blend(const OwnedRect& r, int width, float* const fitted[3],
                const float* const second[3]) const {
         with([&](auto test) {
-            for (int y = r.y0; y < r.y1; ++y) {
-                const size_t row = size_t(y) * size_t(width) + size_t(r.x0);
-                const int n = r.x1 - r.x0;
-                // The row's tests first, into a local mask: the half lengths' may_alias type would
-                // otherwise keep the blend below from vectorising.
-                float take[kMaxBlockSize];
-                for (int x = 0; x < n; ++x) take[x] = test(row + size_t(x)) ? 1.0f : 0.0f;
-                for (int ch = 0; ch < 3; ++ch) {
-                    float* __restrict f = fitted[ch] + row;
-                    const float* __restrict o = second[ch] + row;
-                    for (int x = 0; x < n; ++x)
-                        f[x] = take[x] != 0.0f ? blendSecondFit(f[x], o[x]) : f[x];
+            for (int y = r.y0; y < r.y1; ++y)
+                for (int x = r.x0; x < r.x1; ++x) {
+                    const size_t i = size_t(y) * size_t(width) + size_t(x);
+                    if (!test(i)) continue;
+                    for (int ch = 0; ch < 3; ++ch)
+                        fitted[ch][i] = blendSecondFit(fitted[ch][i], second[ch][i]);
                 }
-            }
         });
     }
 };
