@@ -5,6 +5,9 @@
 
 namespace bmfr {
 
+/// The largest block edge BmfrSettings::blockSize allows, in pixels.
+inline constexpr int kMaxBlockSize = 64;
+
 /// Block grid of one frame. Block (bx, by) covers image pixels
 /// [bx*B - B/2 + ox, +B) x [by*B - B/2 + oy, +B); pixels outside the image are mirrored in.
 /// Every image pixel is "owned" (inside, unmirrored) by exactly one block.
