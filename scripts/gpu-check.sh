@@ -4,8 +4,10 @@
 #   bash scripts/gpu-check.sh prepare   # here (Debian, nvcc, no GPU needed): build, then pack
 #                                       # bmfr, bmfr_tests and the libraries they load into
 #                                       # gpu-carry/bundle.tar.xz (git-ignored)
-#   bash scripts/gpu-check.sh run       # on the GPU machine, with gpu-carry/ carried along:
-#                                       # writes its logs to $OUT (or gpu-check-out/)
+#   bash scripts/gpu-check.sh run [STEP ...]  # on the GPU machine, with gpu-carry/ carried
+#                                       # along: writes its logs to $OUT (or gpu-check-out/);
+#                                       # STEPs (tests demo bench bench-quality bench-device
+#                                       # bench-svgf sanitizer ncu) pick some, default all
 #
 # The GPU machine has nvcc, CMake and Python but none of our Debian packages and no network, so
 # the binaries travel with their libraries (Embree, TBB, OpenEXR, fmt, libstdc++ ...), and with
@@ -13,12 +15,14 @@
 # does, each step time-limited:
 #   1. the conformance suite for cuda (bmfr, svgf), device buffers on either stream, and the
 #      team-fit and Householder tests;
-#   2. the demo: BMFR and SVGF on cuda against the CPU backend, scored by `bmfr eval`;
-#   3. `bmfr bench --backend cuda` at 720p, 1080p and 4K beside the CPU backend, again with the
-#      input in device memory (JSON), and SVGF at 720p;
+#   2. cornell-moving rendered, then BMFR (both presets) and SVGF on cuda and on the CPU
+#      backend, each scored against the reference by `bmfr denoise`;
+#   3. `bmfr bench --backend cuda` at 720p, 1080p and 4K beside the CPU backend, the quality
+#      preset beside the faithful one, again with the input in device memory (JSON), and SVGF
+#      at 720p;
 #   4. compute-sanitizer memcheck and racecheck on a small sequence, where it works.
-# The step limits add up to under ten minutes, one device call: run it once with
-# timeout_s=600, read summary.txt, rerun only what failed.
+# The step limits add up to about seven minutes, one device call: run it once with
+# timeout_s=460, read summary.txt, rerun only what failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-run}
@@ -42,6 +46,7 @@ if [ "$mode" = prepare ]; then
     exit 0
 fi
 
+export PATH="$PATH:/usr/local/cuda/bin"
 out=${OUT:-gpu-check-out}
 mkdir -p "$out"
 work=/tmp/bmfr-gpu
@@ -64,9 +69,12 @@ fi
 bmfr=$work/bin/bmfr
 summary=$out/summary.txt
 say() { echo "$*" | tee -a "$summary"; }
+shift || true
+steps=" $* " # run [STEP ...]: only those (tests demo bench bench-quality bench-device ...)
 step() { # step NAME SECONDS COMMAND... : runs it, logs to $out/NAME.log, notes its exit status
     local name=$1 limit=$2
     shift 2
+    [ "$steps" = "  " ] || [[ "$steps" == *" $name "* ]] || return 0
     local t0=$SECONDS
     timeout "$limit" "$@" > "$out/$name.log" 2>&1
     local rc=$?
@@ -82,35 +90,61 @@ step tests 140 "$work/bin/bmfr_tests" \
     --gtest_filter='AllBackendsAndFilters/Conformance.*/cuda_bmfr:AllBackendsAndFilters/Conformance.*/cuda_svgf:CudaDeviceBuffers.*:TeamFit.*:Householder.*'
 
 demo=$work/demo
-step demo 120 bash -c "
+step demo 90 bash -c "
     set -e
-    '$bmfr' demo -o '$demo' --quiet
-    for f in bmfr svgf; do
-        '$bmfr' denoise '$demo/input' -o '$demo/cpu-\$f' --filter \$f --backend cpu -q
-        '$bmfr' denoise '$demo/input' -o '$demo/cuda-\$f' --filter \$f --backend cuda -q
-    done
-    '$bmfr' eval -r '$demo/input' -m noisy cpu-bmfr='$demo/cpu-bmfr' cuda-bmfr='$demo/cuda-bmfr' \
-        cpu-svgf='$demo/cpu-svgf' cuda-svgf='$demo/cuda-svgf' -o '$demo/eval'"
+    '$bmfr' render -o '$demo/input' -s cornell-moving --width 320 --height 240 --frames 16 \
+        --reference-spp 64 --quiet
+    for run in 'bmfr cpu faithful' 'bmfr cuda faithful' 'bmfr cpu quality' 'bmfr cuda quality' \
+               'svgf cpu faithful' 'svgf cuda faithful'; do
+        set -- \$run
+        echo \"== \$1 on \$2, \$3 preset\"
+        '$bmfr' denoise '$demo/input' -o \"$demo/\$1-\$2-\$3\" --filter \$1 --backend \$2 \
+            --preset \$3 --no-png | grep -E 'RMSE|^  (noisy|bmfr|svgf) '
+    done"
 
-step bench 140 "$bmfr" bench --backend cuda --baseline-backend cpu \
+step bench 80 "$bmfr" bench --backend cuda --baseline-backend cpu \
     --sizes 1280x720,1920x1080,3840x2160
-step bench-device 50 "$bmfr" bench --backend cuda --device-buffers --no-baseline \
-    --sizes 1280x720,1920x1080,3840x2160 --json
-step bench-svgf 50 "$bmfr" bench --backend cuda --filter svgf --baseline-backend cpu \
+step bench-quality 40 "$bmfr" bench --backend cuda --preset quality --baseline-backend cuda \
+    --sizes 1280x720,1920x1080
+step bench-device 40 bash -c "
+    for p in faithful quality; do
+        '$bmfr' bench --backend cuda --device-buffers --no-baseline --preset \$p -q \
+            --sizes 1280x720,1920x1080,3840x2160 --json
+    done"
+step bench-svgf 25 "$bmfr" bench --backend cuda --filter svgf --baseline-backend cpu \
     --sizes 1280x720
 
 if command -v compute-sanitizer > /dev/null; then
     small=$work/small
     "$bmfr" synth -o "$small" --width 77 --height 45 --frames 3 --quiet
-    step sanitizer 90 bash -c "
+    step sanitizer 80 bash -c "
         for tool in memcheck racecheck; do
-            for f in bmfr svgf; do
+            for f in bmfr svgf quality; do
+                args=\"--filter \$f\"
+                [ \$f = quality ] && args='--filter bmfr --preset quality'
                 compute-sanitizer --tool \$tool --error-exitcode 9 \
-                    '$bmfr' denoise '$small' -o '$work/san-\$f' --filter \$f --backend cuda -q \
+                    '$bmfr' denoise '$small' -o \"$work/san-\$f\" \$args --backend cuda -q \
                     || echo \"\$tool on \$f: FAILED (\$?)\"
             done
         done"
 else
     say "== sanitizer: compute-sanitizer not found"
+fi
+# The fit kernel's counters at 720p, both presets (where ncu can read them).
+if command -v ncu > /dev/null; then
+    step ncu 60 bash -c "
+        for p in faithful quality; do
+            ncu --clock-control none --kernel-name regex:fitKernel --launch-skip 6 \
+                --launch-count 1 --section SpeedOfLight --section Occupancy \
+                --section LaunchStats --section MemoryWorkloadAnalysis \
+                '$bmfr' bench --backend cuda --no-baseline --preset \$p --sizes 1280x720 \
+                --warmup 2 --frames 8 -q
+        done"
+else
+    say "== ncu: not found"
+fi
+# The device tool brings back 8 files at most: the logs travel as one archive.
+if [ "$(ls "$out" | wc -l)" -gt 8 ]; then
+    (cd "$out" && tar -czf logs.tgz ./*.log && rm ./*.log)
 fi
 say "== done"

@@ -56,18 +56,19 @@ struct Frame {
 struct Scratch {
     std::vector<float> clean, work, sum, sources, partial, matrix;
     std::vector<int> index, histogram;
-    std::vector<uint8_t> mask, teamMask;
+    std::vector<uint8_t> mask, teamMask, teamNext;
     Scratch(int M, int W, int threads)
         : clean(size_t(M) * size_t(W)), work(size_t(M + 3) * size_t(W)), sum(3 * size_t(W)),
           sources(size_t(6 + 16) * size_t(W)),
           partial(size_t(cuda::teamFitPartials(M)) * size_t(threads)), matrix(work.size()),
-          index(size_t(W)), histogram(size_t(kMaskBuckets)), mask(size_t(W)), teamMask(size_t(W)) {}
+          index(size_t(W)), histogram(size_t(kMaskBuckets)), mask(size_t(W)), teamMask(size_t(W)),
+          teamNext(size_t(W)) {}
     BlockFitScratch reference() {
         return {clean.data(), work.data(), sum.data(),      sources.data(),
                 index.data(), mask.data(), histogram.data()};
     }
     cuda::TeamFitMemory team(cuda::TeamFitState& st) {
-        return {&st, partial.data(), matrix.data(), teamMask.data()};
+        return {&st, partial.data(), matrix.data(), teamMask.data(), teamNext.data()};
     }
 };
 

@@ -252,6 +252,10 @@ TEST_P(Conformance, EverySwitchAndConfiguration) {
     }
     for (const auto& [what, values] : filter().configurations)
         expectConformance(filter().name, backend(), values, 6, p.source(), what);
+    // The switches together, as users run them: the second grid's emitter restore once wrote
+    // through the emitter bits it does not keep.
+    expectConformance(filter().name, backend(), presetSettings(filter().name, "quality"), 6,
+                      p.source(), "the quality preset");
 }
 
 TEST_P(Conformance, RgbaInputWithRowPaddingGivesThePackedResult) {

@@ -32,6 +32,7 @@ struct TeamFitMemory {
     float* partial; ///< teamFitPartials(M) x team size
     float* matrix;  ///< (M + 3) x W, column-major: noised scaled features, then colour
     uint8_t* mask;  ///< W: the emitter mask (emitter_exclusion.h)
+    uint8_t* next;  ///< W: a stage's new bits, merged into `mask` after a barrier
 };
 
 /// Combines partial[c * T + t] over the T threads into partial[c * T] for columns
@@ -109,22 +110,35 @@ BMFR_HD void teamHouseholder(const Team& team, float* A, int M, int W, float* P,
     team.single([&] { st.q.solve(M, st.coeffs); });
 }
 
+/// mask[k] |= bits(k) for every block pixel, where bits(k) reads the neighbours' mask: the new
+/// bits go to `next` first, so no thread writes a byte that another reads in the same phase.
+/// (The bits read and written differ, so the result is the sequential one either way; this
+/// keeps the phase free of data races.)
+template <class Team, class Bits>
+BMFR_HD void teamMaskStage(const Team& team, uint8_t* mask, uint8_t* next, int W, Bits bits) {
+    const int T = team.size();
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) next[k] = bits(k);
+    });
+    team.parallel([&](int t) {
+        for (int k = t; k < W; k += T) mask[k] |= next[k];
+    });
+}
+
 /// clampFireflies for a team: the threshold on one thread, the stages pixel-parallel.
 template <class Team>
 BMFR_HD void teamClampFireflies(const Team& team, float* A, int M, int B,
                                 const TeamFitMemory& mem) {
     const int W = B * B, T = team.size();
     TeamFitState& st = *mem.state;
-    uint8_t* mask = mem.mask;
+    uint8_t *mask = mem.mask, *next = mem.next;
     float* z[3] = {A + long(M) * W, A + long(M + 1) * W, A + long(M + 2) * W};
     auto lum = [&](int k) { return luminance({z[0][k], z[1][k], z[2][k]}); };
     team.single([&] { st.maskThreshold = blockThreshold(W, kFireflyRatio, lum, st.histogram); });
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T) mask[k] = fireflyCandidate(lum(k), st.maskThreshold);
     });
-    team.parallel([&](int t) {
-        for (int k = t; k < W; k += T) mask[k] |= fireflyDense(mask, B, k);
-    });
+    teamMaskStage(team, mask, next, W, [&](int k) { return fireflyDense(mask, B, k); });
     // Reads the neighbours' bits and scales only its own pixel's colour.
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T) {
@@ -143,7 +157,7 @@ BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B, M = a.featureCount, T = team.size();
     TeamFitState& st = *mem.state;
-    uint8_t* mask = mem.mask;
+    uint8_t *mask = mem.mask, *next = mem.next;
     const InputModes& modes = a.emitters.modes;
     auto accumulated = [&](int k) {
         return luminance({A[long(M) * W + k], A[long(M + 1) * W + k], A[long(M + 2) * W + k]});
@@ -163,14 +177,8 @@ BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by
         for (int k = t; k < W; k += T)
             mask[k] |= maskSeed(mask[k], a.in, modes, pixel(k), st.maskThreshold);
     });
-    // Reads the neighbours' seed bits and sets its own pixel's excluded bit.
-    team.parallel([&](int t) {
-        for (int k = t; k < W; k += T) mask[k] |= maskExcluded(mask, B, k);
-    });
-    // Reads the neighbours' excluded bits and sets its own pixel's grown bit.
-    team.parallel([&](int t) {
-        for (int k = t; k < W; k += T) mask[k] |= maskGrown(mask, B, k);
-    });
+    teamMaskStage(team, mask, next, W, [&](int k) { return maskExcluded(mask, B, k); });
+    teamMaskStage(team, mask, next, W, [&](int k) { return maskGrown(mask, B, k); });
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T) {
             mask[k] = maskWithGrowth(mask[k]);
@@ -250,7 +258,8 @@ BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
             if (!a.emitters.on) continue;
             const bool emitter = maskEmitter(mem.mask[k]);
             if (emitter) store3(a.fitted, idx, emitterSample(a.in, idx, a.emitters.modes));
-            a.emitters.bits[idx] = emitter;
+            // The second grid restores its emitters too but keeps no bits (null) of its own.
+            if (a.emitters.bits) a.emitters.bits[idx] = emitter;
         }
     });
 }

@@ -33,12 +33,14 @@ void launchNoise(float* noise, const Feature* features, int featureCount, int bl
 struct FitPlan {
     int threads = 256;      ///< team size, a power of two
     size_t sharedBytes = 0; ///< dynamic shared memory per block
-    size_t maskBytes = 0;   ///< the emitter mask: B^2 bytes, rounded up to 16
+    size_t maskBytes = 0;   ///< the emitter mask (and again its stage bits): B^2 bytes, to 16
     bool matrixInShared = true;
     size_t matrixFloats = 0; ///< (M + 3) x B^2: per block, in global scratch when not shared
 };
 FitPlan planFit(int featureCount, int blockSize);
 /// Fits every block of a.grid; `scratch` holds matrixFloats per block when !matrixInShared.
-void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream);
+/// With `poorOnly` (history lengths), only the blocks owning a history-poor pixel.
+void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream,
+                     const uint8_t* poorOnly = nullptr);
 
 } // namespace bmfr::cuda

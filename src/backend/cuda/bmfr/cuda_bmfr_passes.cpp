@@ -91,11 +91,12 @@ class CudaBmfrPasses final : public BmfrPasses {
             const BlockFit fit = blockFit(ctx, in, b, b.features.data(), b.noise.data());
             launchFitBlocks(fit, plan_, b.fitScratch.data(), st);
             if (s.secondGrid) {
-                // Every block of the shifted grid, as the reference backend.
+                // The shifted grid's blocks that own a history-poor pixel, as the CPU backend.
                 BlockFit second = fit;
                 second.grid = secondGrid(fit.grid);
                 second.fitted = b.fittedSecond.data(), second.emitters.bits = nullptr;
-                launchFitBlocks(second, plan_, b.fitScratch.data(), st);
+                launchFitBlocks(second, plan_, b.fitScratch.data(), st,
+                                b.historyLength[cur].data());
                 launchBlendSecondFit(b.fitted.data(), b.fittedSecond.data(),
                                      b.historyLength[cur].data(), long(t.width) * t.height, st);
             }

@@ -4,6 +4,7 @@
 #include "backend/cuda/bmfr/cooperative_fit.h"
 #include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
 #include "backend/cuda/device_buffer.h"
+#include "filters/bmfr/second_grid.h"
 
 namespace bmfr::cuda {
 
@@ -12,18 +13,32 @@ namespace {
 constexpr size_t kStateBytes = (sizeof(TeamFitState) + 15) / 16 * 16;
 
 __global__ void fitKernel(BlockFit a, int matrixFloats, bool matrixInShared, int maskBytes,
-                          float* scratch) {
+                          float* scratch, const uint8_t* poorOnly) {
     extern __shared__ float4 shared[];
+    if (poorOnly) {
+        // Only a history-poor pixel reads this fit (blendSecondFit): a block owning none is
+        // left unfitted. __syncthreads_or gives every thread the same answer.
+        int any = 0;
+        const int W = a.grid.blockSize * a.grid.blockSize;
+        for (int k = int(threadIdx.x); k < W && !any; k += int(blockDim.x)) {
+            bool owned;
+            const long idx = blockPixel(a.grid, int(blockIdx.x), int(blockIdx.y), k, owned);
+            any = owned && historyPoor(poorOnly[idx]);
+        }
+        if (!__syncthreads_or(any)) return;
+    }
     char* base = reinterpret_cast<char*>(shared);
     const DeviceTeam team;
     float* partial = reinterpret_cast<float*>(base + kStateBytes);
-    // The emitter mask (maskBytes, a multiple of 16) between the partial sums and the matrix.
+    // The mask and its stage bits (maskBytes each, a multiple of 16) between the partial sums
+    // and the matrix.
     uint8_t* mask =
         reinterpret_cast<uint8_t*>(partial + size_t(teamFitPartials(a.featureCount)) * blockDim.x);
-    float* matrix = reinterpret_cast<float*>(mask + maskBytes);
+    float* matrix = reinterpret_cast<float*>(mask + 2 * maskBytes);
     if (!matrixInShared)
         matrix = scratch + size_t(blockIdx.y * gridDim.x + blockIdx.x) * size_t(matrixFloats);
-    const TeamFitMemory mem{reinterpret_cast<TeamFitState*>(base), partial, matrix, mask};
+    const TeamFitMemory mem{reinterpret_cast<TeamFitState*>(base), partial, matrix, mask,
+                            mask + maskBytes};
     fitBlockTeam(team, a, int(blockIdx.x), int(blockIdx.y), mem);
 }
 } // namespace
@@ -38,7 +53,7 @@ FitPlan planFit(int featureCount, int blockSize) {
     p.maskBytes = (size_t(W) + 15) / 16 * 16;
     const size_t fixed = kStateBytes +
                          size_t(teamFitPartials(featureCount)) * size_t(p.threads) * sizeof(float) +
-                         p.maskBytes;
+                         2 * p.maskBytes;
     int device = 0, optin = 0;
     check(cudaGetDevice(&device), "cudaGetDevice");
     check(cudaDeviceGetAttribute(&optin, cudaDevAttrMaxSharedMemoryPerBlockOptin, device),
@@ -51,10 +66,11 @@ FitPlan planFit(int featureCount, int blockSize) {
     return p;
 }
 
-void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream) {
+void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream,
+                     const uint8_t* poorOnly) {
     const dim3 grid(unsigned(a.grid.blocksX), unsigned(a.grid.blocksY));
     fitKernel<<<grid, unsigned(plan.threads), plan.sharedBytes, stream>>>(
-        a, int(plan.matrixFloats), plan.matrixInShared, int(plan.maskBytes), scratch);
+        a, int(plan.matrixFloats), plan.matrixInShared, int(plan.maskBytes), scratch, poorOnly);
     check(cudaGetLastError(), "fit kernel");
 }
 
