@@ -11,6 +11,7 @@ namespace bmfr::cuda {
 
 /// The host's team of `size` threads, run in index order.
 struct HostTeam {
+    static constexpr bool kWarps = false; ///< no warp shuffles: every step is a phase
     int threads = 256;
     int size() const { return threads; }
     /// body(t) for every thread t, then a barrier.
@@ -24,6 +25,7 @@ struct HostTeam {
 #if defined(__CUDACC__)
 /// The threads of this CUDA block (one-dimensional).
 struct DeviceTeam {
+    static constexpr bool kWarps = true; ///< team code may use the first warp's shuffles
     BMFR_HD int size() const {
 #if defined(__CUDA_ARCH__)
         return int(blockDim.x);

@@ -40,12 +40,29 @@ struct TeamFitMemory {
 template <class Team, class Op>
 BMFR_HD void teamReduce(const Team& team, float* partial, int count, Op op) {
     const int T = team.size();
-    for (int s = T / 2; s > 0; s /= 2)
+    // On the device the levels below 32 run in the first warp through shuffles (T >= 32): the
+    // same pairs in the same order, so the same sums, with five barriers fewer.
+    const int lastPhase = Team::kWarps ? 32 : 1;
+    for (int s = T / 2; s >= lastPhase; s /= 2)
         team.parallel([&](int t) {
             if (t < s)
                 for (int c = 0; c < count; ++c)
                     partial[c * T + t] = op(c, partial[c * T + t], partial[c * T + t + s]);
         });
+#if defined(__CUDA_ARCH__)
+    if constexpr (Team::kWarps)
+        team.parallel([&](int t) {
+            if (t >= 32) return;
+            for (int c = 0; c < count; ++c) {
+                float v = partial[c * T + t];
+                for (int s = 16; s > 0; s /= 2) {
+                    const float other = __shfl_down_sync(0xffffffffu, v, unsigned(s));
+                    if (t < s) v = op(c, v, other);
+                }
+                if (t == 0) partial[c * T] = v;
+            }
+        });
+#endif
 }
 
 /// One image pixel's feature sources: its normal and position, read once for all features.
