@@ -105,6 +105,20 @@ const std::map<std::string, std::string>& presets() {
                 {"frame": 0,  "position": [-0.45, 1.0, 0.95], "target": [0.1, 0.8, -1.0],  "fov_deg": 70},
                 {"frame": 30, "position": [0.0, 1.2, 0.9],    "target": [0.0, 0.85, -1.0], "fov_deg": 70},
                 {"frame": 59, "position": [0.45, 1.0, 0.95],  "target": [-0.1, 0.8, -1.0], "fov_deg": 70}]}})"},
+        // Two small rooms for measuring quality (README, "Presets"): the built-in box at the
+        // paper's one bounce, a camera panning inside it, the lamp out of view and in view.
+        // Rendered in the original layout (no emission buffer) the second is the case of a
+        // visible light that a filter must find by itself.
+        {"room-dark", R"({
+            "mesh": "builtin:cornell", "width": 256, "height": 192, "frames": 24, "reference_spp": 64,
+            "camera": {"keyframes": [
+                {"frame": 0,  "position": [-0.3, 0.9, 2.6], "target": [0.1, 0.5, 0.0],  "fov_deg": 42},
+                {"frame": 23, "position": [0.3, 0.9, 2.6],  "target": [-0.1, 0.5, 0.0], "fov_deg": 42}]}})"},
+        {"room-light", R"({
+            "mesh": "builtin:cornell", "width": 256, "height": 192, "frames": 24, "reference_spp": 64,
+            "camera": {"keyframes": [
+                {"frame": 0,  "position": [-0.3, 1.0, 3.0], "target": [0.1, 1.1, 0.0],  "fov_deg": 45},
+                {"frame": 23, "position": [0.3, 1.0, 3.0],  "target": [-0.1, 1.1, 0.0], "fov_deg": 45}]}})"},
         // Objects that move across a static camera's view and occlude each other, at the
         // speeds of a game at 30 frames a second: the short block slides to and fro in front
         // of the tall one (1.2 m/s), which turns (2 degrees a frame); a sphere falls in front

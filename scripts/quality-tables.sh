@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# The quality tables of README's "Presets" section, from scratch: renders the small rooms
+# (room-dark, room-light) and cornell-moving at 256x192, 24 frames, 64-spp references, in the
+# original layout (no emission buffer), runs each method on them and scores frames 8 to 23.
+#
+#   bash scripts/quality-tables.sh [WORK_DIR] [SEQUENCE ...]   # default /tmp/bmfr-quality-tables
+#
+# About five minutes on 2 cores. Prints one Markdown table per sequence: tone-mapped RMSE (and
+# its ratio to the noisy input's), SSIM, FLIP and temporal error.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bmfr=$PWD/build/bmfr
+[ -x "$bmfr" ] || { echo "no build/bmfr: run bash scripts/build.sh first" >&2; exit 1; }
+work=${1:-/tmp/bmfr-quality-tables}
+shift || true
+sequences=("$@")
+[ ${#sequences[@]} -gt 0 ] || sequences=(room-dark room-light cornell-moving)
+mkdir -p "$work"
+
+# name: the denoise options
+methods=(
+    "bmfr:--preset faithful"
+    "bmfr-quality:--preset quality"
+    "bmfr-no-taa:--preset faithful --taa false"
+    "svgf:--filter svgf --preset faithful"
+    "svgf-quality:--filter svgf --preset quality"
+    "accumulation:--preset faithful --fitting false --taa false"
+)
+
+for seq in "${sequences[@]}"; do
+    dir=$work/$seq
+    if [ ! -f "$dir/.done" ]; then
+        echo "rendering $seq ..." >&2
+        rm -rf "$dir"
+        "$bmfr" render -o "$dir/input" -s "$seq" --width 256 --height 192 --frames 24 \
+            --reference-spp 64 --layout bmfr -q
+        touch "$dir/.done"
+    fi
+    args=()
+    for m in "${methods[@]}"; do
+        name=${m%%:*}
+        # shellcheck disable=SC2086 # the options are words
+        "$bmfr" denoise "$dir/input" -o "$dir/$name" ${m#*:} -q --no-png --no-flip
+        args+=("$name=$dir/$name")
+    done
+    "$bmfr" eval -r "$dir/input" -m noisy "${args[@]}" -o "$dir/eval" --frames 8:24 --json -q \
+        > "$dir/scores.json"
+    /usr/bin/python3 - "$seq" "$dir/scores.json" "${methods[@]%%:*}" noisy <<'EOF'
+import json, sys
+seq, path, order = sys.argv[1], sys.argv[2], sys.argv[3:]
+methods = json.load(open(path))["methods"]
+noisy = methods["noisy"]["mean"]["rmse"]
+print(f"\n| {seq} | RMSE (of noisy) | SSIM | FLIP | temporal |\n|---|---|---|---|---|")
+for m in order:
+    s = methods[m]["mean"]
+    print(f"| {m} | {s['rmse']:.5f} ({s['rmse'] / noisy:.3f}) | {s['ssim']:.4f} | "
+          f"{s['flip']:.4f} | {s['temporal_error']:.5f} |")
+EOF
+done
