@@ -37,15 +37,13 @@ struct OnDevice {
     std::vector<std::unique_ptr<cuda::DeviceImageCopy>> copies;
     FrameInput input;
     OnDevice(const FrameInput& host, bool rgba, int pad) : input(host) {
-        std::vector<ImageView*> all = {&input.color,           &input.albedo,
-                                       &input.normal,          &input.position,
-                                       &input.emission,        &input.sampleMask,
-                                       &input.visibility,      &input.motion,
-                                       &input.previousPosition, &input.previousNormal,
-                                       &input.diffuseIndirect, &input.matteIndirect,
-                                       &input.glossyIndirect,  &input.directLight,
-                                       &input.specularF0,      &input.roughness,
-                                       &input.glossyHitDistance};
+        std::vector<ImageView*> all = {
+            &input.color,          &input.albedo,           &input.normal,
+            &input.position,       &input.emission,         &input.sampleMask,
+            &input.visibility,     &input.motion,           &input.previousPosition,
+            &input.previousNormal, &input.diffuseIndirect,  &input.matteIndirect,
+            &input.glossyIndirect, &input.directLight,      &input.specularF0,
+            &input.roughness,      &input.glossyHitDistance};
         for (ImageView& e : input.extras) all.push_back(&e);
         // Every buffer the frame has: a frame's buffers must all be in one memory.
         for (ImageView* v : all) {
