@@ -50,10 +50,11 @@ std::vector<uint8_t> maskOf(const Planes& p, float ratio, int& excluded) {
     int histogram[kMaskBuckets];
     auto accumulated = [&](int k) { return p.accumulated[size_t(k)]; };
     auto pixel = [](int k) { return long(k); };
-    excluded =
-        emitterMask(p.w, ratio, p.in(), InputModes{}, accumulated, pixel, histogram, mask.data());
+    auto was = [](long) { return false; };
+    excluded = emitterMask(p.w, ratio, p.in(), InputModes{}, accumulated, pixel, was, histogram,
+                           mask.data());
     const int insideExcluded = emitterMask(p.w, ratio, p.in(), InputModes{}, accumulated, pixel,
-                                           histogram, inside.data(), -1, 0);
+                                           was, histogram, inside.data(), -1, 0);
     EXPECT_EQ(insideExcluded, excluded);
     if (excluded > 0) {
         EXPECT_EQ(inside, mask);

@@ -46,6 +46,12 @@ BlockFit blockFit(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b,
     a.in = in;
     a.fitted = b.fitted.data();
     a.emitters = emitterExclusion(s, in, b.emitter[t.cur].data());
+    if (a.emitters.on && t.hasHistory()) {
+        a.emitters.previous = b.emitter[1 - t.cur].data();
+        a.emitters.previousX = b.previousPixel.data(),
+        a.emitters.previousY = a.emitters.previousX + 1;
+        a.emitters.previousStep = 2;
+    }
     a.clampFireflies = s.clampFireflies;
     return a;
 }

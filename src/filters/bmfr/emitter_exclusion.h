@@ -86,6 +86,17 @@ inline constexpr uint8_t kMaskCandidate = 1, kMaskBright = 2, kMaskSeed = 4, kMa
 /// to within this fraction, where a lit surface's 1-spp samples scatter far wider.
 inline constexpr float kEmitterFlatness = 0.02f;
 
+/// An emitter's light is also the same from frame to frame, where a lit surface's 1-spp samples
+/// scatter by 10% to 40% (the built-in box's lamp: under 2%). A pixel with history seeds only if
+/// its current sample lies within kEmitterFlatness of its accumulated value, or if it was an
+/// emitter in the previous frame (under motion the history smears a light's edge into its
+/// neighbours, and the light must not drop out). Without it a lamp-lit block top seeded in some
+/// frames and not in others, and its pixels flickered between their noisy sample and the fit.
+/// Without history the two values are the same sample, and it passes.
+BMFR_HD bool steadySample(float sample, float accumulated) {
+    return std::fabs(sample - accumulated) <= kEmitterFlatness * sample;
+}
+
 /// Pixel i's current demodulated sample, as phase I read it.
 BMFR_HD Vec3 emitterSample(const InputPlanes& in, long i, const InputModes& modes) {
     int64_t ignored = 0; // phase I counted them
@@ -133,14 +144,18 @@ BMFR_HD bool flatNeighbours(const InputPlanes& in, const InputModes& modes, long
         [&](int u, int v) { return luminance(emitterSample(in, long(v) * in.width + u, modes)); });
 }
 
-/// Stage 2, pixel k (image pixel i): a bright candidate whose sample at least three
-/// neighbours share seeds an emitter. A lit surface's noisy samples, and fireflies, do not.
+/// Stage 2, pixel k (image pixel i, accumulated luminance `accumulated`, `was` an emitter in
+/// the previous frame): a bright candidate whose sample is steady (or was an emitter) and at
+/// least three neighbours share seeds an emitter. A lit surface's noisy samples, and
+/// fireflies, do not.
 BMFR_HD uint8_t maskSeed(uint8_t m, const InputPlanes& in, const InputModes& modes, long i,
-                         float threshold) {
+                         float threshold, float accumulated, bool was) {
     const uint8_t both = kMaskCandidate | kMaskBright;
     if ((m & both) != both) return 0;
     const float s = luminance(emitterSample(in, i, modes));
-    return flatNeighbours(in, modes, i, s, threshold, 3) ? kMaskSeed : 0;
+    return (was || steadySample(s, accumulated)) && flatNeighbours(in, modes, i, s, threshold, 3)
+               ? kMaskSeed
+               : 0;
 }
 
 /// The eight neighbours of block pixel k inside the block with `bit` set in `mask`.
@@ -223,16 +238,17 @@ BMFR_HD float emitterThreshold(int W, float ratio, Accumulated&& accumulated, in
 }
 
 /// The whole mask of a B x B block, one stage after another. accumulated(k) is the accumulated
-/// luminance of block pixel k and pixel(k) its image pixel; `quartile` is the block's
+/// luminance of block pixel k, pixel(k) its image pixel and was(i) whether image pixel i was
+/// an emitter in the previous frame (maskSeed); `quartile` is the block's
 /// lower-quartile bucket when known (clampFireflies leaves it unchanged), else -1; `origin` is
 /// pixel(0) when the block lies inside the image (pixel(k) is then origin + (k / B) rows + k % B),
 /// else -1. Returns the
 /// number of excluded pixels; the mask means something only when that is above 0 (most blocks
 /// have no candidate, and it is not written).
-template <class Accumulated, class Pixel>
+template <class Accumulated, class Pixel, class Was>
 BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputModes& modes,
-                        Accumulated&& accumulated, Pixel&& pixel, int* histogram, uint8_t* mask,
-                        int quartile = -1, long origin = -1) {
+                        Accumulated&& accumulated, Pixel&& pixel, Was&& was, int* histogram,
+                        uint8_t* mask, int quartile = -1, long origin = -1) {
     const int W = B * B;
     if (quartile < 0) quartile = blockQuantileBucket(W, accumulated, histogram, kEmitterQuantile);
     const float threshold = bucketThreshold(quartile, ratio);
@@ -282,7 +298,8 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
             mask[k] = kMaskCandidate;
             if (!(s > threshold)) continue;
             mask[k] |= kMaskBright;
-            if (flatNeighboursOf(x, y, in.width, in.height, s, threshold, 3, lum))
+            const bool steady = steadySample(s, accumulated(k)) || was(long(y) * in.width + x);
+            if (steady && flatNeighboursOf(x, y, in.width, in.height, s, threshold, 3, lum))
                 mask[k] |= kMaskSeed, ++seeds;
         }
     if (seeds == 0) return 0;

@@ -26,7 +26,30 @@ struct EmitterExclusion {
     float ratio = 16.0f;     ///< BmfrSettings::emitterRatio
     InputModes modes;        ///< how phase I read the current samples
     uint8_t* bits = nullptr; ///< 1 where the output is an emitter's own sample; null: not kept
+    /// The previous frame's emitters (maskSeed), null without history: a pixel was one when
+    /// `previous` has `previousBit` at the nearest tap of its previous pixel, whose x and y are
+    /// previousX[i * previousStep] and previousY[i * previousStep].
+    const uint8_t* previous = nullptr;
+    uint8_t previousBit = 1;
+    const float *previousX = nullptr, *previousY = nullptr;
+    int previousStep = 1;
 };
+
+/// Whether image pixel i of a w x h frame was an emitter in the previous frame: the bilinear
+/// tap of its previous pixel with the largest weight (the first of equals) inside the frame.
+BMFR_HD bool wasEmitter(const EmitterExclusion& e, long i, int w, int h) {
+    if (!e.previous) return false;
+    const long j = i * e.previousStep;
+    const BilinearFootprint fp = bilinearFootprint(Vec2{e.previousX[j], e.previousY[j]});
+    int best = -1;
+    float weight = -1.0f;
+    for (int t = 0; t < 4; ++t) {
+        const int tx = tapX(fp, t), ty = tapY(fp, t);
+        if (tx >= 0 && ty >= 0 && tx < w && ty < h && fp.weight[t] > weight)
+            best = t, weight = fp.weight[t];
+    }
+    return best >= 0 && (e.previous[long(tapY(fp, best)) * w + tapX(fp, best)] & e.previousBit);
+}
 
 /// This frame's emitter exclusion, writing its bits to `bits`.
 inline EmitterExclusion emitterExclusion(const BmfrSettings& s, const InputPlanes& in,
@@ -81,7 +104,8 @@ BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const 
             bool owned;
             return blockPixel(g, bx, by, k, owned);
         },
-        histogram, mask, quartile, inside ? long(oy) * g.width + ox : -1);
+        [&](long i) { return wasEmitter(e, i, g.width, g.height); }, histogram, mask, quartile,
+        inside ? long(oy) * g.width + ox : -1);
     if (excluded)
         for (int k = 0; k < B * B; ++k)
             if (mask[k] & kMaskExcluded)

@@ -36,6 +36,13 @@ struct Phase2 {
         for (int ch = 0; ch < 3; ++ch) out[ch] = b.plane(second ? b.fittedSecond : b.fitted, ch);
         std::vector<uint8_t>& tapClass = buffers.tapClass[c.timeline.history.cur];
         if (!second && !tapClass.empty()) classes = tapClass.data(), visibility = tapVisibility(c);
+        // The previous frame's emitters are its tap classes' emitter bits.
+        const std::vector<uint8_t>& previous = buffers.tapClass[1 - c.timeline.history.cur];
+        if (emitters.on && c.timeline.history.hasHistory() && !previous.empty()) {
+            emitters.previous = previous.data(), emitters.previousBit = kTapEmitter;
+            emitters.previousX = b.plane(b.previousPixel, 0);
+            emitters.previousY = b.plane(b.previousPixel, 1);
+        }
         const int cur = c.timeline.history.cur;
         for (int ch = 0; ch < 3; ++ch) {
             set[ch] = &b.normal[cur], set[3 + ch] = &b.position[cur], set[6 + ch] = &b.noisy[cur];

@@ -192,7 +192,8 @@ BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by
     });
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T)
-            mask[k] |= maskSeed(mask[k], a.in, modes, pixel(k), st.maskThreshold);
+            mask[k] |= maskSeed(mask[k], a.in, modes, pixel(k), st.maskThreshold, accumulated(k),
+                                wasEmitter(a.emitters, pixel(k), g.width, g.height));
     });
     teamMaskStage(team, mask, next, W, [&](int k) { return maskExcluded(mask, B, k); });
     teamMaskStage(team, mask, next, W, [&](int k) { return maskGrown(mask, B, k); });
