@@ -74,9 +74,12 @@ struct Scratch {
 
 /// Fits every block of frame `f` with the reference and with a host team of `threads`; returns
 /// the worst excess over the conformance tolerance (<= 0 passes).
+/// With `history`, every accumulated colour is 10% below the current sample (unsteady), and a
+/// previous frame's emitters are given (every other column, through previous pixels a quarter
+/// pixel off): only the pixels that were emitters can seed.
 double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& features,
-                   float noiseAmplitude, int threads, long frameIndex,
-                   bool excludeEmitters = false) {
+                   float noiseAmplitude, int threads, long frameIndex, bool excludeEmitters = false,
+                   bool history = false) {
     const int M = int(features.size()), W = blockSize * blockSize;
     std::vector<float> noise(size_t(M) * W);
     for (int m = 0; m < M; ++m)
@@ -88,6 +91,17 @@ double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& fe
     a.grid = makeBlockGrid(f.w, f.h, blockSize, frameIndex);
     a.features = features.data(), a.featureCount = M, a.noise = noise.data();
     a.normal = f.normal.data(), a.position = f.position.data(), a.color = f.color.data();
+    std::vector<float> accumulated = f.color, previousPixel(f.extra.size() * 2);
+    std::vector<uint8_t> previousEmitter(f.extra.size());
+    if (history) {
+        for (size_t i = 0; i < f.extra.size(); ++i) {
+            for (int c = 0; c < 3; ++c) accumulated[3 * i + c] *= 0.9f;
+            const int x = int(i % size_t(f.w)), y = int(i / size_t(f.w));
+            previousPixel[2 * i] = float(x) + 0.25f, previousPixel[2 * i + 1] = float(y) + 0.5f;
+            previousEmitter[i] = x % 2;
+        }
+        a.color = accumulated.data();
+    }
     a.in.extras[0] = f.extra.data(), a.in.extraCount = 1;
     a.in.width = f.w, a.in.height = f.h;
     a.in.color = f.color.data(), a.in.albedo = f.albedo.data();
@@ -103,6 +117,11 @@ double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& fe
         for (int bx = 0; bx < a.grid.blocksX; ++bx) {
             a.fitted = reference.data();
             a.emitters = {excludeEmitters, 16.0f, InputModes{}, referenceBits.data()};
+            if (history) {
+                a.emitters.previous = previousEmitter.data();
+                a.emitters.previousX = previousPixel.data();
+                a.emitters.previousY = previousPixel.data() + 1, a.emitters.previousStep = 2;
+            }
             a.clampFireflies = excludeEmitters;
             fitBlock(a, bx, by, sc, solveHouseholder);
             a.fitted = team.data();
@@ -150,8 +169,11 @@ TEST(TeamFit, OtherBlockSizesFeaturesAndRankDeficiency) {
     lit.lamp(20, 25, 24, 6);
     // Fireflies for the clamp that runs with it: one alone, one smeared over 2x2.
     lit.lamp(70, 10, 1, 1).lamp(80, 50, 2, 2);
-    for (int threads : {256, 32})
+    for (int threads : {256, 32}) {
         EXPECT_LE(worstExcess(lit, 32, features, 0.01f, threads, 4, true), 0.0) << threads;
+        EXPECT_LE(worstExcess(lit, 16, features, 0.01f, threads, 5, true, true), 0.0)
+            << threads << ", with history";
+    }
     // An image smaller than a block: everything mirrored in.
     EXPECT_LE(worstExcess(Frame(5, 3, 6), 32, features, 0.01f, 256, 0), 0.0);
 }
