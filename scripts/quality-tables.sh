@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # The quality tables of README's "Presets" section, from scratch: renders the small rooms
-# (room-dark, room-light) and cornell-moving at 256x192, 24 frames, 64-spp references, in the
-# original layout (no emission buffer), runs each method on them and scores frames 8 to 23.
+# (room-dark, room-light), cornell-moving, and the rooms seen by a still camera without jitter
+# (scripts/scenes/*-static.json: there the temporal error is flicker alone) at 256x192, 24
+# frames, 64-spp references, in the original layout (no emission buffer), runs each method on
+# them and scores frames 8 to 23.
 #
 #   bash scripts/quality-tables.sh [WORK_DIR] [SEQUENCE ...]   # default /tmp/bmfr-quality-tables
 #
-# About five minutes on 2 cores. Prints one Markdown table per sequence: tone-mapped RMSE (and
-# its ratio to the noisy input's), SSIM, FLIP and temporal error.
+# A SEQUENCE is a preset or a scene description file. About three minutes on 2 cores. Prints
+# one Markdown table per sequence: tone-mapped RMSE (and its ratio to the noisy input's), SSIM,
+# FLIP and temporal error.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bmfr=$PWD/build/bmfr
@@ -14,7 +17,9 @@ bmfr=$PWD/build/bmfr
 work=${1:-/tmp/bmfr-quality-tables}
 shift || true
 sequences=("$@")
-[ ${#sequences[@]} -gt 0 ] || sequences=(room-dark room-light cornell-moving)
+[ ${#sequences[@]} -gt 0 ] ||
+    sequences=(room-dark room-light cornell-moving scripts/scenes/room-dark-static.json
+        scripts/scenes/room-light-static.json)
 mkdir -p "$work"
 
 # name: the denoise options
@@ -27,12 +32,13 @@ methods=(
     "accumulation:--preset faithful --fitting false --taa false"
 )
 
-for seq in "${sequences[@]}"; do
+for scene in "${sequences[@]}"; do
+    seq=$(basename "$scene" .json)
     dir=$work/$seq
     if [ ! -f "$dir/.done" ]; then
         echo "rendering $seq ..." >&2
         rm -rf "$dir"
-        "$bmfr" render -o "$dir/input" -s "$seq" --width 256 --height 192 --frames 24 \
+        "$bmfr" render -o "$dir/input" -s "$scene" --width 256 --height 192 --frames 24 \
             --reference-spp 64 --layout bmfr -q
         touch "$dir/.done"
     fi
