@@ -288,7 +288,8 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     for (int ly = 0, k = 0; ly < B; ++ly)
         for (int lx = 0; lx < B; ++lx, ++k) {
             mask[k] = 0;
-            if (!(accumulated(k) > threshold)) continue;
+            const float acc = accumulated(k);
+            if (!(acc > threshold)) continue;
             int x = ox + lx, y = oy + ly; // inside the image
             if (!inside) {
                 const long i = pixel(k);
@@ -298,7 +299,7 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
             mask[k] = kMaskCandidate;
             if (!(s > threshold)) continue;
             mask[k] |= kMaskBright;
-            const bool steady = steadySample(s, accumulated(k)) || was(long(y) * in.width + x);
+            const bool steady = steadySample(s, acc) || was(long(y) * in.width + x);
             if (steady && flatNeighboursOf(x, y, in.width, in.height, s, threshold, 3, lum))
                 mask[k] |= kMaskSeed, ++seeds;
         }
