@@ -389,7 +389,8 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
                                                                 {"visibilityFeature", "true"},
                                                                 {"visibilityTaps", "true"},
                                                                 {"blockSize", "16"},
-                                                                {"emitterRatio", "4"}}));
+                                                                {"emitterRatio", "4"},
+                                                                {"adaptiveHistory", "true"}}));
     EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
     EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
@@ -398,7 +399,8 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
     EXPECT_NE(
         listed.output.find(
             "bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true clampFireflies=true "
-            "visibilityFeature=true visibilityTaps=true blockSize=16 emitterRatio=4"),
+            "visibilityFeature=true visibilityTaps=true blockSize=16 emitterRatio=4 "
+            "adaptiveHistory=true"),
         std::string::npos)
         << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
@@ -416,13 +418,13 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         bySwitch = denoise("switch",
                            "--taa-same-surface --exclude-emitters --second-grid --clamp-fireflies "
                            "--visibility-feature --visibility-taps --block-size 16 "
-                           "--emitter-ratio 4"),
+                           "--emitter-ratio 4 --adaptive-history"),
         faithful = denoise("faithful", "--preset faithful"), plain = denoise("plain", ""),
         overridden = denoise("override", "--preset quality --taa-same-surface false "
                                          "--exclude-emitters false --second-grid false "
                                          "--clamp-fireflies false --visibility-feature false "
                                          "--visibility-taps false --block-size 32 "
-                                         "--emitter-ratio 16");
+                                         "--emitter-ratio 16 --adaptive-history false");
     ASSERT_FALSE(quality.empty());
     EXPECT_EQ(quality, bySwitch);
     EXPECT_EQ(faithful, plain);

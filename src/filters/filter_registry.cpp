@@ -55,7 +55,7 @@ SettingValues presetSettings(const std::string& name, const std::string& preset)
     static const SettingValues kQuality = {
         {"taaSameSurface", "true"}, {"excludeEmitters", "true"},   {"secondGrid", "true"},
         {"clampFireflies", "true"}, {"visibilityFeature", "true"}, {"visibilityTaps", "true"},
-        {"blockSize", "16"},        {"emitterRatio", "4"}};
+        {"blockSize", "16"},        {"emitterRatio", "4"},         {"adaptiveHistory", "true"}};
     const std::vector<SettingDoc> docs = filterSettings(name);
     if (preset == "faithful") return {};
     if (preset != "quality")

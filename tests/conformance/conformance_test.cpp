@@ -278,6 +278,23 @@ TEST_P(Conformance, PathTracedFrames) {
     }
 }
 
+TEST_P(Conformance, ALightThatDims) {
+    if (filter().name != std::string("bmfr")) GTEST_SKIP() << "a setting of bmfr's";
+    // The left two thirds of the frame dim to a quarter from frame 3 on: adaptiveHistory's tile
+    // changes, shortened weights and lengths must be the reference's.
+    ProceduralFrames p(96, 72, 7, false);
+    for (size_t i = 3; i < p.frames.size(); ++i)
+        for (int y = 0; y < 72; ++y)
+            for (int x = 0; x < 64; ++x)
+                for (int c = 0; c < 3; ++c)
+                    p.frames[i].color.pixels[3 * (size_t(y) * 96 + x) + c] *= 0.25f;
+    expectConformance(filter().name, backend(), {{"adaptiveHistory", "true"}}, 7, p.source(),
+                      "a light that dims");
+    expectConformance(filter().name, backend(),
+                      with(presetSettings(filter().name, "quality"), "adaptiveHistory", "true"), 7,
+                      p.source(), "a light that dims, the quality preset");
+}
+
 TEST_P(Conformance, ALampInViewWithoutAnEmissionBuffer) {
     if (filter().name != std::string("bmfr")) GTEST_SKIP() << "a setting of bmfr's";
     // A bright, flat rectangle painted over the moving scene: the emitter exclusion finds it,

@@ -34,6 +34,8 @@ struct BmfrSettings : TemporalSettings {
     bool clampFireflies = false;    ///< isolated pixels far above their block clamped in the fit
     bool visibilityFeature = false; ///< fit FrameInput::visibility as one more feature, if given
     bool visibilityTaps = false; ///< no phase III / TAA history across FrameInput::visibility edges
+    bool adaptiveHistory = false;        ///< shorter histories where the lighting changed
+    float historyChangeThreshold = 2.0f; ///< adaptiveHistory: the noise allowance, standard errors
     StageSwitches stages{};
 };
 

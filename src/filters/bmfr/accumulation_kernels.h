@@ -4,6 +4,7 @@
 // eight-wide versions (backend/cpu/bmfr/) mirror them.
 #pragma once
 #include "core/half.h"
+#include "filters/bmfr/history_change.h"
 #include "temporal/blend_weights.h"
 #include "temporal/history.h"
 #include "temporal/modulation.h"
@@ -33,6 +34,11 @@ struct NoisyAccumulation {
     uint8_t* length = nullptr;      ///< history length, 1..255
     float* previousPixel = nullptr; ///< 2 floats: continuous pixel in the previous frame
     uint8_t* accept = nullptr;      ///< accepted taps, bit i = tap i
+    // BmfrSettings::adaptiveHistory (filters/bmfr/history_change.h): recordHistoryChange's
+    // output, interleaved, and the previous frame's tile changes with phase III's minAlpha.
+    float* change = nullptr;
+    const float* prevChangeTiles = nullptr;
+    float secondMinAlpha = 0.1f;
 };
 
 /// Phase I of pixel i. Returns true when the pixel had a history and lost all of it.
@@ -45,6 +51,7 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
 
     uint8_t accept = 0;
     float samples = 0.0f, blend = 1.0f;
+    bool reprojected = false; // some history tap accepted
     Vec3 old{};
     const PreviousFrame& prev = a.previous;
     // Without a previous pixel, was.pixel stays out of every image: TAA and phase III skip it.
@@ -58,12 +65,19 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
             samples += wt * float(a.prevLength[j]);
         });
         if (total > 0.0f) {
+            reprojected = true;
             old = old / total;
             samples /= total;
+            if (a.prevChangeTiles)
+                samples = shortenedHistory(samples,
+                                           pixelHistoryChange(a.prevChangeTiles, a.width,
+                                                              int(i % a.width), int(i / a.width)),
+                                           a.secondMinAlpha);
             blend = firstBlendWeight(samples, a.minAlpha);
         }
     }
     a.length[i] = blend < 1.0f ? nextHistoryLength(samples) : 1;
+    if (a.change) recordHistoryChange(a.change, a.change + 1, 2, i, c, old, reprojected);
     if (a.accumulate && blend < 1.0f) c = lerp(old, c, blend);
     store3(a.noisy, i, a.halfHistory ? roundToHalf(c) : c);
     a.previousPixel[2 * i] = was.pixel.x;
@@ -87,6 +101,7 @@ struct FittedAccumulation {
     const uint8_t* accept = nullptr;      ///< phase I's
     const uint8_t* length = nullptr;      ///< phase I's
     float* accumulated = nullptr;         ///< the next frame's history (demodulated)
+    const float* changeTiles = nullptr;   ///< BmfrSettings::adaptiveHistory: tileHistoryChange's
 };
 
 /// Phase III of pixel i, with phase I's reprojection and discard decisions (no second test).
@@ -100,7 +115,14 @@ BMFR_HD Vec3 accumulateFittedPixel(const FittedAccumulation& a, long i) {
         const float total =
             gatherAccepted(bilinearFootprint(pp), accept, a.width,
                            [&](long j, float wt) { old += wt * load3(a.prevAccumulated, j); });
-        if (total > 0.0f) c = lerp(old / total, c, secondBlendWeight(a.length[i], a.minAlpha));
+        if (total > 0.0f) {
+            float weight = secondBlendWeight(a.length[i], a.minAlpha);
+            if (a.changeTiles)
+                weight = adaptedBlendWeight(
+                    weight,
+                    pixelHistoryChange(a.changeTiles, a.width, int(i % a.width), int(i / a.width)));
+            c = lerp(old / total, c, weight);
+        }
     }
     store3(a.accumulated, i, a.halfHistory ? roundToHalf(c) : c);
     return remodulatePixel(c, a.in, i, a.remodulate, a.albedoEpsilon);

@@ -1,7 +1,8 @@
 // Phase I, the fit's and phase III's parameters for one frame, from the settings and the history,
 // over any backend's buffers kept as interleaved images with the reference backend's names (normal,
 // position, accumulatedNoisy, historyLength, accumulatedFitted: [2] by slot; previousPixel,
-// acceptMask, fitted). The reference and CUDA backends share it.
+// acceptMask, fitted; under adaptiveHistory change, 2 channels, and changeTiles). The reference
+// and CUDA backends share it.
 #pragma once
 #include "filters/bmfr/accumulation_kernels.h"
 #include "filters/bmfr/bmfr_passes.h"
@@ -28,6 +29,11 @@ NoisyAccumulation noisyAccumulation(const BmfrPassContext& ctx, const InputPlane
     a.prevNoisy = b.accumulatedNoisy[prev].data(), a.prevLength = b.historyLength[prev].data();
     a.noisy = b.accumulatedNoisy[cur].data(), a.length = b.historyLength[cur].data();
     a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
+    if (s.adaptiveHistory) {
+        a.change = b.change.data();
+        a.prevChangeTiles = b.changeTiles.data(); // the previous frame's, measured after this
+        a.secondMinAlpha = s.secondBlendAlpha;
+    }
     return a;
 }
 
@@ -71,6 +77,7 @@ FittedAccumulation fittedAccumulation(const BmfrPassContext& ctx, const InputPla
     a.fitted = b.fitted.data(), a.prevAccumulated = b.accumulatedFitted[1 - t.cur].data();
     a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
     a.length = b.historyLength[t.cur].data(), a.accumulated = b.accumulatedFitted[t.cur].data();
+    if (s.adaptiveHistory) a.changeTiles = b.changeTiles.data();
     return a;
 }
 

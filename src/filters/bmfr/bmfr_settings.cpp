@@ -66,6 +66,16 @@ SettingsTable<S> ownSettings() {
          "history tap whose pixel was lit (visibility above 0) last frame where this one is not, "
          "or the reverse, so shadow edges stay sharp; give it on every frame or none",
          BMFR_FIELD(S, visibilityTaps)},
+        {"adaptiveHistory", "adaptive-history", "", {},
+         "where a 32x32 tile's mean current sample has left its reprojected history's mean by "
+         "more than historyChangeThreshold standard errors (a moving light), phase III weighs "
+         "the new frame more, in proportion, and both phases' histories shorten; elsewhere they "
+         "stay the paper's",
+         BMFR_FIELD(S, adaptiveHistory)},
+        {"historyChangeThreshold", "history-change-threshold", "standard errors", {0, 100},
+         "adaptiveHistory: how far a tile's mean current sample may lie from its history's mean "
+         "before the history counts as stale, in standard errors of that mean",
+         BMFR_FIELD(S, historyChangeThreshold)},
         {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
          "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
          "lower quartile, above which a pixel may belong to an emitter",

@@ -1,6 +1,7 @@
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "backend/cpu/reproject8.h"
 #include "backend/cpu/simd.h"
+#include "filters/bmfr/history_change.h"
 #include <cmath>
 
 namespace bmfr::cpu {
@@ -63,6 +64,20 @@ BMFR_SIMD_INLINE f8 nextHistoryLength8(f8 samples) {
     return samples > 254.0f ? splat8(255.0f) : rounded + 1.0f;
 }
 
+/// luminance (core/color.h) of eight colours.
+BMFR_SIMD_INLINE f8 luminance8(const f8* c) {
+    return (0.2126f * c[0] + 0.7152f * c[1]) + 0.0722f * c[2];
+}
+
+/// recordHistoryChange (filters/bmfr/history_change.h) for eight pixels.
+template <class T>
+BMFR_SIMD_INLINE void recordHistoryChange8(const FramePlanes<T>& pl, long i, int n,
+                                           const f8* sample, const f8* history, i8 reprojected) {
+    const f8 s = luminance8(sample), h = luminance8(history);
+    storeFirst(pl.change[0] + i, s > 0.0f ? s : f8{}, n);
+    storeFirst(pl.change[1] + i, reprojected ? (h > 0.0f ? h : f8{}) : splat8(-1.0f), n);
+}
+
 /// Phase I of the n <= 8 pixels from column x of row y: accumulateNoisyPixel
 /// (filters/bmfr/accumulation_kernels.h) eight pixels at a time.
 template <class T>
@@ -77,7 +92,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& 
         storeFirst(pl.normal[c] + i, px.normal[c], n);
     }
     f8 color[3] = {px.color[0], px.color[1], px.color[2]};
-    f8 length = splat8(1.0f);
+    f8 length = splat8(1.0f), history[3] = {};
+    i8 reprojected{};
     i8 accept{};
     Surface8 was;
     const i8 valid =
@@ -109,15 +125,26 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& 
             },
             old);
         const f8 safe = total > 0.0f ? total : splat8(1.0f);
-        const f8 samples = old[3] / safe;
+        f8 samples = old[3] / safe;
+        if (pl.changeTiles) {
+            // The eight pixels share a tile (kChangeTile is a multiple of 8).
+            const float lambda = pixelHistoryChange(pl.changeTiles, t.width, x, y);
+            if (lambda > 0.0f) {
+                const f8 cap = splat8(shortenedHistory(255.0f, lambda, s.secondBlendAlpha));
+                samples = samples < cap ? samples : cap;
+            }
+        }
         const f8 blend = firstBlendWeight8(samples, s.firstBlendAlpha);
         const i8 blended = (total > 0.0f) & (blend < 1.0f);
         if (s.stages.firstAccumulation)
             for (int c = 0; c < 3; ++c)
                 color[c] = blended ? lerp8(old[c] / safe, color[c], blend) : color[c];
         length = blended ? nextHistoryLength8(samples) : length;
+        reprojected = total > 0.0f;
+        for (int c = 0; c < 3; ++c) history[c] = old[c] / safe;
         lost += countLanes((accept == 0) & firstLanes(n));
     }
+    if (pl.change[0]) recordHistoryChange8(pl, i, n, px.color, history, reprojected);
     for (int c = 0; c < 3; ++c) storeFirst(pl.noisy[c] + i, color[c], n);
     storeFirst(pl.noisy[3] + i, length, n);
     storeFirst(pl.previousPixel[0] + i, was.px, n);

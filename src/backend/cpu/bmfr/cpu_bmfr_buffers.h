@@ -96,6 +96,10 @@ struct Buffers {
     std::vector<float> fittedSecond; ///< BmfrSettings::secondGrid: 3 planes, the shifted fit
     std::vector<uint8_t>
         earlyRow; ///< rows phase I runs before the block rows (see accumulateAndFit)
+    /// BmfrSettings::adaptiveHistory: 2 planes, recordHistoryChange's sample and history
+    /// luminance; and tileHistoryChange of each tile, from the last frame measured (phase I
+    /// reads the previous frame's before measureHistoryChange overwrites them).
+    std::vector<float> change, changeTiles;
 
     std::vector<Scratch> scratch; ///< one per worker thread
     ImageF debugNoisy, debugFitted, debugLength, debugAccept;
@@ -125,6 +129,8 @@ template <class T> struct FramePlanes {
     uint8_t* resolvedAccept;
     const uint8_t* tapClass;     ///< this frame's tap classes
     const uint8_t* prevTapClass; ///< and the previous frame's
+    float* change[2];            ///< null without BmfrSettings::adaptiveHistory
+    const float* changeTiles;
 
     FramePlanes(Buffers& b, int cur) {
         for (int c = 0; c < 3; ++c) {
@@ -146,6 +152,9 @@ template <class T> struct FramePlanes {
         accept = b.acceptMask.data();
         resolvedAccept = b.resolvedAccept.data();
         tapClass = b.tapClass[cur].data(), prevTapClass = b.tapClass[1 - cur].data();
+        const bool adaptive = !b.change.empty();
+        for (int c = 0; c < 2; ++c) change[c] = adaptive ? b.plane(b.change, c) : nullptr;
+        changeTiles = adaptive ? b.changeTiles.data() : nullptr;
     }
 };
 
@@ -223,6 +232,9 @@ BMFR_SIMD_INLINE void litClasses(const float* visibility, long from, long n, uin
 /// BmfrSettings::secondGrid: fits the blocks of the shifted grid that own a pixel without
 /// history, and gives those pixels the mean of both fits.
 void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b);
+/// BmfrSettings::adaptiveHistory: tileHistoryChange of every tile, from what phase I recorded.
+void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b);
+
 /// Phase III and TAA in one pass over rows: the taps `filter` drops, second accumulation,
 /// re-modulation, emission, TAA.
 void resolve(const BmfrPassContext& ctx, Buffers& b, const TapFilter& filter);

@@ -5,6 +5,7 @@
 #include "backend/cpu/taa_rows.h"
 #include "core/stopwatch.h"
 #include "filters/bmfr/fitting_kernel.h"
+#include "filters/bmfr/history_change.h"
 
 namespace bmfr::cpu {
 
@@ -31,6 +32,9 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.fitted.assign(3 * b_.stride, 0.0f);
         b_.fittedSecond.assign(s.secondGrid ? 3 * b_.stride : 0, 0.0f);
         b_.earlyRow.assign(size_t(h), 0);
+        b_.change.assign(s.adaptiveHistory ? 2 * b_.stride : 0, 0.0f);
+        b_.changeTiles.assign(
+            s.adaptiveHistory ? size_t(changeTilesX(w)) * size_t(changeTilesY(h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b_.scratch.resize(size_t(threads));
         for (Scratch& sc : b_.scratch) {
@@ -64,6 +68,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         filter.emitters = emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
                           b_.emitterPixels[t.cur] + b_.emitterPixels[1 - t.cur] > 0;
         b_.acceptFiltered = filter.on();
+        if (ctx.settings.adaptiveHistory) measureHistoryChange(ctx, b_);
         resolve(ctx, b_, filter);
         times.add("accumulate", split.accumulateMs);
         times.add("fit", split.fitMs);

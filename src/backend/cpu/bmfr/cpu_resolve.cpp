@@ -2,6 +2,7 @@
 #include "backend/cpu/modulation8.h"
 #include "backend/cpu/reproject8.h"
 #include "backend/cpu/taa_rows.h"
+#include "filters/bmfr/history_change.h"
 
 namespace bmfr::cpu {
 
@@ -65,7 +66,12 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes<T>& pl, 
             old);
         const i8 some = total > 0.0f;
         const f8 safe = some ? total : splat8(1.0f);
-        const f8 blend = secondBlendWeight8(load8(pl.noisy[3] + i), s.secondBlendAlpha);
+        f8 blend = secondBlendWeight8(load8(pl.noisy[3] + i), s.secondBlendAlpha);
+        if (pl.changeTiles) {
+            // adaptedBlendWeight; the eight pixels share a tile.
+            const float lambda = pixelHistoryChange(pl.changeTiles, t.width, x, int(i / t.width));
+            if (lambda > 0.0f) blend = blend + lambda * (1.0f - blend);
+        }
         for (int ch = 0; ch < 3; ++ch) c[ch] = some ? lerp8(old[ch] / safe, c[ch], blend) : c[ch];
     }
     if (owned)
@@ -114,6 +120,18 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
 }
 
 } // namespace
+
+void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
+    const TemporalHistory& t = ctx.timeline.history;
+    const int tilesX = changeTilesX(t.width);
+    const float *sample = b.plane(b.change, 0), *history = b.plane(b.change, 1);
+    ctx.pool.parallelFor(long(b.changeTiles.size()), 4, [&](long k0, long k1) {
+        for (long k = k0; k < k1; ++k)
+            b.changeTiles[size_t(k)] =
+                tileHistoryChange(sample, history, 1, t.width, t.height, int(k % tilesX),
+                                  int(k / tilesX), ctx.settings.historyChangeThreshold);
+    });
+}
 
 void resolve(const BmfrPassContext& ctx, Buffers& b, const TapFilter& filter) {
     const FrameArgs a{ctx.settings, ctx.input, ctx.timeline.history, b, filter};

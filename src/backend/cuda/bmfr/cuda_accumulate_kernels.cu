@@ -43,6 +43,13 @@ __global__ void blendSecondFitKernel(float* fitted, const float* second, const u
         for (int c = 0; c < 3; ++c)
             fitted[3 * i + c] = blendSecondFit(fitted[3 * i + c], second[3 * i + c]);
 }
+__global__ void historyChangeKernel(float* tiles, const float* change, int width, int height,
+                                    float threshold) {
+    const long k = pixelIndex(), tilesX = changeTilesX(width);
+    if (k < tilesX * changeTilesY(height))
+        tiles[k] = tileHistoryChange(change, change + 1, 2, width, height, int(k % tilesX),
+                                     int(k / tilesX), threshold);
+}
 __global__ void noiseKernel(float* noise, const Feature* features, int M, int W, uint32_t seed,
                             uint32_t frame, float amplitude) {
     const long i = pixelIndex();
@@ -88,6 +95,14 @@ void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* len
     blendSecondFitKernel<<<pixelBlocks(pixels), kPixelThreads, 0, stream>>>(fitted, second, length,
                                                                             pixels);
     check(cudaGetLastError(), "second grid blend kernel");
+}
+
+void launchHistoryChange(float* tiles, const float* change, int width, int height, float threshold,
+                         cudaStream_t stream) {
+    const long n = long(changeTilesX(width)) * changeTilesY(height);
+    historyChangeKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(tiles, change, width, height,
+                                                                      threshold);
+    check(cudaGetLastError(), "history change kernel");
 }
 
 void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,

@@ -25,6 +25,10 @@ void launchSameLitTaps(uint8_t* accept, const float* previousPixel, const float*
 /// fitted = blendSecondFit(fitted, second) where the history length is 1 (secondGrid).
 void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* length, long pixels,
                           cudaStream_t stream);
+/// tiles[k] = tileHistoryChange(...) of every tile, from phase I's interleaved record
+/// (adaptiveHistory); one thread per tile.
+void launchHistoryChange(float* tiles, const float* change, int width, int height, float threshold,
+                         cudaStream_t stream);
 /// noise[f * W + k] = regularisationNoise(...) for the frame, on the device.
 void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,
                  uint32_t seed, uint32_t frame, float amplitude, cudaStream_t stream);

@@ -25,7 +25,9 @@ struct Buffers {
     DeviceImageF previousPixel, fitted, remodulated, ycocg;
     DeviceImageF fittedSecond; ///< BmfrSettings::secondGrid: the shifted grid's fit
     DeviceImageU8 acceptMask;
+    DeviceImageF change; ///< BmfrSettings::adaptiveHistory: recordHistoryChange's 2 channels
     DeviceArray<float> noise, fitScratch;
+    DeviceArray<float> changeTiles; ///< adaptiveHistory: tileHistoryChange of each tile
     DeviceArray<Feature> features;
     DeviceArray<unsigned long long> counters; ///< non-finite inputs, discarded pixels
 };
@@ -56,6 +58,9 @@ class CudaBmfrPasses final : public BmfrPasses {
         b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
         b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
         b.remodulated.resize(w, h, 3), b.ycocg.resize(w, h, 3), b.acceptMask.resize(w, h, 1);
+        b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
+        b.changeTiles.resize(s.adaptiveHistory ? size_t(changeTilesX(w)) * size_t(changeTilesY(h))
+                                               : 0);
         const int W = s.blockSize * s.blockSize, M = int(s.features.size());
         b.noise.resize(size_t(M) * size_t(W));
         b.features.resize(size_t(M));
@@ -117,6 +122,9 @@ class CudaBmfrPasses final : public BmfrPasses {
                               t.width, t.height, st);
         frame_.mark("fit");
 
+        if (s.adaptiveHistory)
+            launchHistoryChange(b.changeTiles.data(), b.change.data(), t.width, t.height,
+                                s.historyChangeThreshold, st);
         launchAccumulateFitted(fittedAccumulation(ctx, in, b), b.remodulated.data(), st);
         frame_.mark("accumulate_fitted");
 

@@ -46,6 +46,8 @@ struct Buffers {
     ImageF ycocg;                    ///< TAA scratch
     ImageF historyLengthF;           ///< debug copy of the history length as float
     ImageF acceptMaskF;              ///< debug copy of the accept mask as float
+    ImageF change;                   ///< adaptiveHistory: recordHistoryChange's 2 channels
+    std::vector<float> changeTiles;  ///< adaptiveHistory: tileHistoryChange of each tile
     std::vector<FitScratch> scratch; ///< one per worker thread
 };
 
@@ -126,6 +128,19 @@ void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers& b) {
     });
 }
 
+/// tileHistoryChange of every tile (adaptiveHistory).
+void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
+    const TemporalHistory& t = ctx.timeline.history;
+    if (!ctx.settings.adaptiveHistory) return;
+    const int tilesX = changeTilesX(t.width);
+    ctx.pool.parallelFor(long(b.changeTiles.size()), 4, [&](long k0, long k1) {
+        for (long k = k0; k < k1; ++k)
+            b.changeTiles[size_t(k)] = tileHistoryChange(
+                b.change.data(), b.change.data() + 1, 2, t.width, t.height, int(k % tilesX),
+                int(k / tilesX), ctx.settings.historyChangeThreshold);
+    });
+}
+
 void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
     const TemporalHistory& t = ctx.timeline.history;
     const FittedAccumulation a = fittedAccumulation(ctx, ctx.input, b);
@@ -158,6 +173,9 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         b.ycocg.resize(w, h, 3);
         b.historyLengthF.resize(w, h, 1);
         b.acceptMaskF.resize(w, h, 1);
+        b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
+        b.changeTiles.assign(
+            s.adaptiveHistory ? size_t(changeTilesX(w)) * size_t(changeTilesY(h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b.scratch.resize(size_t(threads));
         for (FitScratch& sc : b.scratch) {
@@ -180,6 +198,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         fitBlocks(ctx, b);
         dropTapsAcrossShadowEdges(ctx, b);
         times.add("fit", clock.lap());
+        measureHistoryChange(ctx, b);
         accumulateFitted(ctx, b);
         times.add("accumulate_fitted", clock.lap());
         const TaaInputs taa =

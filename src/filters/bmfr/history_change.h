@@ -1,0 +1,97 @@
+// Adaptive history (BmfrSettings::adaptiveHistory): BMFR's histories are long (phase III is a
+// plain mean of up to ten frames), so where the lighting changes (a moving light, a light
+// switched on) the output lags it for frames. Here a 32x32 tile whose current samples' mean has
+// left its reprojected phase I history's mean by more than their noise explains gets a shorter
+// history, in proportion to the change (as A-SVGF's temporal gradient, but from tile means, as
+// this input has no re-shaded samples). Where nothing changed the history stays the paper's.
+// - phase I records each pixel's sample and history luminance (recordHistoryChange);
+// - one pass reduces them per tile (tileHistoryChange), in a fixed order;
+// - phase III blends with the larger weight and shortens the stored history length, which the
+//   next frame's phase I and phase III read (adaptHistory).
+// BMFR_HD: one source for every backend.
+#pragma once
+#include "core/color.h"
+#include "core/vec.h"
+#include <cmath>
+#include <cstdint>
+
+namespace bmfr {
+
+/// Edge of the square, image-aligned tiles whose means are compared, in pixels: 1024 samples
+/// make a tile's mean some 30 times steadier than one sample, at 32 pixels of resolution.
+inline constexpr int kChangeTile = 32;
+
+/// A tile with fewer pixels with history than this has no change measured (its pixels' histories
+/// are short already).
+inline constexpr int kChangeMinPixels = 64;
+
+BMFR_HD int changeTilesX(int width) {
+    return (width + kChangeTile - 1) / kChangeTile;
+}
+BMFR_HD int changeTilesY(int height) {
+    return (height + kChangeTile - 1) / kChangeTile;
+}
+
+/// Phase I, pixel i: its current sample's luminance and its reprojected history's, at
+/// sample[i * step] and history[i * step]; a pixel without history stores -1 for the latter and
+/// is not counted.
+BMFR_HD void recordHistoryChange(float* sample, float* history, long step, long i, Vec3 s, Vec3 h,
+                                 bool hasHistory) {
+    const float ls = luminance(s), lh = luminance(h);
+    sample[i * step] = ls > 0.0f ? ls : 0.0f;
+    history[i * step] = !hasHistory ? -1.0f : lh > 0.0f ? lh : 0.0f;
+}
+
+/// The change of tile (tx, ty), 0 (none) to 1 (the history is no longer this light): how far
+/// the tile's mean sample is from its mean history, less `threshold` standard errors of the
+/// samples' mean, as a fraction of the larger mean. Sums in row-major order.
+BMFR_HD float tileHistoryChange(const float* sample, const float* history, long step, int width,
+                                int height, int tx, int ty, float threshold) {
+    const int x0 = tx * kChangeTile, y0 = ty * kChangeTile;
+    const int x1 = x0 + kChangeTile < width ? x0 + kChangeTile : width;
+    const int y1 = y0 + kChangeTile < height ? y0 + kChangeTile : height;
+    int n = 0;
+    float sum = 0.0f, squares = 0.0f, past = 0.0f;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const long i = (long(y) * width + x) * step;
+            const float s = sample[i], h = history[i];
+            if (h < 0.0f) continue;
+            ++n;
+            sum += s;
+            squares += s * s;
+            past += h;
+        }
+    if (n < kChangeMinPixels) return 0.0f;
+    const float mean = sum / float(n), meanHistory = past / float(n);
+    const float variance = squares / float(n) - mean * mean;
+    const float standardError = variance > 0.0f ? std::sqrt(variance / float(n)) : 0.0f;
+    const float excess = std::fabs(mean - meanHistory) - threshold * standardError;
+    const float scale = mean > meanHistory ? mean : meanHistory;
+    if (!(excess > 0.0f) || !(scale > 0.0f)) return 0.0f;
+    return excess < scale ? excess / scale : 1.0f;
+}
+
+/// The change of pixel (x, y)'s tile.
+BMFR_HD float pixelHistoryChange(const float* tiles, int width, int x, int y) {
+    return tiles[long(y / kChangeTile) * changeTilesX(width) + x / kChangeTile];
+}
+
+/// Phase III, the blend weight of a pixel of change `lambda`: (1 - lambda) weight + lambda, as
+/// A-SVGF's; unchanged at lambda 0.
+BMFR_HD float adaptedBlendWeight(float weight, float lambda) {
+    return lambda > 0.0f ? weight + lambda * (1.0f - weight) : weight;
+}
+
+/// Phase I of the next frame, a pixel whose tile changed by `lambda`: its reprojected history
+/// length (samples) at most what phase III's adapted weight averages, so that phase I follows the
+/// change too and phase III keeps the shorter history: 1 / (minAlpha + lambda (1 - minAlpha))
+/// samples, the new one included, with minAlpha phase III's (BmfrSettings::secondBlendAlpha).
+/// Unchanged at lambda 0 (the paper's lengths).
+BMFR_HD float shortenedHistory(float samples, float lambda, float minAlpha) {
+    if (!(lambda > 0.0f)) return samples;
+    const float frames = 1.0f / (minAlpha + lambda * (1.0f - minAlpha));
+    return samples < frames - 1.0f ? samples : frames - 1.0f;
+}
+
+} // namespace bmfr
