@@ -4,6 +4,7 @@
 // eight-wide versions (backend/cpu/bmfr/) mirror them.
 #pragma once
 #include "core/half.h"
+#include "filters/bmfr/emitter_exclusion.h"
 #include "filters/bmfr/history_change.h"
 #include "temporal/blend_weights.h"
 #include "temporal/history.h"
@@ -39,6 +40,8 @@ struct NoisyAccumulation {
     float* change = nullptr;
     const float* prevChangeTiles = nullptr;
     float secondMinAlpha = 0.1f;
+    /// BmfrSettings::excludeEmitters: the previous frame's emitter bits (phaseOneEmitterTaps).
+    const uint8_t* prevEmitter = nullptr;
 };
 
 /// Phase I of pixel i. Returns true when the pixel had a history and lost all of it.
@@ -60,6 +63,9 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
         const BilinearFootprint fp = bilinearFootprint(was.pixel);
         accept = acceptTaps(fp, was.position, was.normal, a.prevPosition, a.prevNormal, a.width,
                             a.height, a.limits);
+        if (a.prevEmitter)
+            accept = phaseOneEmitterTaps(accept, fp, a.prevEmitter, 1, luminance(c), a.width,
+                                         [&](long j) { return luminance(load3(a.prevNoisy, j)); });
         const float total = gatherAccepted(fp, accept, a.width, [&](long j, float wt) {
             old += wt * load3(a.prevNoisy, j);
             samples += wt * float(a.prevLength[j]);

@@ -29,6 +29,8 @@ NoisyAccumulation noisyAccumulation(const BmfrPassContext& ctx, const InputPlane
     a.prevNoisy = b.accumulatedNoisy[prev].data(), a.prevLength = b.historyLength[prev].data();
     a.noisy = b.accumulatedNoisy[cur].data(), a.length = b.historyLength[cur].data();
     a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
+    if (t.hasHistory() && emitterExclusion(s, in, nullptr).on)
+        a.prevEmitter = b.emitter[prev].data();
     if (s.adaptiveHistory) {
         a.change = b.change.data();
         a.prevChangeTiles = b.changeTiles.data(); // the previous frame's, measured after this

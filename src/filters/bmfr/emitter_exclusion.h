@@ -314,6 +314,31 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
     return excluded;
 }
 
+/// Phase I cannot ask whether a pixel is an emitter (the fit decides that later), but a pixel
+/// whose current sample is below this share of an emitter tap's accumulated value is not that
+/// light: an emitter's own sample carries no noise and a pixel on its edge covers at least part
+/// of it.
+inline constexpr float kEmitterTapShare = 0.5f;
+
+/// Phase I's accepted taps of a pixel whose current demodulated sample has luminance `sample`,
+/// less the taps that were emitter pixels in the previous frame (prevClass[j] & bit) and are
+/// more than 1 / kEmitterTapShare times as bright (tapLuminance(j): their accumulated value).
+/// Without it a light's history smears into the dim surface around it under camera motion, by
+/// more than the emitter mask's two pixels of growth, and the fit spreads that over the block:
+/// a halo.
+template <class TapLuminance>
+BMFR_HD uint8_t phaseOneEmitterTaps(uint8_t accept, const BilinearFootprint& fp,
+                                    const uint8_t* prevClass, uint8_t bit, float sample, int width,
+                                    TapLuminance&& tapLuminance) {
+    for (int t = 0; t < 4; ++t) {
+        if (!(accept & (1u << t))) continue;
+        const long j = long(tapY(fp, t)) * width + tapX(fp, t);
+        if ((prevClass[j] & bit) && sample < kEmitterTapShare * tapLuminance(j))
+            accept &= uint8_t(~(1u << t));
+    }
+    return accept;
+}
+
 /// Phase I's accepted taps of a pixel less those whose emitter bit in the previous frame differs
 /// from the pixel's own, so that no history crosses an emitter's edge.
 BMFR_HD uint8_t sameEmitterTaps(uint8_t accept, Vec2 previousPixel, const uint8_t* prevEmitter,

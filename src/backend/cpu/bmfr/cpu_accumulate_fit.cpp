@@ -1,5 +1,6 @@
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "core/stopwatch.h"
+#include "filters/bmfr/fitting_kernel.h"
 #include <algorithm>
 #include <atomic>
 
@@ -55,7 +56,10 @@ void accumulateRuns(const FrameArgs& a, const std::vector<uint8_t>& flags, bool 
 
 InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSplit& split) {
     const TemporalHistory& t = ctx.timeline.history;
-    const FrameArgs a{ctx.settings, ctx.input, t, b};
+    FrameArgs a{ctx.settings, ctx.input, t, b};
+    a.phaseOneEmitterTaps = t.hasHistory() &&
+                            emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
+                            b.emitterPixels[1 - t.cur] > 0;
     const BlockGrid g = makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex);
     const bool fitting = ctx.settings.stages.fitting;
     Stopwatch wallClock;

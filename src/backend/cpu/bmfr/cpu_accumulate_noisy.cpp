@@ -1,6 +1,7 @@
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "backend/cpu/reproject8.h"
 #include "backend/cpu/simd.h"
+#include "filters/bmfr/emitter_exclusion.h"
 #include "filters/bmfr/history_change.h"
 #include <cmath>
 
@@ -78,6 +79,19 @@ BMFR_SIMD_INLINE void recordHistoryChange8(const FramePlanes<T>& pl, long i, int
     storeFirst(pl.change[1] + i, reprojected ? (h > 0.0f ? h : f8{}) : splat8(-1.0f), n);
 }
 
+/// phaseOneEmitterTaps (filters/bmfr/emitter_exclusion.h) for tap k of eight pixels whose
+/// samples have luminance `sample`: the lanes of `ok` whose tap was an emitter pixel and is more
+/// than 1 / kEmitterTapShare times as bright.
+template <class T>
+BMFR_SIMD_INLINE i8 droppedEmitterTap(const FramePlanes<T>& pl, const Taps8& taps, int k, i8 ok,
+                                      f8 sample) {
+    const i8 emitter = ok & ((tapBytes(taps, pl.prevTapClass, k) & int(kTapEmitter)) != 0);
+    if (!anyLane(emitter)) return i8{};
+    f8 tap[3];
+    for (int c = 0; c < 3; ++c) tap[c] = tapPlane(taps, pl.prevNoisy[c], k);
+    return emitter & (sample < kEmitterTapShare * luminance8(tap));
+}
+
 /// Phase I of the n <= 8 pixels from column x of row y: accumulateNoisyPixel
 /// (filters/bmfr/accumulation_kernels.h) eight pixels at a time.
 template <class T>
@@ -102,6 +116,7 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& 
         const Footprint8 fp = footprint8(was.px, was.py);
         const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
         const f8 limP = splat8(s.positionLimitSquared), limN = splat8(s.normalLimitSquared);
+        const f8 lum = a.phaseOneEmitterTaps ? luminance8(px.color) : f8{};
         i8 ok[4];
         forTaps(taps, [&] [[gnu::always_inline]] () {
             for (int k = 0; k < 4; ++k) {
@@ -114,6 +129,7 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& 
                 const f8 dp = (d[0] * d[0] + d[1] * d[1]) + d[2] * d[2];
                 const f8 dn = (d[3] * d[3] + d[4] * d[4]) + d[5] * d[5];
                 ok[k] = taps.inside[k] & (dp < limP) & (dn < limN);
+                if (a.phaseOneEmitterTaps) ok[k] &= ~droppedEmitterTap(pl, taps, k, ok[k], lum);
                 accept |= ok[k] & (1 << k);
             }
         });

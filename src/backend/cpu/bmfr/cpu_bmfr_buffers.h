@@ -193,6 +193,9 @@ struct FrameArgs {
     const TemporalHistory& t;
     Buffers& b;
     TapFilter filter = {}; ///< the resolve pass's
+    /// Phase I drops emitter taps (phaseOneEmitterTaps): the emitter exclusion is on and the
+    /// previous frame has emitter pixels.
+    bool phaseOneEmitterTaps = false;
 };
 
 /// Wall time of the pass that interleaves phase I and the fit, split between them in
