@@ -17,14 +17,14 @@ namespace {
 /// One 32x32 tile of (sample, history) luminance pairs, interleaved; history -1: none.
 struct Tile {
     std::vector<float> v = std::vector<float>(2 * kChangeTile * kChangeTile, 0.0f);
-    float change(float threshold = 2.0f) const {
+    float change(float threshold = 2.0f, float gain = 1.0f) const {
         return tileHistoryChange(v.data(), v.data() + 1, 2, kChangeTile, kChangeTile, 0, 0,
-                                 threshold);
+                                 threshold, gain);
     }
 };
 
 /// tileHistoryChange's definition, in double precision.
-double expectedChange(const Tile& t, double threshold) {
+double expectedChange(const Tile& t, double threshold, double gain) {
     double n = 0, sum = 0, squares = 0, history = 0;
     for (size_t k = 0; k < t.v.size(); k += 2) {
         if (t.v[k + 1] < 0) continue;
@@ -34,7 +34,7 @@ double expectedChange(const Tile& t, double threshold) {
     const double mean = sum / n, past = history / n;
     const double se = std::sqrt(std::max(squares / n - mean * mean, 0.0) / n);
     const double excess = std::fabs(mean - past) - threshold * se;
-    return excess > 0 ? std::min(excess / std::max(mean, past), 1.0) : 0.0;
+    return excess > 0 ? std::min(gain * excess / std::max(mean, past), 1.0) : 0.0;
 }
 
 /// Unit-mean exponential noise, as 1-spp Monte Carlo.
@@ -54,10 +54,13 @@ TEST(AdaptiveHistory, TileChangeMatchesADoublePrecisionComputation) {
         std::uniform_real_distribution<float> level(0.01f, 4.0f);
         const Tile t = noisyTile(rng, level(rng), level(rng), trial * 19);
         for (float threshold : {0.0f, 2.0f, 5.0f})
-            EXPECT_NEAR(t.change(threshold), expectedChange(t, threshold), 2e-4)
-                << "trial " << trial << ", threshold " << threshold;
+            for (float gain : {1.0f, 4.0f})
+                EXPECT_NEAR(t.change(threshold, gain), expectedChange(t, threshold, gain), 5e-4)
+                    << "trial " << trial << ", threshold " << threshold << ", gain " << gain;
     }
 }
+
+const BmfrSettings kDefaults;
 
 TEST(AdaptiveHistory, NoiseAloneRarelyCountsAsAChange) {
     // The history holds the true mean; the samples scatter as 1-spp light does. At 2 standard
@@ -68,12 +71,13 @@ TEST(AdaptiveHistory, NoiseAloneRarelyCountsAsAChange) {
     double total = 0;
     const int tiles = 2000;
     for (int k = 0; k < tiles; ++k) {
-        const float c = noisyTile(rng, 0.5f, 0.5f).change();
+        const float c = noisyTile(rng, 0.5f, 0.5f)
+                            .change(kDefaults.historyChangeThreshold, kDefaults.historyChangeGain);
         changed += c > 0.0f;
         total += c;
     }
     EXPECT_LT(changed, tiles / 10);
-    EXPECT_LT(total / tiles, 0.002);
+    EXPECT_LT(total / tiles, 0.005); // measured: 0.0021 at the default gain of 4
 }
 
 TEST(AdaptiveHistory, AFireflyIsNotAChange) {
@@ -88,6 +92,7 @@ TEST(AdaptiveHistory, ALightDimmedToAQuarterIsAboutThreeQuartersOfAChange) {
     const Tile t = noisyTile(rng, 0.25f, 1.0f);
     // (1 - 0.25 - 2 SE) / 1, with SE = 0.25 / 32 for unit exponential noise.
     EXPECT_NEAR(t.change(), 0.75 - 2 * 0.25 / 32, 0.02);
+    EXPECT_EQ(t.change(2.0f, 4.0f), 1.0f) << "amplified, capped at a whole change";
     EXPECT_EQ(
         noisyTile(rng, 0.25f, 1.0f, kChangeTile * kChangeTile - kChangeMinPixels + 1).change(),
         0.0f)
@@ -146,7 +151,7 @@ Errors dimmingLightErrors(bool adaptive) {
 
 TEST(AdaptiveHistory, FollowsADimmingLightAndLeavesASteadyOneAlone) {
     const Errors paper = dimmingLightErrors(false), adaptive = dimmingLightErrors(true);
-    // Measured: steady 0.0347 both; in the 4 frames after the step 0.208 (paper) against 0.111.
+    // Measured: steady 0.0347 both; in the 4 frames after the step 0.208 (paper) against 0.101.
     EXPECT_LT(adaptive.after, 0.6 * paper.after)
         << "paper " << paper.after << ", adaptive " << adaptive.after;
     EXPECT_LT(adaptive.steady, 1.02 * paper.steady)

@@ -36,6 +36,7 @@ struct BmfrSettings : TemporalSettings {
     bool visibilityTaps = false; ///< no phase III / TAA history across FrameInput::visibility edges
     bool adaptiveHistory = false;        ///< shorter histories where the lighting changed
     float historyChangeThreshold = 2.0f; ///< adaptiveHistory: the noise allowance, standard errors
+    float historyChangeGain = 4.0f;      ///< adaptiveHistory: how strongly a change shortens them
     StageSwitches stages{};
 };
 

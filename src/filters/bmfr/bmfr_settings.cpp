@@ -76,6 +76,11 @@ SettingsTable<S> ownSettings() {
          "adaptiveHistory: how far a tile's mean current sample may lie from its history's mean "
          "before the history counts as stale, in standard errors of that mean",
          BMFR_FIELD(S, historyChangeThreshold)},
+        {"historyChangeGain", "history-change-gain", "ratio", {0, 1000},
+         "adaptiveHistory: a tile's change (its means' gap beyond the noise, as a fraction of "
+         "the larger) is multiplied by this before it raises the weights, capped at 1; 1 is "
+         "A-SVGF's, 4 measured best on a moving light at no cost from a still camera",
+         BMFR_FIELD(S, historyChangeGain)},
         {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
          "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
          "lower quartile, above which a pixel may belong to an emitter",

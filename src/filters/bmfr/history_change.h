@@ -4,6 +4,8 @@
 // left its reprojected phase I history's mean by more than their noise explains gets a shorter
 // history, in proportion to the change (as A-SVGF's temporal gradient, but from tile means, as
 // this input has no re-shaded samples). Where nothing changed the history stays the paper's.
+// A tile's mean moves by a few percent per frame under a moving light while its history lags
+// by the sum of those steps, so the change is amplified (BmfrSettings::historyChangeGain).
 // - phase I records each pixel's sample and history luminance (recordHistoryChange);
 // - one pass reduces them per tile (tileHistoryChange), in a fixed order;
 // - phase III blends with the larger weight and shortens the stored history length, which the
@@ -44,9 +46,9 @@ BMFR_HD void recordHistoryChange(float* sample, float* history, long step, long 
 
 /// The change of tile (tx, ty), 0 (none) to 1 (the history is no longer this light): how far
 /// the tile's mean sample is from its mean history, less `threshold` standard errors of the
-/// samples' mean, as a fraction of the larger mean. Sums in row-major order.
+/// samples' mean, as a fraction of the larger mean, times `gain`. Sums in row-major order.
 BMFR_HD float tileHistoryChange(const float* sample, const float* history, long step, int width,
-                                int height, int tx, int ty, float threshold) {
+                                int height, int tx, int ty, float threshold, float gain) {
     const int x0 = tx * kChangeTile, y0 = ty * kChangeTile;
     const int x1 = x0 + kChangeTile < width ? x0 + kChangeTile : width;
     const int y1 = y0 + kChangeTile < height ? y0 + kChangeTile : height;
@@ -69,7 +71,8 @@ BMFR_HD float tileHistoryChange(const float* sample, const float* history, long 
     const float excess = std::fabs(mean - meanHistory) - threshold * standardError;
     const float scale = mean > meanHistory ? mean : meanHistory;
     if (!(excess > 0.0f) || !(scale > 0.0f)) return 0.0f;
-    return excess < scale ? excess / scale : 1.0f;
+    const float change = gain * excess / scale;
+    return change < 1.0f ? change : 1.0f;
 }
 
 /// The change of pixel (x, y)'s tile.

@@ -127,9 +127,9 @@ void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
     const float *sample = b.plane(b.change, 0), *history = b.plane(b.change, 1);
     ctx.pool.parallelFor(long(b.changeTiles.size()), 4, [&](long k0, long k1) {
         for (long k = k0; k < k1; ++k)
-            b.changeTiles[size_t(k)] =
-                tileHistoryChange(sample, history, 1, t.width, t.height, int(k % tilesX),
-                                  int(k / tilesX), ctx.settings.historyChangeThreshold);
+            b.changeTiles[size_t(k)] = tileHistoryChange(
+                sample, history, 1, t.width, t.height, int(k % tilesX), int(k / tilesX),
+                ctx.settings.historyChangeThreshold, ctx.settings.historyChangeGain);
     });
 }
 

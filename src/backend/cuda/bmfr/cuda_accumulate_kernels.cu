@@ -44,11 +44,11 @@ __global__ void blendSecondFitKernel(float* fitted, const float* second, const u
             fitted[3 * i + c] = blendSecondFit(fitted[3 * i + c], second[3 * i + c]);
 }
 __global__ void historyChangeKernel(float* tiles, const float* change, int width, int height,
-                                    float threshold) {
+                                    float threshold, float gain) {
     const long k = pixelIndex(), tilesX = changeTilesX(width);
     if (k < tilesX * changeTilesY(height))
         tiles[k] = tileHistoryChange(change, change + 1, 2, width, height, int(k % tilesX),
-                                     int(k / tilesX), threshold);
+                                     int(k / tilesX), threshold, gain);
 }
 __global__ void noiseKernel(float* noise, const Feature* features, int M, int W, uint32_t seed,
                             uint32_t frame, float amplitude) {
@@ -98,10 +98,10 @@ void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* len
 }
 
 void launchHistoryChange(float* tiles, const float* change, int width, int height, float threshold,
-                         cudaStream_t stream) {
+                         float gain, cudaStream_t stream) {
     const long n = long(changeTilesX(width)) * changeTilesY(height);
     historyChangeKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(tiles, change, width, height,
-                                                                      threshold);
+                                                                      threshold, gain);
     check(cudaGetLastError(), "history change kernel");
 }
 

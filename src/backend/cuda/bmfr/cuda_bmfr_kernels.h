@@ -28,7 +28,7 @@ void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* len
 /// tiles[k] = tileHistoryChange(...) of every tile, from phase I's interleaved record
 /// (adaptiveHistory); one thread per tile.
 void launchHistoryChange(float* tiles, const float* change, int width, int height, float threshold,
-                         cudaStream_t stream);
+                         float gain, cudaStream_t stream);
 /// noise[f * W + k] = regularisationNoise(...) for the frame, on the device.
 void launchNoise(float* noise, const Feature* features, int featureCount, int blockPixels,
                  uint32_t seed, uint32_t frame, float amplitude, cudaStream_t stream);

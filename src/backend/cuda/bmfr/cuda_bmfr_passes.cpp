@@ -124,7 +124,7 @@ class CudaBmfrPasses final : public BmfrPasses {
 
         if (s.adaptiveHistory)
             launchHistoryChange(b.changeTiles.data(), b.change.data(), t.width, t.height,
-                                s.historyChangeThreshold, st);
+                                s.historyChangeThreshold, s.historyChangeGain, st);
         launchAccumulateFitted(fittedAccumulation(ctx, in, b), b.remodulated.data(), st);
         frame_.mark("accumulate_fitted");
 

@@ -137,7 +137,8 @@ void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
         for (long k = k0; k < k1; ++k)
             b.changeTiles[size_t(k)] = tileHistoryChange(
                 b.change.data(), b.change.data() + 1, 2, t.width, t.height, int(k % tilesX),
-                int(k / tilesX), ctx.settings.historyChangeThreshold);
+                int(k / tilesX), ctx.settings.historyChangeThreshold,
+                ctx.settings.historyChangeGain);
     });
 }
 
