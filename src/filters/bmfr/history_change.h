@@ -7,7 +7,7 @@
 // A tile's mean moves by a few percent per frame under a moving light while its history lags
 // by the sum of those steps, so the change is amplified (BmfrSettings::historyChangeGain).
 // - phase I records each pixel's sample and history luminance (recordHistoryChange);
-// - one pass reduces them per tile (tileHistoryChange), in a fixed order;
+// - one pass reduces them per tile (tileHistoryChange), in a fixed order that eight lanes keep;
 // - phase III blends with the larger weight and shortens the stored history length, which the
 //   next frame's phase I and phase III read (adaptHistory).
 // BMFR_HD: one source for every backend.
@@ -20,7 +20,8 @@
 namespace bmfr {
 
 /// Edge of the square, image-aligned tiles whose means are compared, in pixels: 1024 samples
-/// make a tile's mean some 30 times steadier than one sample, at 32 pixels of resolution.
+/// make a tile's mean some 30 times steadier than one sample, at 32 pixels of resolution. A
+/// multiple of 8, so that eight neighbouring pixels of a row share a tile.
 inline constexpr int kChangeTile = 32;
 
 /// A tile with fewer pixels with history than this has no change measured (its pixels' histories
@@ -44,26 +45,20 @@ BMFR_HD void recordHistoryChange(float* sample, float* history, long step, long 
     history[i * step] = !hasHistory ? -1.0f : lh > 0.0f ? lh : 0.0f;
 }
 
-/// The change of tile (tx, ty), 0 (none) to 1 (the history is no longer this light): how far
-/// the tile's mean sample is from its mean history, less `threshold` standard errors of the
-/// samples' mean, as a fraction of the larger mean, times `gain`. Sums in row-major order.
-BMFR_HD float tileHistoryChange(const float* sample, const float* history, long step, int width,
-                                int height, int tx, int ty, float threshold, float gain) {
-    const int x0 = tx * kChangeTile, y0 = ty * kChangeTile;
-    const int x1 = x0 + kChangeTile < width ? x0 + kChangeTile : width;
-    const int y1 = y0 + kChangeTile < height ? y0 + kChangeTile : height;
-    int n = 0;
-    float sum = 0.0f, squares = 0.0f, past = 0.0f;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) {
-            const long i = (long(y) * width + x) * step;
-            const float s = sample[i], h = history[i];
-            if (h < 0.0f) continue;
-            ++n;
-            sum += s;
-            squares += s * s;
-            past += h;
-        }
+/// A tile's sums run in kChangeLanes interleaved partial sums (column x of the tile adds to lane
+/// x % kChangeLanes, row by row), joined by laneTotal: the order an eight-wide CPU loop keeps,
+/// so every backend gets the same bits.
+inline constexpr int kChangeLanes = 8;
+
+BMFR_HD float laneTotal(const float* v) {
+    return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7]));
+}
+
+/// The change from a tile's sums over its n pixels with history: 0 (none) to 1 (the history is
+/// no longer this light). How far the mean sample is from the mean history, less `threshold`
+/// standard errors of the samples' mean, as a fraction of the larger mean, times `gain`.
+BMFR_HD float changeFromSums(int n, float sum, float squares, float past, float threshold,
+                             float gain) {
     if (n < kChangeMinPixels) return 0.0f;
     const float mean = sum / float(n), meanHistory = past / float(n);
     const float variance = squares / float(n) - mean * mean;
@@ -73,6 +68,28 @@ BMFR_HD float tileHistoryChange(const float* sample, const float* history, long 
     if (!(excess > 0.0f) || !(scale > 0.0f)) return 0.0f;
     const float change = gain * excess / scale;
     return change < 1.0f ? change : 1.0f;
+}
+
+/// The change of tile (tx, ty) (changeFromSums), from recordHistoryChange's values.
+BMFR_HD float tileHistoryChange(const float* sample, const float* history, long step, int width,
+                                int height, int tx, int ty, float threshold, float gain) {
+    const int x0 = tx * kChangeTile, y0 = ty * kChangeTile;
+    const int x1 = x0 + kChangeTile < width ? x0 + kChangeTile : width;
+    const int y1 = y0 + kChangeTile < height ? y0 + kChangeTile : height;
+    int n = 0;
+    float sum[kChangeLanes] = {}, squares[kChangeLanes] = {}, past[kChangeLanes] = {};
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const long i = (long(y) * width + x) * step;
+            const float s = sample[i], h = history[i];
+            if (h < 0.0f) continue;
+            const int lane = (x - x0) % kChangeLanes;
+            ++n;
+            sum[lane] += s;
+            squares[lane] += s * s;
+            past[lane] += h;
+        }
+    return changeFromSums(n, laneTotal(sum), laneTotal(squares), laneTotal(past), threshold, gain);
 }
 
 /// The change of pixel (x, y)'s tile.

@@ -119,17 +119,45 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
     withFramePlanes<kIsa>(a.b, a.t.cur, a.s.halfHistory, rows);
 }
 
+/// tileHistoryChange (filters/bmfr/history_change.h) of tiles [k0, k1), a row of a tile eight
+/// pixels at a time: the lanes are the spec's partial sums, added in its order. A lane without
+/// history adds 0, which leaves a sum of non-negative values as it was.
+BMFR_SIMD_DISPATCH(void, measureTiles,
+                   (const float* sample, const float* history, int width, int height,
+                    float threshold, float gain, long k0, long k1, float* tiles),
+                   (sample, history, width, height, threshold, gain, k0, k1, tiles)) {
+    static_assert(kChangeLanes == 8 && kChangeTile % 8 == 0);
+    const int tilesX = changeTilesX(width);
+    for (long k = k0; k < k1; ++k) {
+        const int x0 = int(k % tilesX) * kChangeTile, y0 = int(k / tilesX) * kChangeTile;
+        const int x1 = std::min(x0 + kChangeTile, width), y1 = std::min(y0 + kChangeTile, height);
+        f8 sum{}, squares{}, past{};
+        int n = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; x += 8) {
+                const long i = long(y) * width + x;
+                const f8 s = load8(sample + i), h = load8(history + i);
+                const i8 with = (h >= 0.0f) & firstLanes(std::min(8, x1 - x));
+                n += countLanes(with);
+                sum += with ? s : f8{};
+                squares += with ? s * s : f8{};
+                past += with ? h : f8{};
+            }
+        float v[3][8];
+        store8(v[0], sum), store8(v[1], squares), store8(v[2], past);
+        tiles[k] =
+            changeFromSums(n, laneTotal(v[0]), laneTotal(v[1]), laneTotal(v[2]), threshold, gain);
+    }
+}
+
 } // namespace
 
 void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
     const TemporalHistory& t = ctx.timeline.history;
-    const int tilesX = changeTilesX(t.width);
     const float *sample = b.plane(b.change, 0), *history = b.plane(b.change, 1);
     ctx.pool.parallelFor(long(b.changeTiles.size()), 4, [&](long k0, long k1) {
-        for (long k = k0; k < k1; ++k)
-            b.changeTiles[size_t(k)] = tileHistoryChange(
-                sample, history, 1, t.width, t.height, int(k % tilesX), int(k / tilesX),
-                ctx.settings.historyChangeThreshold, ctx.settings.historyChangeGain);
+        measureTiles(sample, history, t.width, t.height, ctx.settings.historyChangeThreshold,
+                     ctx.settings.historyChangeGain, k0, k1, b.changeTiles.data());
     });
 }
 
