@@ -12,7 +12,7 @@
 namespace bmfr {
 namespace {
 
-constexpr int kW = 128, kH = 96, kFrames = 24, kFirstScored = 8, kTrail = 1;
+constexpr int kGhostW = 128, kGhostH = 96, kGhostFrames = 24, kFirstScored = 8, kTrail = 1;
 
 struct Sequence {
     std::vector<FrameData> frames;
@@ -22,7 +22,7 @@ struct Sequence {
 const Sequence& movingObjects() {
     static const Sequence s = [] {
         render::SceneDescription d = render::loadSceneDescription("cornell-objects", ".");
-        d.width = kW, d.height = kH, d.frames = kFrames, d.referenceSpp = 256;
+        d.width = kGhostW, d.height = kGhostH, d.frames = kGhostFrames, d.referenceSpp = 256;
         const std::string dir = testing::freshDir("Ghosting", "cornell_objects").string();
         render::SequenceRenderOptions o;
         o.output = dir, o.quiet = true;
@@ -30,16 +30,16 @@ const Sequence& movingObjects() {
             d, o, nullptr, [](int, int) {}, [](const std::string&) {});
         Sequence seq;
         auto reader = SequenceReader::open(dir);
-        seq.frames.resize(kFrames);
-        for (int i = 0; i < kFrames; ++i) reader->load(i, seq.frames[size_t(i)]);
+        seq.frames.resize(kGhostFrames);
+        for (int i = 0; i < kGhostFrames; ++i) reader->load(i, seq.frames[size_t(i)]);
         // The band: where the falling sphere (material 4) is now or was in the kTrail frames
         // before (a static camera: the same pixels). It is the fastest object and checkered,
         // so history from the wrong place shows; its wake has no history on any path.
-        seq.band.resize(kFrames);
-        for (int i = 0; i < kFrames; ++i) {
-            seq.band[size_t(i)].assign(size_t(kW * kH), 0);
+        seq.band.resize(kGhostFrames);
+        for (int i = 0; i < kGhostFrames; ++i) {
+            seq.band[size_t(i)].assign(size_t(kGhostW * kGhostH), 0);
             for (int k = std::max(0, i - kTrail); k <= i; ++k)
-                for (size_t p = 0; p < size_t(kW * kH); ++p)
+                for (size_t p = 0; p < size_t(kGhostW * kGhostH); ++p)
                     seq.band[size_t(i)][p] |= seq.frames[size_t(k)].extras[0].data()[p] == 4.0f;
         }
         return seq;
@@ -53,11 +53,11 @@ double bandError(const std::string& filter, bool motion, double& wholeFrame) {
     auto f = makeFilter(filter, {});
     double sum = 0, all = 0;
     long n = 0, nAll = 0;
-    for (int i = 0; i < kFrames; ++i) {
+    for (int i = 0; i < kGhostFrames; ++i) {
         const FrameData& d = s.frames[size_t(i)];
         const ImageView out = f->denoise(d.input(motion));
         if (i < kFirstScored) continue;
-        for (long p = 0; p < kW * kH; ++p)
+        for (long p = 0; p < kGhostW * kGhostH; ++p)
             for (int c = 0; c < 3; ++c) {
                 const double e = double(gammaEncode(out.data[3 * p + c])) -
                                  double(gammaEncode(d.reference.data()[3 * p + c]));
@@ -65,7 +65,7 @@ double bandError(const std::string& filter, bool motion, double& wholeFrame) {
                 if (s.band[size_t(i)][size_t(p)]) sum += e * e, ++n;
             }
     }
-    EXPECT_GT(n, 3 * 200 * (kFrames - kFirstScored)) << "the band is too small to judge by";
+    EXPECT_GT(n, 3 * 200 * (kGhostFrames - kFirstScored)) << "the band is too small to judge by";
     wholeFrame = std::sqrt(all / double(nAll));
     return std::sqrt(sum / double(n));
 }

@@ -22,7 +22,7 @@ namespace bmfr {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr int kW = 6, kH = 4;
+constexpr int kLayerW = 6, kLayerH = 4;
 
 /// The value a test file holds at pixel i of channel `name`: distinct per channel.
 float valueOf(const std::string& name, int i) {
@@ -31,26 +31,26 @@ float valueOf(const std::string& name, int i) {
 
 /// One part holding `channels` (full names), each filled with valueOf(name, i).
 void writeLayered(const fs::path& path, const std::vector<std::string>& channels) {
-    Imf::Header header(kW, kH);
+    Imf::Header header(kLayerW, kLayerH);
     for (const std::string& c : channels) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
     std::vector<std::vector<float>> data;
     Imf::FrameBuffer fb;
     for (const std::string& c : channels) {
-        data.emplace_back(kW * kH);
-        for (int i = 0; i < kW * kH; ++i) data.back()[size_t(i)] = valueOf(c, i);
+        data.emplace_back(kLayerW * kLayerH);
+        for (int i = 0; i < kLayerW * kLayerH; ++i) data.back()[size_t(i)] = valueOf(c, i);
         fb.insert(c, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data.back().data()),
-                                sizeof(float), sizeof(float) * kW));
+                                sizeof(float), sizeof(float) * kLayerW));
     }
     Imf::OutputFile file(path.c_str(), header);
     file.setFrameBuffer(fb);
-    file.writePixels(kH);
+    file.writePixels(kLayerH);
 }
 
 /// Parts named after layers, each with plain R,G,B (or X,Y,Z) channels.
 void writeMultiPart(const fs::path& path, const std::map<std::string, std::string>& parts) {
     std::vector<Imf::Header> headers;
     for (const auto& [name, xyz] : parts) {
-        Imf::Header h(kW, kH);
+        Imf::Header h(kLayerW, kLayerH);
         h.setName(name);
         h.setType(Imf::SCANLINEIMAGE);
         for (char c : xyz) h.channels().insert(std::string(1, c), Imf::Channel(Imf::FLOAT));
@@ -64,22 +64,22 @@ void writeMultiPart(const fs::path& path, const std::map<std::string, std::strin
         Imf::FrameBuffer fb;
         for (char c : xyz) {
             const std::string full = name + "." + std::string(1, c);
-            data.emplace_back(kW * kH);
-            for (int i = 0; i < kW * kH; ++i) data.back()[size_t(i)] = valueOf(full, i);
+            data.emplace_back(kLayerW * kLayerH);
+            for (int i = 0; i < kLayerW * kLayerH; ++i) data.back()[size_t(i)] = valueOf(full, i);
             fb.insert(std::string(1, c),
                       Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data.back().data()),
-                                 sizeof(float), sizeof(float) * kW));
+                                 sizeof(float), sizeof(float) * kLayerW));
         }
         Imf::OutputPart part(file, p++);
         part.setFrameBuffer(fb);
-        part.writePixels(kH);
+        part.writePixels(kLayerH);
     }
 }
 
 void expectChannels(const ImageF& img, const std::vector<std::string>& names) {
-    ASSERT_EQ(img.width, kW);
+    ASSERT_EQ(img.width, kLayerW);
     ASSERT_EQ(img.channels, int(names.size()));
-    for (int i = 0; i < kW * kH; ++i)
+    for (int i = 0; i < kLayerW * kLayerH; ++i)
         for (size_t c = 0; c < names.size(); ++c)
             ASSERT_EQ(img.data()[i * img.channels + int(c)], valueOf(names[c], i)) << names[c];
 }

@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kW = 64, kH = 48;
+constexpr int kVisW = 64, kVisH = 48;
 
 /// The sun's visibility times its cosine: a diagonal hard edge.
 float visibilityAt(int x, int y, int edge = 40) {
@@ -28,12 +28,12 @@ float visibilityAt(int x, int y, int edge = 40) {
 /// p.x is within 6.7 of 0), and albedo 0.5: exactly in the span of the paper's features and the
 /// visibility.
 FrameData shadowFrame(int edge = 40) {
-    const Mat4 vp = test::cameraAt({0, 0, 0}, kW, kH);
-    FrameData f = test::planeFrame(vp, kW, kH, {0, 0, 0}, [](int, int) { return -5.0f; });
-    f.visibility = ImageF(kW, kH, 1);
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            const long i = long(y) * kW + x;
+    const Mat4 vp = test::cameraAt({0, 0, 0}, kVisW, kVisH);
+    FrameData f = test::planeFrame(vp, kVisW, kVisH, {0, 0, 0}, [](int, int) { return -5.0f; });
+    f.visibility = ImageF(kVisW, kVisH, 1);
+    for (int y = 0; y < kVisH; ++y)
+        for (int x = 0; x < kVisW; ++x) {
+            const long i = long(y) * kVisW + x;
             const float v = visibilityAt(x, y, edge), px = f.position.data()[3 * i];
             const float radiance = 0.4f + 2.0f * v + 0.05f * px;
             store3(f.albedo.data(), i, {0.5f, 0.5f, 0.5f});
@@ -54,7 +54,7 @@ double worstError(const std::string& backend, bool visibility) {
     ImageView out;
     for (int i = 0; i < 3; ++i) out = filter->denoise(frame.input());
     double worst = 0.0;
-    for (long k = 0; k < long(kW) * kH * 3; ++k)
+    for (long k = 0; k < long(kVisW) * kVisH * 3; ++k)
         worst = std::max(worst, std::fabs(double(out.data[k]) - frame.color.data()[k]));
     return worst;
 }
@@ -79,7 +79,7 @@ TEST(VisibilityFeature, OffOrWithoutTheBufferTheFitIsThePapers) {
     auto off = makeFilter("bmfr", {});
     for (int i = 0; i < 2; ++i) {
         const ImageView a = on->denoise(plain.input()), b = off->denoise(frame.input());
-        for (long k = 0; k < long(kW) * kH * 3; ++k) ASSERT_EQ(a.data[k], b.data[k]) << k;
+        for (long k = 0; k < long(kVisW) * kVisH * 3; ++k) ASSERT_EQ(a.data[k], b.data[k]) << k;
     }
 }
 
@@ -98,7 +98,7 @@ TEST(VisibilityFeature, ItComesWithEveryFrameOrNoneAndIsChecked) {
     EXPECT_EQ(testing::errorOf([&] { filter->denoise(without.input()); }), "(no error)");
 
     FrameData small = frame;
-    small.visibility = ImageF(kW / 2, kH, 1);
+    small.visibility = ImageF(kVisW / 2, kVisH, 1);
     EXPECT_NE(testing::errorOf([&] { filter->denoise(small.input()); }).find("visibility"),
               std::string::npos);
     // A non-finite visibility is counted and read as 0.
@@ -107,7 +107,7 @@ TEST(VisibilityFeature, ItComesWithEveryFrameOrNoneAndIsChecked) {
     filter->reset();
     const ImageView out = filter->denoise(bad.input());
     EXPECT_EQ(filter->lastStats().nonFiniteInputs, 1);
-    for (long k = 0; k < long(kW) * kH * 3; ++k) ASSERT_TRUE(std::isfinite(out.data[k]));
+    for (long k = 0; k < long(kVisW) * kVisH * 3; ++k) ASSERT_TRUE(std::isfinite(out.data[k]));
     // 24 feature columns and the visibility do not fit.
     EXPECT_NE(testing::errorOf([] {
                   makeFilter("bmfr", {{"visibilityFeature", "true"},
@@ -189,10 +189,10 @@ double sweptBandError(const std::string& backend, bool taps) {
     for (int i = 0; i < 4; ++i) filter->denoise(before.input());
     const ImageView out = filter->denoise(after.input());
     double worst = 0.0;
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
+    for (int y = 0; y < kVisH; ++y)
+        for (int x = 0; x < kVisW; ++x) {
             if (visibilityAt(x, y, 40) == visibilityAt(x, y, 48)) continue;
-            const long i = 3 * (long(y) * kW + x);
+            const long i = 3 * (long(y) * kVisW + x);
             for (int c = 0; c < 3; ++c)
                 worst =
                     std::max(worst, std::fabs(double(out.data[i + c]) - after.color.data()[i + c]));
