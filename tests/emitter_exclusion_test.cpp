@@ -117,6 +117,25 @@ TEST(EmitterExclusion, AFlatBrightPatchIsTheEmitterAndTheSmearBesideItSitsOut) {
         }
 }
 
+TEST(EmitterExclusion, ANewSeedNeedsFourFlatNeighboursOneThatWasAnEmitterThree) {
+    // A flat 2 x 2 patch: each pixel has three flat neighbours. A lamp-lit surface with nearly
+    // noise-free direct light makes such patches now and then; a lamp's corner is one too.
+    Planes p(16, 16, 0.1f);
+    for (int y = 6; y < 8; ++y)
+        for (int x = 6; x < 8; ++x) p.set(x, y, 20.0f, 20.0f);
+    const InputPlanes in = p.in();
+    const long i = 6 * 16 + 6;
+    const uint8_t bright = kMaskCandidate | kMaskBright;
+    EXPECT_EQ(maskSeed(bright, in, InputModes{}, i, 2.0f, 20.0f, false), 0);
+    EXPECT_EQ(maskSeed(bright, in, InputModes{}, i, 2.0f, 20.0f, true), kMaskSeed);
+    p.set(5, 5, 20.0f, 20.0f); // a fourth flat neighbour
+    EXPECT_EQ(maskSeed(bright, p.in(), InputModes{}, i, 2.0f, 20.0f, false), kMaskSeed);
+    int excluded = 0;
+    p.set(5, 5, 0.1f, 0.1f);
+    maskOf(p, 16.0f, excluded);
+    EXPECT_EQ(excluded, 0) << "the whole-block mask agrees";
+}
+
 TEST(EmitterExclusion, ALampOverMostOfASmallBlockAndItsTwoPixelSmearSitOut) {
     // A 16-pixel block: the lamp's flat samples fill rows 0 to 8 (more than half of it), the
     // history smeared it over rows 9 and 10 (this frame's samples there are the ceiling's), and
