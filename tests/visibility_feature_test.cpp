@@ -174,16 +174,28 @@ TEST(VisibilityTaps, HistoryTapsOfTheOtherLitClassAreDropped) {
     EXPECT_EQ(lit[5], 0);
 }
 
+TEST(VisibilityTaps, PhaseOneTakesNoTapOfTheOtherLitClass) {
+    // The same taps as above: (2, 0) was in the sun last frame (its class's bit 1 set).
+    std::vector<uint8_t> prevClass(8, 0);
+    prevClass[2] = 1 | 2; // an emitter bit beside it changes nothing
+    const BilinearFootprint fp = bilinearFootprint({1.5f, 0.5f});
+    EXPECT_EQ(phaseOneLitTaps(0b1111, fp, prevClass.data(), 1, false, 4), 0b1101);
+    EXPECT_EQ(phaseOneLitTaps(0b1111, fp, prevClass.data(), 1, true, 4), 0b0010);
+    EXPECT_EQ(phaseOneLitTaps(0b1101, fp, prevClass.data(), 1, true, 4), 0);
+    EXPECT_EQ(phaseOneLitTaps(0b1111, fp, prevClass.data(), 4, false, 4), 0b1111);
+}
+
 /// The worst error, against the exact image, in the band a moving shadow edge swept: frames
-/// with the edge at 40, then one with it at 48.
-double sweptBandError(const std::string& backend, bool taps) {
+/// with the edge at 40, then one with it at 48. With `phaseOne` the noisy accumulation is on
+/// (the frames are noise-free, so it is exact where its taps are of the same class).
+double sweptBandError(const std::string& backend, bool taps, bool phaseOne = false) {
     const FrameData before = shadowFrame(40), after = shadowFrame(48);
     auto filter = makeFilter("bmfr", {{"backend", backend},
                                       {"noiseAmplitude", "0"},
                                       {"halfHistory", "false"},
                                       {"taaSameSurface", "true"},
                                       // Phase I off: the fit sees this frame alone and is exact.
-                                      {"firstAccumulation", "false"},
+                                      {"firstAccumulation", phaseOne ? "true" : "false"},
                                       {"visibilityFeature", "true"},
                                       {"visibilityTaps", taps ? "true" : "false"}});
     for (int i = 0; i < 4; ++i) filter->denoise(before.input());
@@ -202,10 +214,20 @@ double sweptBandError(const std::string& backend, bool taps) {
 
 TEST(VisibilityTaps, AMovingShadowLeavesNoTrail) {
     // The swept band turned from sunlit to shadowed. Phase III and TAA blend the sunlit
-    // history into it unless the taps of the other class are dropped. (Phase I, which the
-    // switch leaves alone, is off here so that the fit is exact.)
+    // history into it unless the taps of the other class are dropped. (Phase I is off here so
+    // that the fit is exact; the next test turns it on.)
     for (const char* backend : {"reference", "cpu"}) {
         const double with = sweptBandError(backend, true), without = sweptBandError(backend, false);
+        EXPECT_GT(without, 0.3) << backend;
+        EXPECT_LT(with, 2e-3) << backend;
+    }
+}
+
+TEST(VisibilityTaps, PhaseOneKeepsTheSweptBandOutOfTheFit) {
+    // With phase I on, its sunlit history would reach the fit's input in the swept band too.
+    for (const char* backend : {"reference", "cpu"}) {
+        const double with = sweptBandError(backend, true, true),
+                     without = sweptBandError(backend, false, true);
         EXPECT_GT(without, 0.3) << backend;
         EXPECT_LT(with, 2e-3) << backend;
     }

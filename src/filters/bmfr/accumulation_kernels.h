@@ -6,6 +6,7 @@
 #include "core/half.h"
 #include "filters/bmfr/emitter_exclusion.h"
 #include "filters/bmfr/history_change.h"
+#include "filters/bmfr/visibility_taps.h"
 #include "temporal/blend_weights.h"
 #include "temporal/history.h"
 #include "temporal/modulation.h"
@@ -42,6 +43,10 @@ struct NoisyAccumulation {
     float secondMinAlpha = 0.1f;
     /// BmfrSettings::excludeEmitters: the previous frame's emitter bits (phaseOneEmitterTaps).
     const uint8_t* prevEmitter = nullptr;
+    /// BmfrSettings::visibilityTaps, with a visibility buffer: this frame's visibility and the
+    /// previous frame's lit classes (phaseOneLitTaps).
+    const float* visibility = nullptr;
+    const uint8_t* prevLit = nullptr;
 };
 
 /// Phase I of pixel i. Returns true when the pixel had a history and lost all of it.
@@ -66,6 +71,9 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
         if (a.prevEmitter)
             accept = phaseOneEmitterTaps(accept, fp, a.prevEmitter, 1, luminance(c), a.width,
                                          [&](long j) { return luminance(load3(a.prevNoisy, j)); });
+        if (a.prevLit)
+            accept =
+                phaseOneLitTaps(accept, fp, a.prevLit, 1, litClass(a.visibility, i) != 0, a.width);
         const float total = gatherAccepted(fp, accept, a.width, [&](long j, float wt) {
             old += wt * load3(a.prevNoisy, j);
             samples += wt * float(a.prevLength[j]);

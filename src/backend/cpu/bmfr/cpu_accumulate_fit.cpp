@@ -60,6 +60,7 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
     a.phaseOneEmitterTaps = t.hasHistory() &&
                             emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
                             b.emitterPixels[1 - t.cur] > 0;
+    if (t.hasHistory()) a.phaseOneVisibility = tapVisibility(ctx);
     const BlockGrid g = makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex);
     const bool fitting = ctx.settings.stages.fitting;
     Stopwatch wallClock;

@@ -117,6 +117,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& 
         const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
         const f8 limP = splat8(s.positionLimitSquared), limN = splat8(s.normalLimitSquared);
         const f8 lum = a.phaseOneEmitterTaps ? luminance8(px.color) : f8{};
+        // phaseOneLitTaps (filters/bmfr/visibility_taps.h): the pixels' lit classes.
+        const i8 lit = a.phaseOneVisibility ? loadFirst(a.phaseOneVisibility + i, n) > 0.0f : i8{};
         i8 ok[4];
         forTaps(taps, [&] [[gnu::always_inline]] () {
             for (int k = 0; k < 4; ++k) {
@@ -130,6 +132,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& 
                 const f8 dn = (d[3] * d[3] + d[4] * d[4]) + d[5] * d[5];
                 ok[k] = taps.inside[k] & (dp < limP) & (dn < limN);
                 if (a.phaseOneEmitterTaps) ok[k] &= ~droppedEmitterTap(pl, taps, k, ok[k], lum);
+                if (a.phaseOneVisibility)
+                    ok[k] &= ~(((tapBytes(taps, pl.prevTapClass, k) & int(kTapLit)) != 0) ^ lit);
                 accept |= ok[k] & (1 << k);
             }
         });

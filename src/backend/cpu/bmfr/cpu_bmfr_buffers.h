@@ -196,6 +196,9 @@ struct FrameArgs {
     /// Phase I drops emitter taps (phaseOneEmitterTaps): the emitter exclusion is on and the
     /// previous frame has emitter pixels.
     bool phaseOneEmitterTaps = false;
+    /// Phase I drops taps across a shadow edge (phaseOneLitTaps): this frame's staged
+    /// visibility under visibilityTaps, with a history; else null.
+    const float* phaseOneVisibility = nullptr;
 };
 
 /// Wall time of the pass that interleaves phase I and the fit, split between them in
