@@ -62,9 +62,9 @@ SettingsTable<S> ownSettings() {
          "give it on every frame or none",
          BMFR_FIELD(S, visibilityFeature)},
         {"visibilityTaps", "visibility-taps", "", {},
-         "when frames carry a visibility buffer, phase III and the same-surface TAA take no "
-         "history tap whose pixel was lit (visibility above 0) last frame where this one is not, "
-         "or the reverse, so shadow edges stay sharp; give it on every frame or none",
+         "when frames carry a visibility buffer, phases I and III and the same-surface TAA take "
+         "no history tap whose pixel was lit (visibility above 0) last frame where this one is "
+         "not, or the reverse, so shadow edges stay sharp; give it on every frame or none",
          BMFR_FIELD(S, visibilityTaps)},
         {"adaptiveHistory", "adaptive-history", "", {},
          "where a 32x32 tile's mean current sample has left its reprojected history's mean by "
