@@ -174,17 +174,6 @@ TEST(VisibilityTaps, HistoryTapsOfTheOtherLitClassAreDropped) {
     EXPECT_EQ(lit[5], 0);
 }
 
-TEST(VisibilityTaps, PhaseOneTakesNoTapOfTheOtherLitClass) {
-    // The same taps as above: (2, 0) was in the sun last frame (its class's bit 1 set).
-    std::vector<uint8_t> prevClass(8, 0);
-    prevClass[2] = 1 | 2; // an emitter bit beside it changes nothing
-    const BilinearFootprint fp = bilinearFootprint({1.5f, 0.5f});
-    EXPECT_EQ(phaseOneLitTaps(0b1111, fp, prevClass.data(), 1, false, 4), 0b1101);
-    EXPECT_EQ(phaseOneLitTaps(0b1111, fp, prevClass.data(), 1, true, 4), 0b0010);
-    EXPECT_EQ(phaseOneLitTaps(0b1101, fp, prevClass.data(), 1, true, 4), 0);
-    EXPECT_EQ(phaseOneLitTaps(0b1111, fp, prevClass.data(), 4, false, 4), 0b1111);
-}
-
 /// The worst error, against the exact image, in the band a moving shadow edge swept: frames
 /// with the edge at 40, then one with it at 48. With `phaseOne` the noisy accumulation is on
 /// (the frames are noise-free, so it is exact where its taps are of the same class).

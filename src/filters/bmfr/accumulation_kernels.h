@@ -44,7 +44,7 @@ struct NoisyAccumulation {
     /// BmfrSettings::excludeEmitters: the previous frame's emitter bits (phaseOneEmitterTaps).
     const uint8_t* prevEmitter = nullptr;
     /// BmfrSettings::visibilityTaps, with a visibility buffer: this frame's visibility and the
-    /// previous frame's lit classes (phaseOneLitTaps).
+    /// previous frame's lit classes (sameEmitterTaps on lit classes).
     const float* visibility = nullptr;
     const uint8_t* prevLit = nullptr;
 };
@@ -71,9 +71,10 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
         if (a.prevEmitter)
             accept = phaseOneEmitterTaps(accept, fp, a.prevEmitter, 1, luminance(c), a.width,
                                          [&](long j) { return luminance(load3(a.prevNoisy, j)); });
+        // No history across a shadow edge either (visibilityTaps, as phase III's sameLitTaps).
         if (a.prevLit)
             accept =
-                phaseOneLitTaps(accept, fp, a.prevLit, 1, litClass(a.visibility, i) != 0, a.width);
+                sameEmitterTaps(accept, was.pixel, a.prevLit, litClass(a.visibility, i), a.width);
         const float total = gatherAccepted(fp, accept, a.width, [&](long j, float wt) {
             old += wt * load3(a.prevNoisy, j);
             samples += wt * float(a.prevLength[j]);

@@ -19,18 +19,6 @@ BMFR_HD uint8_t litClass(const float* visibility, long i) {
     return visibility[i] > 0.0f ? 1 : 0;
 }
 
-/// Phase I's accepted taps less those whose pixel's lit class last frame (prevClass[j] & bit)
-/// differs from this pixel's `lit`: phase I's history then does not smear a hard shadow's edge
-/// under motion either, and the fit sees it sharp.
-BMFR_HD uint8_t phaseOneLitTaps(uint8_t accept, const BilinearFootprint& fp,
-                                const uint8_t* prevClass, uint8_t bit, bool lit, int width) {
-    for (int t = 0; t < 4; ++t)
-        if ((accept & (1u << t)) &&
-            ((prevClass[long(tapY(fp, t)) * width + tapX(fp, t)] & bit) != 0) != lit)
-            accept &= uint8_t(~(1u << t));
-    return accept;
-}
-
 /// The accepted taps of pixel i whose pixel had its lit class last frame: sameEmitterTaps on
 /// lit classes. Sets lit[i] for this frame first; prevLit is null on a frame without history.
 BMFR_HD uint8_t sameLitTaps(uint8_t accept, Vec2 previousPixel, const float* visibility,

@@ -117,7 +117,7 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& 
         const Taps8 taps = taps8(fp, t.width, t.height, valid & firstLanes(n));
         const f8 limP = splat8(s.positionLimitSquared), limN = splat8(s.normalLimitSquared);
         const f8 lum = a.phaseOneEmitterTaps ? luminance8(px.color) : f8{};
-        // phaseOneLitTaps (filters/bmfr/visibility_taps.h): the pixels' lit classes.
+        // Phase I's shadow-edge taps (accumulateNoisyPixel): the pixels' lit classes.
         const i8 lit = a.phaseOneVisibility ? loadFirst(a.phaseOneVisibility + i, n) > 0.0f : i8{};
         i8 ok[4];
         forTaps(taps, [&] [[gnu::always_inline]] () {

@@ -196,7 +196,7 @@ struct FrameArgs {
     /// Phase I drops emitter taps (phaseOneEmitterTaps): the emitter exclusion is on and the
     /// previous frame has emitter pixels.
     bool phaseOneEmitterTaps = false;
-    /// Phase I drops taps across a shadow edge (phaseOneLitTaps): this frame's staged
+    /// Phase I drops taps across a shadow edge (accumulateNoisyPixel): this frame's staged
     /// visibility under visibilityTaps, with a history; else null.
     const float* phaseOneVisibility = nullptr;
 };
