@@ -92,7 +92,10 @@ double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& fe
     a.features = features.data(), a.featureCount = M, a.noise = noise.data();
     a.normal = f.normal.data(), a.position = f.position.data(), a.color = f.color.data();
     std::vector<float> accumulated = f.color, previousPixel(f.extra.size() * 2);
-    std::vector<uint8_t> previousEmitter(f.extra.size());
+    std::vector<uint8_t> previousEmitter(f.extra.size()), lengths(f.extra.size());
+    // Every history length from none to past the firefly clamp's fade.
+    for (size_t i = 0; i < lengths.size(); ++i) lengths[i] = uint8_t(1 + i % 7);
+    a.length = lengths.data();
     if (history) {
         for (size_t i = 0; i < f.extra.size(); ++i) {
             for (int c = 0; c < 3; ++c) accumulated[3 * i + c] *= 0.9f;

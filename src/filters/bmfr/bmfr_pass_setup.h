@@ -64,6 +64,7 @@ BlockFit blockFit(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b,
         a.emitters.previousStep = 2;
     }
     a.clampFireflies = s.clampFireflies;
+    a.length = b.historyLength[t.cur].data();
     return a;
 }
 

@@ -49,7 +49,9 @@ SettingsTable<S> ownSettings() {
         {"clampFireflies", "clamp-fireflies", "", {},
          "in the fit's input (not the history), a pixel above 8x its block's median luminance "
          "with at most three such neighbours is scaled down to that level, so a firefly does "
-         "not brighten its block",
+         "not brighten its block; in full without history, fading to nothing at 5 samples of "
+         "history (unbiased where the history is long), except within 2 pixels of a light of "
+         "the previous frame, whose smeared history it keeps out of the fit",
          BMFR_FIELD(S, clampFireflies)},
         {"secondGrid", "second-grid", "", {},
          "pixels without history (the first frame after a reset, disocclusions) take the mean of "

@@ -5,6 +5,11 @@
 // of them inside a bright patch is scaled down to that level. Bright patches, lit surfaces and
 // emitters, keep theirs; a bright line one pixel wide does not. Only the fit's
 // input changes: the accumulated history keeps the sample's energy.
+// The clamp fades out as a pixel's history grows (fireflyFade): where the history is long the
+// accumulated value is an average whose bright samples are the estimator's own tail, and
+// phase III averages the fit again. Clamping there biased a dark, indirectly lit surface low
+// (the still room's box face, 10% below the reference) and made it flicker, as the share
+// clamped changed from frame to frame.
 #pragma once
 #include "core/color.h"
 #include "filters/bmfr/emitter_exclusion.h"
@@ -38,12 +43,27 @@ BMFR_HD float fireflyScale(const uint8_t* mask, int B, int k, float lum, float t
     return maskNeighbours(mask, B, k, kFireflyDense) > 0 ? 1.0f : threshold / lum;
 }
 
+/// The history length (samples) from which a pixel is not clamped at all: phase I's default
+/// 1 / firstBlendAlpha, where its weight on a new sample has come down to its floor.
+inline constexpr float kFireflyFadeLength = 5.0f;
+
+/// Stage 4, a scale from fireflyScale for a pixel whose history holds `length` samples: the
+/// full clamp without history (1 sample), none from kFireflyFadeLength, linear between.
+BMFR_HD float fireflyFade(float scale, float length) {
+    if (!(scale < 1.0f)) return scale;
+    const float t = (length - 1.0f) / (kFireflyFadeLength - 1.0f);
+    if (!(t > 0.0f)) return scale;
+    return t < 1.0f ? scale + (1.0f - scale) * t : 1.0f;
+}
+
 /// Clamps the fireflies of a B x B block's colour columns z[3] (W values each), with `mask`
-/// (W bytes) and `histogram` as scratch. Returns how many, and with `quartile` the block's
-/// lower-quartile bucket, which the emitter mask reads, from the same count. The clamp leaves it
-/// unchanged: a clamped pixel stays above kFireflyRatio times the median's top, so as many pixels
-/// as before lie at or below each bucket up to the median's.
-BMFR_HD int clampFireflies(int B, float* const z[3], int* histogram, uint8_t* mask,
+/// (W bytes) and `histogram` as scratch; length(k) is block pixel k's history length (phase I's
+/// samples), read for the pixels the clamp would scale. Returns how many it scales, and with
+/// `quartile` the block's lower-quartile bucket, which the emitter mask reads, from the same
+/// count. The clamp leaves it unchanged: a scaled pixel stays above kFireflyRatio times the
+/// median's top, so as many pixels as before lie at or below each bucket up to the median's.
+template <class Length>
+BMFR_HD int clampFireflies(int B, float* const z[3], int* histogram, uint8_t* mask, Length&& length,
                            int* quartile = nullptr) {
     const int W = B * B;
     // Local copies of the planes: through z[], every mask store below would reload them.
@@ -62,7 +82,9 @@ BMFR_HD int clampFireflies(int B, float* const z[3], int* histogram, uint8_t* ma
     int clamped = 0;
     for (int k = 0; k < W; ++k) {
         // The mask's bits were all set before any scaling.
-        const float f = fireflyScale(mask, B, k, lum(k), threshold);
+        float f = fireflyScale(mask, B, k, lum(k), threshold);
+        if (f == 1.0f) continue;
+        f = fireflyFade(f, length(k));
         if (f == 1.0f) continue;
         for (int c = 0; c < 3; ++c) z[c][k] *= f;
         ++clamped;

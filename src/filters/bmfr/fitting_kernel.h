@@ -35,20 +35,53 @@ struct EmitterExclusion {
     int previousStep = 1;
 };
 
-/// Whether image pixel i of a w x h frame was an emitter in the previous frame: the bilinear
-/// tap of its previous pixel with the largest weight (the first of equals) inside the frame.
-BMFR_HD bool wasEmitter(const EmitterExclusion& e, long i, int w, int h) {
+/// The bilinear tap of image pixel i's previous pixel with the largest weight (the first of
+/// equals) inside a w x h frame, as (tx, ty); false when none is, or without a previous frame.
+BMFR_HD bool previousNearestTap(const EmitterExclusion& e, long i, int w, int h, int& tx, int& ty) {
     if (!e.previous) return false;
     const long j = i * e.previousStep;
     const BilinearFootprint fp = bilinearFootprint(Vec2{e.previousX[j], e.previousY[j]});
     int best = -1;
     float weight = -1.0f;
     for (int t = 0; t < 4; ++t) {
-        const int tx = tapX(fp, t), ty = tapY(fp, t);
-        if (tx >= 0 && ty >= 0 && tx < w && ty < h && fp.weight[t] > weight)
+        const int x = tapX(fp, t), y = tapY(fp, t);
+        if (x >= 0 && y >= 0 && x < w && y < h && fp.weight[t] > weight)
             best = t, weight = fp.weight[t];
     }
-    return best >= 0 && (e.previous[long(tapY(fp, best)) * w + tapX(fp, best)] & e.previousBit);
+    if (best < 0) return false;
+    tx = tapX(fp, best), ty = tapY(fp, best);
+    return true;
+}
+
+/// Whether image pixel i of a w x h frame was an emitter in the previous frame: at
+/// previousNearestTap.
+BMFR_HD bool wasEmitter(const EmitterExclusion& e, long i, int w, int h) {
+    int x, y;
+    return previousNearestTap(e, i, w, h, x, y) && (e.previous[long(y) * w + x] & e.previousBit);
+}
+
+/// How far from a light of the previous frame (pixels, in the previous frame) its history
+/// smears under motion: the emitter mask's two pixels of growth.
+inline constexpr int kEmitterSmearReach = 2;
+
+/// Whether a pixel within kEmitterSmearReach of image pixel i's previousNearestTap was an
+/// emitter in the previous frame.
+BMFR_HD bool besidePreviousEmitter(const EmitterExclusion& e, long i, int w, int h) {
+    int x, y;
+    if (!previousNearestTap(e, i, w, h, x, y)) return false;
+    for (int v = y - kEmitterSmearReach; v <= y + kEmitterSmearReach; ++v)
+        for (int u = x - kEmitterSmearReach; u <= x + kEmitterSmearReach; ++u)
+            if (u >= 0 && v >= 0 && u < w && v < h && (e.previous[long(v) * w + u] & e.previousBit))
+                return true;
+    return false;
+}
+
+/// The history length by which the firefly clamp fades at image pixel i (fireflyFade):
+/// `length`, phase I's, or 1 (the clamp in full) beside a light of the previous frame. There a
+/// bright pixel with a long history is the light's history smeared past its edge, which the
+/// clamp keeps out of the fit, not the estimator's tail.
+BMFR_HD float fireflyFadeLength(const EmitterExclusion& e, long i, int w, int h, float length) {
+    return besidePreviousEmitter(e, i, w, h) ? 1.0f : length;
 }
 
 /// This frame's emitter exclusion, writing its bits to `bits`.
@@ -69,8 +102,16 @@ struct BlockFit {
     InputPlanes in;               ///< for the extra feature buffers
     float* fitted = nullptr;      ///< the block writes the pixels it owns
     EmitterExclusion emitters;
-    bool clampFireflies = false; ///< BmfrSettings::clampFireflies
+    bool clampFireflies = false;     ///< BmfrSettings::clampFireflies
+    const uint8_t* length = nullptr; ///< phase I's history lengths, which fade the clamp
 };
+
+/// fireflyFadeLength of block pixel k (mirrored in at the border).
+BMFR_HD float blockFadeLength(const BlockFit& a, int bx, int by, int k) {
+    bool owned;
+    const long i = blockPixel(a.grid, bx, by, k, owned);
+    return fireflyFadeLength(a.emitters, i, a.grid.width, a.grid.height, float(a.length[i]));
+}
 
 /// One worker's scratch for a block of W pixels and M features.
 struct BlockFitScratch {
@@ -170,7 +211,8 @@ BMFR_HD void fitBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& 
     if (a.clampFireflies) {
         float* const z[3] = {sc.work + long(M) * W, sc.work + long(M + 1) * W,
                              sc.work + long(M + 2) * W};
-        clampFireflies(a.grid.blockSize, z, sc.histogram, sc.mask);
+        clampFireflies(a.grid.blockSize, z, sc.histogram, sc.mask,
+                       [&](int k) { return blockFadeLength(a, bx, by, k); });
     }
     const int excluded = a.emitters.on ? excludeEmitterRows(a.grid, a.in, a.emitters, bx, by,
                                                             sc.work, M, W, sc.histogram, sc.mask)

@@ -11,8 +11,9 @@ struct BlockMaskArgs {
     const InputPlanes& in;
     EmitterExclusion emitters;
     bool clampFireflies = false; ///< BmfrSettings::clampFireflies
-    int featureCount = 0;        ///< M
-    long stride = 0;             ///< floats between the QR's columns
+    const PlaneSet& noisy; ///< phase I's output; channel 3, the history length, fades the clamp
+    int featureCount = 0;  ///< M
+    long stride = 0;       ///< floats between the QR's columns
 };
 
 /// The firefly clamp (filters/bmfr/firefly_clamp.h) of block (bx, by)'s colour columns, the last

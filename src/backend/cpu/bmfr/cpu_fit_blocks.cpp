@@ -351,11 +351,12 @@ BMFR_SIMD_DISPATCH(void, fitBlock,
     const BlockRows rows = blockRows<kIsa>(a, ox, oy, sc);
     buildColumns(a, rows, sc);
     prefetchBlock(a, nextX, nextY);
-    const int excluded = s.clampFireflies || a.emitters.on
-                             ? clampAndMaskBlock({g, a.ctx.input, a.emitters, s.clampFireflies, M,
-                                                  qrColumnStride(W)},
-                                                 bx, by, sc.work.data(), sc)
-                             : 0;
+    const int excluded =
+        s.clampFireflies || a.emitters.on
+            ? clampAndMaskBlock({g, a.ctx.input, a.emitters, s.clampFireflies,
+                                 a.b.noisy[a.ctx.timeline.history.cur], M, qrColumnStride(W)},
+                                bx, by, sc.work.data(), sc)
+            : 0;
 
     float coeffs[kMaxFeatures * 3];
     solveHouseholderFast(sc.work.data(), M, W, qrColumnStride(W), coeffs);

@@ -144,9 +144,9 @@ BMFR_HD void teamMaskStage(const Team& team, uint8_t* mask, uint8_t* next, int W
 
 /// clampFireflies for a team: the threshold on one thread, the stages pixel-parallel.
 template <class Team>
-BMFR_HD void teamClampFireflies(const Team& team, float* A, int M, int B,
-                                const TeamFitMemory& mem) {
-    const int W = B * B, T = team.size();
+BMFR_HD void teamClampFireflies(const Team& team, const BlockFit& a, int bx, int by, float* A,
+                                int M, const TeamFitMemory& mem) {
+    const int B = a.grid.blockSize, W = B * B, T = team.size();
     TeamFitState& st = *mem.state;
     uint8_t *mask = mem.mask, *next = mem.next;
     float* z[3] = {A + long(M) * W, A + long(M + 1) * W, A + long(M + 2) * W};
@@ -159,7 +159,8 @@ BMFR_HD void teamClampFireflies(const Team& team, float* A, int M, int B,
     // Reads the neighbours' bits and scales only its own pixel's colour.
     team.parallel([&](int t) {
         for (int k = t; k < W; k += T) {
-            const float f = fireflyScale(mask, B, k, lum(k), st.maskThreshold);
+            float f = fireflyScale(mask, B, k, lum(k), st.maskThreshold);
+            if (f != 1.0f) f = fireflyFade(f, blockFadeLength(a, bx, by, k));
             if (f != 1.0f)
                 for (int c = 0; c < 3; ++c) z[c][k] *= f;
         }
@@ -255,7 +256,7 @@ BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
         }
     });
 
-    if (a.clampFireflies) teamClampFireflies(team, A, M, g.blockSize, mem);
+    if (a.clampFireflies) teamClampFireflies(team, a, bx, by, A, M, mem);
     if (a.emitters.on) teamEmitterMask(team, a, bx, by, A, mem);
     teamHouseholder(team, A, M, W, P, st);
 
