@@ -1,7 +1,6 @@
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "core/stopwatch.h"
 #include "filters/bmfr/fitting_kernel.h"
-#include "filters/bmfr/second_grid.h"
 #include <algorithm>
 #include <atomic>
 
@@ -53,32 +52,6 @@ void accumulateRuns(const FrameArgs& a, const std::vector<uint8_t>& flags, bool 
     }
 }
 
-/// The rows of `second` that wait for each row of `main`, and for how many (Buffers::secondNeed,
-/// secondWaiting): every main row whose owned rows hold one the second-grid row reads (mirrored
-/// at the edges) or owns, so that phase I is done over what it reads and the main fit over the
-/// pixels it blends. Rows without a pixel of their own wait for none and are not fitted.
-void scheduleSecondGrid(const BlockGrid& main, const BlockGrid& second, Buffers& b) {
-    for (int by = 0; by < main.blocksY; ++by) b.secondWaiting[size_t(by)] = {second.blocksY, 0};
-    for (int j = 0; j < second.blocksY; ++j) {
-        b.secondDone[size_t(j)].store(0, std::memory_order_relaxed);
-        int& need = b.secondNeed[size_t(j)];
-        need = 0;
-        if (ownedRows(second, j).empty()) continue;
-        int lo = main.height, hi = -1; // the image rows it reads
-        for (int uy = second.originY(j); uy < second.originY(j) + second.blockSize; ++uy) {
-            const int y = mirrorIndex(uy, main.height);
-            lo = std::min(lo, y), hi = std::max(hi, y);
-        }
-        for (int by = 0; by < main.blocksY; ++by) {
-            const RowSpan own = ownedRows(main, by);
-            if (own.empty() || own.last <= lo || own.first > hi) continue;
-            ++need;
-            auto& [first, last] = b.secondWaiting[size_t(by)];
-            first = std::min(first, j), last = std::max(last, j + 1);
-        }
-    }
-}
-
 } // namespace
 
 InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSplit& split) {
@@ -90,12 +63,6 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
     if (t.hasHistory()) a.phaseOneVisibility = tapVisibility(ctx);
     const BlockGrid g = makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex);
     const bool fitting = ctx.settings.stages.fitting;
-    // The second grid's rows are fitted as soon as the main rows they wait for are done, by the
-    // worker that finishes the last of them, while those rows are still in its cache (fitted
-    // after the pass they took three times a main block's time each).
-    const bool second = fitting && ctx.settings.secondGrid;
-    const BlockGrid g2 = secondGrid(g);
-    if (second) scheduleSecondGrid(g, g2, b);
     Stopwatch wallClock;
     std::atomic<int64_t> nonFinite{0}, discarded{0}, accumulateNs{0}, fitNs{0};
     auto ns = Stopwatch::nanoseconds;
@@ -127,12 +94,6 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
             const auto t1 = Clock::now();
             if (fitting) {
                 fitBlockRow(ctx, b, g, int(by), sc);
-                const auto [first, last] =
-                    second ? b.secondWaiting[size_t(by)] : std::pair<int, int>{0, 0};
-                for (int j = first; j < last; ++j)
-                    if (b.secondDone[size_t(j)].fetch_add(1, std::memory_order_acq_rel) + 1 ==
-                        b.secondNeed[size_t(j)])
-                        fitSecondGridRow(ctx, b, g2, j, sc);
             } else {
                 const size_t from = size_t(own.first) * size_t(t.width);
                 const size_t pixels = size_t(own.last - own.first) * size_t(t.width);

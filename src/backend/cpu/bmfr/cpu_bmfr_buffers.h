@@ -11,8 +11,6 @@
 #include <atomic>
 #include <cstddef>
 #include <cstring>
-#include <memory>
-#include <utility>
 #include <vector>
 
 namespace bmfr::cpu {
@@ -102,12 +100,6 @@ struct Buffers {
     /// luminance; and tileHistoryChange of each tile, from the last frame measured (phase I
     /// reads the previous frame's before measureHistoryChange overwrites them).
     std::vector<float> change, changeTiles;
-    /// BmfrSettings::secondGrid, this frame's schedule (see accumulateAndFit): how many main
-    /// block rows each second-grid row waits for, how many have finished, and the second-grid
-    /// rows [first, last) each main row is waited for by.
-    std::vector<int> secondNeed;
-    std::unique_ptr<std::atomic<int>[]> secondDone;
-    std::vector<std::pair<int, int>> secondWaiting;
 
     std::vector<Scratch> scratch; ///< one per worker thread
     ImageF debugNoisy, debugFitted, debugLength, debugAccept;
@@ -243,11 +235,9 @@ BMFR_SIMD_INLINE void litClasses(const float* visibility, long from, long n, uin
     const float* v = visibility + from;
     for (long x = 0; x < n; ++x) out[x] = litClass(v, x) ? kTapLit : 0; // vectorises
 }
-/// BmfrSettings::secondGrid, row `by` of the shifted grid `grid`: fits its blocks that own a
-/// pixel without history, and gives those pixels the mean of both fits. Phase I must be done
-/// over the rows it reads, and the main fit over the pixels it owns.
-void fitSecondGridRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
-                      Scratch& sc);
+/// BmfrSettings::secondGrid: fits the blocks of the shifted grid that own a pixel without
+/// history, and gives those pixels the mean of both fits.
+void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b);
 /// BmfrSettings::adaptiveHistory: tileHistoryChange of every tile, from what phase I recorded.
 void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b);
 

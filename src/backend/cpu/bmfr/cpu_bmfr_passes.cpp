@@ -32,11 +32,6 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.fitted.assign(3 * b_.stride, 0.0f);
         b_.fittedSecond.assign(s.secondGrid ? 3 * b_.stride : 0, 0.0f);
         b_.earlyRow.assign(size_t(h), 0);
-        // The second grid has at most one block row more than the main grid.
-        const size_t blockRows = size_t(h / s.blockSize + 3);
-        b_.secondNeed.assign(s.secondGrid ? blockRows : 0, 0);
-        b_.secondDone.reset(s.secondGrid ? new std::atomic<int>[blockRows] : nullptr);
-        b_.secondWaiting.assign(s.secondGrid ? blockRows : 0, {0, 0});
         b_.change.assign(s.adaptiveHistory ? 2 * b_.stride : 0, 0.0f);
         b_.changeTiles.assign(
             s.adaptiveHistory ? size_t(changeTilesX(w)) * size_t(changeTilesY(h)) : 0, 0.0f);
@@ -65,6 +60,10 @@ class CpuBmfrPasses final : public BmfrPasses {
         filter.visibility = tapVisibility(ctx);
         InputCounters counters = accumulateAndFit(ctx, b_, split);
         Stopwatch clock;
+        if (ctx.settings.secondGrid && ctx.settings.stages.fitting) {
+            fitSecondGrid(ctx, b_);
+            split.fitMs += clock.lap();
+        }
         // Without an emitter in either frame no tap crosses an emitter's edge.
         filter.emitters = emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
                           b_.emitterPixels[t.cur] + b_.emitterPixels[1 - t.cur] > 0;

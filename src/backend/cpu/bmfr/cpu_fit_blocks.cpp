@@ -472,23 +472,31 @@ struct PoorLengths {
 
 } // namespace
 
-void fitSecondGridRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& g, int by,
-                      Scratch& sc) {
+void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b) {
+    const TemporalHistory& t = ctx.timeline.history;
+    const BlockGrid g =
+        secondGrid(makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex));
     const Phase2 a{ctx, b, g, true};
-    const PoorLengths poor(b.noisy[ctx.timeline.history.cur]);
+    const PoorLengths poor(b.noisy[t.cur]);
     float* const fitted[3] = {b.plane(b.fitted, 0), b.plane(b.fitted, 1), b.plane(b.fitted, 2)};
-    // The row's blocks with a pixel without history: a tenth of them under a moving camera.
-    // Listed first, so that each fit can ask for the next one's rows.
-    sc.blocks.clear();
-    for (int bx = 0; bx < g.blocksX; ++bx)
-        if (poor.any(ownedRect(g, bx, by), g.width)) sc.blocks.push_back(bx);
-    for (size_t n = 0; n < sc.blocks.size(); ++n) {
-        const int bx = sc.blocks[n];
-        const int next = n + 1 < sc.blocks.size() ? sc.blocks[n + 1] : g.blocksX;
-        fitBlock(a, bx, by, sc, next, by);
-        // The blocks of a grid own disjoint pixels: each blends its own.
-        poor.blend(ownedRect(g, bx, by), g.width, fitted, a.out);
-    }
+    ctx.pool.parallelFor(g.blocksY, 1, [&](long by0, long by1) {
+        Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
+        for (long by = by0; by < by1; ++by) {
+            // The row's blocks with a pixel without history: a tenth of them under a moving
+            // camera. Listed first, so that each fit can ask for the next one's rows: they are
+            // rarely still in cache after phase I.
+            sc.blocks.clear();
+            for (int bx = 0; bx < g.blocksX; ++bx)
+                if (poor.any(ownedRect(g, bx, int(by)), g.width)) sc.blocks.push_back(bx);
+            for (size_t n = 0; n < sc.blocks.size(); ++n) {
+                const int bx = sc.blocks[n];
+                const int next = n + 1 < sc.blocks.size() ? sc.blocks[n + 1] : g.blocksX;
+                fitBlock(a, bx, int(by), sc, next, int(by));
+                // The blocks of a grid own disjoint pixels: each blends its own.
+                poor.blend(ownedRect(g, bx, int(by)), g.width, fitted, a.out);
+            }
+        }
+    });
 }
 
 void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,
