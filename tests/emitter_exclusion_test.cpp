@@ -188,6 +188,15 @@ TEST(EmitterExclusion, FirefliesAndNoisyLitSurfacesStayInTheFit) {
     EXPECT_EQ(excluded, 64);
 }
 
+TEST(EmitterExclusion, ASeedsSampleIsWithinHalfAPercentOfItsHistory) {
+    EXPECT_TRUE(steadySample(2.0f, 2.0f)); // no history: the same sample
+    EXPECT_TRUE(steadySample(2.0f, 2.009f));
+    EXPECT_TRUE(steadySample(2.0f, 1.991f));
+    EXPECT_FALSE(steadySample(2.0f, 2.011f));
+    EXPECT_FALSE(steadySample(2.0f, 1.989f));
+    EXPECT_FALSE(steadySample(0.0f, 0.001f));
+}
+
 TEST(FireflyClamp, IsolatedBrightPixelsComeDownToTheThresholdAndPatchesStay) {
     // A 16 x 16 block at 0.1 (threshold 8 x 1/8 = 1): a firefly, one smeared over 2x2, and a
     // 3x3 lit patch.
