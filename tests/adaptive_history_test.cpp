@@ -108,12 +108,48 @@ TEST(AdaptiveHistory, WeightsAndLengths) {
     EXPECT_NEAR(shortenedHistory(200.0f, 0.5f, 0.1f), 1.0f / 0.55f - 1.0f, 1e-6f);
     EXPECT_EQ(shortenedHistory(0.3f, 0.5f, 0.1f), 0.3f) << "never longer";
     EXPECT_EQ(shortenedHistory(9.0f, 1.0f, 0.1f), 0.0f) << "a whole change drops the history";
-    // Tiles of a 70x33 image: 3 x 2; pixel (69, 32) is in the last one.
-    const float tiles[6] = {0, 1, 2, 3, 4, 5};
+    // Tiles of a 70x33 image: 3 x 2; pixel (69, 32) is in the last one. Each tile's record is
+    // (in effect, measured).
+    const float tiles[12] = {0, -1, 1, -1, 2, -1, 3, -1, 4, -1, 5, -1};
     EXPECT_EQ(changeTilesX(70), 3);
     EXPECT_EQ(changeTilesY(33), 2);
+    EXPECT_EQ(changeTileFloats(70, 33), 12);
     EXPECT_EQ(pixelHistoryChange(tiles, 70, 69, 32), 5.0f);
     EXPECT_EQ(pixelHistoryChange(tiles, 70, 31, 31), 0.0f);
+}
+
+TEST(AdaptiveHistory, AWeakChangeCountsFromItsSecondFrame) {
+    float tiles[4] = {}; // two tiles, nothing measured before
+    storeTileChange(tiles, 1, 0.3f);
+    EXPECT_EQ(tiles[2], 0.0f) << "a weak change in one frame is not yet in effect";
+    EXPECT_EQ(tiles[3], 0.3f);
+    storeTileChange(tiles, 1, 0.2f);
+    EXPECT_EQ(tiles[2], 0.2f) << "the tile changed in the frame before too";
+    storeTileChange(tiles, 1, 0.0f);
+    storeTileChange(tiles, 1, 0.6f);
+    EXPECT_EQ(tiles[2], 0.6f) << "a strong change counts at once";
+    storeTileChange(tiles, 1, 0.0f);
+    EXPECT_EQ(tiles[2], 0.0f);
+    EXPECT_EQ(tiles[0], 0.0f);
+    EXPECT_EQ(tiles[1], 0.0f) << "the other tile is untouched";
+    // Noise alone: of 2000 tiles measured twice, a weak change in both frames is rare.
+    std::mt19937 rng(11);
+    int measured = 0, confirmed = 0;
+    for (int k = 0; k < 2000; ++k) {
+        float tile[2] = {};
+        bool any = false;
+        for (int frame = 0; frame < 2; ++frame) {
+            storeTileChange(
+                tile, 0,
+                noisyTile(rng, 0.5f, 0.5f)
+                    .change(kDefaults.historyChangeThreshold, kDefaults.historyChangeGain));
+            any = any || tile[1] > 0.0f;
+        }
+        measured += any;
+        confirmed += tile[0] > 0.0f;
+    }
+    EXPECT_GT(measured, 100); // measured: 189 tiles with a change in a frame, 3 in both
+    EXPECT_LT(confirmed, measured / 8) << measured;
 }
 
 /// Tone-mapped RMSE of the output against the truth, over frames [first, last), with the light

@@ -97,8 +97,8 @@ struct Buffers {
     std::vector<uint8_t>
         earlyRow; ///< rows phase I runs before the block rows (see accumulateAndFit)
     /// BmfrSettings::adaptiveHistory: 2 planes, recordHistoryChange's sample and history
-    /// luminance; and tileHistoryChange of each tile, from the last frame measured (phase I
-    /// reads the previous frame's before measureHistoryChange overwrites them).
+    /// luminance; and storeTileChange's record of each tile, from the last frame measured
+    /// (phase I reads the previous frame's before measureHistoryChange overwrites them).
     std::vector<float> change, changeTiles;
 
     std::vector<Scratch> scratch; ///< one per worker thread

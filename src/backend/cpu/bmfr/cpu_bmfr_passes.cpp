@@ -33,8 +33,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.fittedSecond.assign(s.secondGrid ? 3 * b_.stride : 0, 0.0f);
         b_.earlyRow.assign(size_t(h), 0);
         b_.change.assign(s.adaptiveHistory ? 2 * b_.stride : 0, 0.0f);
-        b_.changeTiles.assign(
-            s.adaptiveHistory ? size_t(changeTilesX(w)) * size_t(changeTilesY(h)) : 0, 0.0f);
+        b_.changeTiles.assign(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b_.scratch.resize(size_t(threads));
         for (Scratch& sc : b_.scratch) {

@@ -145,8 +145,9 @@ BMFR_SIMD_DISPATCH(void, measureTiles,
             }
         float v[3][8];
         store8(v[0], sum), store8(v[1], squares), store8(v[2], past);
-        tiles[k] =
-            changeFromSums(n, laneTotal(v[0]), laneTotal(v[1]), laneTotal(v[2]), threshold, gain);
+        storeTileChange(
+            tiles, k,
+            changeFromSums(n, laneTotal(v[0]), laneTotal(v[1]), laneTotal(v[2]), threshold, gain));
     }
 }
 
@@ -155,7 +156,8 @@ BMFR_SIMD_DISPATCH(void, measureTiles,
 void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
     const TemporalHistory& t = ctx.timeline.history;
     const float *sample = b.plane(b.change, 0), *history = b.plane(b.change, 1);
-    ctx.pool.parallelFor(long(b.changeTiles.size()), 4, [&](long k0, long k1) {
+    const long tiles = long(b.changeTiles.size()) / kChangeTileValues;
+    ctx.pool.parallelFor(tiles, 4, [&](long k0, long k1) {
         measureTiles(sample, history, t.width, t.height, ctx.settings.historyChangeThreshold,
                      ctx.settings.historyChangeGain, k0, k1, b.changeTiles.data());
     });

@@ -47,8 +47,9 @@ __global__ void historyChangeKernel(float* tiles, const float* change, int width
                                     float threshold, float gain) {
     const long k = pixelIndex(), tilesX = changeTilesX(width);
     if (k < tilesX * changeTilesY(height))
-        tiles[k] = tileHistoryChange(change, change + 1, 2, width, height, int(k % tilesX),
-                                     int(k / tilesX), threshold, gain);
+        storeTileChange(tiles, k,
+                        tileHistoryChange(change, change + 1, 2, width, height, int(k % tilesX),
+                                          int(k / tilesX), threshold, gain));
 }
 __global__ void noiseKernel(float* noise, const Feature* features, int M, int W, uint32_t seed,
                             uint32_t frame, float amplitude) {

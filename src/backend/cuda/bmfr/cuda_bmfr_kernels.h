@@ -25,8 +25,8 @@ void launchSameLitTaps(uint8_t* accept, const float* previousPixel, const float*
 /// fitted = blendSecondFit(fitted, second) where the history length is 1 (secondGrid).
 void launchBlendSecondFit(float* fitted, const float* second, const uint8_t* length, long pixels,
                           cudaStream_t stream);
-/// tiles[k] = tileHistoryChange(...) of every tile, from phase I's interleaved record
-/// (adaptiveHistory); one thread per tile.
+/// storeTileChange(tiles, k, tileHistoryChange(...)) of every tile, from phase I's interleaved
+/// record (adaptiveHistory); one thread per tile.
 void launchHistoryChange(float* tiles, const float* change, int width, int height, float threshold,
                          float gain, cudaStream_t stream);
 /// noise[f * W + k] = regularisationNoise(...) for the frame, on the device.

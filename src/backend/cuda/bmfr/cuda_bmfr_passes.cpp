@@ -27,7 +27,7 @@ struct Buffers {
     DeviceImageU8 acceptMask;
     DeviceImageF change; ///< BmfrSettings::adaptiveHistory: recordHistoryChange's 2 channels
     DeviceArray<float> noise, fitScratch;
-    DeviceArray<float> changeTiles; ///< adaptiveHistory: tileHistoryChange of each tile
+    DeviceArray<float> changeTiles; ///< adaptiveHistory: storeTileChange's record of each tile
     DeviceArray<Feature> features;
     DeviceArray<unsigned long long> counters; ///< non-finite inputs, discarded pixels
 };
@@ -59,8 +59,7 @@ class CudaBmfrPasses final : public BmfrPasses {
         b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
         b.remodulated.resize(w, h, 3), b.ycocg.resize(w, h, 3), b.acceptMask.resize(w, h, 1);
         b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
-        b.changeTiles.resize(s.adaptiveHistory ? size_t(changeTilesX(w)) * size_t(changeTilesY(h))
-                                               : 0);
+        b.changeTiles.resize(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0);
         const int W = s.blockSize * s.blockSize, M = int(s.features.size());
         b.noise.resize(size_t(M) * size_t(W));
         b.features.resize(size_t(M));

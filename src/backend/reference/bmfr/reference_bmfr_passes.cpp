@@ -47,7 +47,7 @@ struct Buffers {
     ImageF historyLengthF;           ///< debug copy of the history length as float
     ImageF acceptMaskF;              ///< debug copy of the accept mask as float
     ImageF change;                   ///< adaptiveHistory: recordHistoryChange's 2 channels
-    std::vector<float> changeTiles;  ///< adaptiveHistory: tileHistoryChange of each tile
+    std::vector<float> changeTiles;  ///< adaptiveHistory: storeTileChange's record of each tile
     std::vector<FitScratch> scratch; ///< one per worker thread
 };
 
@@ -128,17 +128,19 @@ void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers& b) {
     });
 }
 
-/// tileHistoryChange of every tile (adaptiveHistory).
+/// tileHistoryChange of every tile, stored with storeTileChange (adaptiveHistory).
 void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
     const TemporalHistory& t = ctx.timeline.history;
     if (!ctx.settings.adaptiveHistory) return;
     const int tilesX = changeTilesX(t.width);
-    ctx.pool.parallelFor(long(b.changeTiles.size()), 4, [&](long k0, long k1) {
+    const long tiles = long(b.changeTiles.size()) / kChangeTileValues;
+    ctx.pool.parallelFor(tiles, 4, [&](long k0, long k1) {
         for (long k = k0; k < k1; ++k)
-            b.changeTiles[size_t(k)] = tileHistoryChange(
-                b.change.data(), b.change.data() + 1, 2, t.width, t.height, int(k % tilesX),
-                int(k / tilesX), ctx.settings.historyChangeThreshold,
-                ctx.settings.historyChangeGain);
+            storeTileChange(b.changeTiles.data(), k,
+                            tileHistoryChange(b.change.data(), b.change.data() + 1, 2, t.width,
+                                              t.height, int(k % tilesX), int(k / tilesX),
+                                              ctx.settings.historyChangeThreshold,
+                                              ctx.settings.historyChangeGain));
     });
 }
 
@@ -175,8 +177,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         b.historyLengthF.resize(w, h, 1);
         b.acceptMaskF.resize(w, h, 1);
         b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
-        b.changeTiles.assign(
-            s.adaptiveHistory ? size_t(changeTilesX(w)) * size_t(changeTilesY(h)) : 0, 0.0f);
+        b.changeTiles.assign(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b.scratch.resize(size_t(threads));
         for (FitScratch& sc : b.scratch) {
