@@ -26,7 +26,6 @@ struct Scratch {
     std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
     std::vector<uint8_t> mask;   ///< the emitter mask (emitter_exclusion.h)
     std::vector<int> histogram;  ///< and its luminance histogram
-    std::vector<int> blocks;     ///< a row's blocks that the second grid fits
 };
 
 /// Planes of one value per pixel, stored as float or, with BmfrSettings::halfHistory, as half
@@ -100,6 +99,10 @@ struct Buffers {
     /// luminance; and storeTileChange's record of each tile, from the last frame measured
     /// (phase I reads the previous frame's before measureHistoryChange overwrites them).
     std::vector<float> change, changeTiles;
+    /// BmfrSettings::secondGrid: whether each block of the shifted grid owns a pixel without
+    /// history, and the list of those that do (by * blocksX + bx).
+    std::vector<uint8_t> secondPoor;
+    std::vector<int> secondBlocks;
 
     std::vector<Scratch> scratch; ///< one per worker thread
     ImageF debugNoisy, debugFitted, debugLength, debugAccept;

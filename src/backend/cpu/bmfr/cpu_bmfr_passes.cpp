@@ -32,6 +32,11 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.fitted.assign(3 * b_.stride, 0.0f);
         b_.fittedSecond.assign(s.secondGrid ? 3 * b_.stride : 0, 0.0f);
         b_.earlyRow.assign(size_t(h), 0);
+        // The shifted grid has as many blocks as the frame's.
+        const size_t gridBlocks = size_t(w / s.blockSize + 2) * size_t(h / s.blockSize + 2);
+        b_.secondPoor.assign(s.secondGrid ? gridBlocks : 0, 0);
+        b_.secondBlocks.clear();
+        b_.secondBlocks.reserve(s.secondGrid ? gridBlocks : 0);
         b_.change.assign(s.adaptiveHistory ? 2 * b_.stride : 0, 0.0f);
         b_.changeTiles.assign(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
@@ -45,7 +50,6 @@ class CpuBmfrPasses final : public BmfrPasses {
             sc.rows.assign(3 * ResolvedRows::rowFloats(w), 0.0f);
             sc.mask.assign(W, 0);
             sc.histogram.assign(kMaskBuckets, 0);
-            sc.blocks.reserve(size_t(w / s.blockSize + 2));
         }
     }
 

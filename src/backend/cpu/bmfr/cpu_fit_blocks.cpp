@@ -479,22 +479,29 @@ void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b) {
     const Phase2 a{ctx, b, g, true};
     const PoorLengths poor(b.noisy[t.cur]);
     float* const fitted[3] = {b.plane(b.fitted, 0), b.plane(b.fitted, 1), b.plane(b.fitted, 2)};
-    ctx.pool.parallelFor(g.blocksY, 1, [&](long by0, long by1) {
-        Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
-        for (long by = by0; by < by1; ++by) {
-            // The row's blocks with a pixel without history: a tenth of them under a moving
-            // camera. Listed first, so that each fit can ask for the next one's rows: they are
-            // rarely still in cache after phase I.
-            sc.blocks.clear();
+    // The blocks with a pixel without history, a tenth of them under a moving camera, found
+    // row by row, then fitted as one list: they gather where the view uncovers something,
+    // and rows of them left one worker with most of the work.
+    ctx.pool.parallelFor(g.blocksY, 4, [&](long by0, long by1) {
+        for (long by = by0; by < by1; ++by)
             for (int bx = 0; bx < g.blocksX; ++bx)
-                if (poor.any(ownedRect(g, bx, int(by)), g.width)) sc.blocks.push_back(bx);
-            for (size_t n = 0; n < sc.blocks.size(); ++n) {
-                const int bx = sc.blocks[n];
-                const int next = n + 1 < sc.blocks.size() ? sc.blocks[n + 1] : g.blocksX;
-                fitBlock(a, bx, int(by), sc, next, int(by));
-                // The blocks of a grid own disjoint pixels: each blends its own.
-                poor.blend(ownedRect(g, bx, int(by)), g.width, fitted, a.out);
-            }
+                b.secondPoor[size_t(by * g.blocksX + bx)] =
+                    poor.any(ownedRect(g, bx, int(by)), g.width);
+    });
+    b.secondBlocks.clear();
+    for (int k = 0; k < g.blockCount(); ++k)
+        if (b.secondPoor[size_t(k)]) b.secondBlocks.push_back(k);
+    const long n = long(b.secondBlocks.size());
+    ctx.pool.parallelFor(n, 1, [&](long k0, long k1) {
+        Scratch& sc = b.scratch[size_t(ThreadPool::currentThreadIndex())];
+        for (long k = k0; k < k1; ++k) {
+            const int block = b.secondBlocks[size_t(k)];
+            const int bx = block % g.blocksX, by = block / g.blocksX;
+            // Each fit asks for the next one's rows: they are rarely still in cache.
+            const int next = k + 1 < k1 ? b.secondBlocks[size_t(k + 1)] : g.blockCount();
+            fitBlock(a, bx, by, sc, next % g.blocksX, next / g.blocksX);
+            // The blocks of a grid own disjoint pixels: each blends its own.
+            poor.blend(ownedRect(g, bx, by), g.width, fitted, a.out);
         }
     });
 }
