@@ -106,11 +106,19 @@ struct BlockFit {
     const uint8_t* length = nullptr; ///< phase I's history lengths, which fade the clamp
 };
 
-/// fireflyFadeLength of block pixel k (mirrored in at the border).
-BMFR_HD float blockFadeLength(const BlockFit& a, int bx, int by, int k) {
+/// fireflyFadeLength of pixel k of block (bx, by) of `g` (mirrored in at the border), with
+/// lengthAt(i) the history length of image pixel i in the backend's storage.
+template <class LengthAt>
+BMFR_HD float blockFadeLength(const BlockGrid& g, const EmitterExclusion& e, int bx, int by, int k,
+                              LengthAt&& lengthAt) {
     bool owned;
-    const long i = blockPixel(a.grid, bx, by, k, owned);
-    return fireflyFadeLength(a.emitters, i, a.grid.width, a.grid.height, float(a.length[i]));
+    const long i = blockPixel(g, bx, by, k, owned);
+    return fireflyFadeLength(e, i, g.width, g.height, float(lengthAt(i)));
+}
+
+/// blockFadeLength from the fit's own history lengths.
+BMFR_HD float blockFadeLength(const BlockFit& a, int bx, int by, int k) {
+    return blockFadeLength(a.grid, a.emitters, bx, by, k, [&](long i) { return a.length[i]; });
 }
 
 /// One worker's scratch for a block of W pixels and M features.

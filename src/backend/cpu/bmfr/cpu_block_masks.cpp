@@ -15,15 +15,10 @@ BMFR_SIMD_DISPATCH_FLAT(int, clampAndMaskBlock,
     if (a.clampFireflies) {
         float* const z[3] = {columns + M * a.stride, columns + (M + 1) * a.stride,
                              columns + (M + 2) * a.stride};
-        const BlockGrid& g = a.grid;
-        const int ox = g.originX(bx), oy = g.originY(by);
-        const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
         // Read for the few pixels the clamp scales only.
         auto length = [&](int k) {
-            bool owned;
-            const long i =
-                inside ? long(oy + k / B) * g.width + ox + k % B : blockPixel(g, bx, by, k, owned);
-            return fireflyFadeLength(a.emitters, i, g.width, g.height, a.noisy.at(3, size_t(i)));
+            return blockFadeLength(a.grid, a.emitters, bx, by, k,
+                                   [&](long i) { return a.noisy.at(3, size_t(i)); });
         };
         clampFireflies(B, z, sc.histogram.data(), sc.mask.data(), length, &quartile);
     }

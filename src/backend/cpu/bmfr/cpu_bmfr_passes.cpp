@@ -32,8 +32,8 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.fitted.assign(3 * b_.stride, 0.0f);
         b_.fittedSecond.assign(s.secondGrid ? 3 * b_.stride : 0, 0.0f);
         b_.earlyRow.assign(size_t(h), 0);
-        // The shifted grid has as many blocks as the frame's.
-        const size_t gridBlocks = size_t(w / s.blockSize + 2) * size_t(h / s.blockSize + 2);
+        // The shifted grid has as many blocks as the frame's, whatever its offsets.
+        const size_t gridBlocks = size_t(makeBlockGrid(w, h, s.blockSize, 0).blockCount());
         b_.secondPoor.assign(s.secondGrid ? gridBlocks : 0, 0);
         b_.secondBlocks.clear();
         b_.secondBlocks.reserve(s.secondGrid ? gridBlocks : 0);
