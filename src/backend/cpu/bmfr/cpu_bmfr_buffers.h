@@ -176,17 +176,14 @@ BMFR_SIMD_INLINE void withFramePlanes(Buffers& b, int cur, bool half, Body&& bod
 inline constexpr uint8_t kTapLit = 1, kTapEmitter = 2;
 
 /// The taps the resolve pass drops before phase III and TAA read the accept mask: those across
-/// an emitter's edge (sameEmitterTaps) and those across a shadow edge (sameLitTaps), as the
-/// taps whose class differs from their pixel's in an active bit. The fit writes the classes, so
-/// that the resolve pass reads one byte plane instead of the visibility and two bit planes.
+/// an emitter's edge (sameEmitterTaps), as the taps whose emitter bit differs from their
+/// pixel's. The fit writes the classes, so that the resolve pass reads one byte plane instead
+/// of two bit planes. The reference's sameLitTaps needs no counterpart here: phase I already
+/// dropped every tap across a shadow edge with the same test on the same classes
+/// (accumulateNoisyPixel), so it would drop nothing more.
 struct TapFilter {
-    bool emitters = false;             ///< emitter bits are set in this frame or the previous
-    const float* visibility = nullptr; ///< the staged visibility under visibilityTaps
-    bool on() const { return emitters || visibility; }
-    /// The class bits that count.
-    uint8_t bits() const {
-        return uint8_t((visibility ? kTapLit : 0) | (emitters ? kTapEmitter : 0));
-    }
+    bool emitters = false; ///< emitter bits are set in this frame or the previous
+    bool on() const { return emitters; }
 };
 
 /// What the row kernels of phase I and the resolve pass read.

@@ -28,7 +28,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         }
         b_.previousPixel.assign(2 * b_.stride, 0.0f);
         b_.acceptMask.assign(n + 8, 0);
-        b_.resolvedAccept.assign(s.excludeEmitters || s.visibilityTaps ? n + 8 : 0, 0);
+        b_.resolvedAccept.assign(s.excludeEmitters ? n + 8 : 0, 0);
         b_.fitted.assign(3 * b_.stride, 0.0f);
         b_.fittedSecond.assign(s.secondGrid ? 3 * b_.stride : 0, 0.0f);
         b_.earlyRow.assign(size_t(h), 0);
@@ -60,7 +60,6 @@ class CpuBmfrPasses final : public BmfrPasses {
         const TemporalHistory& t = ctx.timeline.history;
         b_.emitterPixels[t.cur] = 0;
         TapFilter filter;
-        filter.visibility = tapVisibility(ctx);
         InputCounters counters = accumulateAndFit(ctx, b_, split);
         Stopwatch clock;
         if (ctx.settings.secondGrid && ctx.settings.stages.fitting) {

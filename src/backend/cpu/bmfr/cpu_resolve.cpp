@@ -16,12 +16,12 @@ BMFR_SIMD_INLINE f8 secondBlendWeight8(f8 length, float minAlpha) {
     return w > minAlpha ? w : splat8(minAlpha);
 }
 
-/// The accepted taps of pixels [i, i + n) less those `a.filter` drops: sameEmitterTaps and
-/// sameLitTaps (filters/bmfr/) eight pixels at a time, from the tap classes the fit wrote.
+/// The accepted taps of pixels [i, i + n) less those across an emitter's edge: sameEmitterTaps
+/// (filters/bmfr/) eight pixels at a time, from the tap classes the fit wrote.
 template <class T>
-BMFR_SIMD_INLINE i8 filterTaps(const FrameArgs& a, const FramePlanes<T>& pl, long i, int n,
-                               i8 accept, const Taps8& taps) {
-    const i8 own = loadBytes(pl.tapClass + i, n), bits = i8{} + int(a.filter.bits());
+BMFR_SIMD_INLINE i8 filterTaps(const FramePlanes<T>& pl, long i, int n, i8 accept,
+                               const Taps8& taps) {
+    const i8 own = loadBytes(pl.tapClass + i, n), bits = i8{} + int(kTapEmitter);
     for (int k = 0; k < 4; ++k) {
         const i8 has = (accept & (1 << k)) != 0;
         const i8 drop = ((tapBytes(taps, pl.prevTapClass, k) ^ own) & bits) != 0;
@@ -51,7 +51,7 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes<T>& pl, 
         taps = taps8(fp, t.width, t.height, accept != 0); // accepted taps are inside the image
     }
     if (filter) {
-        if (reads) accept = filterTaps(a, pl, i, n, accept, taps);
+        if (reads) accept = filterTaps(pl, i, n, accept, taps);
         if (owned) storeBytes(pl.resolvedAccept + i, accept, n);
     }
     if (reads && s.stages.secondAccumulation && anyLane(accept != 0)) {
