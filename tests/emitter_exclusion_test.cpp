@@ -59,10 +59,11 @@ std::vector<uint8_t> maskOf(const Planes& p, float ratio, int& excluded) {
     auto accumulated = [&](int k) { return p.accumulated[size_t(k)]; };
     auto pixel = [](int k) { return long(k); };
     auto was = [](long) { return false; };
-    excluded = emitterMask(p.w, ratio, p.in(), InputModes{}, accumulated, pixel, was, histogram,
-                           mask.data());
-    const int insideExcluded = emitterMask(p.w, ratio, p.in(), InputModes{}, accumulated, pixel,
-                                           was, histogram, inside.data(), -1, 0);
+    const InputPlanes in = p.in();
+    const SampleLuminance sample{in, InputModes{}};
+    excluded = emitterMask(p.w, ratio, sample, accumulated, pixel, was, histogram, mask.data());
+    const int insideExcluded =
+        emitterMask(p.w, ratio, sample, accumulated, pixel, was, histogram, inside.data(), -1, 0);
     EXPECT_EQ(insideExcluded, excluded);
     if (excluded > 0) {
         EXPECT_EQ(inside, mask);

@@ -255,7 +255,24 @@ BMFR_HD float emitterThreshold(int W, float ratio, Accumulated&& accumulated, in
     return bucketThreshold(blockQuantileBucket(W, accumulated, histogram, kEmitterQuantile), ratio);
 }
 
-/// The whole mask of a B x B block, one stage after another. accumulated(k) is the accumulated
+/// The luminance of image pixel i's current demodulated sample, as emitterMask reads it: from
+/// the input. A backend that already has the luminances of some pixels (the CPU's phase I
+/// writes them for the adaptive history) reads those instead, with the same decisions.
+struct SampleLuminance {
+    const InputPlanes& in;
+    InputModes modes;
+    const float* known = nullptr; ///< max(luminance, 0) of pixels [from, to), or null
+    long from = 0, to = 0;
+    BMFR_HD float operator()(long i) const {
+        // A negative luminance read as 0 decides the same: every test needs it above a positive
+        // threshold.
+        if (known && i >= from && i < to) return known[i];
+        return luminance(emitterSample(in, i, modes));
+    }
+};
+
+/// The whole mask of a B x B block, one stage after another. sample(i) is the luminance of
+/// image pixel i's current sample (SampleLuminance), accumulated(k) the accumulated
 /// luminance of block pixel k, pixel(k) its image pixel and was(i) whether image pixel i was
 /// an emitter in the previous frame (maskSeed); `quartile` is the block's
 /// lower-quartile bucket when known (clampFireflies leaves it unchanged), else -1; `origin` is
@@ -264,9 +281,10 @@ BMFR_HD float emitterThreshold(int W, float ratio, Accumulated&& accumulated, in
 /// number of excluded pixels; the mask means something only when that is above 0 (most blocks
 /// have no candidate, and it is not written).
 template <class Accumulated, class Pixel, class Was>
-BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputModes& modes,
+BMFR_HD int emitterMask(int B, float ratio, const SampleLuminance& sample,
                         Accumulated&& accumulated, Pixel&& pixel, Was&& was, int* histogram,
                         uint8_t* mask, int quartile = -1, long origin = -1) {
+    const InputPlanes& in = sample.in;
     const int W = B * B;
     if (quartile < 0) quartile = blockQuantileBucket(W, accumulated, histogram, kEmitterQuantile);
     const float threshold = bucketThreshold(quartile, ratio);
@@ -288,18 +306,16 @@ BMFR_HD int emitterMask(int B, float ratio, const InputPlanes& in, const InputMo
         // every sample is read, so all are, in one loop without a cache test per lookup.
         for (int ly = 0; ly < B; ++ly)
             for (int lx = 0; lx < B; ++lx)
-                samples[ly * B + lx] =
-                    luminance(emitterSample(in, long(oy + ly) * in.width + ox + lx, modes));
+                samples[ly * B + lx] = sample(long(oy + ly) * in.width + ox + lx);
     } else if (inside) {
         for (int k = 0; k < W; ++k) samples[k] = -1.0f; // a finite sample's luminance is >= 0
     }
     auto lum = [&](int u, int v) {
         const int lx = u - ox, ly = v - oy;
         const long i = long(v) * in.width + u;
-        if (!inside || lx < 0 || lx >= B || ly < 0 || ly >= B)
-            return luminance(emitterSample(in, i, modes));
+        if (!inside || lx < 0 || lx >= B || ly < 0 || ly >= B) return sample(i);
         float& s = samples[ly * B + lx];
-        if (!(s >= 0.0f)) s = luminance(emitterSample(in, i, modes));
+        if (!(s >= 0.0f)) s = sample(i);
         return s;
     };
     int seeds = 0;

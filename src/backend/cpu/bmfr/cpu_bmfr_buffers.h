@@ -95,8 +95,9 @@ struct Buffers {
     std::vector<float> fittedSecond; ///< BmfrSettings::secondGrid: 3 planes, the shifted fit
     std::vector<uint8_t>
         earlyRow; ///< rows phase I runs before the block rows (see accumulateAndFit)
-    /// BmfrSettings::adaptiveHistory: 2 planes, recordHistoryChange's sample and history
-    /// luminance; and storeTileChange's record of each tile, from the last frame measured
+    /// BmfrSettings::adaptiveHistory or excludeEmitters: 2 planes, recordHistoryChange's sample
+    /// and history luminance (the emitter mask reads the first: SampleLuminance). Under
+    /// adaptiveHistory, storeTileChange's record of each tile, from the last frame measured
     /// (phase I reads the previous frame's before measureHistoryChange overwrites them).
     std::vector<float> change, changeTiles;
     /// BmfrSettings::secondGrid: whether each block of the shifted grid owns a pixel without
@@ -132,8 +133,8 @@ template <class T> struct FramePlanes {
     uint8_t* resolvedAccept;
     const uint8_t* tapClass;     ///< this frame's tap classes
     const uint8_t* prevTapClass; ///< and the previous frame's
-    float* change[2];            ///< null without BmfrSettings::adaptiveHistory
-    const float* changeTiles;
+    float* change[2];            ///< null without BmfrSettings::adaptiveHistory and excludeEmitters
+    const float* changeTiles;    ///< null without BmfrSettings::adaptiveHistory
 
     FramePlanes(Buffers& b, int cur) {
         for (int c = 0; c < 3; ++c) {
@@ -155,9 +156,9 @@ template <class T> struct FramePlanes {
         accept = b.acceptMask.data();
         resolvedAccept = b.resolvedAccept.data();
         tapClass = b.tapClass[cur].data(), prevTapClass = b.tapClass[1 - cur].data();
-        const bool adaptive = !b.change.empty();
-        for (int c = 0; c < 2; ++c) change[c] = adaptive ? b.plane(b.change, c) : nullptr;
-        changeTiles = adaptive ? b.changeTiles.data() : nullptr;
+        const bool recorded = !b.change.empty();
+        for (int c = 0; c < 2; ++c) change[c] = recorded ? b.plane(b.change, c) : nullptr;
+        changeTiles = b.changeTiles.empty() ? nullptr : b.changeTiles.data();
     }
 };
 

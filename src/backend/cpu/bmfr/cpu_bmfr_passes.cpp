@@ -37,7 +37,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.secondPoor.assign(s.secondGrid ? gridBlocks : 0, 0);
         b_.secondBlocks.clear();
         b_.secondBlocks.reserve(s.secondGrid ? gridBlocks : 0);
-        b_.change.assign(s.adaptiveHistory ? 2 * b_.stride : 0, 0.0f);
+        b_.change.assign(s.adaptiveHistory || s.excludeEmitters ? 2 * b_.stride : 0, 0.0f);
         b_.changeTiles.assign(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b_.scratch.resize(size_t(threads));

@@ -30,15 +30,24 @@ struct Phase2 {
     /// excludeEmitters or visibilityTaps. `visibility` sets kTapLit where it is above 0.
     uint8_t* classes = nullptr;
     const float* visibility = nullptr;
+    /// Phase I's luminances of the current samples (SampleLuminance), null without them; the
+    /// second grid runs after phase I, and reads all, the main grid a block row's own rows.
+    const float* knownSamples = nullptr;
+    bool second = false;
 
-    Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g, bool second = false)
-        : ctx(c), b(buffers), grid(g), emitters(emitterExclusion(c.settings, c.input, nullptr)) {
-        for (int ch = 0; ch < 3; ++ch) out[ch] = b.plane(second ? b.fittedSecond : b.fitted, ch);
+    Phase2(const BmfrPassContext& c, Buffers& buffers, const BlockGrid& g, bool shifted = false)
+        : ctx(c), b(buffers), grid(g), emitters(emitterExclusion(c.settings, c.input, nullptr)),
+          second(shifted) {
+        if (!b.change.empty()) knownSamples = b.plane(b.change, 0);
+        for (int ch = 0; ch < 3; ++ch) out[ch] = b.plane(shifted ? b.fittedSecond : b.fitted, ch);
         std::vector<uint8_t>& tapClass = buffers.tapClass[c.timeline.history.cur];
-        if (!second && !tapClass.empty()) classes = tapClass.data(), visibility = tapVisibility(c);
-        // The previous frame's emitters are its tap classes' emitter bits.
-        const std::vector<uint8_t>& previous = buffers.tapClass[1 - c.timeline.history.cur];
-        if (emitters.on && c.timeline.history.hasHistory() && !previous.empty()) {
+        if (!shifted && !tapClass.empty()) classes = tapClass.data(), visibility = tapVisibility(c);
+        // The previous frame's emitters are its tap classes' emitter bits. Without any, no
+        // pixel was one (wasEmitter), and nothing need look.
+        const int prev = 1 - c.timeline.history.cur;
+        const std::vector<uint8_t>& previous = buffers.tapClass[size_t(prev)];
+        if (emitters.on && c.timeline.history.hasHistory() && !previous.empty() &&
+            b.emitterPixels[prev] > 0) {
             emitters.previous = previous.data(), emitters.previousBit = kTapEmitter;
             emitters.previousX = b.plane(b.previousPixel, 0);
             emitters.previousY = b.plane(b.previousPixel, 1);
@@ -351,9 +360,16 @@ BMFR_SIMD_DISPATCH(void, fitBlock,
     const BlockRows rows = blockRows<kIsa>(a, ox, oy, sc);
     buildColumns(a, rows, sc);
     prefetchBlock(a, nextX, nextY);
+    EmitterExclusion emitters = a.emitters;
+    if (emitters.on && a.knownSamples) {
+        const OwnedRect own = ownedRect(g, bx, by);
+        emitters.knownSamples = a.knownSamples;
+        emitters.knownFrom = a.second ? 0 : long(own.y0) * g.width;
+        emitters.knownTo = long(a.second ? g.height : own.y1) * g.width;
+    }
     const int excluded =
-        s.clampFireflies || a.emitters.on
-            ? clampAndMaskBlock({g, a.ctx.input, a.emitters, s.clampFireflies,
+        s.clampFireflies || emitters.on
+            ? clampAndMaskBlock({g, a.ctx.input, emitters, s.clampFireflies,
                                  a.b.noisy[a.ctx.timeline.history.cur], M, qrColumnStride(W)},
                                 bx, by, sc.work.data(), sc)
             : 0;
