@@ -56,6 +56,34 @@ BMFR_HD float fireflyFade(float scale, float length) {
     return t < 1.0f ? scale + (1.0f - scale) * t : 1.0f;
 }
 
+/// clampFireflies of a block whose threshold (kFireflyRatio times its median's top) is known;
+/// lum(k) is block pixel k's luminance before the clamp. A backend that has the luminances
+/// at hand calls it directly.
+template <class Lum, class Length>
+BMFR_HD int clampFirefliesAbove(int B, float* const z[3], uint8_t* mask, float threshold, Lum&& lum,
+                                Length&& length) {
+    const int W = B * B;
+    if (!(threshold > 0.0f)) return 0;
+    // Most blocks have no candidate: a loop that only counts them (it vectorises) says so.
+    int candidates = 0;
+    for (int k = 0; k < W; ++k) candidates += fireflyCandidate(lum(k), threshold);
+    if (candidates == 0) return 0;
+    for (int k = 0; k < W; ++k) mask[k] = fireflyCandidate(lum(k), threshold);
+    for (int k = 0; k < W; ++k) mask[k] |= fireflyDense(mask, B, k);
+    int clamped = 0;
+    for (int k = 0; k < W; ++k) {
+        // The mask's bits were all set before any scaling, and a pixel's own luminance is read
+        // before its own scaling.
+        float f = fireflyScale(mask, B, k, lum(k), threshold);
+        if (f == 1.0f) continue;
+        f = fireflyFade(f, length(k));
+        if (f == 1.0f) continue;
+        for (int c = 0; c < 3; ++c) z[c][k] *= f;
+        ++clamped;
+    }
+    return clamped;
+}
+
 /// Clamps the fireflies of a B x B block's colour columns z[3] (W values each), with `mask`
 /// (W bytes) and `histogram` as scratch; length(k) is block pixel k's history length (phase I's
 /// samples), read for the pixels the clamp would scale. Returns how many it scales, and with
@@ -71,25 +99,7 @@ BMFR_HD int clampFireflies(int B, float* const z[3], int* histogram, uint8_t* ma
     auto lum = [=](int k) { return luminance({r[k], g[k], b[k]}); };
     const int bucket = blockMedianBucket(W, lum, histogram);
     if (quartile) *quartile = quantileBucket(histogram, W / kMaskStride, kEmitterQuantile);
-    const float threshold = bucketThreshold(bucket, kFireflyRatio);
-    if (!(threshold > 0.0f)) return 0;
-    // Most blocks have no candidate: a loop that only counts them (it vectorises) says so.
-    int candidates = 0;
-    for (int k = 0; k < W; ++k) candidates += fireflyCandidate(lum(k), threshold);
-    if (candidates == 0) return 0;
-    for (int k = 0; k < W; ++k) mask[k] = fireflyCandidate(lum(k), threshold);
-    for (int k = 0; k < W; ++k) mask[k] |= fireflyDense(mask, B, k);
-    int clamped = 0;
-    for (int k = 0; k < W; ++k) {
-        // The mask's bits were all set before any scaling.
-        float f = fireflyScale(mask, B, k, lum(k), threshold);
-        if (f == 1.0f) continue;
-        f = fireflyFade(f, length(k));
-        if (f == 1.0f) continue;
-        for (int c = 0; c < 3; ++c) z[c][k] *= f;
-        ++clamped;
-    }
-    return clamped;
+    return clampFirefliesAbove(B, z, mask, bucketThreshold(bucket, kFireflyRatio), lum, length);
 }
 
 } // namespace bmfr

@@ -139,10 +139,10 @@ struct BlockFitScratch {
 /// Leaves the emitter pixels of block (bx, by) out of the least squares: their rows of the
 /// M + 3 columns (`stride` floats apart, the colour last) become zero. Returns how many there
 /// are; `mask` says which, and which are the emitter this frame (maskEmitter). `quartile` as
-/// emitterMask's.
+/// emitterMask's; `lum`, when given, the colour columns' luminances as they are.
 BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const EmitterExclusion& e,
                                int bx, int by, float* columns, int M, long stride, int* histogram,
-                               uint8_t* mask, int quartile = -1) {
+                               uint8_t* mask, int quartile = -1, const float* lum = nullptr) {
     const int B = g.blockSize;
     const float* z[3] = {columns + M * stride, columns + (M + 1) * stride,
                          columns + (M + 2) * stride};
@@ -151,7 +151,7 @@ BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const 
     const int excluded = emitterMask(
         B, e.ratio, SampleLuminance{in, e.modes, e.knownSamples, e.knownFrom, e.knownTo},
         [&](int k) {
-            return luminance({z[0][k], z[1][k], z[2][k]});
+            return lum ? lum[k] : luminance({z[0][k], z[1][k], z[2][k]});
         },
         [&](int k) {
             bool owned;

@@ -7,24 +7,72 @@
 
 namespace bmfr::cpu {
 
+using namespace simd;
+
+namespace {
+
+/// maskBucket (filters/bmfr/emitter_exclusion.h) of eight luminances, from the same bits.
+BMFR_SIMD_INLINE i8 maskBucket8(f8 lum) {
+    i8 bits;
+    std::memcpy(&bits, &lum, sizeof bits);
+    const i8 e = (bits >> 23) - 126;                // the sign bit is clear wherever lum > 0
+    const i8 upper = (bits & 0x7FFFFF) >= 0x3504F3; // -1 where the mantissa is in the upper half
+    i8 b = 2 * e + 47 - upper;
+    b = b < 1 ? i8{} + 1 : b;
+    b = b > kMaskBuckets - 1 ? i8{} + (kMaskBuckets - 1) : b;
+    return lum > 0.0f ? b : i8{};
+}
+
+} // namespace
+
 BMFR_SIMD_DISPATCH_FLAT(int, clampAndMaskBlock,
                         (const BlockMaskArgs& a, int bx, int by, float* columns, Scratch& sc),
                         (a, bx, by, columns, sc)) {
-    const int B = a.grid.blockSize, M = a.featureCount;
-    int quartile = -1; // the block's lower-quartile bucket, once the clamp has read it
+    const int B = a.grid.blockSize, W = B * B, M = a.featureCount;
+    float* const z[3] = {columns + M * a.stride, columns + (M + 1) * a.stride,
+                         columns + (M + 2) * a.stride};
+    // The colour columns' luminances eight at a time (the columns are padded past W), in
+    // luminance's order of operations, then the buckets of every kMaskStride-th:
+    // blockQuantileBucket and clampFireflies without a scalar luminance and bucket per pixel.
+    float* lum = sc.lum.data();
+    for (int k = 0; k < W; k += 8)
+        store8(lum + k,
+               (0.2126f * load8(z[0] + k) + 0.7152f * load8(z[1] + k)) + 0.0722f * load8(z[2] + k));
+    const int samples = W / kMaskStride;
+    int* buckets = sc.buckets.data();
+    const i8 stride = i8{0, 1, 2, 3, 4, 5, 6, 7} * kMaskStride;
+    for (int s = 0; s < samples; s += 8)
+        std::memcpy(buckets + s,
+                    &static_cast<const i8&>(maskBucket8(gather8(lum + s * kMaskStride, stride))),
+                    sizeof(i8));
+    int* histogram = sc.histogram.data();
+    for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
+    for (int s = 0; s < samples; ++s) ++histogram[buckets[s]];
+    const int quartile = quantileBucket(histogram, samples, kEmitterQuantile);
+    int clamped = 0;
     if (a.clampFireflies) {
-        float* const z[3] = {columns + M * a.stride, columns + (M + 1) * a.stride,
-                             columns + (M + 2) * a.stride};
         // Read for the few pixels the clamp scales only.
         auto length = [&](int k) {
             return blockFadeLength(a.grid, a.emitters, bx, by, k,
                                    [&](long i) { return a.noisy.at(3, size_t(i)); });
         };
-        clampFireflies(B, z, sc.histogram.data(), sc.mask.data(), length, &quartile);
+        const float threshold = bucketThreshold(medianBucket(histogram, samples), kFireflyRatio);
+        clamped = clampFirefliesAbove(
+            B, z, sc.mask.data(), threshold, [lum](int k) { return lum[k]; }, length);
     }
     if (!a.emitters.on) return 0;
-    return excludeEmitterRows(a.grid, a.in, a.emitters, bx, by, columns, M, a.stride,
-                              sc.histogram.data(), sc.mask.data(), quartile);
+    if (!clamped) {
+        // emitterMask's first test, eight at a time: most blocks have no candidate, and then
+        // no mask.
+        const float threshold = bucketThreshold(quartile, a.emitters.ratio);
+        if (!(threshold > 0.0f)) return 0;
+        i8 any{};
+        for (int k = 0; k < W; k += 8) any |= (load8(lum + k) > threshold) & firstLanes(W - k);
+        if (!anyLane(any)) return 0;
+    }
+    // The clamp scaled some colours: their luminances are read again.
+    return excludeEmitterRows(a.grid, a.in, a.emitters, bx, by, columns, M, a.stride, histogram,
+                              sc.mask.data(), quartile, clamped ? nullptr : lum);
 }
 
 } // namespace bmfr::cpu

@@ -26,6 +26,8 @@ struct Scratch {
     std::vector<float> rows;     ///< 3 resolved rows (see taa_rows.h)
     std::vector<uint8_t> mask;   ///< the emitter mask (emitter_exclusion.h)
     std::vector<int> histogram;  ///< and its luminance histogram
+    std::vector<float> lum;      ///< the block's colour luminances (+32 of padding)
+    std::vector<int> buckets;    ///< maskBucket of every kMaskStride-th of them (+8)
 };
 
 /// Planes of one value per pixel, stored as float or, with BmfrSettings::halfHistory, as half

@@ -50,6 +50,8 @@ class CpuBmfrPasses final : public BmfrPasses {
             sc.rows.assign(3 * ResolvedRows::rowFloats(w), 0.0f);
             sc.mask.assign(W, 0);
             sc.histogram.assign(kMaskBuckets, 0);
+            sc.lum.assign(W + 4 * 8, 0.0f); // gather8 reads up to W + 24
+            sc.buckets.assign(W / kMaskStride + 8, 0);
         }
     }
 
