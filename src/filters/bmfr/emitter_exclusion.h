@@ -269,6 +269,8 @@ struct SampleLuminance {
         if (known && i >= from && i < to) return known[i];
         return luminance(emitterSample(in, i, modes));
     }
+    /// Whether pixels [first, last) are all read from `known`.
+    BMFR_HD bool knows(long first, long last) const { return known && first >= from && last <= to; }
 };
 
 /// The whole mask of a B x B block, one stage after another. sample(i) is the luminance of
@@ -289,8 +291,14 @@ BMFR_HD int emitterMask(int B, float ratio, const SampleLuminance& sample,
     if (quartile < 0) quartile = blockQuantileBucket(W, accumulated, histogram, kEmitterQuantile);
     const float threshold = bucketThreshold(quartile, ratio);
     if (!(threshold > 0.0f)) return 0;
+    // Stage 1's first half for every pixel at once (it vectorises), so that the pass below
+    // visits the candidates only.
     int candidates = 0;
-    for (int k = 0; k < W; ++k) candidates += accumulated(k) > threshold;
+    for (int k = 0; k < W; ++k) {
+        const uint8_t c = accumulated(k) > threshold ? kMaskCandidate : 0;
+        mask[k] = c;
+        candidates += c;
+    }
     if (candidates == 0) return 0;
     // Without a seed nothing is excluded: most blocks with a candidate stop there (a lit
     // patch's noisy samples).
@@ -301,19 +309,21 @@ BMFR_HD int emitterMask(int B, float ratio, const SampleLuminance& sample,
     const bool inside = origin >= 0 && W <= kMaskCachePixels;
     float samples[kMaskCachePixels];
     const int ox = inside ? int(origin % in.width) : 0, oy = inside ? int(origin / in.width) : 0;
-    if (inside && kMaskDenseCandidates * candidates > W) {
+    // Samples a backend already has need no cache.
+    const bool cached = inside && !sample.knows(origin, origin + long(B - 1) * in.width + B);
+    if (cached && kMaskDenseCandidates * candidates > W) {
         // Many candidates, as in a block without history (one noisy sample per pixel): nearly
         // every sample is read, so all are, in one loop without a cache test per lookup.
         for (int ly = 0; ly < B; ++ly)
             for (int lx = 0; lx < B; ++lx)
                 samples[ly * B + lx] = sample(long(oy + ly) * in.width + ox + lx);
-    } else if (inside) {
+    } else if (cached) {
         for (int k = 0; k < W; ++k) samples[k] = -1.0f; // a finite sample's luminance is >= 0
     }
     auto lum = [&](int u, int v) {
         const int lx = u - ox, ly = v - oy;
         const long i = long(v) * in.width + u;
-        if (!inside || lx < 0 || lx >= B || ly < 0 || ly >= B) return sample(i);
+        if (!cached || lx < 0 || lx >= B || ly < 0 || ly >= B) return sample(i);
         float& s = samples[ly * B + lx];
         if (!(s >= 0.0f)) s = sample(i);
         return s;
@@ -321,16 +331,22 @@ BMFR_HD int emitterMask(int B, float ratio, const SampleLuminance& sample,
     int seeds = 0;
     for (int ly = 0, k = 0; ly < B; ++ly)
         for (int lx = 0; lx < B; ++lx, ++k) {
-            mask[k] = 0;
+            if (lx % 8 == 0 && lx + 8 <= B) { // eight pixels without a candidate at once
+                uint64_t none;
+                std::memcpy(&none, mask + k, sizeof none);
+                if (!none) {
+                    lx += 7, k += 7;
+                    continue;
+                }
+            }
+            if (!mask[k]) continue;
             const float acc = accumulated(k);
-            if (!(acc > threshold)) continue;
             int x = ox + lx, y = oy + ly; // inside the image
             if (!inside) {
                 const long i = pixel(k);
                 x = int(i % in.width), y = int(i / in.width);
             }
             const float s = lum(x, y);
-            mask[k] = kMaskCandidate;
             if (!(s > threshold)) continue;
             mask[k] |= kMaskBright;
             const bool before = was(long(y) * in.width + x);
