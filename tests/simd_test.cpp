@@ -1,4 +1,5 @@
 // The eight-wide helpers of the fast passes against plain index arithmetic.
+#include "backend/cpu/bmfr/cpu_block_masks.h"
 #include "backend/cpu/simd.h"
 #include <algorithm>
 #include <cmath>
@@ -137,3 +138,26 @@ TEST(Simd, F16cHalvesMatchTheIntegerConversions) {
     }
 }
 #endif
+
+TEST(Simd, MaskBucketsAreTheScalarOnes) {
+    // The emitter mask's and firefly clamp's histogram buckets, eight at a time on the CPU,
+    // against maskBucket: every half-octave edge and its neighbours, the ends of the range,
+    // subnormals, zero, negatives, infinities and NaN.
+    std::vector<float> v = {0.0f,       -0.0f,   -1.0f,       1e-45f,      1e-38f,
+                            1.1e-38f,   5.9e-8f, 5.97e-8f,    6.0e-8f,     0.5f,
+                            1.0f,       2048.0f, 4096.0f,     1e30f,       HUGE_VALF,
+                            -HUGE_VALF, NAN,     0.70710677f, 0.70710678f, 0.7071068f};
+    for (int b = -60; b <= 30; ++b) {
+        const float edge = std::exp2(0.5f * float(b));
+        v.push_back(edge);
+        v.push_back(std::nextafter(edge, 0.0f));
+        v.push_back(std::nextafter(edge, HUGE_VALF));
+    }
+    while (v.size() % 8) v.push_back(1.0f);
+    for (size_t i = 0; i < v.size(); i += 8) {
+        const i8 got = bmfr::cpu::maskBucket8(load8(v.data() + i));
+        for (int l = 0; l < 8; ++l)
+            EXPECT_EQ(got[l], bmfr::maskBucket(v[i + size_t(l)]))
+                << "luminance " << v[i + size_t(l)];
+    }
+}

@@ -9,22 +9,6 @@ namespace bmfr::cpu {
 
 using namespace simd;
 
-namespace {
-
-/// maskBucket (filters/bmfr/emitter_exclusion.h) of eight luminances, from the same bits.
-BMFR_SIMD_INLINE i8 maskBucket8(f8 lum) {
-    i8 bits;
-    std::memcpy(&bits, &lum, sizeof bits);
-    const i8 e = (bits >> 23) - 126;                // the sign bit is clear wherever lum > 0
-    const i8 upper = (bits & 0x7FFFFF) >= 0x3504F3; // -1 where the mantissa is in the upper half
-    i8 b = 2 * e + 47 - upper;
-    b = b < 1 ? i8{} + 1 : b;
-    b = b > kMaskBuckets - 1 ? i8{} + (kMaskBuckets - 1) : b;
-    return lum > 0.0f ? b : i8{};
-}
-
-} // namespace
-
 BMFR_SIMD_DISPATCH_FLAT(int, clampAndMaskBlock,
                         (const BlockMaskArgs& a, int bx, int by, float* columns, Scratch& sc),
                         (a, bx, by, columns, sc)) {
