@@ -296,6 +296,11 @@ template <class T> BMFR_SIMD_INLINE f8 gather8(const T* base, i8 index) {
     for (int l = 0; l < 8; ++l) lanes[l] = base[index[l]];
     return load8(lanes);
 }
+/// bmfr::luminance of eight colours, in its order of operations (bit for bit where multiply-adds
+/// are not contracted).
+BMFR_SIMD_INLINE f8 luminance8(const f8 c[3]) {
+    return (0.2126f * c[0] + 0.7152f * c[1]) + 0.0722f * c[2];
+}
 /// Unnormalised YCoCg of bmfr::rgbToYCoCg for eight pixels, and back, with the same roundings.
 BMFR_SIMD_INLINE void rgbToYCoCg8(const f8 c[3], f8 out[3]) {
     out[0] = (c[0] + 2.0f * c[1]) + c[2];

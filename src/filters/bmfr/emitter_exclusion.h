@@ -228,12 +228,19 @@ inline constexpr int kMaskDenseCandidates = 8;
 /// wide, and a quarter of the block places the median as well.
 inline constexpr int kMaskStride = 4;
 
+/// The histogram of n samples whose buckets are bucket(0) .. bucket(n - 1).
+template <class Bucket> BMFR_HD void countBuckets(int n, Bucket&& bucket, int* histogram) {
+    for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
+    for (int s = 0; s < n; ++s) ++histogram[bucket(s)];
+}
+
 /// The quantile-1/q bucket of a block of W pixels (a multiple of kMaskStride) from
 /// accumulated(k); `histogram` keeps the count.
 template <class Accumulated>
 BMFR_HD int blockQuantileBucket(int W, Accumulated&& accumulated, int* histogram, int q) {
-    for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
-    for (int k = 0; k < W; k += kMaskStride) ++histogram[maskBucket(accumulated(k))];
+    countBuckets(
+        W / kMaskStride, [&](int s) { return maskBucket(accumulated(s * kMaskStride)); },
+        histogram);
     return quantileBucket(histogram, W / kMaskStride, q);
 }
 
@@ -255,22 +262,29 @@ BMFR_HD float emitterThreshold(int W, float ratio, Accumulated&& accumulated, in
     return bucketThreshold(blockQuantileBucket(W, accumulated, histogram, kEmitterQuantile), ratio);
 }
 
+/// Current samples' luminances a backend already has (the CPU's phase I writes them for the
+/// adaptive history), for SampleLuminance.
+struct KnownSamples {
+    const float* values = nullptr; ///< max(luminance, 0) of image pixels [from, to), or null
+    long from = 0, to = 0;
+};
+
 /// The luminance of image pixel i's current demodulated sample, as emitterMask reads it: from
-/// the input. A backend that already has the luminances of some pixels (the CPU's phase I
-/// writes them for the adaptive history) reads those instead, with the same decisions.
+/// the input, or from `known` where it covers the pixel, with the same decisions.
 struct SampleLuminance {
     const InputPlanes& in;
     InputModes modes;
-    const float* known = nullptr; ///< max(luminance, 0) of pixels [from, to), or null
-    long from = 0, to = 0;
+    KnownSamples known = {};
     BMFR_HD float operator()(long i) const {
         // A negative luminance read as 0 decides the same: every test needs it above a positive
         // threshold.
-        if (known && i >= from && i < to) return known[i];
+        if (known.values && i >= known.from && i < known.to) return known.values[i];
         return luminance(emitterSample(in, i, modes));
     }
     /// Whether pixels [first, last) are all read from `known`.
-    BMFR_HD bool knows(long first, long last) const { return known && first >= from && last <= to; }
+    BMFR_HD bool knows(long first, long last) const {
+        return known.values && first >= known.from && last <= known.to;
+    }
 };
 
 /// The whole mask of a B x B block, one stage after another. sample(i) is the luminance of

@@ -33,10 +33,9 @@ struct EmitterExclusion {
     uint8_t previousBit = 1;
     const float *previousX = nullptr, *previousY = nullptr;
     int previousStep = 1;
-    /// The current samples' luminances of image pixels [knownFrom, knownTo) where a backend
-    /// has them (SampleLuminance::known); null: read from the input.
-    const float* knownSamples = nullptr;
-    long knownFrom = 0, knownTo = 0;
+    /// The current samples' luminances where a backend has them (SampleLuminance); none: read
+    /// from the input.
+    KnownSamples known = {};
 };
 
 /// The bilinear tap of image pixel i's previous pixel with the largest weight (the first of
@@ -149,7 +148,7 @@ BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const 
     const int ox = g.originX(bx), oy = g.originY(by);
     const bool inside = ox >= 0 && oy >= 0 && ox + B <= g.width && oy + B <= g.height;
     const int excluded = emitterMask(
-        B, e.ratio, SampleLuminance{in, e.modes, e.knownSamples, e.knownFrom, e.knownTo},
+        B, e.ratio, SampleLuminance{in, e.modes, e.known},
         [&](int k) {
             return lum ? lum[k] : luminance({z[0][k], z[1][k], z[2][k]});
         },

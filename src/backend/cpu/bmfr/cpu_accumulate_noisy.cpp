@@ -65,11 +65,6 @@ BMFR_SIMD_INLINE f8 nextHistoryLength8(f8 samples) {
     return samples > 254.0f ? splat8(255.0f) : rounded + 1.0f;
 }
 
-/// luminance (core/color.h) of eight colours.
-BMFR_SIMD_INLINE f8 luminance8(const f8* c) {
-    return (0.2126f * c[0] + 0.7152f * c[1]) + 0.0722f * c[2];
-}
-
 /// recordHistoryChange (filters/bmfr/history_change.h) for eight pixels.
 template <class T>
 BMFR_SIMD_INLINE void recordHistoryChange8(const FramePlanes<T>& pl, long i, int n,

@@ -19,9 +19,10 @@ BMFR_SIMD_DISPATCH_FLAT(int, clampAndMaskBlock,
     // luminance's order of operations, then the buckets of every kMaskStride-th:
     // blockQuantileBucket and clampFireflies without a scalar luminance and bucket per pixel.
     float* lum = sc.lum.data();
-    for (int k = 0; k < W; k += 8)
-        store8(lum + k,
-               (0.2126f * load8(z[0] + k) + 0.7152f * load8(z[1] + k)) + 0.0722f * load8(z[2] + k));
+    for (int k = 0; k < W; k += 8) {
+        const f8 c[3] = {load8(z[0] + k), load8(z[1] + k), load8(z[2] + k)};
+        store8(lum + k, luminance8(c));
+    }
     const int samples = W / kMaskStride;
     int* buckets = sc.buckets.data();
     const i8 stride = i8{0, 1, 2, 3, 4, 5, 6, 7} * kMaskStride;
@@ -30,8 +31,8 @@ BMFR_SIMD_DISPATCH_FLAT(int, clampAndMaskBlock,
                     &static_cast<const i8&>(maskBucket8(gather8(lum + s * kMaskStride, stride))),
                     sizeof(i8));
     int* histogram = sc.histogram.data();
-    for (int b = 0; b < kMaskBuckets; ++b) histogram[b] = 0;
-    for (int s = 0; s < samples; ++s) ++histogram[buckets[s]];
+    countBuckets(
+        samples, [buckets](int s) { return buckets[s]; }, histogram);
     const int quartile = quantileBucket(histogram, samples, kEmitterQuantile);
     int clamped = 0;
     if (a.clampFireflies) {

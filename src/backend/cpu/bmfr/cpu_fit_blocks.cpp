@@ -363,9 +363,8 @@ BMFR_SIMD_DISPATCH(void, fitBlock,
     EmitterExclusion emitters = a.emitters;
     if (emitters.on && a.knownSamples) {
         const OwnedRect own = ownedRect(g, bx, by);
-        emitters.knownSamples = a.knownSamples;
-        emitters.knownFrom = a.second ? 0 : long(own.y0) * g.width;
-        emitters.knownTo = long(a.second ? g.height : own.y1) * g.width;
+        emitters.known = {a.knownSamples, a.second ? 0 : long(own.y0) * g.width,
+                          long(a.second ? g.height : own.y1) * g.width};
     }
     const int excluded =
         s.clampFireflies || emitters.on
