@@ -6,15 +6,19 @@
 # them and scores frames 8 to 23.
 #
 #   bash scripts/quality-tables.sh [WORK_DIR] [SEQUENCE ...]   # default /tmp/bmfr-quality-tables
+#   REFERENCE_SPP=1024 bash scripts/quality-tables.sh /tmp/qt1k room-dark room-light cornell-moving
 #
-# A SEQUENCE is a preset or a scene description file. About three minutes on 2 cores. Prints
-# one Markdown table per sequence: tone-mapped RMSE (and its ratio to the noisy input's), SSIM,
-# FLIP and temporal error.
+# A SEQUENCE is a preset or a scene description file. About three minutes on 2 cores (REFERENCE_SPP
+# 1024: about 4.5 minutes per sequence more). Prints one Markdown table per sequence: tone-mapped
+# RMSE (and its ratio to the noisy input's), SSIM, FLIP, temporal error and change error, and the
+# reference's own temporal error. The change error needs a converged reference: a 64-spp
+# reference's own noise makes up most of it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bmfr=$PWD/build/bmfr
 [ -x "$bmfr" ] || { echo "no build/bmfr: run bash scripts/build.sh first" >&2; exit 1; }
 work=${1:-/tmp/bmfr-quality-tables}
+spp=${REFERENCE_SPP:-64}
 shift || true
 sequences=("$@")
 [ ${#sequences[@]} -gt 0 ] ||
@@ -39,7 +43,7 @@ for scene in "${sequences[@]}"; do
         echo "rendering $seq ..." >&2
         rm -rf "$dir"
         "$bmfr" render -o "$dir/input" -s "$scene" --width 256 --height 192 --frames 24 \
-            --reference-spp 64 --layout bmfr -q
+            --reference-spp "$spp" --layout bmfr -q
         touch "$dir/.done"
     fi
     args=()
@@ -51,15 +55,17 @@ for scene in "${sequences[@]}"; do
     done
     "$bmfr" eval -r "$dir/input" -m noisy "${args[@]}" -o "$dir/eval" --frames 8:24 --json -q \
         > "$dir/scores.json"
-    /usr/bin/python3 - "$seq" "$dir/scores.json" "${methods[@]%%:*}" noisy <<'EOF'
+    /usr/bin/python3 - "$seq" "$dir/scores.json" "$spp" "${methods[@]%%:*}" noisy <<'EOF'
 import json, sys
-seq, path, order = sys.argv[1], sys.argv[2], sys.argv[3:]
-methods = json.load(open(path))["methods"]
+seq, path, spp, order = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
+scores = json.load(open(path))
+methods = scores["methods"]
 noisy = methods["noisy"]["mean"]["rmse"]
-print(f"\n| {seq} | RMSE (of noisy) | SSIM | FLIP | temporal |\n|---|---|---|---|---|")
+print(f"\n| {seq} | RMSE (of noisy) | SSIM | FLIP | temporal | change |\n|---|---|---|---|---|---|")
 for m in order:
     s = methods[m]["mean"]
     print(f"| {m} | {s['rmse']:.5f} ({s['rmse'] / noisy:.3f}) | {s['ssim']:.4f} | "
-          f"{s['flip']:.4f} | {s['temporal_error']:.5f} |")
+          f"{s['flip']:.4f} | {s['temporal_error']:.5f} | {s['temporal_change_error']:.5f} |")
+print(f"| reference ({spp} spp) | | | | {scores['reference_temporal_error']:.5f} | |")
 EOF
 done

@@ -109,5 +109,24 @@ TEST(Metrics, TemporalErrorIsMeanAbsoluteLuminanceChange) {
     EXPECT_EQ(temporalError(a, a), 0.0);
 }
 
+TEST(Metrics, TemporalChangeErrorCountsOnlyTheChangeTheReferenceDoesNotMake) {
+    // Two pixels. Pixel 0: the reference goes 0.25 -> 0.5, the result follows it exactly.
+    // Pixel 1: the reference stays at 0.25, the result flickers 0.25 -> 1.
+    ImageF prev(2, 1, 3), cur(2, 1, 3), prevRef(2, 1, 3), ref(2, 1, 3);
+    auto set = [](ImageF& img, int x, float v) {
+        for (int c = 0; c < 3; ++c) img.pixels[3 * x + c] = v;
+    };
+    set(prevRef, 0, 0.25f), set(ref, 0, 0.5f), set(prev, 0, 0.25f), set(cur, 0, 0.5f);
+    set(prevRef, 1, 0.25f), set(ref, 1, 0.25f), set(prev, 1, 0.25f), set(cur, 1, 1.0f);
+    const double flicker = 1.0 - std::pow(0.25, 1 / 2.2);
+    EXPECT_NEAR(temporalChangeError(cur, prev, ref, prevRef), flicker / 2, 1e-6);
+    // The plain temporal error also counts pixel 0's true change.
+    const double motion = std::pow(0.5, 1 / 2.2) - std::pow(0.25, 1 / 2.2);
+    EXPECT_NEAR(temporalError(cur, prev), (flicker + motion) / 2, 1e-6);
+    // A result that stands still while the reference moves lags by the reference's change.
+    EXPECT_NEAR(temporalChangeError(prev, prev, ref, prevRef), motion / 2, 1e-6);
+    EXPECT_THROW(temporalChangeError(cur, prev, ImageF(3, 1, 3), prevRef), Error);
+}
+
 } // namespace
 } // namespace bmfr

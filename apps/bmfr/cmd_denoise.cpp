@@ -133,8 +133,9 @@ int runDenoise(const DenoiseJob& job) {
             if (info.colorIsDemodulated)
                 for (size_t k = 0; k < noisy.pixels.size(); ++k)
                     noisy.pixels[k] *= frame.albedo.pixels[k];
+            const PreviousScoredFrame before{previousOut, previousRef};
             scores.push_back(
-                scoreFrame(out, frame.reference, i > first ? &previousOut : nullptr, job.flip));
+                scoreFrame(out, frame.reference, i > first ? &before : nullptr, job.flip));
             FrameScores n;
             n.rmse = rmseToneMapped(noisy, frame.reference);
             if (i > first) n.temporal = temporalError(noisy, previousNoisy);
@@ -201,14 +202,14 @@ int runDenoise(const DenoiseJob& job) {
         report["scores"]["color_space"] = "tone-mapped: clamp(x^(1/2.2), 0, 1); relmse linear";
         summary = fmt::format(
             "\nScores vs reference (mean over frames; tone-mapped x^(1/2.2), relMSE linear):\n"
-            "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13}\n"
-            "  {:<10} {:>8.4f} {:>8} {:>7} {:>7} {:>8} {:>13.4f}\n"
-            "  {:<10} {:>8.4f} {:>8.2f} {:>7.4f} {:>7} {:>8.4f} {:>13.4f}\n"
-            "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13.4f}\n",
-            "", "RMSE", "PSNR dB", "SSIM", "FLIP", "relMSE", "temporal err", "noisy", nm.rmse, "",
-            "", "", "", nm.temporal, job.filter, m.rmse, m.psnr, m.ssim,
+            "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13} {:>11}\n"
+            "  {:<10} {:>8.4f} {:>8} {:>7} {:>7} {:>8} {:>13.4f} {:>11}\n"
+            "  {:<10} {:>8.4f} {:>8.2f} {:>7.4f} {:>7} {:>8.4f} {:>13.4f} {:>11.4f}\n"
+            "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13.4f} {:>11}\n",
+            "", "RMSE", "PSNR dB", "SSIM", "FLIP", "relMSE", "temporal err", "change err", "noisy",
+            nm.rmse, "", "", "", "", nm.temporal, "", job.filter, m.rmse, m.psnr, m.ssim,
             std::isfinite(m.flip) ? fmt::format("{:.4f}", m.flip) : "-", m.relmse, m.temporal,
-            "reference", "", "", "", "", "", refTemporal);
+            m.temporalChange, "reference", "", "", "", "", "", refTemporal, "");
     }
     writeFileAtomically((fs::path(job.output) / "report.json").string(), report.dump(2) + "\n");
 

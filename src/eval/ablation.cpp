@@ -50,13 +50,15 @@ class FrameSource {
 AblationRow score(const FrameSource& frames, const Settings& s, const std::string& name) {
     Denoiser d(s);
     std::vector<FrameScores> all;
-    ImageF out, previous;
+    ImageF out, previous, previousRef;
     frames.each([&](const FrameData& f) {
         ImageView v = d.denoise(f.input());
         out.resize(v.width, v.height, 3);
         std::copy(v.data, v.data + out.pixels.size(), out.data());
-        all.push_back(scoreFrame(out, f.reference, all.empty() ? nullptr : &previous, false));
+        const PreviousScoredFrame before{previous, previousRef};
+        all.push_back(scoreFrame(out, f.reference, all.empty() ? nullptr : &before, false));
         std::swap(out, previous);
+        previousRef = f.reference;
     });
     FrameScores m = meanScores(all);
     return {name, formatFeatures(s.features), m.rmse, m.ssim};

@@ -210,9 +210,9 @@ ComparisonResult runComparison(const ComparisonOptions& o,
                     "eval: method '{}' frame {} is {}x{}, the reference is {}x{}", r.names[m], i,
                     img.width, img.height, f.reference.width, f.reference.height));
             ImageF map;
-            r.perFrame[m].push_back(scoreFrame(img, f.reference,
-                                               i > r.first ? &previous[m] : nullptr, o.flip,
-                                               o.flip ? &map : nullptr));
+            const PreviousScoredFrame before{previous[m], previousRef};
+            r.perFrame[m].push_back(scoreFrame(img, f.reference, i > r.first ? &before : nullptr,
+                                               o.flip, o.flip ? &map : nullptr));
             viewer.add(m + 1, i, img, o.flip ? &map : nullptr);
             if (i == show) shown[m] = img, shownFlip[m] = map;
             images.push_back(std::move(img));

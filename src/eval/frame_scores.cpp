@@ -8,9 +8,13 @@ namespace bmfr {
 
 const std::vector<MetricInfo>& metricList() {
     static const std::vector<MetricInfo> list = {
-        {"rmse", "RMSE", true, true},     {"psnr_db", "PSNR dB", false, false},
-        {"ssim", "SSIM", false, false},   {"flip", "FLIP", true, true},
-        {"relmse", "relMSE", true, true}, {"temporal_error", "temporal error", true, true}};
+        {"rmse", "RMSE", true, true},
+        {"psnr_db", "PSNR dB", false, false},
+        {"ssim", "SSIM", false, false},
+        {"flip", "FLIP", true, true},
+        {"relmse", "relMSE", true, true},
+        {"temporal_error", "temporal error", true, true},
+        {"temporal_change_error", "change error", true, true}};
     return list;
 }
 
@@ -21,6 +25,7 @@ template <class Scores> auto& metricRef(Scores& s, const std::string& key) {
     if (key == "ssim") return s.ssim;
     if (key == "flip") return s.flip;
     if (key == "relmse") return s.relmse;
+    if (key == "temporal_change_error") return s.temporalChange;
     return s.temporal;
 }
 } // namespace
@@ -33,8 +38,8 @@ std::string csvNumber(double v) {
     return std::isfinite(v) ? fmt::format("{:.6f}", v) : std::string();
 }
 
-FrameScores scoreFrame(const ImageF& result, const ImageF& reference, const ImageF* previous,
-                       bool withFlip, ImageF* flipMapOut) {
+FrameScores scoreFrame(const ImageF& result, const ImageF& reference,
+                       const PreviousScoredFrame* previous, bool withFlip, ImageF* flipMapOut) {
     FrameScores s;
     const ImageF a = toneMapped(result), r = toneMapped(reference);
     s.rmse = rmseLinear(a, r);
@@ -46,7 +51,11 @@ FrameScores scoreFrame(const ImageF& result, const ImageF& reference, const Imag
         if (flipMapOut) *flipMapOut = std::move(map);
     }
     s.relmse = relMseLinear(result, reference);
-    if (previous) s.temporal = temporalError(result, *previous);
+    if (previous) {
+        s.temporal = temporalError(result, previous->result);
+        s.temporalChange =
+            temporalChangeError(result, previous->result, reference, previous->reference);
+    }
     return s;
 }
 

@@ -12,6 +12,9 @@ namespace bmfr {
 struct FrameScores {
     double rmse = NAN, psnr = NAN, ssim = NAN, flip = NAN, relmse = NAN;
     double temporal = NAN; ///< against the previous result frame; NaN for the first frame
+    /// Error of the frame-to-frame change against the reference's (temporalChangeError); NaN
+    /// for the first frame.
+    double temporalChange = NAN;
 };
 
 /// The metrics in table order. `key` names the metric in every machine-readable output
@@ -27,11 +30,18 @@ double metricValue(const FrameScores& s, const std::string& key);
 /// A CSV cell: the value with 6 decimals, empty when missing (NaN), so that pandas reads numbers.
 std::string csvNumber(double v);
 
-/// Scores `result` (linear RGB) against `reference` (linear RGB); `previous` (may be null) is the
-/// previous result frame, for the temporal error. `withFlip` switches the slowest metric;
-/// `flipMapOut` (may be null) receives its per-pixel map.
-FrameScores scoreFrame(const ImageF& result, const ImageF& reference, const ImageF* previous,
-                       bool withFlip = true, ImageF* flipMapOut = nullptr);
+/// The previous frame's result and reference, for the temporal errors.
+struct PreviousScoredFrame {
+    const ImageF& result;
+    const ImageF& reference;
+};
+
+/// Scores `result` (linear RGB) against `reference` (linear RGB); `previous` (null for the first
+/// frame) gives the temporal errors. `withFlip` switches the slowest metric; `flipMapOut` (may be
+/// null) receives its per-pixel map.
+FrameScores scoreFrame(const ImageF& result, const ImageF& reference,
+                       const PreviousScoredFrame* previous, bool withFlip = true,
+                       ImageF* flipMapOut = nullptr);
 
 /// Mean of each metric over frames (ignoring NaN).
 FrameScores meanScores(const std::vector<FrameScores>& frames);

@@ -35,8 +35,12 @@ std::string reportHtml(const ReportContent& c) {
     h += kStyle;
     h += "</style></head><body><h1>bmfr eval</h1>";
     h += "<p>" + c.heading + "</p>";
-    h += "<p>RMSE, PSNR, SSIM, FLIP and temporal error are computed on tone-mapped frames, "
+    h += "<p>RMSE, PSNR, SSIM, FLIP and the temporal errors are computed on tone-mapped frames, "
          "clamp(x<sup>1/2.2</sup>, 0, 1), as the BMFR paper scores; relMSE on linear radiance. "
+         "Temporal error: mean |&Delta;Y| between consecutive frames (Schied et al. 2017); under "
+         "motion it also counts the image's true change, which the reference row shows. Change "
+         "error: mean |&Delta;Y &minus; &Delta;Y<sub>reference</sub>|, the change the reference "
+         "does not make (flicker, lag); the reference's own noise adds to it. "
          "Best value per column in bold.</p>";
     h += c.tableHtml;
     h += "<h2>Per frame</h2><div class=\"plots\">";

@@ -27,6 +27,13 @@ bool isBest(const ComparisonResult& r, size_t i, const MetricInfo& m) {
     return true;
 }
 
+/// The reference row's cell of metric m: the reference's own temporal error, for scale; the
+/// other cells are empty.
+template <class Format>
+std::string referenceCell(const ComparisonResult& r, const MetricInfo& m, Format format) {
+    return std::string(m.key) == "temporal_error" ? format(r.referenceTemporalMean) : "";
+}
+
 } // namespace
 
 std::string markdownTable(const ComparisonResult& r) {
@@ -48,9 +55,9 @@ std::string markdownTable(const ComparisonResult& r) {
         md += "\n";
     }
     md += "| reference |";
-    for (size_t k = 0; k + 1 < metricList().size(); ++k) md += " |";
-    md += fmt::format(" {} |\n", fmtValue(r.referenceTemporalMean));
-    return md;
+    for (const MetricInfo& m : metricList())
+        md += fmt::format(" {} |", referenceCell(r, m, fmtValue));
+    return md + "\n";
 }
 
 /// The tables: table.md, table.csv, per_frame.csv, table.json (keys of metricList()).
@@ -81,9 +88,7 @@ void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::str
     }
     // The reference's own temporal error, for scale; its other cells are empty.
     csv << "reference";
-    for (const MetricInfo& m : metricList())
-        csv << ","
-            << (std::string(m.key) == "temporal_error" ? csvNumber(r.referenceTemporalMean) : "");
+    for (const MetricInfo& m : metricList()) csv << "," << referenceCell(r, m, csvNumber);
     csv << "\n";
     writeFileAtomically((out / "table.csv").string(), csv.str());
     writeFileAtomically((out / "per_frame.csv").string(), pf.str());
@@ -94,8 +99,8 @@ void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::str
     nlohmann::json j;
     j["reference"] = o.reference;
     j["frames"] = {r.first, r.last};
-    j["color_space"] = "RMSE, PSNR, SSIM, FLIP, temporal error: tone-mapped clamp(x^(1/2.2), 0, "
-                       "1); relMSE: linear";
+    j["color_space"] = "RMSE, PSNR, SSIM, FLIP, temporal and change error: tone-mapped "
+                       "clamp(x^(1/2.2), 0, 1); relMSE: linear";
     j["reference_temporal_error"] = num(r.referenceTemporalMean);
     for (size_t i = 0; i < r.names.size(); ++i) {
         nlohmann::json mj;
@@ -126,9 +131,7 @@ std::string tableHtml(const ComparisonResult& r) {
     }
     html += "<tr><td>reference</td>";
     for (const MetricInfo& m : metricList())
-        html += "<td>" +
-                (std::string(m.key) == "temporal_error" ? fmtValue(r.referenceTemporalMean) : "") +
-                "</td>";
+        html += "<td>" + referenceCell(r, m, fmtValue) + "</td>";
     return html + "</tr></table>";
 }
 

@@ -56,17 +56,33 @@ double psnrToneMapped(const ImageF& a, const ImageF& r) {
     return e > 0 ? -20.0 * std::log10(e) : INFINITY;
 }
 
+namespace {
+/// Tone-mapped luminance of pixel k: the display transform per channel, then Rec. 709 weights.
+double displayLuminance(const ImageF& img, long k) {
+    const float* p = img.data() + 3 * k;
+    return luminance(Vec3{gammaEncode(p[0]), gammaEncode(p[1]), gammaEncode(p[2])});
+}
+} // namespace
+
 double temporalError(const ImageF& cur, const ImageF& prev) {
     checkPair(cur, prev);
     if (cur.channels != 3) throw Error("temporal error needs RGB images");
     double s = 0;
-    for (long i = 0; i < cur.pixelCount(); ++i) {
-        auto tm = [](const ImageF& img, long k) {
-            const float* p = img.data() + 3 * k;
-            return Vec3{gammaEncode(p[0]), gammaEncode(p[1]), gammaEncode(p[2])};
-        };
-        s += std::fabs(double(luminance(tm(cur, i))) - luminance(tm(prev, i)));
-    }
+    for (long i = 0; i < cur.pixelCount(); ++i)
+        s += std::fabs(displayLuminance(cur, i) - displayLuminance(prev, i));
+    return s / double(cur.pixelCount());
+}
+
+double temporalChangeError(const ImageF& cur, const ImageF& prev, const ImageF& ref,
+                           const ImageF& prevRef) {
+    checkPair(cur, prev);
+    checkPair(cur, ref);
+    checkPair(cur, prevRef);
+    if (cur.channels != 3) throw Error("temporal change error needs RGB images");
+    double s = 0;
+    for (long i = 0; i < cur.pixelCount(); ++i)
+        s += std::fabs((displayLuminance(cur, i) - displayLuminance(prev, i)) -
+                       (displayLuminance(ref, i) - displayLuminance(prevRef, i)));
     return s / double(cur.pixelCount());
 }
 

@@ -18,5 +18,12 @@ double psnr(const ImageF& a, const ImageF& reference, double range = 1.0);
 double psnrToneMapped(const ImageF& a, const ImageF& reference);
 /// Temporal error (Schied et al. 2017): mean |Y(current) - Y(previous)| of tone-mapped luminance.
 double temporalError(const ImageF& current, const ImageF& previous);
+/// Error of the frame-to-frame change: mean |dY(result) - dY(reference)| of tone-mapped
+/// luminance, d = this frame minus the previous one. Under motion the plain temporal error also
+/// counts the image's true change, so a blurred result scores lower; this one counts only the
+/// change the reference does not make (flicker, lag, ghosting). It needs a converged reference,
+/// as the reference's own noise adds to it.
+double temporalChangeError(const ImageF& current, const ImageF& previous, const ImageF& reference,
+                           const ImageF& previousReference);
 
 } // namespace bmfr
