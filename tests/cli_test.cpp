@@ -391,7 +391,8 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
                                                                 {"blockSize", "16"},
                                                                 {"emitterRatio", "4"},
                                                                 {"adaptiveHistory", "true"},
-                                                                {"secondBlendAlpha", "0.09"}}));
+                                                                {"secondBlendAlpha", "0.08"},
+                                                                {"noiseAmplitude", "0.005"}}));
     EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
     EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
@@ -401,7 +402,7 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         listed.output.find(
             "bmfr: taaSameSurface=true excludeEmitters=true secondGrid=true clampFireflies=true "
             "visibilityFeature=true visibilityTaps=true blockSize=16 emitterRatio=4 "
-            "adaptiveHistory=true secondBlendAlpha=0.09"),
+            "adaptiveHistory=true secondBlendAlpha=0.08 noiseAmplitude=0.005"),
         std::string::npos)
         << listed.output;
     // On the command line: --preset quality gives the bits of its switches set by hand, and
@@ -419,14 +420,14 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         bySwitch = denoise("switch",
                            "--taa-same-surface --exclude-emitters --second-grid --clamp-fireflies "
                            "--visibility-feature --visibility-taps --block-size 16 "
-                           "--emitter-ratio 4 --adaptive-history --alpha2 0.09"),
+                           "--emitter-ratio 4 --adaptive-history --alpha2 0.08 --noise 0.005"),
         faithful = denoise("faithful", "--preset faithful"), plain = denoise("plain", ""),
         overridden = denoise("override", "--preset quality --taa-same-surface false "
                                          "--exclude-emitters false --second-grid false "
                                          "--clamp-fireflies false --visibility-feature false "
                                          "--visibility-taps false --block-size 32 "
                                          "--emitter-ratio 16 --adaptive-history false "
-                                         "--alpha2 0.1");
+                                         "--alpha2 0.1 --noise 0.01");
     ASSERT_FALSE(quality.empty());
     EXPECT_EQ(quality, bySwitch);
     EXPECT_EQ(faithful, plain);

@@ -68,7 +68,7 @@ def test_the_quality_preset_gives_the_cli_bits(sequence, tmp_path):
         "taa_same_surface": "true", "exclude_emitters": "true", "second_grid": "true",
         "clamp_fireflies": "true", "visibility_feature": "true",
         "visibility_taps": "true", "block_size": "16", "emitter_ratio": "4",
-        "adaptive_history": "true", "alpha2": "0.09"}
+        "adaptive_history": "true", "alpha2": "0.08", "noise": "0.005"}
     assert bmfr.preset("bmfr", "faithful") == {}
     with pytest.raises(ValueError, match="unknown preset 'fast'"):
         bmfr.preset("bmfr", "fast")
