@@ -1,6 +1,6 @@
 // Scores of one result frame against its reference. Colour spaces: RMSE, PSNR, SSIM, FLIP and
-// the temporal error use the paper's display transform clamp(x^(1/2.2), 0, 1); relMSE uses
-// linear HDR radiance.
+// the temporal and change errors use the paper's display transform clamp(x^(1/2.2), 0, 1);
+// relMSE uses linear HDR radiance.
 #pragma once
 #include "core/image.h"
 #include <cmath>
