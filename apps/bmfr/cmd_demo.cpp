@@ -48,21 +48,25 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             fmt::print(
                 "rendered {} frames: {:.3f} s per 1-spp frame, {:.2f} s per reference frame\n\n",
                 r.rendered, r.inputSeconds / r.rendered, r.referenceSeconds / r.rendered);
-        // BMFR and two ablations, as the paper compares them, SVGF and WALR, then the report.
-        // Where objects move, also BMFR by the camera path alone (the paper's reprojection).
+        // BMFR and two ablations, as the paper compares them, SVGF and WALR, BMFR and SVGF with
+        // the quality preset, then the report. Where objects move, also BMFR by the camera path
+        // alone (the paper's reprojection).
         struct Variant {
             const char* name;
             const char* folder;
             std::vector<std::string> disabled;
             const char* filter;
             bool motion = true;
+            const char* preset = "faithful";
         };
         std::vector<Variant> variants = {
             {"bmfr", "denoised", {}, "bmfr"},
             {"accumulation only", "accumulation_only", {"fitting"}, "bmfr"},
             {"bmfr without TAA", "bmfr_no_taa", {"taa"}, "bmfr"},
             {"svgf", "svgf", {}, "svgf"},
-            {"walr", "walr", {}, "walr"}};
+            {"walr", "walr", {}, "walr"},
+            {"bmfr quality", "bmfr_quality", {}, "bmfr", true, "quality"},
+            {"svgf quality", "svgf_quality", {}, "svgf", true, "quality"}};
         if (!d.animations.empty() || d.gltfAnimationFps > 0)
             variants.push_back({"bmfr camera path", "bmfr_camera_path", {}, "bmfr", false});
         ComparisonOptions eval;
@@ -73,11 +77,13 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             DenoiseJob dj;
             dj.input = input;
             dj.output = (fs::path(job->output) / v.folder).string();
-            const bool main = v.disabled.empty() && std::string(v.filter) == "bmfr";
+            const bool main = v.disabled.empty() && std::string(v.filter) == "bmfr" &&
+                              std::string(v.preset) == "faithful";
             dj.quiet = job->quiet || !main; // the full summary for BMFR itself
             dj.debug = main;
             dj.filter = v.filter;
             dj.options.disabled = v.disabled;
+            dj.options.preset = v.preset;
             dj.motion = v.motion;
             runDenoise(dj);
             eval.methods.push_back({v.name, dj.output});
