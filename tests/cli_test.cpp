@@ -160,6 +160,25 @@ TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
     for (const fs::path& p : {in, den, noTaa, out}) fs::remove_all(p);
 }
 
+TEST(Cli, DemoRendersDenoisesSevenWaysAndWritesTheReport) {
+    const fs::path out = bmfr::testing::scratchPath("cli", "demo");
+    const Result r =
+        run("demo -o " + out.string() + " --width 48 --height 36 --frames 3 --reference-spp 4 -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* folder : {"denoised", "accumulation_only", "bmfr_no_taa", "svgf", "walr",
+                               "bmfr_quality", "svgf_quality"})
+        EXPECT_TRUE(fs::exists(out / folder / "denoised_0002.exr")) << folder;
+    EXPECT_TRUE(fs::exists(out / "report" / "report.html"));
+    std::ifstream json(out / "report" / "table.json");
+    const std::string table((std::istreambuf_iterator<char>(json)), {});
+    for (const char* key : {"\"bmfr quality\"", "\"svgf quality\"", "\"temporal_change_error\""})
+        EXPECT_NE(table.find(key), std::string::npos) << key;
+    // The preset is applied: its output is not the faithful one's.
+    EXPECT_NE(bmfr::readExr((out / "denoised" / "denoised_0002.exr").string(), 3).pixels,
+              bmfr::readExr((out / "bmfr_quality" / "denoised_0002.exr").string(), 3).pixels);
+    fs::remove_all(out);
+}
+
 TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
     fs::path in = bmfr::testing::scratchPath("cli", "ablate_in"),
              out = bmfr::testing::scratchPath("cli", "ablate_out");
