@@ -59,8 +59,7 @@ double psnrToneMapped(const ImageF& a, const ImageF& r) {
 namespace {
 /// Tone-mapped luminance of pixel k: the display transform per channel, then Rec. 709 weights.
 double displayLuminance(const ImageF& img, long k) {
-    const float* p = img.data() + 3 * k;
-    return luminance(Vec3{gammaEncode(p[0]), gammaEncode(p[1]), gammaEncode(p[2])});
+    return luminance(gammaEncode(load3(img.data(), k)));
 }
 } // namespace
 
