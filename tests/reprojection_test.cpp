@@ -98,5 +98,51 @@ TEST(Reprojection, DisoccludedPixelsAreRejectedByTheDenoiser) {
     EXPECT_EQ(d.lastStats().discardedPixels, long(w / 2) * h);
 }
 
+/// FrameStats::discardedPixels counts the same pixels for every filter: those that had a
+/// history and kept none of it.
+class FrameStatsOfEveryFilter : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(FrameStatsOfEveryFilter, CountTheDisoccludedHalfForEveryFilter) {
+    const int w = 48, h = 32;
+    const Mat4 cam = test::cameraAt({0, 0, 0}, w, h);
+    FrameData background = test::planeFrame(cam, w, h, {1, 1, 1}, [](int, int) { return -10.0f; });
+    FrameData occluder = test::planeFrame(cam, w, h, {1, 1, 1},
+                                          [&](int x, int) { return x < w / 2 ? -5.0f : -10.0f; });
+    for (const char* backend : {"reference", "cpu"}) {
+        std::unique_ptr<Filter> f = makeFilter(
+            GetParam(), {{"positionLimitSquared", "1"}, {"threads", "2"}, {"backend", backend}});
+        f->denoise(background.input());
+        EXPECT_EQ(f->lastStats().discardedPixels, 0) << backend << ": no history yet";
+        f->denoise(occluder.input());
+        EXPECT_EQ(f->lastStats().discardedPixels, long(w / 2) * h) << backend;
+        f->denoise(occluder.input());
+        EXPECT_EQ(f->lastStats().discardedPixels, 0) << backend << ": a still frame";
+        f->reset();
+        f->denoise(occluder.input());
+        EXPECT_EQ(f->lastStats().discardedPixels, 0) << backend << ": after a reset";
+    }
+}
+
+/// FrameStats::nonFiniteInputs counts the same values for every filter: each NaN or Inf of the
+/// buffers the filter reads, once.
+TEST_P(FrameStatsOfEveryFilter, NonFiniteInputsCountEachBadValueOnceForEveryFilter) {
+    const int w = 40, h = 24;
+    const Mat4 cam = test::cameraAt({0, 0, 0}, w, h);
+    FrameData frame = test::planeFrame(cam, w, h, {1, 1, 1}, [](int, int) { return -10.0f; });
+    frame.color.data()[5] = NAN;
+    frame.color.data()[3 * 100 + 1] = INFINITY;
+    frame.albedo.data()[3 * 200] = -INFINITY;
+    for (const char* backend : {"reference", "cpu"}) {
+        std::unique_ptr<Filter> f = makeFilter(GetParam(), {{"backend", backend}});
+        f->denoise(frame.input());
+        EXPECT_EQ(f->lastStats().nonFiniteInputs, 3) << backend;
+        EXPECT_GT(f->lastStats().times.count, 0) << backend;
+        EXPECT_GT(f->lastStats().times.total, 0.0) << backend;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryFilter, FrameStatsOfEveryFilter, ::testing::ValuesIn(filterNames()),
+                         [](const auto& p) { return p.param; });
+
 } // namespace
 } // namespace bmfr

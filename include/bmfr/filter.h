@@ -30,7 +30,7 @@ class BMFR_API Filter {
     /// The same, with the result also written into `out` (same size; 3 or 4 channels, any
     /// row stride; a fourth channel is left as it was). `out` may be in host memory, or in
     /// device memory when the frame's buffers are.
-    ImageView denoise(const FrameInput& frame, const MutableImageView& out);
+    virtual ImageView denoise(const FrameInput& frame, const MutableImageView& out);
     /// Drops the history (as FrameInput::reset).
     virtual void reset() = 0;
     virtual const FrameStats& lastStats() const = 0;
@@ -39,6 +39,31 @@ class BMFR_API Filter {
     virtual void setDebugOutputs(bool enabled) = 0;
     /// Views into the debug buffers of the last frame (empty views when disabled).
     virtual DebugBuffers debug() const = 0;
+};
+
+class FrameLoop;
+
+/// What every filter of this library shares: the frame loop behind Filter's calls, written once.
+/// A filter class adds its constructor, settings and extras. Movable, not copyable.
+class BMFR_API TemporalFilter : public Filter {
+  public:
+    ~TemporalFilter() override;
+    TemporalFilter(TemporalFilter&&) noexcept;
+    TemporalFilter& operator=(TemporalFilter&&) noexcept;
+    ImageView denoise(const FrameInput& frame) override;
+    ImageView denoise(const FrameInput& frame, const MutableImageView& out) override;
+    void reset() override;
+    const FrameStats& lastStats() const override;
+    const char* name() const override;
+    void setDebugOutputs(bool enabled) override;
+    DebugBuffers debug() const override;
+
+  protected:
+    explicit TemporalFilter(std::unique_ptr<FrameLoop> loop);
+    FrameLoop& loop() const { return *loop_; }
+
+  private:
+    std::unique_ptr<FrameLoop> loop_;
 };
 
 /// Settings as text, by the key of the filter's settings table: {{"blockSize", "16"}}.

@@ -6,27 +6,9 @@
 #include <bmfr/error.h>
 #include <cstring>
 #include <string>
+#include <type_traits>
 
 namespace bmfr {
-
-namespace reference {
-std::unique_ptr<BmfrPasses> makeBmfrPasses();
-std::unique_ptr<SvgfPasses> makeSvgfPasses();
-std::unique_ptr<WalrPasses> makeWalrPasses();
-std::unique_ptr<MaraPasses> makeMaraPasses();
-} // namespace reference
-namespace cpu {
-std::unique_ptr<BmfrPasses> makeBmfrPasses();
-std::unique_ptr<SvgfPasses> makeSvgfPasses();
-std::unique_ptr<WalrPasses> makeWalrPasses();
-std::unique_ptr<MaraPasses> makeMaraPasses();
-} // namespace cpu
-#if defined(BMFR_HAVE_CUDA)
-namespace cuda {
-std::unique_ptr<BmfrPasses> makeBmfrPasses();
-std::unique_ptr<SvgfPasses> makeSvgfPasses();
-} // namespace cuda
-#endif
 
 const char* backendName(Backend b) {
     switch (b) {
@@ -52,78 +34,36 @@ std::vector<std::string> compiledBackends() {
 }
 
 namespace {
-/// A CPU backend's passes, once the CPU path is known: a bad BMFR_CPU_ISA is an error when the
-/// filter is made, not inside a pass.
-template <class Make> auto onCpu(Make make) {
-    cpu::activeIsa();
-    return make();
-}
-/// The CUDA backend's passes, once a device is known to exist: "no CUDA device: ..." when the
-/// filter is made, in a build without CUDA too.
-template <class Make> auto onCuda(Make make) {
-    cuda::requireDevice();
-    return make();
-}
-[[noreturn]] void notOnCuda(const char* filter) {
-    throw Error(std::string("the cuda backend runs bmfr and svgf; ") + filter +
-                " runs on --backend cpu or reference");
-}
+/// The filters the cuda backend runs.
+template <class S>
+constexpr bool kOnCuda = std::is_same_v<S, BmfrSettings> || std::is_same_v<S, SvgfSettings>;
 } // namespace
 
-std::unique_ptr<BmfrPasses> makeBmfrPasses(Backend b) {
+template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const char* filter) {
     switch (b) {
     case Backend::Reference:
-        return reference::makeBmfrPasses();
+        return reference::makePasses<S>();
     case Backend::Cpu:
-        return onCpu(cpu::makeBmfrPasses);
+        // A bad BMFR_CPU_ISA is an error when the filter is made, not inside a pass.
+        cpu::activeIsa();
+        return cpu::makePasses<S>();
     case Backend::Cuda:
-#if defined(BMFR_HAVE_CUDA)
-        return onCuda(cuda::makeBmfrPasses);
-#else
+        if constexpr (!kOnCuda<S>)
+            throw Error(std::string("the cuda backend runs bmfr and svgf; ") + filter +
+                        " runs on --backend cpu or reference");
+        // "no CUDA device: ..." when the filter is made, in a build without CUDA too.
         cuda::requireDevice();
+#if defined(BMFR_HAVE_CUDA)
+        if constexpr (kOnCuda<S>) return cuda::makePasses<S>();
 #endif
     }
     throw Error("unknown backend");
 }
 
-std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend b) {
-    switch (b) {
-    case Backend::Reference:
-        return reference::makeSvgfPasses();
-    case Backend::Cpu:
-        return onCpu(cpu::makeSvgfPasses);
-    case Backend::Cuda:
-#if defined(BMFR_HAVE_CUDA)
-        return onCuda(cuda::makeSvgfPasses);
-#else
-        cuda::requireDevice();
-#endif
-    }
-    throw Error("unknown backend");
-}
-
-std::unique_ptr<WalrPasses> makeWalrPasses(Backend b) {
-    switch (b) {
-    case Backend::Reference:
-        return reference::makeWalrPasses();
-    case Backend::Cpu:
-        return onCpu(cpu::makeWalrPasses);
-    case Backend::Cuda:
-        notOnCuda("walr");
-    }
-    throw Error("unknown backend");
-}
-
-std::unique_ptr<MaraPasses> makeMaraPasses(Backend b) {
-    switch (b) {
-    case Backend::Reference:
-        return reference::makeMaraPasses();
-    case Backend::Cpu:
-        return onCpu(cpu::makeMaraPasses);
-    case Backend::Cuda:
-        notOnCuda("mara2017");
-    }
-    throw Error("unknown backend");
-}
+template std::unique_ptr<PassesFor<BmfrSettings>> makePasses<BmfrSettings>(Backend, const char*);
+template std::unique_ptr<PassesFor<SvgfSettings>> makePasses<SvgfSettings>(Backend, const char*);
+template std::unique_ptr<PassesFor<WalrSettings>> makePasses<WalrSettings>(Backend, const char*);
+template std::unique_ptr<PassesFor<Mara2017Settings>> makePasses<Mara2017Settings>(Backend,
+                                                                                   const char*);
 
 } // namespace bmfr

@@ -1,4 +1,5 @@
 // The backends' passes by filter: the one place that maps a Backend to its implementation.
+// Each backend defines makePasses<S>() for the settings S of every filter it runs.
 #pragma once
 #include "filters/bmfr/bmfr_passes.h"
 #include "filters/mara2017/mara_passes.h"
@@ -8,10 +9,18 @@
 
 namespace bmfr {
 
-/// Throws bmfr::Error when `backend` is not built into this library.
-std::unique_ptr<BmfrPasses> makeBmfrPasses(Backend backend);
-std::unique_ptr<SvgfPasses> makeSvgfPasses(Backend backend);
-std::unique_ptr<WalrPasses> makeWalrPasses(Backend backend);
-std::unique_ptr<MaraPasses> makeMaraPasses(Backend backend);
+namespace reference {
+template <class S> std::unique_ptr<PassesFor<S>> makePasses();
+} // namespace reference
+namespace cpu {
+template <class S> std::unique_ptr<PassesFor<S>> makePasses();
+} // namespace cpu
+namespace cuda {
+template <class S> std::unique_ptr<PassesFor<S>> makePasses();
+} // namespace cuda
+
+/// The passes of filter `filter` (settings S) on `backend`. Throws bmfr::Error when the backend
+/// is not built into this library, has no device, or does not run this filter.
+template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend backend, const char* filter);
 
 } // namespace bmfr

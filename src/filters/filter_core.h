@@ -1,56 +1,96 @@
-// What a filter object carries between frames and the frame loop that SVGF and WALR share:
-// check the input, start the history, stage the input, run the backend's passes, keep the debug
-// buffers, end the frame. (BMFR's denoiser adds its block grid and noise, so it has its own.)
+// The one frame loop every filter runs: check the input, start the history, stage the input,
+// run the backend's passes, keep the debug buffers, end the frame. A filter adds its own steps
+// through hooks (FilterHooks); the public classes reach it through FrameLoop.
 #pragma once
 #include "core/parallel.h"
+#include "filters/filter_passes.h"
 #include "temporal/frame_checks.h"
 #include "temporal/history.h"
-#include "temporal/input_staging.h"
+#include <bmfr/error.h>
 #include <bmfr/filter.h>
 #include <memory>
 
 namespace bmfr {
 
-/// Inputs of one frame's passes, for a filter with settings S.
-template <class S> struct PassContext {
-    const S& settings;
-    const InputPlanes& input;
-    const FrameInput& frame; ///< for the cameras
-    const TemporalHistory& history;
-    ThreadPool& pool;
+/// What TemporalFilter forwards to: one filter's state and its frame loop.
+class FrameLoop {
+  public:
+    virtual ~FrameLoop() = default;
+    virtual const char* name() const = 0;
+    virtual ImageView denoise(const FrameInput& frame) = 0;
+    virtual ImageView denoise(const FrameInput& frame, const MutableImageView& out) = 0;
+    virtual void reset() = 0;
+    virtual void setDebugOutputs(bool enabled) = 0;
+    virtual DebugBuffers debug() const = 0;
+    virtual const FrameStats& stats() const = 0;
 };
 
-/// A filter's state: settings, the backend's passes P, threads, history, staging and stats.
-template <class S, class P> struct FilterCore {
+/// A filter's own steps in the frame loop; the default has none.
+template <class S> struct FilterHooks {
+    /// Extra buffers (FrameInput::extras) the settings read.
+    int extrasNeeded(const S&) const { return 0; }
+    /// Throws bmfr::Error for a frame this filter cannot run on, before the shared checks.
+    void check(const S&, const FrameInput&) const {}
+    /// The settings the passes run with on this frame (called before the history moves on);
+    /// sets `changed` when the buffers must be allocated again for them.
+    const S& select(const S& settings, const FrameInput&, const TemporalHistory&, bool& changed) {
+        changed = false;
+        return settings;
+    }
+};
+
+/// A filter's state: settings, the backend's passes P, threads, history and stats.
+template <class S, class Hooks = FilterHooks<S>, class P = PassesFor<S>>
+struct FilterCore final : FrameLoop {
+    const char* filterName;
     S settings;
     std::unique_ptr<P> passes;
     ThreadPool pool;
     TemporalHistory history;
-    InputStaging staging;
-    FrameStats stats;
-    bool debug = false;
+    FrameStats counts;
+    Hooks hooks;
+    bool keepDebug = false;
 
-    FilterCore(const S& s, std::unique_ptr<P> p)
-        : settings(s), passes(std::move(p)), pool(s.threads) {}
+    FilterCore(const char* name, const S& s, std::unique_ptr<P> p)
+        : filterName(name), settings(s), passes(std::move(p)), pool(s.threads) {}
 
-    /// Runs one frame through the passes; returns the history slot it wrote. Throws
-    /// bmfr::Error for bad input before the history moves on.
-    int runFrame(const FrameInput& frame) {
-        checkFrameInput(frame, 0, settings.backend);
-        if (history.begin(frame)) passes->allocate(history.width, history.height);
-        const PassContext<S> ctx{settings, staging.stage(frame, settings.backend == Backend::Cuda),
-                                 frame, history, pool};
-        stats.times.clear();
-        stats.nonFiniteInputs = passes->run(ctx, stats.times);
-        if (debug) passes->captureDebug(history.cur);
+    const char* name() const override { return filterName; }
+
+    /// Throws bmfr::Error for bad input before the history moves on.
+    ImageView denoise(const FrameInput& frame) override {
+        hooks.check(settings, frame);
+        checkFrameInput(frame, hooks.extrasNeeded(settings), backendName(settings.backend),
+                        passes->readsDeviceMemory());
+        bool changed = false;
+        const S& active = hooks.select(settings, frame, history, changed);
+        if (history.begin(frame) || changed)
+            passes->allocate(history.width, history.height, active, pool.threadCount());
+        const PassContext<S> ctx{active, passes->stage(frame), frame, history, pool};
+        counts.times.clear();
+        const PassCounters c = passes->run(ctx, counts.times);
+        counts.nonFiniteInputs = c.nonFinite;
+        counts.discardedPixels = c.discarded;
+        if (keepDebug) passes->captureDebug(history);
         const int slot = history.cur;
         history.end(frame);
-        return slot;
+        return passes->output(slot);
     }
-    DebugBuffers debugBuffers() const {
-        if (!debug || history.width == 0) return {};
-        return passes->debug(history.cur);
+    ImageView denoise(const FrameInput& frame, const MutableImageView& out) override {
+        checkOutput(out, frame.color.width, frame.color.height); // before the history moves on
+        if (out.memory == Memory::Cuda && frame.color.memory == Memory::Host)
+            throw Error("output buffer is in CUDA device memory, the frame's buffers in host "
+                        "memory");
+        const ImageView result = denoise(frame);
+        passes->write(result, out, frame.cudaStream);
+        return result;
     }
+    void reset() override { history.reset(); }
+    void setDebugOutputs(bool enabled) override { keepDebug = enabled; }
+    DebugBuffers debug() const override {
+        if (!keepDebug || history.width == 0) return {};
+        return passes->debug(history);
+    }
+    const FrameStats& stats() const override { return counts; }
 };
 
 } // namespace bmfr

@@ -50,12 +50,13 @@ bool inDeviceMemory(const FrameInput& frame) {
     return frame.color.memory == Memory::Cuda;
 }
 
-void checkFrameInput(const FrameInput& f, int extrasNeeded, Backend backend) {
+void checkFrameInput(const FrameInput& f, int extrasNeeded, const char* backend,
+                     bool readsDeviceMemory) {
     const int w = f.color.width, h = f.color.height;
     const Memory m = f.color.memory;
-    if (m == Memory::Cuda && backend != Backend::Cuda)
+    if (m == Memory::Cuda && !readsDeviceMemory)
         throw Error(std::string("the frame's buffers are in CUDA device memory, which the ") +
-                    backendName(backend) + " backend cannot read: use backend cuda");
+                    backend + " backend cannot read: use backend cuda");
     const auto check = [m](const ImageView& v, const std::string& name, ChannelRange c, int width,
                            int height) { checkImage(v, name, c, width, height, m); };
     check(f.color, "color", kRgb, w, h);

@@ -7,8 +7,10 @@ namespace bmfr {
 
 /// Throws bmfr::Error for missing, zero-size or mismatched buffers, wrong channel counts or row
 /// strides, fewer than `extrasNeeded` extra buffers, non-finite or singular matrices, buffers
-/// in more than one kind of memory, and device memory for a backend other than cuda.
-void checkFrameInput(const FrameInput& frame, int extrasNeeded, Backend backend);
+/// in more than one kind of memory, and device memory for a backend that cannot read it
+/// (`backend`, by name, reads it when `readsDeviceMemory`).
+void checkFrameInput(const FrameInput& frame, int extrasNeeded, const char* backend,
+                     bool readsDeviceMemory);
 /// True when the frame's buffers are in CUDA device memory (it passed checkFrameInput).
 bool inDeviceMemory(const FrameInput& frame);
 

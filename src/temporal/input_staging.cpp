@@ -1,5 +1,4 @@
 #include "temporal/input_staging.h"
-#include "backend/cuda/cuda_device.h"
 #include <bmfr/error.h>
 #include <string>
 
@@ -21,12 +20,7 @@ const float* InputStaging::packed(const ImageView& v, int channels, std::vector<
     return copy.data();
 }
 
-const InputPlanes& InputStaging::stage(const FrameInput& f, bool backendStages) {
-    if (backendStages) {
-        planes_ = InputPlanes{};
-        planes_.width = f.color.width, planes_.height = f.color.height;
-        return planes_;
-    }
+const InputPlanes& InputStaging::stage(const FrameInput& f) {
     planes_ = stagePlanes(f, [this](const ImageView& v, int channels, int slot, int first) {
         return packed(v, channels, copies_[slot], first);
     });
@@ -46,11 +40,8 @@ void checkOutput(const MutableImageView& out, int width, int height) {
         throw Error("output buffer's row stride is less than a row");
 }
 
-void writeOutput(const ImageView& in, const MutableImageView& out, void* cudaStream) {
+void writeOutput(const ImageView& in, const MutableImageView& out) {
     checkOutput(out, in.width, in.height);
-    if (in.memory == Memory::Cuda && out.memory == Memory::Cuda)
-        return cuda::copyOutput(in, out, cudaStream);
-    if (in.memory == Memory::Cuda) return writeOutput(cuda::downloadRgb(in, cudaStream), out);
     if (out.memory == Memory::Cuda)
         throw Error("output buffer is in CUDA device memory, the frame's buffers in host memory");
     const long stride = out.stride();

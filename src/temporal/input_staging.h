@@ -53,9 +53,8 @@ inline bool isPacked(const ImageView& v, int channels, int first) {
 class InputStaging {
   public:
     /// The frame's planes; valid until the next call. The frame must have passed
-    /// checkFrameInput. With `backendStages` (the cuda backend, which stages from the frame
-    /// itself) only the size is set.
-    const InputPlanes& stage(const FrameInput& frame, bool backendStages = false);
+    /// checkFrameInput.
+    const InputPlanes& stage(const FrameInput& frame);
 
   private:
     /// Channels [first, first + channels) of v, packed (v itself when it already is).
@@ -66,11 +65,9 @@ class InputStaging {
 
 /// Throws bmfr::Error when the view is missing, of another size, or not 3 or 4 channels.
 void checkOutput(const MutableImageView& out, int width, int height);
-/// Writes a packed 3-channel image into a caller's view (3 or 4 channels, any row stride). A
-/// device image (the cuda backend's) goes to a device or host view, ordered on `cudaStream`.
-/// Throws bmfr::Error when the view is missing, its size differs, or a host image would go
-/// to device memory.
-void writeOutput(const ImageView& packedRgb, const MutableImageView& out,
-                 void* cudaStream = nullptr);
+/// Writes a packed 3-channel host image into a caller's host view (3 or 4 channels, any row
+/// stride). Throws bmfr::Error when the view is missing, its size differs, or it is in device
+/// memory.
+void writeOutput(const ImageView& packedRgb, const MutableImageView& out);
 
 } // namespace bmfr

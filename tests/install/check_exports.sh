@@ -19,8 +19,9 @@ if echo "$exports" | grep -E 'ThreadPool|Passes|Staging|TemporalHistory|Househol
     echo "internal symbols are exported" >&2
     exit 1
 fi
-for api in 'bmfr::makeFilter' 'bmfr::BmfrDenoiser::denoise' 'bmfr::SvgfDenoiser::denoise' \
-           'bmfr::libraryVersion' 'bmfr::compiledBackends'; do
+for api in 'bmfr::makeFilter' 'bmfr::TemporalFilter::denoise' 'bmfr::BmfrDenoiser::BmfrDenoiser' \
+           'bmfr::SvgfDenoiser::variance' 'bmfr::libraryVersion' 'bmfr::compiledBackends' \
+           'typeinfo for bmfr::TemporalFilter'; do
     echo "$exports" | grep -q -F "$api" || { echo "$api is not exported" >&2; exit 1; }
 done
 echo "exports: public API only"

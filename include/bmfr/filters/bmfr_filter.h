@@ -49,26 +49,12 @@ inline constexpr int kBlockOffsets[16][2] = {
     {12, 14},   {-8, -16}, {6, 6},   {-2, -2}, {6, -14},  {-16, 12}, {14, -4},  {-6, 4}};
 
 /// Temporal BMFR reconstruction. Not thread-safe; one instance per sequence.
-class BMFR_API BmfrDenoiser final : public Filter {
+/// Named "bmfr" (Filter::name, makeFilter).
+class BMFR_API BmfrDenoiser final : public TemporalFilter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit BmfrDenoiser(const BmfrSettings& settings = {});
-    ~BmfrDenoiser() override;
-    BmfrDenoiser(BmfrDenoiser&&) noexcept;
-    BmfrDenoiser& operator=(BmfrDenoiser&&) noexcept;
-
-    using Filter::denoise;
-    ImageView denoise(const FrameInput& frame) override;
-    void reset() override;
-    void setDebugOutputs(bool enabled) override;
-    DebugBuffers debug() const override;
-    const FrameStats& lastStats() const override;
-    const char* name() const override { return "bmfr"; }
     const BmfrSettings& settings() const;
-
-  private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
 };
 
 /// Earlier names, kept for a while.

@@ -50,22 +50,11 @@ struct Mara2017Settings : TemporalSettings {
 /// Throws bmfr::Error naming the first setting out of range.
 BMFR_API void validate(const Mara2017Settings& settings);
 
-class BMFR_API Mara2017Denoiser final : public Filter {
+/// Named "mara2017" (Filter::name, makeFilter).
+class BMFR_API Mara2017Denoiser final : public TemporalFilter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit Mara2017Denoiser(const Mara2017Settings& settings = {});
-    ~Mara2017Denoiser() override;
-    using Filter::denoise;
-    ImageView denoise(const FrameInput& frame) override;
-    void reset() override;
-    void setDebugOutputs(bool enabled) override;
-    DebugBuffers debug() const override;
-    const FrameStats& lastStats() const override;
-    const char* name() const override { return "mara2017"; }
-
-  private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
 };
 
 } // namespace bmfr

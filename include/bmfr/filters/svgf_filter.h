@@ -25,24 +25,13 @@ struct SvgfSettings : TemporalSettings {
 /// Throws bmfr::Error naming the first setting out of range.
 BMFR_API void validate(const SvgfSettings& settings);
 
-class BMFR_API SvgfDenoiser final : public Filter {
+/// Named "svgf" (Filter::name, makeFilter).
+class BMFR_API SvgfDenoiser final : public TemporalFilter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit SvgfDenoiser(const SvgfSettings& settings = {});
-    ~SvgfDenoiser() override;
-    using Filter::denoise;
-    ImageView denoise(const FrameInput& frame) override;
-    void reset() override;
-    void setDebugOutputs(bool enabled) override;
-    DebugBuffers debug() const override;
-    const FrameStats& lastStats() const override;
-    const char* name() const override { return "svgf"; }
     /// The variance estimate of the last frame before the a-trous filter (1 channel).
     ImageView variance() const;
-
-  private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
 };
 
 } // namespace bmfr

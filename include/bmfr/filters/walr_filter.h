@@ -59,22 +59,11 @@ BMFR_API void validate(const WalrSettings& settings);
 /// 211 (240p to 480p), 2 from 71, else 1.
 BMFR_API int walrIterations(const WalrSettings& settings, int width, int height);
 
-class BMFR_API WalrDenoiser final : public Filter {
+/// Named "walr" (Filter::name, makeFilter).
+class BMFR_API WalrDenoiser final : public TemporalFilter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit WalrDenoiser(const WalrSettings& settings = {});
-    ~WalrDenoiser() override;
-    using Filter::denoise;
-    ImageView denoise(const FrameInput& frame) override;
-    void reset() override;
-    void setDebugOutputs(bool enabled) override;
-    DebugBuffers debug() const override;
-    const FrameStats& lastStats() const override;
-    const char* name() const override { return "walr"; }
-
-  private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
 };
 
 } // namespace bmfr

@@ -1,6 +1,7 @@
 #include "backend/cuda/cuda_device.h"
 #include "backend/cuda/device_buffer.h"
 #include "backend/cuda/image_copy.h"
+#include "temporal/input_staging.h"
 #include <algorithm>
 #include <bmfr/error.h>
 #include <cstdio>
@@ -116,6 +117,13 @@ ImageView downloadRgb(const ImageView& from, void* stream) {
           "output download");
     check(cudaStreamSynchronize(s), "cudaStreamSynchronize");
     return ImageView{packed.data(), from.width, from.height, 3};
+}
+
+void writeResult(const ImageView& from, const MutableImageView& to, void* stream) {
+    if (from.memory == Memory::Cuda && to.memory == Memory::Cuda)
+        return copyOutput(from, to, stream);
+    if (from.memory == Memory::Cuda) return writeOutput(downloadRgb(from, stream), to);
+    writeOutput(from, to);
 }
 
 DeviceImageCopy::DeviceImageCopy(const ImageView& host) : view_(host) {

@@ -25,6 +25,10 @@ void copyOutput(const ImageView& from, const MutableImageView& to, void* stream)
 /// (waited for); the view is valid until this thread's next call.
 ImageView downloadRgb(const ImageView& from, void* stream);
 
+/// Writes an output of the CUDA passes (`from`, packed RGB in device or host memory) into the
+/// caller's view in device or host memory, ordered on `stream`.
+void writeResult(const ImageView& from, const MutableImageView& to, void* stream);
+
 /// A host image copied once into device memory (same channels and row stride), for callers
 /// that hand a filter device buffers: the bench and the tests, as an engine would.
 class DeviceImageCopy {

@@ -14,7 +14,7 @@ namespace bmfr {
 template <class Buffers>
 NoisyAccumulation noisyAccumulation(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b) {
     const BmfrSettings& s = ctx.settings;
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     const int cur = t.cur, prev = 1 - t.cur;
     NoisyAccumulation a;
     a.in = in;
@@ -47,7 +47,7 @@ template <class Buffers>
 BlockFit blockFit(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b,
                   const Feature* features, const float* noise) {
     const BmfrSettings& s = ctx.settings;
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     BlockFit a;
     a.grid = makeBlockGrid(t.width, t.height, s.blockSize, t.frameIndex);
     a.features = features, a.featureCount = int(s.features.size());
@@ -73,7 +73,7 @@ template <class Buffers>
 FittedAccumulation fittedAccumulation(const BmfrPassContext& ctx, const InputPlanes& in,
                                       Buffers& b) {
     const BmfrSettings& s = ctx.settings;
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     FittedAccumulation a;
     a.in = in;
     a.accumulate = t.hasHistory() && s.stages.secondAccumulation;

@@ -2,7 +2,7 @@
 // backends use.
 #pragma once
 #include "core/image.h"
-#include "filters/filter_core.h"
+#include "filters/filter_passes.h"
 #include "filters/mara2017/mara_stages.h"
 #include "temporal/taa.h"
 #include <bmfr/filters/mara2017_filter.h>
@@ -45,33 +45,11 @@ struct MaraBuffers {
     /// The stages' view of this frame; builds this frame's spiral tables.
     MaraFrame frame(const MaraPassContext& ctx);
     TaaInputs taaInputs(const MaraPassContext& ctx) const;
+    ImageView result(int slot) const { return view(output[slot]); }
     DebugBuffers debug(int cur) const;
     void captureDebug(int cur);
 };
 
-/// One backend's Mara passes.
-class MaraPasses {
-  public:
-    virtual ~MaraPasses() = default;
-    virtual void allocate(int w, int h) = 0;
-    /// Runs every stage, writing the histories to slot history.cur; returns the count of
-    /// non-finite input values replaced.
-    virtual int64_t run(const MaraPassContext& ctx, StageTimes& times) = 0;
-    virtual ImageView output(int slot) const = 0;
-    virtual void captureDebug(int cur) = 0;
-    virtual DebugBuffers debug(int cur) const = 0;
-};
-
-/// The part of a host backend's Mara passes that only reads MaraBuffers.
-class HostMaraPasses : public MaraPasses {
-  public:
-    void allocate(int w, int h) override { buffers.allocate(w, h); }
-    ImageView output(int slot) const override { return view(buffers.output[slot]); }
-    void captureDebug(int cur) override { buffers.captureDebug(cur); }
-    DebugBuffers debug(int cur) const override { return buffers.debug(cur); }
-
-  protected:
-    MaraBuffers buffers;
-};
+using MaraPasses = FilterPasses<Mara2017Settings>;
 
 } // namespace bmfr

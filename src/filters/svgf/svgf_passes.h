@@ -1,7 +1,7 @@
 // The interface a backend implements for SVGF, and the host buffers both host backends use.
 #pragma once
 #include "core/image.h"
-#include "filters/filter_core.h"
+#include "filters/filter_passes.h"
 #include "filters/svgf/svgf_kernels.h"
 #include <bmfr/filters/svgf_filter.h>
 #include <memory>
@@ -69,6 +69,7 @@ struct SvgfBuffers : SvgfImages<ImageF, ImageU8> {
     ImageF historyLengthF, acceptF, finalLevel; ///< debug copies, sized on first use
 
     SvgfFrame frame(const SvgfPassContext& ctx) { return SvgfImages::frame(ctx, ctx.input); }
+    ImageView result(int slot) const { return view(output[slot]); }
     DebugBuffers debug(int cur) const;
     void captureDebug(int cur);
 };
@@ -88,30 +89,18 @@ int runAtrousLevels(const SvgfSettings& s, Level&& level, Keep&& keep) {
     return src;
 }
 
-/// One backend's SVGF passes.
-class SvgfPasses {
+/// One backend's SVGF passes: the shared ones and the variance view.
+class SvgfPasses : public FilterPasses<SvgfSettings> {
   public:
-    virtual ~SvgfPasses() = default;
-    virtual void allocate(int w, int h) = 0;
-    /// Runs every stage, writing the output to slot history.cur; returns the count of non-finite
-    /// input values replaced.
-    virtual int64_t run(const SvgfPassContext& ctx, StageTimes& times) = 0;
-    virtual ImageView output(int slot) const = 0;
+    /// The variance estimate of the last frame before the a-trous filter (1 channel).
     virtual ImageView variance() const = 0;
-    virtual void captureDebug(int cur) = 0;
-    virtual DebugBuffers debug(int cur) const = 0;
 };
+template <> struct PassesOf<SvgfSettings> { using type = SvgfPasses; };
 
 /// The part of a host backend's SVGF passes that only reads SvgfBuffers.
-class HostSvgfPasses : public SvgfPasses {
+class HostSvgfPasses : public HostPasses<SvgfSettings, SvgfBuffers> {
   public:
-    ImageView output(int slot) const override { return view(buffers.output[slot]); }
     ImageView variance() const override { return view(buffers.variance); }
-    void captureDebug(int cur) override { buffers.captureDebug(cur); }
-    DebugBuffers debug(int cur) const override { return buffers.debug(cur); }
-
-  protected:
-    SvgfBuffers buffers;
 };
 
 } // namespace bmfr

@@ -1,7 +1,7 @@
 // The interface a backend implements for WALR, and the host buffers both host backends use.
 #pragma once
 #include "core/image.h"
-#include "filters/filter_core.h"
+#include "filters/filter_passes.h"
 #include "filters/walr/edge_tracing.h"
 #include "filters/walr/walr_temporal_kernels.h"
 #include <bmfr/filters/walr_filter.h>
@@ -40,33 +40,11 @@ struct WalrBuffers {
     EdgeGuide guide(const WalrPassContext& ctx) const;
     WalrPost postInputs(const WalrPassContext& ctx);
     WalrLevel level(const WalrPassContext& ctx, int t, bool keepWeights);
+    ImageView result(int) const { return view(output); }
     DebugBuffers debug(int cur) const;
     void captureDebug(int cur);
 };
 
-/// One backend's WALR passes.
-class WalrPasses {
-  public:
-    virtual ~WalrPasses() = default;
-    virtual void allocate(int w, int h) = 0;
-    /// Runs every stage, writing the histories to slot history.cur; returns the count of
-    /// non-finite input values replaced.
-    virtual int64_t run(const WalrPassContext& ctx, StageTimes& times) = 0;
-    virtual ImageView output() const = 0;
-    virtual void captureDebug(int cur) = 0;
-    virtual DebugBuffers debug(int cur) const = 0;
-};
-
-/// The part of a host backend's WALR passes that only reads WalrBuffers.
-class HostWalrPasses : public WalrPasses {
-  public:
-    void allocate(int w, int h) override { buffers.allocate(w, h); }
-    ImageView output() const override { return view(buffers.output); }
-    void captureDebug(int cur) override { buffers.captureDebug(cur); }
-    DebugBuffers debug(int cur) const override { return buffers.debug(cur); }
-
-  protected:
-    WalrBuffers buffers;
-};
+using WalrPasses = FilterPasses<WalrSettings>;
 
 } // namespace bmfr

@@ -38,7 +38,7 @@ void markEarlyRows(const BlockGrid& g, std::vector<uint8_t>& early) {
 
 /// Runs phase I over the rows of [first, last) whose early flag equals `early`.
 void accumulateRuns(const FrameArgs& a, const std::vector<uint8_t>& flags, bool early, int first,
-                    int last, InputCounters& c) {
+                    int last, PassCounters& c) {
     int y = first;
     while (y < last) {
         if (bool(flags[size_t(y)]) != early) {
@@ -54,8 +54,8 @@ void accumulateRuns(const FrameArgs& a, const std::vector<uint8_t>& flags, bool 
 
 } // namespace
 
-InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSplit& split) {
-    const TemporalHistory& t = ctx.timeline.history;
+PassCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSplit& split) {
+    const TemporalHistory& t = ctx.history;
     FrameArgs a{ctx.settings, ctx.input, t, b};
     a.phaseOneEmitterTaps = t.hasHistory() &&
                             emitterExclusion(ctx.settings, ctx.input, nullptr).on &&
@@ -66,7 +66,7 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
     Stopwatch wallClock;
     std::atomic<int64_t> nonFinite{0}, discarded{0}, accumulateNs{0}, fitNs{0};
     auto ns = Stopwatch::nanoseconds;
-    auto count = [&](const InputCounters& c) {
+    auto count = [&](const PassCounters& c) {
         nonFinite += c.nonFinite;
         discarded += c.discarded;
     };
@@ -74,7 +74,7 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
     if (fitting) {
         markEarlyRows(g, b.earlyRow);
         ctx.pool.parallelFor(t.height, 8, [&](long y0, long y1) {
-            InputCounters c;
+            PassCounters c;
             const auto t0 = Clock::now();
             accumulateRuns(a, b.earlyRow, true, int(y0), int(y1), c);
             accumulateNs += ns(t0, Clock::now());
@@ -88,7 +88,7 @@ InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSpli
         for (long by = by0; by < by1; ++by) {
             const RowSpan own = ownedRows(g, int(by));
             if (own.empty()) continue;
-            InputCounters c;
+            PassCounters c;
             const auto t0 = Clock::now();
             accumulateRuns(a, b.earlyRow, false, own.first, own.last, c);
             const auto t1 = Clock::now();

@@ -181,7 +181,7 @@ BMFR_SIMD_DISPATCH(void, accumulateRows,
 
 } // namespace
 
-void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, InputCounters& counters) {
+void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, PassCounters& counters) {
     accumulateRows(a, y0, y1, counters.nonFinite, counters.discarded);
 }
 

@@ -108,6 +108,7 @@ struct Buffers {
     std::vector<int> secondBlocks;
 
     std::vector<Scratch> scratch; ///< one per worker thread
+    std::vector<float> noise;     ///< this frame's regularisation noise
     ImageF debugNoisy, debugFitted, debugLength, debugAccept;
 
     float* plane(std::vector<float>& v, int channel) { return v.data() + size_t(channel) * stride; }
@@ -215,11 +216,11 @@ struct StageSplit {
 /// different cores drift apart, so one core's memory-bound phase I overlaps the other's
 /// arithmetic-bound fit. Rows that a block reads through mirroring at the top and bottom edges
 /// but does not own are done first.
-InputCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSplit& split);
+PassCounters accumulateAndFit(const BmfrPassContext& ctx, Buffers& b, StageSplit& split);
 
 /// Phase I of image rows [y0, y1): sanitise and store features, demodulate, reproject, test
 /// taps, accumulate colour. Counts are added to `counters`.
-void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, InputCounters& counters);
+void accumulateNoisyRows(const FrameArgs& a, long y0, long y1, PassCounters& counters);
 /// Phase II of block row `by`: per block gather, scale, regularise, Householder QR, back
 /// substitution, weighted sum. Reads only the rows the blocks cover, mirrored at the edges.
 void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, int by,

@@ -1,6 +1,7 @@
 // The CPU backend's BMFR: planes, phase I interleaved with the fit block row by block row, and
 // phase III fused with TAA and with the taps dropped across emitter and shadow edges (see
 // cpu_bmfr_buffers.h).
+#include "backend/backend_registry.h"
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
 #include "backend/cpu/taa_rows.h"
 #include "core/stopwatch.h"
@@ -55,14 +56,15 @@ class CpuBmfrPasses final : public BmfrPasses {
         }
     }
 
-    InputCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
+    PassCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
         // Phase I and the fit run interleaved; their wall time is split by the workers' time in
         // each (StageSplit).
         StageSplit split;
-        const TemporalHistory& t = ctx.timeline.history;
+        const TemporalHistory& t = ctx.history;
         b_.emitterPixels[t.cur] = 0;
+        fillRegularisationNoise(ctx.settings, t.frameIndex, b_.noise);
         TapFilter filter;
-        InputCounters counters = accumulateAndFit(ctx, b_, split);
+        PassCounters counters = accumulateAndFit(ctx, b_, split);
         Stopwatch clock;
         if (ctx.settings.secondGrid && ctx.settings.stages.fitting) {
             fitSecondGrid(ctx, b_);
@@ -84,8 +86,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         return ImageView{b_.output[slot].data(), b_.width, b_.height, 3};
     }
 
-    void captureDebug(const BmfrTimeline& timeline) override {
-        const TemporalHistory& t = timeline.history;
+    void captureDebug(const TemporalHistory& t) override {
         // Sized on first use only: at 4K they would hold 265 MB nobody asked for.
         if (b_.debugNoisy.width != t.width || b_.debugNoisy.height != t.height) {
             b_.debugNoisy.resize(t.width, t.height, 3);
@@ -105,7 +106,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         }
     }
 
-    DebugBuffers debug(const BmfrTimeline&) const override {
+    DebugBuffers debug(const TemporalHistory&) const override {
         return {view(b_.debugNoisy), view(b_.debugFitted), view(b_.debugLength),
                 view(b_.debugAccept)};
     }
@@ -119,7 +120,7 @@ class CpuBmfrPasses final : public BmfrPasses {
 } // namespace bmfr::cpu
 
 namespace bmfr::cpu {
-std::unique_ptr<BmfrPasses> makeBmfrPasses() {
+template <> std::unique_ptr<BmfrPasses> makePasses<BmfrSettings>() {
     return std::make_unique<CpuBmfrPasses>();
 }
 } // namespace bmfr::cpu

@@ -40,19 +40,19 @@ struct Phase2 {
           second(shifted) {
         if (!b.change.empty()) knownSamples = b.plane(b.change, 0);
         for (int ch = 0; ch < 3; ++ch) out[ch] = b.plane(shifted ? b.fittedSecond : b.fitted, ch);
-        std::vector<uint8_t>& tapClass = buffers.tapClass[c.timeline.history.cur];
+        std::vector<uint8_t>& tapClass = buffers.tapClass[c.history.cur];
         if (!shifted && !tapClass.empty()) classes = tapClass.data(), visibility = tapVisibility(c);
         // The previous frame's emitters are its tap classes' emitter bits. Without any, no
         // pixel was one (wasEmitter), and nothing need look.
-        const int prev = 1 - c.timeline.history.cur;
+        const int prev = 1 - c.history.cur;
         const std::vector<uint8_t>& previous = buffers.tapClass[size_t(prev)];
-        if (emitters.on && c.timeline.history.hasHistory() && !previous.empty() &&
+        if (emitters.on && c.history.hasHistory() && !previous.empty() &&
             b.emitterPixels[prev] > 0) {
             emitters.previous = previous.data(), emitters.previousBit = kTapEmitter;
             emitters.previousX = b.plane(b.previousPixel, 0);
             emitters.previousY = b.plane(b.previousPixel, 1);
         }
-        const int cur = c.timeline.history.cur;
+        const int cur = c.history.cur;
         for (int ch = 0; ch < 3; ++ch) {
             set[ch] = &b.normal[cur], set[3 + ch] = &b.position[cur], set[6 + ch] = &b.noisy[cur];
             channel[ch] = channel[3 + ch] = channel[6 + ch] = ch;
@@ -278,7 +278,7 @@ BMFR_SIMD_INLINE void buildColumns(const Phase2& a, const BlockRows& r, Scratch&
     const std::vector<Feature>& features = a.ctx.settings.features;
     const int B = a.grid.blockSize, W = B * B, M = int(features.size());
     const long zs = qrColumnStride(W);
-    const float* noise = a.ctx.timeline.noise.data();
+    const float* noise = a.b.noise.data();
     // Ranges of the six surface sources, computed when a column first needs them.
     SourceRange ranges[6];
     bool known[6] = {};
@@ -344,7 +344,7 @@ void finishBlock(const Phase2& a, const BlockRows& rows, long first, int exclude
         if (emitter) a.classes[idx] |= kTapEmitter;
         emitters += emitter;
     }
-    if (emitters) a.b.emitterPixels[a.ctx.timeline.history.cur] += emitters;
+    if (emitters) a.b.emitterPixels[a.ctx.history.cur] += emitters;
 }
 
 /// Fits block (bx, by), and asks for block (nextX, nextY)'s rows while it does.
@@ -369,7 +369,7 @@ BMFR_SIMD_DISPATCH(void, fitBlock,
     const int excluded =
         s.clampFireflies || emitters.on
             ? clampAndMaskBlock({g, a.ctx.input, emitters, s.clampFireflies,
-                                 a.b.noisy[a.ctx.timeline.history.cur], M, qrColumnStride(W)},
+                                 a.b.noisy[a.ctx.history.cur], M, qrColumnStride(W)},
                                 bx, by, sc.work.data(), sc)
             : 0;
 
@@ -488,7 +488,7 @@ struct PoorLengths {
 } // namespace
 
 void fitSecondGrid(const BmfrPassContext& ctx, Buffers& b) {
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     const BlockGrid g =
         secondGrid(makeBlockGrid(t.width, t.height, ctx.settings.blockSize, t.frameIndex));
     const Phase2 a{ctx, b, g, true};

@@ -154,7 +154,7 @@ BMFR_SIMD_DISPATCH(void, measureTiles,
 } // namespace
 
 void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     const float *sample = b.plane(b.change, 0), *history = b.plane(b.change, 1);
     const long tiles = long(b.changeTiles.size()) / kChangeTileValues;
     ctx.pool.parallelFor(tiles, 4, [&](long k0, long k1) {
@@ -164,8 +164,8 @@ void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
 }
 
 void resolve(const BmfrPassContext& ctx, Buffers& b, const TapFilter& filter) {
-    const FrameArgs a{ctx.settings, ctx.input, ctx.timeline.history, b, filter};
-    const long h = ctx.timeline.history.height, tasks = (h + kRowsPerTask - 1) / kRowsPerTask;
+    const FrameArgs a{ctx.settings, ctx.input, ctx.history, b, filter};
+    const long h = ctx.history.height, tasks = (h + kRowsPerTask - 1) / kRowsPerTask;
     ctx.pool.parallelFor(tasks, 1, [&](long k0, long k1) {
         float* ring = b.scratch[size_t(ThreadPool::currentThreadIndex())].rows.data();
         for (long k = k0; k < k1; ++k)

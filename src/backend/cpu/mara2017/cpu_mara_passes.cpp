@@ -2,6 +2,7 @@
 // over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
 // comparisons per pixel whatever R, with the same minima bit for bit; and stages 4, 6, 7, 9 and
 // 10, eight pixels at a time (cpu_mara_rows.h).
+#include "backend/backend_registry.h"
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/mara2017/cpu_running_min.h"
 #include "backend/reference/mara2017/reference_mara_stages.h"
@@ -96,7 +97,7 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
 
 } // namespace
 
-std::unique_ptr<MaraPasses> makeMaraPasses() {
+template <> std::unique_ptr<MaraPasses> makePasses<Mara2017Settings>() {
     return std::make_unique<CpuMaraPasses>();
 }
 

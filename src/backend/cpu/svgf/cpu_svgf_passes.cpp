@@ -1,5 +1,6 @@
 // The CPU backend's SVGF: the reference's scalar stages up to TAA (they are branchy per-tap
 // loops that gain little from eight-wide code yet), then the eight-wide TAA shared with BMFR.
+#include "backend/backend_registry.h"
 #include "backend/cpu/cpu_taa.h"
 #include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/stopwatch.h"
@@ -10,12 +11,12 @@ namespace {
 
 class CpuSvgfPasses final : public HostSvgfPasses {
   public:
-    void allocate(int w, int h) override {
-        buffers.allocate(w, h);
+    void allocate(int w, int h, const SvgfSettings& s, int threads) override {
+        HostSvgfPasses::allocate(w, h, s, threads);
         taaScratch_.assign(taaScratchFloats(w, h), 0.0f);
     }
-    int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
-        const int64_t bad = reference::svgfStagesBeforeTaa(ctx, buffers, times);
+    PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
+        const PassCounters counters = reference::svgfStagesBeforeTaa(ctx, buffers, times);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
         temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
@@ -25,7 +26,7 @@ class CpuSvgfPasses final : public HostSvgfPasses {
                              ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr,
                              ctx.settings.taaToneMapped);
         times.add("taa", clock.lap());
-        return bad;
+        return counters;
     }
 
   private:
@@ -34,7 +35,7 @@ class CpuSvgfPasses final : public HostSvgfPasses {
 
 } // namespace
 
-std::unique_ptr<SvgfPasses> makeSvgfPasses() {
+template <> std::unique_ptr<SvgfPasses> makePasses<SvgfSettings>() {
     return std::make_unique<CpuSvgfPasses>();
 }
 

@@ -1,5 +1,6 @@
 // The CPU backend's WALR: the reference's per-pixel preprocess and postprocess, and the
 // eight-wide spatial filter, where nearly all of WALR's time goes.
+#include "backend/backend_registry.h"
 #include "backend/cpu/walr/cpu_walr_spatial.h"
 #include "backend/reference/walr/reference_walr_stages.h"
 
@@ -9,7 +10,7 @@ namespace {
 
 class CpuWalrPasses final : public reference::HostWalrPipeline {
   public:
-    void allocate(int w, int h) override {
+    void allocate(int w, int h, const WalrSettings&, int) override {
         buffers.interleaved = true;
         buffers.allocate(w, h);
     }
@@ -33,7 +34,7 @@ class CpuWalrPasses final : public reference::HostWalrPipeline {
 
 } // namespace
 
-std::unique_ptr<WalrPasses> makeWalrPasses() {
+template <> std::unique_ptr<WalrPasses> makePasses<WalrSettings>() {
     return std::make_unique<CpuWalrPasses>();
 }
 

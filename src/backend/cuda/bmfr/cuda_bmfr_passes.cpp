@@ -3,8 +3,10 @@
 // staged (uploaded, or read in place from device memory), phase I, the noise and the
 // block-cooperative fit, phase III and TAA run, and the output (for host frames) and two
 // counters come down, with at most one synchronisation (device_frame.h).
+#include "backend/backend_registry.h"
 #include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
 #include "backend/cuda/cuda_device.h"
+#include "backend/cuda/cuda_passes.h"
 #include "backend/cuda/cuda_taa.h"
 #include "backend/cuda/device_frame.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
@@ -39,12 +41,8 @@ struct HostCopies {
     ImageU8 historyLength, accept;
 };
 
-class CudaBmfrPasses final : public BmfrPasses {
+class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
   public:
-    CudaBmfrPasses() { requireDevice(); }
-
-    bool needsHostNoise() const override { return false; }
-
     void allocate(int w, int h, const BmfrSettings& s, int) override {
         Buffers& b = b_;
         for (int k = 0; k < 2; ++k) {
@@ -76,9 +74,9 @@ class CudaBmfrPasses final : public BmfrPasses {
         check(cudaDeviceSynchronize(), "allocation");
     }
 
-    InputCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
+    PassCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
         const BmfrSettings& s = ctx.settings;
-        const TemporalHistory& t = ctx.timeline.history;
+        const TemporalHistory& t = ctx.history;
         const int cur = t.cur, prev = 1 - cur;
         Buffers& b = b_;
         const InputPlanes& in = frame_.begin(ctx.frame);
@@ -144,18 +142,18 @@ class CudaBmfrPasses final : public BmfrPasses {
         return frame_.onDevice() ? deviceView(b_.output[slot]) : view(host_.output[slot]);
     }
 
-    void captureDebug(const BmfrTimeline& t) override {
+    void captureDebug(const TemporalHistory& t) override {
         const cudaStream_t st = frame_.get();
-        b_.accumulatedNoisy[t.history.cur].download(host_.noisy, st);
+        b_.accumulatedNoisy[t.cur].download(host_.noisy, st);
         b_.fitted.download(host_.fitted, st);
-        b_.historyLength[t.history.cur].download(host_.historyLength, st);
+        b_.historyLength[t.cur].download(host_.historyLength, st);
         b_.acceptMask.download(host_.accept, st);
         frame_.synchronize();
         widenToFloat(host_.historyLength, host_.historyLengthF);
         widenToFloat(host_.accept, host_.acceptF);
     }
 
-    DebugBuffers debug(const BmfrTimeline&) const override {
+    DebugBuffers debug(const TemporalHistory&) const override {
         return {view(host_.noisy), view(host_.fitted), view(host_.historyLengthF),
                 view(host_.acceptF)};
     }
@@ -169,7 +167,7 @@ class CudaBmfrPasses final : public BmfrPasses {
 
 } // namespace
 
-std::unique_ptr<BmfrPasses> makeBmfrPasses() {
+template <> std::unique_ptr<BmfrPasses> makePasses<BmfrSettings>() {
     return std::make_unique<CudaBmfrPasses>();
 }
 

@@ -14,6 +14,8 @@ __global__ void accumulateKernel(SvgfFrame f, unsigned long long* counters) {
     int64_t bad = 0;
     svgfAccumulatePixel(f, i, bad);
     countIf(&counters[0], bad);
+    // FrameStats::discardedPixels, as the host backends' countDiscarded.
+    countIf(&counters[1], f.previous.valid && f.accept[i] == 0);
 }
 __global__ void depthGradientKernel(SvgfFrame f) {
     const long i = pixelIndex();

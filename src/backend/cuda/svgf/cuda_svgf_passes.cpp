@@ -1,7 +1,9 @@
 // The CUDA backend's SVGF: the reference backend's stages (reference_svgf_passes.cpp) as
 // kernels on one stream over device-resident buffers, then the shared CUDA TAA. The output (for
 // host frames) and the non-finite count come down, with at most one synchronisation.
+#include "backend/backend_registry.h"
 #include "backend/cuda/cuda_device.h"
+#include "backend/cuda/cuda_passes.h"
 #include "backend/cuda/cuda_taa.h"
 #include "backend/cuda/device_frame.h"
 #include "backend/cuda/svgf/cuda_svgf_kernels.h"
@@ -11,11 +13,9 @@ namespace bmfr::cuda {
 
 namespace {
 
-class CudaSvgfPasses final : public SvgfPasses {
+class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
   public:
-    CudaSvgfPasses() { requireDevice(); }
-
-    void allocate(int w, int h) override {
+    void allocate(int w, int h, const SvgfSettings&, int) override {
         b_.allocate(w, h);
         ycocg_.resize(w, h, 3);
         counters_.resize(DeviceFrame::kCounters);
@@ -24,7 +24,7 @@ class CudaSvgfPasses final : public SvgfPasses {
         check(cudaDeviceSynchronize(), "allocation");
     }
 
-    int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
+    PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
         const SvgfSettings& s = ctx.settings;
         const TemporalHistory& h = ctx.history;
         const InputPlanes& in = frame_.begin(ctx.frame);
@@ -63,7 +63,7 @@ class CudaSvgfPasses final : public SvgfPasses {
         if (!frame_.onDevice()) b_.output[h.cur].download(output_[h.cur], st);
         unsigned long long counts[DeviceFrame::kCounters];
         frame_.finish(counters_.data(), times, counts);
-        return int64_t(counts[0]);
+        return {int64_t(counts[0]), int64_t(counts[1])};
     }
 
     /// In the memory the frame's buffers were in.
@@ -78,7 +78,8 @@ class CudaSvgfPasses final : public SvgfPasses {
         return view(variance_);
     }
 
-    void captureDebug(int cur) override {
+    void captureDebug(const TemporalHistory& h) override {
+        const int cur = h.cur;
         const cudaStream_t st = frame_.get();
         b_.integrated.download(debug_.integrated, st);
         b_.filtered[outputLevel_].download(level_, st);
@@ -91,7 +92,7 @@ class CudaSvgfPasses final : public SvgfPasses {
         for (long i = 0; i < level_.pixelCount(); ++i)
             store3(debug_.finalLevel.data(), i, load3Stride4(level_.data(), i));
     }
-    DebugBuffers debug(int) const override {
+    DebugBuffers debug(const TemporalHistory&) const override {
         return {view(debug_.integrated), view(debug_.finalLevel), view(debug_.historyLengthF),
                 view(debug_.acceptF)};
     }
@@ -113,7 +114,7 @@ class CudaSvgfPasses final : public SvgfPasses {
 
 } // namespace
 
-std::unique_ptr<SvgfPasses> makeSvgfPasses() {
+template <> std::unique_ptr<SvgfPasses> makePasses<SvgfSettings>() {
     return std::make_unique<CudaSvgfPasses>();
 }
 

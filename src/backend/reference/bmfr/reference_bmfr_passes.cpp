@@ -1,6 +1,7 @@
 // The reference backend's BMFR: one plain parallel loop per stage over the filter's kernels
 // (filters/bmfr/accumulation_kernels.h, fitting_kernel.h) and the shared TAA. The
 // specification every other backend is held to.
+#include "backend/backend_registry.h"
 #include "backend/reference/reference_taa.h"
 #include "core/image.h"
 #include "core/stopwatch.h"
@@ -49,10 +50,11 @@ struct Buffers {
     ImageF change;                   ///< adaptiveHistory: recordHistoryChange's 2 channels
     std::vector<float> changeTiles;  ///< adaptiveHistory: storeTileChange's record of each tile
     std::vector<FitScratch> scratch; ///< one per worker thread
+    std::vector<float> noise;        ///< this frame's regularisation noise
 };
 
-InputCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
-    const TemporalHistory& t = ctx.timeline.history;
+PassCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
+    const TemporalHistory& t = ctx.history;
     const NoisyAccumulation a = noisyAccumulation(ctx, ctx.input, b);
     std::atomic<int64_t> nonFinite{0}, discarded{0};
     ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
@@ -75,14 +77,15 @@ void fitGrid(const BmfrPassContext& ctx, Buffers& b, const BlockFit& a) {
 }
 
 void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     const BmfrSettings& s = ctx.settings;
     if (!s.stages.fitting) {
         std::memcpy(b.fitted.data(), b.accumulatedNoisy[t.cur].data(),
                     b.fitted.pixels.size() * sizeof(float));
         return;
     }
-    const BlockFit a = blockFit(ctx, ctx.input, b, s.features.data(), ctx.timeline.noise.data());
+    fillRegularisationNoise(s, ctx.history.frameIndex, b.noise);
+    const BlockFit a = blockFit(ctx, ctx.input, b, s.features.data(), b.noise.data());
     fitGrid(ctx, b, a);
     if (s.secondGrid) {
         // Every block of the second grid: the spec; the CPU backend fits only those that own a
@@ -114,7 +117,7 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
 
 /// sameLitTaps over the accept mask (visibilityTaps, with a visibility buffer).
 void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers& b) {
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     const float* visibility = stagedVisibility(ctx.input, ctx.frame.visibility.data);
     if (!ctx.settings.visibilityTaps || !visibility) return;
     const uint8_t* prevLit = t.hasHistory() ? b.lit[1 - t.cur].data() : nullptr;
@@ -130,7 +133,7 @@ void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers& b) {
 
 /// tileHistoryChange of every tile, stored with storeTileChange (adaptiveHistory).
 void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     if (!ctx.settings.adaptiveHistory) return;
     const int tilesX = changeTilesX(t.width);
     const long tiles = long(b.changeTiles.size()) / kChangeTileValues;
@@ -145,7 +148,7 @@ void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
 }
 
 void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
-    const TemporalHistory& t = ctx.timeline.history;
+    const TemporalHistory& t = ctx.history;
     const FittedAccumulation a = fittedAccumulation(ctx, ctx.input, b);
     float* out = b.remodulated.data();
     ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
@@ -191,11 +194,11 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         }
     }
 
-    InputCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
-        const TemporalHistory& t = ctx.timeline.history;
+    PassCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
+        const TemporalHistory& t = ctx.history;
         Buffers& b = b_;
         Stopwatch clock;
-        const InputCounters counters = accumulateNoisy(ctx, b);
+        const PassCounters counters = accumulateNoisy(ctx, b);
         times.add("accumulate", clock.lap());
         fitBlocks(ctx, b);
         dropTapsAcrossShadowEdges(ctx, b);
@@ -214,15 +217,15 @@ class ReferenceBmfrPasses final : public BmfrPasses {
 
     ImageView output(int slot) const override { return view(b_.output[slot]); }
 
-    void captureDebug(const BmfrTimeline& t) override {
+    void captureDebug(const TemporalHistory& t) override {
         for (long i = 0; i < b_.historyLengthF.pixelCount(); ++i) {
-            b_.historyLengthF.data()[i] = b_.historyLength[t.history.cur].data()[i];
+            b_.historyLengthF.data()[i] = b_.historyLength[t.cur].data()[i];
             b_.acceptMaskF.data()[i] = b_.acceptMask.data()[i];
         }
     }
 
-    DebugBuffers debug(const BmfrTimeline& t) const override {
-        return {view(b_.accumulatedNoisy[t.history.cur]), view(b_.fitted), view(b_.historyLengthF),
+    DebugBuffers debug(const TemporalHistory& t) const override {
+        return {view(b_.accumulatedNoisy[t.cur]), view(b_.fitted), view(b_.historyLengthF),
                 view(b_.acceptMaskF)};
     }
 
@@ -232,7 +235,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
 
 } // namespace
 
-std::unique_ptr<BmfrPasses> makeBmfrPasses() {
+template <> std::unique_ptr<BmfrPasses> makePasses<BmfrSettings>() {
     return std::make_unique<ReferenceBmfrPasses>();
 }
 

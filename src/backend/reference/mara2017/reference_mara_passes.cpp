@@ -1,4 +1,5 @@
 // Mara 2017's reference passes: one parallel loop over the stage bodies per stage.
+#include "backend/backend_registry.h"
 #include "backend/reference/mara2017/reference_mara_stages.h"
 #include "backend/reference/reference_taa.h"
 #include "core/stopwatch.h"
@@ -48,13 +49,14 @@ void HostMaraPipeline::glossyBilateral(const MaraPassContext& ctx, const MaraFra
     });
 }
 
-int64_t HostMaraPipeline::run(const MaraPassContext& ctx, StageTimes& times) {
+PassCounters HostMaraPipeline::run(const MaraPassContext& ctx, StageTimes& times) {
     const Mara2017Settings& s = ctx.settings;
     const TemporalHistory& h = ctx.history;
     const MaraFrame f = buffers.frame(ctx);
     const long n = long(f.width) * f.height;
     Stopwatch clock;
     const int64_t bad = matteTemporal(ctx, f);
+    const int64_t discarded = countDiscarded(ctx.pool, f.accept, n, h.hasHistory());
     times.add("matte temporal", clock.lap());
     if (s.preBilateral)
         preBilateral(ctx, f);
@@ -80,7 +82,7 @@ int64_t HostMaraPipeline::run(const MaraPassContext& ctx, StageTimes& times) {
     taaPass(ctx.pool, buffers.taaInputs(ctx), buffers.ycocg.data(), buffers.output[h.cur].data(),
             s.taa && h.hasHistory());
     times.add("compose", clock.lap());
-    return bad;
+    return {bad, discarded};
 }
 
 namespace {
@@ -89,7 +91,7 @@ class ReferenceMaraPasses final : public HostMaraPipeline {};
 
 } // namespace
 
-std::unique_ptr<MaraPasses> makeMaraPasses() {
+template <> std::unique_ptr<MaraPasses> makePasses<Mara2017Settings>() {
     return std::make_unique<ReferenceMaraPasses>();
 }
 

@@ -5,9 +5,9 @@
 
 namespace bmfr::reference {
 
-class HostMaraPipeline : public HostMaraPasses {
+class HostMaraPipeline : public HostPasses<Mara2017Settings, MaraBuffers> {
   public:
-    int64_t run(const MaraPassContext& ctx, StageTimes& times) final;
+    PassCounters run(const MaraPassContext& ctx, StageTimes& times) final;
 
   protected:
     /// Input and stage 3 (matte temporal); returns the non-finite input values replaced.

@@ -1,4 +1,5 @@
 // SVGF's reference passes: plain parallel loops over the filter's kernels, then the shared TAA.
+#include "backend/backend_registry.h"
 #include "backend/reference/reference_taa.h"
 #include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/stopwatch.h"
@@ -7,7 +8,7 @@
 
 namespace bmfr::reference {
 
-int64_t svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times) {
+PassCounters svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times) {
     const SvgfSettings& s = ctx.settings;
     const TemporalHistory& h = ctx.history;
     const int w = h.width, cur = h.cur;
@@ -20,6 +21,8 @@ int64_t svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTim
         nonFinite += bad;
     });
     ctx.pool.forEachPixel(w, h.height, 4, [&](int x, int y) { svgfDepthGradientPixel(f, x, y); });
+    const int64_t discarded =
+        countDiscarded(ctx.pool, f.accept, b.accept.pixelCount(), h.hasHistory());
     times.add("accumulate", clock.lap());
     ctx.pool.forEachPixel(w, h.height, 4, [&](int x, int y) {
         svgfVariancePixel(f, s, x, y, b.filtered[0].data(), b.variance.data());
@@ -46,19 +49,19 @@ int64_t svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTim
                    remodulatePixel(load3Stride4(last, i), ctx.input, i, true, s.albedoEpsilon));
     });
     times.add("atrous", clock.lap());
-    return nonFinite.load();
+    return {nonFinite.load(), discarded};
 }
 
 namespace {
 
 class ReferenceSvgfPasses final : public HostSvgfPasses {
   public:
-    void allocate(int w, int h) override {
-        buffers.allocate(w, h);
+    void allocate(int w, int h, const SvgfSettings& s, int threads) override {
+        HostSvgfPasses::allocate(w, h, s, threads);
         ycocg_.resize(w, h, 3);
     }
-    int64_t run(const SvgfPassContext& ctx, StageTimes& times) override {
-        const int64_t bad = svgfStagesBeforeTaa(ctx, buffers, times);
+    PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
+        const PassCounters counters = svgfStagesBeforeTaa(ctx, buffers, times);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
         const TaaInputs taa = taaInputs(
@@ -67,7 +70,7 @@ class ReferenceSvgfPasses final : public HostSvgfPasses {
         taaPass(ctx.pool, taa, ycocg_.data(), buffers.output[h.cur].data(),
                 ctx.settings.taa && h.hasHistory());
         times.add("taa", clock.lap());
-        return bad;
+        return counters;
     }
 
   private:
@@ -76,7 +79,7 @@ class ReferenceSvgfPasses final : public HostSvgfPasses {
 
 } // namespace
 
-std::unique_ptr<SvgfPasses> makeSvgfPasses() {
+template <> std::unique_ptr<SvgfPasses> makePasses<SvgfSettings>() {
     return std::make_unique<ReferenceSvgfPasses>();
 }
 

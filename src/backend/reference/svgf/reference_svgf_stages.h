@@ -7,6 +7,6 @@ namespace bmfr::reference {
 
 /// Accumulation, depth gradient, variance, the a-trous levels (the step-1 level fed back as
 /// the colour history) and re-modulation into b.remodulated. Returns the non-finite count.
-int64_t svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times);
+PassCounters svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times);
 
 } // namespace bmfr::reference

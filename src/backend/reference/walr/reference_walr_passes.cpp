@@ -1,4 +1,5 @@
 // WALR's reference passes: plain parallel loops over the filter's kernels, one per stage.
+#include "backend/backend_registry.h"
 #include "backend/reference/walr/reference_walr_stages.h"
 #include "core/stopwatch.h"
 #include "filters/walr/refwlr.h"
@@ -53,9 +54,11 @@ void walrPostprocess(const WalrPassContext& ctx, WalrBuffers& b) {
     ctx.pool.forEachPixel(p.width, p.height, 4, [&](int x, int y) { walrPostPixel(p, x, y); });
 }
 
-int64_t HostWalrPipeline::run(const WalrPassContext& ctx, StageTimes& times) {
+PassCounters HostWalrPipeline::run(const WalrPassContext& ctx, StageTimes& times) {
     Stopwatch clock;
     const int64_t bad = walrPreprocess(ctx, buffers);
+    const int64_t discarded = countDiscarded(ctx.pool, buffers.accept.data(),
+                                             buffers.accept.pixelCount(), ctx.history.hasHistory());
     times.add("preprocess", clock.lap());
     if (ctx.settings.solver == WalrSolver::Refwlr)
         walrSpatialRefwlr(ctx, buffers);
@@ -64,7 +67,7 @@ int64_t HostWalrPipeline::run(const WalrPassContext& ctx, StageTimes& times) {
     times.add("spatial", clock.lap());
     walrPostprocess(ctx, buffers);
     times.add("postprocess", clock.lap());
-    return bad;
+    return {bad, discarded};
 }
 
 namespace {
@@ -87,7 +90,7 @@ class ReferenceWalrPasses final : public HostWalrPipeline {
 
 } // namespace
 
-std::unique_ptr<WalrPasses> makeWalrPasses() {
+template <> std::unique_ptr<WalrPasses> makePasses<WalrSettings>() {
     return std::make_unique<ReferenceWalrPasses>();
 }
 

@@ -16,9 +16,9 @@ void walrPostprocess(const WalrPassContext& ctx, WalrBuffers& b);
 
 /// A host backend's WALR: these stages, timed, around the backend's own a-trous iterations and
 /// solve (REFWLR when the settings ask for it).
-class HostWalrPipeline : public HostWalrPasses {
+class HostWalrPipeline : public HostPasses<WalrSettings, WalrBuffers> {
   public:
-    int64_t run(const WalrPassContext& ctx, StageTimes& times) final;
+    PassCounters run(const WalrPassContext& ctx, StageTimes& times) final;
 
   protected:
     /// The a-trous iterations from b.averages[0] and the solve into buffers.spatial.

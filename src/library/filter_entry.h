@@ -26,10 +26,4 @@ FilterEntry tableFilterEntry(const char* name, const char* title,
             [table] { return documentSettings(table(), temporalSettingCount()); }};
 }
 
-/// Each filter folder defines its entry (src/filters/<name>/<name>_denoiser.cpp).
-FilterEntry bmfrFilterEntry();
-FilterEntry svgfFilterEntry();
-FilterEntry walrFilterEntry();
-FilterEntry mara2017FilterEntry();
-
 } // namespace bmfr

@@ -1,6 +1,9 @@
-// The filters by name. A new filter adds one line to kFilters (and its entry to filter_entry.h).
-#include "filters/filter_entry.h"
-#include "temporal/input_staging.h"
+// The filters by name. A new filter adds one line to kFilters.
+#include "filters/bmfr/bmfr_settings_table.h"
+#include "filters/mara2017/mara_settings_table.h"
+#include "filters/svgf/svgf_settings_table.h"
+#include "filters/walr/walr_settings_table.h"
+#include "library/filter_entry.h"
 #include <bmfr/error.h>
 
 namespace bmfr {
@@ -9,10 +12,12 @@ namespace {
 
 const std::vector<FilterEntry>& filters() {
     static const std::vector<FilterEntry> kFilters = {
-        bmfrFilterEntry(),
-        svgfFilterEntry(),
-        walrFilterEntry(),
-        mara2017FilterEntry(),
+        tableFilterEntry<BmfrDenoiser>("bmfr", "BMFR (Koskela et al. 2019)", bmfrSettingsTable),
+        tableFilterEntry<SvgfDenoiser>("svgf", "SVGF (Schied et al. 2017)", svgfSettingsTable),
+        tableFilterEntry<WalrDenoiser>("walr", "WALR (Meunier and Harada 2022)",
+                                       walrSettingsTable),
+        tableFilterEntry<Mara2017Denoiser>("mara2017", "Mara et al. 2017",
+                                           mara2017SettingsTable),
     };
     return kFilters;
 }
@@ -70,15 +75,6 @@ SettingValues presetSettings(const std::string& name, const std::string& preset)
         for (const SettingDoc& d : docs)
             if (d.key == kv.first) v.push_back(kv);
     return v;
-}
-
-ImageView Filter::denoise(const FrameInput& frame, const MutableImageView& out) {
-    checkOutput(out, frame.color.width, frame.color.height); // before the history moves on
-    if (out.memory == Memory::Cuda && frame.color.memory == Memory::Host)
-        throw Error("output buffer is in CUDA device memory, the frame's buffers in host memory");
-    const ImageView result = denoise(frame);
-    writeOutput(result, out, frame.cudaStream);
-    return result;
 }
 
 } // namespace bmfr
