@@ -42,5 +42,32 @@ TEST(Allocation, SteadyStateFramesAllocateNothing) {
     EXPECT_EQ(gAllocations.load(), 0);
 }
 
+/// A filter made from a Device that reserved the frame size allocates nothing on its first frame
+/// either (the frames' own buffers are packed RGB, read in place).
+class AllocationOnAReservedDevice : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(AllocationOnAReservedDevice, FirstFrameAllocatesNothing) {
+    ProceduralSceneOptions o;
+    o.width = 200, o.height = 120, o.frames = 2;
+    ProceduralScene scene(o);
+    std::vector<FrameData> frames(2);
+    std::vector<FrameInput> inputs;
+    for (int i = 0; i < 2; ++i) scene.render(i, frames[i]), inputs.push_back(frames[i].input());
+    for (Backend b : {Backend::Reference, Backend::Cpu}) {
+        Device device(b, 2);
+        device.reserve(o.width, o.height);
+        std::unique_ptr<Filter> f = device.makeFilter(GetParam());
+        gAllocations = 0;
+        gCounting = true;
+        f->denoise(inputs[0]);
+        f->denoise(inputs[1]);
+        gCounting = false;
+        EXPECT_EQ(gAllocations.load(), 0) << backendName(b);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryFilter, AllocationOnAReservedDevice,
+                         ::testing::ValuesIn(filterNames()), [](const auto& p) { return p.param; });
+
 } // namespace
 } // namespace bmfr

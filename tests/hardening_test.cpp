@@ -47,15 +47,7 @@ Result run(const std::string& args) {
 
 using testing::slurp;
 
-/// The procedural scene's first `n` frames at w x h.
-std::vector<FrameData> proceduralFrames(int w, int h, int n) {
-    ProceduralSceneOptions o;
-    o.width = w, o.height = h, o.frames = n;
-    ProceduralScene scene(o);
-    std::vector<FrameData> frames(static_cast<size_t>(n));
-    for (int i = 0; i < n; ++i) scene.render(i, frames[size_t(i)]);
-    return frames;
-}
+using testing::proceduralFrames;
 
 render::SceneDescription tinyScene() {
     render::SceneDescription d = render::loadSceneDescription("cornell-moving", ".");

@@ -1,6 +1,7 @@
 // Small helpers the test suites share: scratch folders and the message of an expected error.
 #pragma once
 #include "core/hash.h"
+#include "synth/procedural_scene.h"
 #include <bmfr/error.h>
 #include <filesystem>
 #include <fstream>
@@ -57,6 +58,16 @@ inline std::string slurp(const std::filesystem::path& p) {
 /// A number in [0, 1) that depends only on three keys: repeatable test data.
 inline float uniform(uint32_t a, uint32_t b, uint32_t c) {
     return unitFloat(hashKeys(a, b, c));
+}
+
+/// The procedural scene's first `n` frames at w x h.
+inline std::vector<FrameData> proceduralFrames(int w, int h, int n) {
+    ProceduralSceneOptions o;
+    o.width = w, o.height = h, o.frames = n;
+    ProceduralScene scene(o);
+    std::vector<FrameData> frames(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) scene.render(i, frames[size_t(i)]);
+    return frames;
 }
 
 /// What `f` throws as bmfr::Error, or "(no error)".

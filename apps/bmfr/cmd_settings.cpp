@@ -14,15 +14,15 @@ std::string escape(const std::string& s) {
 }
 
 std::string markdown() {
-    std::string out = "| filter | key | flag | unit | range | default | what it does |\n"
-                      "|---|---|---|---|---|---|---|\n";
+    std::string out = "| filter | key | flag | unit | range | default | quality | what it does |\n"
+                      "|---|---|---|---|---|---|---|---|\n";
     bool sharedDone = false;
     for (const std::string& f : filterNames()) {
         for (const SettingDoc& d : filterSettings(f)) {
             if (d.shared && sharedDone) continue; // the same rows in every table
-            out +=
-                fmt::format("| {} | `{}` | `--{}` | {} | {} | {} | {} |\n", d.shared ? "all" : f,
-                            d.key, d.flag, d.unit, d.range, escape(d.defaultValue), escape(d.help));
+            out += fmt::format("| {} | `{}` | `--{}` | {} | {} | {} | {} | {} |\n",
+                               d.shared ? "all" : f, d.key, d.flag, d.unit, d.range,
+                               escape(d.defaultValue), escape(d.quality), escape(d.help));
         }
         sharedDone = true;
     }

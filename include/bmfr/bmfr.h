@@ -1,6 +1,7 @@
 // bmfr: real-time reconstruction of 1-spp path-traced frame sequences. One header for the whole
 // public API: frames, the filter interface and registry, and every filter.
 #pragma once
+#include <bmfr/device.h>
 #include <bmfr/error.h>
 #include <bmfr/features.h>
 #include <bmfr/filter.h>

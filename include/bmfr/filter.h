@@ -72,6 +72,7 @@ using SettingValues = std::vector<std::pair<std::string, std::string>>;
 /// One row of a filter's settings table.
 struct SettingDoc {
     std::string key, flag, unit, range, defaultValue, help;
+    std::string quality; ///< the value the "quality" preset gives it; empty: the default
     bool shared = false; ///< one of the settings every filter has (TemporalSettings)
 };
 

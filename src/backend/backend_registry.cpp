@@ -39,7 +39,19 @@ template <class S>
 constexpr bool kOnCuda = std::is_same_v<S, BmfrSettings> || std::is_same_v<S, SvgfSettings>;
 } // namespace
 
+void requireBackend(Backend b) {
+    if (b == Backend::Cpu) cpu::activeIsa();
+    if (b == Backend::Cuda) cuda::requireDevice();
+}
+
+template <class S> void requireRuns(Backend b, const char* filter) {
+    if (b == Backend::Cuda && !kOnCuda<S>)
+        throw Error(std::string("the cuda backend runs bmfr and svgf; ") + filter +
+                    " runs on --backend cpu or reference");
+}
+
 template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const char* filter) {
+    requireRuns<S>(b, filter);
     switch (b) {
     case Backend::Reference:
         return reference::makePasses<S>();
@@ -48,9 +60,6 @@ template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const cha
         cpu::activeIsa();
         return cpu::makePasses<S>();
     case Backend::Cuda:
-        if constexpr (!kOnCuda<S>)
-            throw Error(std::string("the cuda backend runs bmfr and svgf; ") + filter +
-                        " runs on --backend cpu or reference");
         // "no CUDA device: ..." when the filter is made, in a build without CUDA too.
         cuda::requireDevice();
 #if defined(BMFR_HAVE_CUDA)
@@ -60,9 +69,13 @@ template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const cha
     throw Error("unknown backend");
 }
 
+template void requireRuns<BmfrSettings>(Backend, const char*);
 template std::unique_ptr<PassesFor<BmfrSettings>> makePasses<BmfrSettings>(Backend, const char*);
+template void requireRuns<SvgfSettings>(Backend, const char*);
 template std::unique_ptr<PassesFor<SvgfSettings>> makePasses<SvgfSettings>(Backend, const char*);
+template void requireRuns<WalrSettings>(Backend, const char*);
 template std::unique_ptr<PassesFor<WalrSettings>> makePasses<WalrSettings>(Backend, const char*);
+template void requireRuns<Mara2017Settings>(Backend, const char*);
 template std::unique_ptr<PassesFor<Mara2017Settings>> makePasses<Mara2017Settings>(Backend,
                                                                                    const char*);
 

@@ -19,6 +19,13 @@ namespace cuda {
 template <class S> std::unique_ptr<PassesFor<S>> makePasses();
 } // namespace cuda
 
+/// Throws bmfr::Error when `backend` cannot run here: not built into this library, no CUDA device,
+/// or a BMFR_CPU_ISA this processor lacks.
+void requireBackend(Backend backend);
+
+/// Throws bmfr::Error when `backend` does not run filter `filter` (settings S).
+template <class S> void requireRuns(Backend backend, const char* filter);
+
 /// The passes of filter `filter` (settings S) on `backend`. Throws bmfr::Error when the backend
 /// is not built into this library, has no device, or does not run this filter.
 template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend backend, const char* filter);

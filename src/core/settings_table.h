@@ -32,6 +32,7 @@ template <class S> struct Setting {
     const char* help; ///< one line
     std::variant<float& (*)(S&), int& (*)(S&), uint32_t& (*)(S&), bool& (*)(S&), TextField<S>>
         field;
+    const char* quality = nullptr; ///< its value in the quality preset; null: the default's
 };
 
 template <class S> using SettingsTable = std::vector<Setting<S>>;
@@ -153,6 +154,7 @@ template <class S> std::vector<SettingDoc> documentSettings(const SettingsTable<
         d.range = isNumeric(e) ? detail::formatRange(e.range, isInteger(e))
                                : (e.field.index() == 3 ? "true, false" : "");
         d.defaultValue = formatSetting(e, defaults);
+        d.quality = e.quality ? e.quality : "";
         d.shared = int(k) < shared;
         docs.push_back(d);
     }

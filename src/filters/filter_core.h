@@ -37,6 +37,8 @@ template <class S> struct FilterHooks {
         changed = false;
         return settings;
     }
+    /// The settings whose buffers hold those of every frame's select() (Device::reserve).
+    S widest(const S& settings) const { return settings; }
 };
 
 /// A filter's state: settings, the backend's passes P, threads, history and stats.
@@ -45,14 +47,20 @@ struct FilterCore final : FrameLoop {
     const char* filterName;
     S settings;
     std::unique_ptr<P> passes;
-    ThreadPool pool;
+    std::shared_ptr<ThreadPool> pool; ///< its Device's
     TemporalHistory history;
     FrameStats counts;
     Hooks hooks;
     bool keepDebug = false;
 
-    FilterCore(const char* name, const S& s, std::unique_ptr<P> p)
-        : filterName(name), settings(s), passes(std::move(p)), pool(s.threads) {}
+    FilterCore(const char* name, const S& s, std::unique_ptr<P> p,
+               std::shared_ptr<ThreadPool> threads)
+        : filterName(name), settings(s), passes(std::move(p)), pool(std::move(threads)) {}
+
+    /// Sizes the buffers for w x h frames ahead of the first.
+    void reserve(int w, int h) {
+        passes->allocate(w, h, hooks.widest(settings), pool->threadCount());
+    }
 
     const char* name() const override { return filterName; }
 
@@ -64,8 +72,8 @@ struct FilterCore final : FrameLoop {
         bool changed = false;
         const S& active = hooks.select(settings, frame, history, changed);
         if (history.begin(frame) || changed)
-            passes->allocate(history.width, history.height, active, pool.threadCount());
-        const PassContext<S> ctx{active, passes->stage(frame), frame, history, pool};
+            passes->allocate(history.width, history.height, active, pool->threadCount());
+        const PassContext<S> ctx{active, passes->stage(frame), frame, history, *pool};
         counts.times.clear();
         const PassCounters c = passes->run(ctx, counts.times);
         counts.nonFiniteInputs = c.nonFinite;

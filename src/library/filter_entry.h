@@ -1,6 +1,7 @@
 // What a filter registers: its name, how to make it from text settings, and its settings table.
 #pragma once
 #include "temporal/temporal_settings_table.h"
+#include <bmfr/device.h>
 #include <bmfr/filter.h>
 #include <functional>
 
@@ -9,7 +10,8 @@ namespace bmfr {
 struct FilterEntry {
     const char* name;  ///< as in --filter and makeFilter
     const char* title; ///< for reports and help
-    std::function<std::unique_ptr<Filter>(const SettingValues&)> make;
+    /// The filter on `device`, or on its own when null.
+    std::function<std::unique_ptr<Filter>(const SettingValues&, const Device*)> make;
     std::function<std::vector<SettingDoc>()> settings;
 };
 
@@ -18,10 +20,13 @@ template <class D, class S>
 FilterEntry tableFilterEntry(const char* name, const char* title,
                              const SettingsTable<S>& (*table)()) {
     return {name, title,
-            [name, table](const SettingValues& values) -> std::unique_ptr<Filter> {
+            [name, table](const SettingValues& values,
+                          const Device* device) -> std::unique_ptr<Filter> {
                 S s;
+                if (device) s.backend = device->backend();
                 applySettings(table(), s, values, name);
-                return std::make_unique<D>(s);
+                if (!device) return std::make_unique<D>(s);
+                return std::make_unique<D>(s, *device);
             },
             [table] { return documentSettings(table(), temporalSettingCount()); }};
 }

@@ -31,7 +31,7 @@ template <class S> SettingsTable<S> temporalSettingsTable() {
          "TAA takes the history only from the bilinear taps that passed the history discard "
          "test (the same surface), so edges do not blur under motion; false: all four taps, "
          "the authors'",
-         BMFR_FIELD(S, taaSameSurface)},
+         BMFR_FIELD(S, taaSameSurface), "true"},
         {"taaToneMapped", "taa-tone-mapped", "", {},
          "TAA blends display values clamp(x^(1/2.2), 0, 1), as the authors' code does on its "
          "tone-mapped frame, and converts the result back to linear (x^2.2): values above 1 come "

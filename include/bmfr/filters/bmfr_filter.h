@@ -1,6 +1,7 @@
 // BMFR, Blockwise Multi-Order Feature Regression (Koskela et al., ACM TOG 2019): its settings
 // and its denoiser. Ranges, units and defaults: `bmfr settings bmfr` or the README's table.
 #pragma once
+#include <bmfr/device.h>
 #include <bmfr/features.h>
 #include <bmfr/filter.h>
 #include <bmfr/temporal_settings.h>
@@ -54,6 +55,9 @@ class BMFR_API BmfrDenoiser final : public TemporalFilter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit BmfrDenoiser(const BmfrSettings& settings = {});
+    /// On `device`, sharing its threads: settings.backend must be the device's, settings.threads
+    /// is the device's.
+    BmfrDenoiser(const BmfrSettings& settings, const Device& device);
     const BmfrSettings& settings() const;
 };
 

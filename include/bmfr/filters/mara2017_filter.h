@@ -7,6 +7,7 @@
 // them it filters the whole demodulated colour as matte. Ranges, units and defaults:
 // `bmfr settings mara2017` or the README.
 #pragma once
+#include <bmfr/device.h>
 #include <bmfr/filter.h>
 #include <bmfr/temporal_settings.h>
 #include <cstdint>
@@ -55,6 +56,9 @@ class BMFR_API Mara2017Denoiser final : public TemporalFilter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit Mara2017Denoiser(const Mara2017Settings& settings = {});
+    /// On `device`, sharing its threads: settings.backend must be the device's, settings.threads
+    /// is the device's.
+    Mara2017Denoiser(const Mara2017Settings& settings, const Device& device);
 };
 
 } // namespace bmfr

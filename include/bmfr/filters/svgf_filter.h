@@ -1,6 +1,7 @@
 // Spatiotemporal Variance-Guided Filtering (Schied et al. 2017), with the progressive variant of
 // Dundr's thesis as settings. Ranges, units and defaults: `bmfr settings svgf` or the README.
 #pragma once
+#include <bmfr/device.h>
 #include <bmfr/filter.h>
 #include <bmfr/temporal_settings.h>
 #include <memory>
@@ -30,6 +31,9 @@ class BMFR_API SvgfDenoiser final : public TemporalFilter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit SvgfDenoiser(const SvgfSettings& settings = {});
+    /// On `device`, sharing its threads: settings.backend must be the device's, settings.threads
+    /// is the device's.
+    SvgfDenoiser(const SvgfSettings& settings, const Device& device);
     /// The variance estimate of the last frame before the a-trous filter (1 channel).
     ImageView variance() const;
 };

@@ -3,6 +3,7 @@
 // REFWLR, the paper's direct reference solver. Ranges, units and defaults: `bmfr settings walr`
 // or the README.
 #pragma once
+#include <bmfr/device.h>
 #include <bmfr/filter.h>
 #include <bmfr/temporal_settings.h>
 #include <cstdint>
@@ -64,6 +65,9 @@ class BMFR_API WalrDenoiser final : public TemporalFilter {
   public:
     /// Throws bmfr::Error when a setting is out of range or the backend is not available.
     explicit WalrDenoiser(const WalrSettings& settings = {});
+    /// On `device`, sharing its threads: settings.backend must be the device's, settings.threads
+    /// is the device's.
+    WalrDenoiser(const WalrSettings& settings, const Device& device);
 };
 
 } // namespace bmfr

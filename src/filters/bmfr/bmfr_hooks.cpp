@@ -11,6 +11,16 @@ int BmfrHooks::extrasNeeded(const BmfrSettings& settings) const {
     return n;
 }
 
+BmfrSettings BmfrHooks::widest(const BmfrSettings& settings) const {
+    BmfrSettings s = settings;
+    if (s.visibilityFeature) {
+        Feature v;
+        v.source = FeatureSource::Extra;
+        s.features.push_back(v);
+    }
+    return s;
+}
+
 const BmfrSettings& BmfrHooks::select(const BmfrSettings& settings, const FrameInput& frame,
                                       const TemporalHistory& history, bool& changed) {
     const bool reads = settings.visibilityFeature || settings.visibilityTaps;

@@ -16,6 +16,8 @@ struct BmfrHooks : FilterHooks<BmfrSettings> {
     /// Within a history the visibility must come with every frame or none.
     const BmfrSettings& select(const BmfrSettings& settings, const FrameInput& frame,
                                const TemporalHistory& history, bool& changed);
+    /// With visibilityFeature, the column a visibility buffer adds.
+    BmfrSettings widest(const BmfrSettings& settings) const;
 };
 
 } // namespace bmfr

@@ -18,6 +18,13 @@ void MaraBuffers::allocate(int w, int h) {
     accept.resize(w, h, 1);
 }
 
+void MaraBuffers::reserveTables(const Mara2017Settings& s) {
+    preSpiral.reserve(size_t(2 * s.preTaps * kMaraSpiralRotations));
+    finalSpiral.reserve(size_t(2 * s.finalTaps * kMaraSpiralRotations));
+    preOffsets.reserve(size_t(2 * s.preTaps * kMaraSpiralRotations));
+    preGauss.reserve(size_t(s.preTaps * kMaraSpiralRotations));
+}
+
 void maraSpiralTable(int taps, float frameRotation, std::vector<float>& out) {
     out.resize(size_t(2 * taps * kMaraSpiralRotations));
     for (int r = 0; r < kMaraSpiralRotations; ++r)

@@ -42,6 +42,8 @@ struct MaraBuffers {
     ImageF countF, acceptF; ///< debug copies, sized on first use
 
     void allocate(int w, int h);
+    /// Room for the spiral tables of these settings, so that frame() allocates nothing.
+    void reserveTables(const Mara2017Settings& s);
     /// The stages' view of this frame; builds this frame's spiral tables.
     MaraFrame frame(const MaraPassContext& ctx);
     TaaInputs taaInputs(const MaraPassContext& ctx) const;

@@ -41,6 +41,7 @@ class CpuBmfrPasses final : public BmfrPasses {
         b_.change.assign(s.adaptiveHistory || s.excludeEmitters ? 2 * b_.stride : 0, 0.0f);
         b_.changeTiles.assign(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
+        b_.noise.assign(M * W, 0.0f);
         b_.scratch.resize(size_t(threads));
         for (Scratch& sc : b_.scratch) {
             sc.clean.assign(M * W, 0.0f);

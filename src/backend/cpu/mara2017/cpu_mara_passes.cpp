@@ -14,13 +14,28 @@ namespace bmfr::cpu {
 namespace {
 
 class CpuMaraPasses final : public reference::HostMaraPipeline {
+  public:
+    void allocate(int w, int h, const Mara2017Settings& s, int threads) override {
+        HostMaraPipeline::allocate(w, h, s, threads);
+        const size_t n = size_t(w) * size_t(h);
+        stage5_.reserve(n);
+        scratch_.reserve(2 * size_t(longestRun(w, h, maraFrameSettings(s, w).maxRadius)) *
+                         size_t(threads));
+        records_.assign(size_t(kMaraTapRecord) * n + kMaraTapRecord, 0);
+        guidePacked_ = false;
+        for (int t = 0; t < MaraTapTables::kRadii; ++t) {
+            tables_.offsets[t].reserve(size_t(2 * s.finalTaps * kMaraSpiralRotations));
+            tables_.gauss[t].reserve(size_t(s.finalTaps * kMaraSpiralRotations));
+        }
+    }
+
   protected:
     void disocclusion(const MaraPassContext& ctx, const MaraFrame& f) override {
         const int r = f.maxRadius, w = f.width, hgt = f.height;
         const long n = long(w) * hgt;
         stage5_.resize(size_t(n));
         for (long i = 0; i < n; ++i) stage5_[size_t(i)] = maraStage5Confidence(f, i);
-        const int longest = std::max(w, hgt) + 4 * r + 2;
+        const int longest = longestRun(w, hgt, r);
         const size_t perThread = 2 * size_t(longest);
         scratch_.resize(perThread * size_t(ctx.pool.threadCount()));
         ctx.pool.parallelFor(hgt, 8, [&](long y0, long y1) {
@@ -61,6 +76,9 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     }
 
   private:
+    /// The running minimum's longest line with its padding, for radius r.
+    static int longestRun(int w, int h, int r) { return std::max(w, h) + 4 * r + 2; }
+
     /// Stage 4 or 7 from tap records: a tap reads one cache line, not three.
     void sparse(const MaraPassContext& ctx, const MaraFrame& f, const float* src, bool final) {
         const size_t floats = size_t(kMaraTapRecord) * size_t(f.width) * size_t(f.height);

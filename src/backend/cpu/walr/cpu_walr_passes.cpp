@@ -13,6 +13,7 @@ class CpuWalrPasses final : public reference::HostWalrPipeline {
     void allocate(int w, int h, const WalrSettings&, int) override {
         buffers.interleaved = true;
         buffers.allocate(w, h);
+        planes_.allocate(w, h);
     }
 
   protected:

@@ -7,18 +7,22 @@ namespace bmfr::cpu {
 
 using namespace simd;
 
-void EdgePlanes::fill(ThreadPool& pool, const EdgeGuide& g) {
+void EdgePlanes::allocate(int width, int height) {
     // The seven planes' rows interleaved (row y of plane k at (7 y + k) * planeSize): a trace
     // step's three position loads then fall within one small stretch of memory.
-    planeSize = g.width + 2 * kPad;
+    planeSize = width + 2 * kPad;
     rowStride = 7 * planeSize;
     // Zeroed once per size: every frame writes the whole interior, and the padding is only
     // ever read by lanes whose result is masked.
-    if (planes.size() != size_t(rowStride * g.height))
-        planes.assign(size_t(rowStride * g.height), 0.0f);
-    blocksPerRow = (g.width + 7) / 8;
-    tracedMin.resize(size_t(64 * blocksPerRow * g.height));
+    if (planes.size() != size_t(rowStride * height))
+        planes.assign(size_t(rowStride * height), 0.0f);
+    blocksPerRow = (width + 7) / 8;
+    tracedMin.resize(size_t(64 * blocksPerRow * height));
     tracedEdge.resize(tracedMin.size());
+}
+
+void EdgePlanes::fill(ThreadPool& pool, const EdgeGuide& g) {
+    allocate(g.width, g.height);
     pool.parallelFor(g.height, 16, [&](long y0, long y1) {
         for (long y = y0; y < y1; ++y)
             for (long x = 0; x < g.width; ++x) {

@@ -23,6 +23,8 @@ struct EdgePlanes {
     long planeSize = 0; ///< floats from a row of one plane to the same row of the next
     long blocksPerRow = 0;
     const float* plane(int k) const { return planes.data() + k * planeSize + kPad; }
+    /// Sizes the planes for a width x height guide (fill does too, when they are not).
+    void allocate(int width, int height);
     void fill(ThreadPool& pool, const EdgeGuide& g);
 };
 

@@ -182,6 +182,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
         b.changeTiles.assign(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
+        b.noise.assign(M * W, 0.0f);
         b.scratch.resize(size_t(threads));
         for (FitScratch& sc : b.scratch) {
             sc.clean.assign(M * W, 0.0f);

@@ -1,0 +1,39 @@
+#include "backend/backend_registry.h"
+#include "library/device_state.h"
+#include <bmfr/error.h>
+#include <string>
+
+namespace bmfr {
+
+Device::Device(Backend backend, int threads) : state_(std::make_shared<State>()) {
+    if (threads < 0 || threads > 1024)
+        throw Error("threads " + std::to_string(threads) + " is outside [0, 1024]");
+    requireBackend(backend); // its errors when the device is made, not when a filter is
+    state_->backend = backend;
+    state_->pool = std::make_shared<ThreadPool>(threads);
+}
+Device::~Device() = default;
+Device::Device(const Device&) = default;
+Device& Device::operator=(const Device&) = default;
+
+Backend Device::backend() const {
+    return state_->backend;
+}
+int Device::threadCount() const {
+    return state_->pool->threadCount();
+}
+void Device::reserve(int maxWidth, int maxHeight) {
+    if (maxWidth < 1 || maxHeight < 1)
+        throw Error("reserve(" + std::to_string(maxWidth) + ", " + std::to_string(maxHeight) +
+                    "): the size must be at least 1x1");
+    state_->reservedWidth = maxWidth;
+    state_->reservedHeight = maxHeight;
+}
+int Device::reservedWidth() const {
+    return state_->reservedWidth;
+}
+int Device::reservedHeight() const {
+    return state_->reservedHeight;
+}
+
+} // namespace bmfr
