@@ -31,6 +31,10 @@ struct NamedSolver {
     Solver solve;
 };
 const NamedSolver kSolvers[] = {{"reference", &solveHouseholder},
+                                // The reference again where the processor has no AVX2.
+                                {"reference avx2", cpu::bestIsa() >= cpu::Isa::Avx2
+                                                       ? &solveHouseholderAvx2
+                                                       : &solveHouseholder},
                                 {"fast", &cpu::solveHouseholderFast},
                                 {"cuda team", &solveHouseholderTeam}};
 

@@ -3,6 +3,7 @@
 // tree order, so within the conformance suite's tolerance. Runs on every machine; the GPU
 // runs this very code.
 #include "backend/cuda/bmfr/cooperative_fit.h"
+#include "backend/reference/bmfr/reference_householder.h"
 #include "core/hash.h"
 #include "filters/bmfr/regularisation_noise.h"
 #include "test_support.h"
@@ -126,7 +127,7 @@ double worstExcess(const Frame& f, int blockSize, const std::vector<Feature>& fe
                 a.emitters.previousY = previousPixel.data() + 1, a.emitters.previousStep = 2;
             }
             a.clampFireflies = excludeEmitters;
-            fitBlock(a, bx, by, sc, solveHouseholder);
+            fitBlock(a, bx, by, sc, reference::householderSolver());
             a.fitted = team.data();
             a.emitters.bits = teamBits.data();
             cuda::fitBlockTeam(host, a, bx, by, mem);

@@ -140,9 +140,8 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     // Device copies of every frame's buffers, made before timing starts.
     std::vector<std::unique_ptr<cuda::DeviceImageCopy>> deviceCopies;
     auto onDevice = [&deviceCopies](FrameInput in) {
-        std::vector<ImageView*> views = {
-            &in.color,  &in.albedo,           &in.normal,         &in.position,  &in.emission,
-            &in.motion, &in.previousPosition, &in.previousNormal, &in.visibility};
+        std::vector<ImageView*> views;
+        for (const FrameBuffer& b : kFrameBuffers) views.push_back(&(in.*b.view));
         for (ImageView& e : in.extras) views.push_back(&e);
         for (ImageView* v : views) {
             if (!v->data) continue;

@@ -249,10 +249,10 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
                     "simulate fewer than 1 spp: keep this fraction of pixels per frame (0, 1]")
         ->default_val(1.0);
     cmd->add_option("--channel", job->channels,
-                    "BUFFER=LAYER: read a buffer (color, albedo, normal, position, emission, "
-                    "reference, motion, previous_position, previous_normal) from this layer of "
-                    "multilayer EXRs, as "
-                    "albedo=ViewLayer.DiffCol; repeatable");
+                    "BUFFER=LAYER: read a buffer (" +
+                        fmt::format("{}", fmt::join(layeredBufferNames(), ", ")) +
+                        ") from this layer of multilayer EXRs, as albedo=ViewLayer.DiffCol; "
+                        "repeatable");
     job->options.addTo(*cmd, filterNames());
     cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });
 }

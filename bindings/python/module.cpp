@@ -14,6 +14,14 @@ namespace bmfr::python {
 
 namespace {
 
+/// The optional input buffers' keywords, for an error message.
+std::string bufferList() {
+    std::string list;
+    for (const FrameBuffer& b : kFrameBuffers)
+        if (!b.required) list += (list.empty() ? "" : ", ") + std::string(b.file);
+    return list;
+}
+
 /// A setting's Python name: its flag with underscores ("block_size").
 std::string pythonName(const SettingDoc& d) {
     std::string n = d.flag;
@@ -68,52 +76,35 @@ class PyFilter {
         }
     }
 
+    /// The buffers of BMFR_FRAME_BUFFERS by their file names: the four required ones, and any
+    /// optional ones in `buffers` (None leaves the view empty).
     py::array_t<float> denoise(const py::handle& color, const py::handle& albedo,
                                const py::handle& normal, const py::handle& position,
                                const py::handle& viewProjection, std::pair<float, float> jitter,
-                               const py::handle& emission, bool reset, const py::handle& extras,
-                               const py::handle& motion, const py::handle& previousPosition,
-                               const py::handle& previousNormal, const py::handle& diffuseIndirect,
-                               const py::handle& matteIndirect, const py::handle& glossyIndirect,
-                               const py::handle& directLight, const py::handle& specularF0,
-                               const py::handle& roughness, const py::handle& glossyHitDistance,
-                               const py::handle& visibility) {
+                               bool reset, const py::handle& extras, const py::kwargs& buffers) {
+        const py::handle required[] = {color, albedo, normal, position};
+        for (const auto& item : buffers) {
+            const std::string name = py::str(item.first);
+            bool known = false;
+            for (const FrameBuffer& b : kFrameBuffers)
+                known = known || (!b.required && name == b.file);
+            if (!known)
+                throw py::value_error(name + ": not an input buffer (" + bufferList() + ")");
+        }
         int h = -1, w = -1;
-        const ImageArg c = imageArg(color, "color", h, w), a = imageArg(albedo, "albedo", h, w),
-                       n = imageArg(normal, "normal", h, w),
-                       p = imageArg(position, "position", h, w);
         FrameInput in;
-        // The optional images: None leaves the view empty; the arrays live in `kept`.
-        ImageArg kept[9];
-        const struct {
-            const py::handle& object;
-            const char* name;
-            int minChannels;
-            ImageView& view;
-        } optional[] = {{emission, "emission", 3, in.emission},
-                        {motion, "motion", 2, in.motion},
-                        {previousPosition, "previous_position", 3, in.previousPosition},
-                        {previousNormal, "previous_normal", 3, in.previousNormal},
-                        {diffuseIndirect, "diffuse_indirect", 3, in.diffuseIndirect},
-                        {matteIndirect, "matte_indirect", 3, in.matteIndirect},
-                        {glossyIndirect, "glossy_indirect", 3, in.glossyIndirect},
-                        {directLight, "direct_light", 3, in.directLight},
-                        {specularF0, "specular_f0", 3, in.specularF0}};
-        for (size_t k = 0; k < 9; ++k)
-            if (!optional[k].object.is_none()) {
-                kept[k] =
-                    imageArg(optional[k].object, optional[k].name, h, w, optional[k].minChannels);
-                optional[k].view = kept[k].view;
-            }
-        in.color = c.view, in.albedo = a.view, in.normal = n.view, in.position = p.view;
-        ImageArg rough, hit, visible; // single-channel (height, width)
-        if (!visibility.is_none())
-            in.visibility = (visible = channelArg(visibility, "visibility", h, w)).view;
-        if (!roughness.is_none())
-            in.roughness = (rough = channelArg(roughness, "roughness", h, w)).view;
-        if (!glossyHitDistance.is_none())
-            in.glossyHitDistance =
-                (hit = channelArg(glossyHitDistance, "glossy_hit_distance", h, w)).view;
+        std::vector<ImageArg> kept; // the arrays the views point into
+        kept.reserve(kFrameBufferCount);
+        int requiredIndex = 0;
+        for (const FrameBuffer& b : kFrameBuffers) {
+            const py::handle object = b.required                 ? required[requiredIndex++]
+                                      : buffers.contains(b.file) ? buffers[b.file]
+                                                                 : py::handle(py::none());
+            if (object.is_none()) continue;
+            kept.push_back(b.channels.hi == 1 ? channelArg(object, b.file, h, w)
+                                              : imageArg(object, b.file, h, w, b.channels.lo));
+            in.*b.view = kept.back().view;
+        }
         std::vector<ImageArg> extraArgs;
         if (!extras.is_none()) {
             if (!py::isinstance<py::sequence>(extras) || py::isinstance<py::array>(extras))
@@ -197,23 +188,11 @@ class SequenceIterator {
         }
         py::dict d;
         d["index"] = index_++;
-        d["color"] = toArray(view(frame_.color));
-        d["albedo"] = toArray(view(frame_.albedo));
-        d["normal"] = toArray(view(frame_.normal));
-        d["position"] = toArray(view(frame_.position));
+        frame_.forEachBuffer([&d](const FrameBuffer& b, const ImageF& image) {
+            if (b.required || image.width) d[b.file] = toArray(view(image));
+        });
         d["view_projection"] = matrixArray(frame_.viewProjection);
         d["jitter"] = py::make_tuple(frame_.jitter[0], frame_.jitter[1]);
-        if (frame_.emission.width) d["emission"] = toArray(view(frame_.emission));
-        if (frame_.motion.width) d["motion"] = toArray(view(frame_.motion));
-        if (frame_.previousPosition.width)
-            d["previous_position"] = toArray(view(frame_.previousPosition));
-        if (frame_.previousNormal.width)
-            d["previous_normal"] = toArray(view(frame_.previousNormal));
-        if (frame_.diffuseIndirect.width)
-            d["diffuse_indirect"] = toArray(view(frame_.diffuseIndirect));
-        if (frame_.visibility.width) d["visibility"] = toArray(view(frame_.visibility));
-        for (const auto& [img, key] : frame_.maraBuffers())
-            if (img->width) d[key] = toArray(view(*img));
         d["reset"] = frame_.reset;
         if (frame_.reference.width) d["reference"] = toArray(view(frame_.reference));
         py::list extras;
@@ -260,15 +239,11 @@ Filter(name="bmfr", backend="cpu", **settings): settings by their flag name with
              py::arg("name") = "bmfr", py::arg("backend") = "cpu")
         .def("denoise", &PyFilter::denoise, py::arg("color"), py::arg("albedo"), py::arg("normal"),
              py::arg("position"), py::arg("view_projection"),
-             py::arg("jitter") = std::pair<float, float>(0.0f, 0.0f),
-             py::arg("emission") = py::none(), py::arg("reset") = false,
-             py::arg("extras") = py::none(), py::arg("motion") = py::none(),
-             py::arg("previous_position") = py::none(), py::arg("previous_normal") = py::none(),
-             py::arg("diffuse_indirect") = py::none(), py::arg("matte_indirect") = py::none(),
-             py::arg("glossy_indirect") = py::none(), py::arg("direct_light") = py::none(),
-             py::arg("specular_f0") = py::none(), py::arg("roughness") = py::none(),
-             py::arg("glossy_hit_distance") = py::none(), py::arg("visibility") = py::none(),
+             py::arg("jitter") = std::pair<float, float>(0.0f, 0.0f), py::kw_only(),
+             py::arg("reset") = false, py::arg("extras") = py::none(),
              R"(Denoises one frame; returns a new (height, width, 3) float32 array.
+
+The optional buffers come by keyword, by the names bmfr.input_buffers() lists.
 
 Images are float32 (height, width, 3) or (height, width, 4) arrays, viewed without a copy when
 their pixels are packed. view_projection is this frame's 4x4 world-to-clip matrix (row-major,
@@ -316,6 +291,15 @@ cosine, for BMFR's visibility_feature (bmfr::FrameInput).)")
         py::arg("path"), py::arg("channels") = 3,
         "An EXR file as a (height, width, channels) array.");
     m.def("filter_names", &filterNames, "The filters this build holds.");
+    m.def(
+        "input_buffers",
+        [] {
+            py::list names;
+            for (const FrameBuffer& b : kFrameBuffers) names.append(b.file);
+            return names;
+        },
+        "The image buffers a frame may have, by their keyword in Filter.denoise and their key in "
+        "read_sequence's frames: the four required ones first.");
     m.def("backends", &compiledBackends, "The backends this build holds.");
     m.def(
         "settings",

@@ -35,18 +35,11 @@ class ManifestReader : public SequenceReader {
                               "position_limit_squared", "normal_limit_squared", "extras", "layers",
                               "frames", "generator"},
                              mp.string());
+            std::vector<std::string> frameKeys = layeredBufferNames();
+            for (const char* key : {"reset", "extras", "aovs", "view_projection", "jitter"})
+                frameKeys.push_back(key);
             for (size_t k = 0; k < manifest_.at("frames").size(); ++k)
-                requireKnownKeys(manifest_["frames"][k], {"color",           "albedo",
-                                                          "normal",          "position",
-                                                          "reference",       "emission",
-                                                          "motion",          "previous_position",
-                                                          "previous_normal", "diffuse_indirect",
-                                                          "matte_indirect",  "glossy_indirect",
-                                                          "direct_light",    "specular_f0",
-                                                          "roughness",       "glossy_hit_distance",
-                                                          "visibility",      "reset",
-                                                          "extras",          "aovs",
-                                                          "view_projection", "jitter"},
+                requireKnownKeys(manifest_["frames"][k], frameKeys,
                                  mp.string() + " frame " + std::to_string(k));
             if (!manifest_.contains("width") || !manifest_.contains("height"))
                 throw Error(mp.string() + ": needs \"width\" and \"height\"");
@@ -90,29 +83,16 @@ class ManifestReader : public SequenceReader {
         if (index < 0 || index >= info_.frameCount) throw Error(where + ": out of range");
         try {
             const json& j = manifest_["frames"][size_t(index)];
-            std::vector<Buffer> buffers = {{"color", &f.color, 3},
-                                           {"albedo", &f.albedo, 3},
-                                           {"normal", &f.normal, 3},
-                                           {"position", &f.position, 3}};
-            // Optional buffers: one a frame does not name is left empty, not kept from the last.
-            const Buffer optional[] = {{"emission", &f.emission, 3},
-                                       {"motion", &f.motion, 0},
-                                       {"previous_position", &f.previousPosition, 3},
-                                       {"previous_normal", &f.previousNormal, 3},
-                                       {"diffuse_indirect", &f.diffuseIndirect, 3},
-                                       {"visibility", &f.visibility, 1},
-                                       {"matte_indirect", &f.matteIndirect, 3},
-                                       {"glossy_indirect", &f.glossyIndirect, 3},
-                                       {"direct_light", &f.directLight, 3},
-                                       {"specular_f0", &f.specularF0, 3},
-                                       {"roughness", &f.roughness, 1},
-                                       {"glossy_hit_distance", &f.glossyHitDistance, 1}};
+            std::vector<Buffer> buffers;
+            // An optional buffer a frame does not name is left empty, not kept from the last.
+            f.forEachBuffer([&](const FrameBuffer& b, ImageF& image) {
+                if (!b.required) image = ImageF();
+                // Motion: 2 channels, or 3 when the file has the depth offset.
+                const int channels = b.channels.lo == kMotion.lo ? 0 : b.staged;
+                if (b.required || j.contains(b.file)) buffers.push_back({b.file, &image, channels});
+            });
             f.reference = ImageF();
             if (info_.hasReference) buffers.push_back({"reference", &f.reference, 3});
-            for (const Buffer& b : optional) {
-                *b.out = ImageF();
-                if (j.contains(b.key)) buffers.push_back(b);
-            }
             readBuffers(j, buffers, where);
             f.reset = j.value("reset", false);
             f.extras.clear();
@@ -269,22 +249,12 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
         return file;
     };
     json j;
-    j["color"] = put("color", f.color);
-    j["albedo"] = put("albedo", f.albedo);
-    j["normal"] = put("normal", f.normal);
-    j["position"] = put("position", f.position);
+    f.forEachBuffer([&](const FrameBuffer& b, const ImageF& image) {
+        // "surface_roughness": the renderer's "roughness" extra already has the plain file name.
+        const std::string file = std::string(b.file) == "roughness" ? "surface_roughness" : b.file;
+        if (b.required || image.width) j[b.file] = put(file.c_str(), image);
+    });
     if (f.reference.width) j["reference"] = put("reference", f.reference);
-    if (f.emission.width) j["emission"] = put("emission", f.emission);
-    if (f.motion.width) j["motion"] = put("motion", f.motion);
-    if (f.previousPosition.width)
-        j["previous_position"] = put("previous_position", f.previousPosition);
-    if (f.previousNormal.width) j["previous_normal"] = put("previous_normal", f.previousNormal);
-    if (f.diffuseIndirect.width) j["diffuse_indirect"] = put("diffuse_indirect", f.diffuseIndirect);
-    if (f.visibility.width) j["visibility"] = put("visibility", f.visibility);
-    // "surface_roughness": the renderer's "roughness" extra already has the plain file name.
-    for (const auto& [img, key] : f.maraBuffers())
-        if (img->width)
-            j[key] = put(std::string(key) == "roughness" ? "surface_roughness" : key, *img);
     if (f.reset) j["reset"] = true;
     if (!f.extras.empty()) {
         j["extras"] = json::array();

@@ -9,25 +9,11 @@ namespace fs = std::filesystem;
 
 FrameInput FrameData::input(bool motionInput) const {
     FrameInput in;
-    in.color = view(color);
-    in.albedo = view(albedo);
-    in.normal = view(normal);
-    in.position = view(position);
-    if (emission.width) in.emission = view(emission);
-    if (diffuseIndirect.width) in.diffuseIndirect = view(diffuseIndirect);
-    if (visibility.width) in.visibility = view(visibility);
-    if (matteIndirect.width) in.matteIndirect = view(matteIndirect);
-    if (glossyIndirect.width) in.glossyIndirect = view(glossyIndirect);
-    if (directLight.width) in.directLight = view(directLight);
-    if (specularF0.width) in.specularF0 = view(specularF0);
-    if (roughness.width) in.roughness = view(roughness);
-    if (glossyHitDistance.width) in.glossyHitDistance = view(glossyHitDistance);
+    forEachBuffer([&](const FrameBuffer& b, const ImageF& image) {
+        if (b.required || (image.width && (motionInput || !b.motionInput)))
+            in.*b.view = view(image);
+    });
     for (const ImageF& e : extras) in.extras.push_back(view(e));
-    if (motionInput) {
-        if (motion.width) in.motion = view(motion);
-        if (previousPosition.width) in.previousPosition = view(previousPosition);
-        if (previousNormal.width) in.previousNormal = view(previousNormal);
-    }
     in.reset = reset;
     in.viewProjection = viewProjection;
     in.jitter[0] = jitter[0];
@@ -42,23 +28,14 @@ const std::vector<DefaultPass> kDefaultPasses = {
     {"position", {"Position"}},
     {"emission", {"Emit"}},
     {"reference", {"Combined"}},
-    // Cycles has no pass of these conventions (its Vector pass points the other way, y up).
-    {"motion", {}},
-    {"previous_position", {}},
-    {"previous_normal", {}},
-    {"diffuse_indirect", {}},
-    {"matte_indirect", {}},
-    {"glossy_indirect", {}},
-    {"direct_light", {}},
-    {"specular_f0", {}},
-    {"roughness", {}},
-    {"glossy_hit_distance", {}},
-    {"visibility", {}},
+    // Cycles has no pass of the other buffers' conventions (its Vector pass points the other
+    // way, y up).
 };
 
 std::vector<std::string> layeredBufferNames() {
     std::vector<std::string> names;
-    for (const DefaultPass& d : kDefaultPasses) names.push_back(d.buffer);
+    for (const FrameBuffer& b : kFrameBuffers) names.push_back(b.file);
+    names.push_back("reference");
     return names;
 }
 
@@ -85,20 +62,11 @@ void SequenceReader::checkFrame(int index, const FrameData& f) const {
                         ", the sequence is " + std::to_string(info_.width) + "x" +
                         std::to_string(info_.height));
     };
-    check(f.color, "color");
-    check(f.albedo, "albedo");
-    check(f.normal, "normal");
-    check(f.position, "position");
+    f.forEachBuffer([&](const FrameBuffer& b, const ImageF& image) {
+        if (b.required || image.width) check(image, b.file);
+    });
     for (const ImageF& e : f.extras) check(e, "extra");
     if (f.reference.width) check(f.reference, "reference");
-    if (f.emission.width) check(f.emission, "emission");
-    if (f.motion.width) check(f.motion, "motion");
-    if (f.previousPosition.width) check(f.previousPosition, "previous_position");
-    if (f.previousNormal.width) check(f.previousNormal, "previous_normal");
-    if (f.diffuseIndirect.width) check(f.diffuseIndirect, "diffuse_indirect");
-    if (f.visibility.width) check(f.visibility, "visibility");
-    for (const auto& [img, name] : f.maraBuffers())
-        if (img->width) check(*img, name);
 }
 
 std::unique_ptr<SequenceReader> SequenceReader::open(const std::string& directory) {

@@ -1,6 +1,7 @@
 // Frame sequences on disk: auto-detected layout, frame loading, and writers for both layouts.
 #pragma once
 #include "core/image.h"
+#include "temporal/frame_buffers.h"
 #include <array>
 #include <bmfr/frame.h>
 #include <map>
@@ -24,17 +25,23 @@ struct FrameData {
     ImageF visibility;
     /// Mara et al. 2017's factorisation (FrameInput::matteIndirect ...); empty when absent.
     ImageF matteIndirect, glossyIndirect, directLight, specularF0, roughness, glossyHitDistance;
+    ImageF sampleMask;  ///< FrameInput::sampleMask (1 channel); empty at 1 spp
     bool reset = false; ///< a camera cut: the history is dropped at this frame
     /// Further named outputs (depth, motion, direct/indirect, diffuse/glossy splits...).
     std::vector<std::pair<std::string, ImageF>> aovs;
     Mat4 viewProjection;
     float jitter[2] = {0, 0};
 
-    /// The factorisation's buffers with their sequence.json keys.
-    std::vector<std::pair<const ImageF*, const char*>> maraBuffers() const {
-        return {{&matteIndirect, "matte_indirect"}, {&glossyIndirect, "glossy_indirect"},
-                {&directLight, "direct_light"},     {&specularF0, "specular_f0"},
-                {&roughness, "roughness"},          {&glossyHitDistance, "glossy_hit_distance"}};
+    /// f(row, image) for each row of BMFR_FRAME_BUFFERS, in order, with its image here.
+    template <class F> void forEachBuffer(F&& f) {
+        int k = 0;
+#define BMFR_DATA_BUFFER(m, file, channels, staged, required, motion) f(kFrameBuffers[k++], m);
+        BMFR_FRAME_BUFFERS(BMFR_DATA_BUFFER)
+#undef BMFR_DATA_BUFFER
+    }
+    template <class F> void forEachBuffer(F&& f) const {
+        const_cast<FrameData*>(this)->forEachBuffer(
+            [&f](const FrameBuffer& b, const ImageF& image) { f(b, image); });
     }
 
     /// A view for Denoiser::denoise (valid while this object lives). Without `motion`, the
@@ -68,9 +75,8 @@ class SequenceReader {
     void setLoadAovs(bool on) { loadAovs_ = on; }
     /// Which layer of a multilayer EXR each buffer comes from ("albedo" -> "ViewLayer.DiffCol"),
     /// replacing the sequence's own choice and the default mapping (kDefaultPasses). Buffers:
-    /// color, albedo, normal, position, emission, reference, motion, previous_position,
-    /// previous_normal. Throws bmfr::Error for another
-    /// name, or for a layout without multilayer files (the original BMFR layout).
+    /// layeredBufferNames(). Throws bmfr::Error for another name, or for a layout without
+    /// multilayer files (the original BMFR layout).
     virtual void setLayerOverrides(const std::map<std::string, std::string>& layers);
 
   protected:
@@ -82,13 +88,13 @@ class SequenceReader {
 
 /// Where a buffer is found in a multilayer EXR when neither the sequence nor the user names a
 /// layer: the first of these passes that the file holds, under any view layer. These are the
-/// names Blender's Cycles gives its passes.
+/// names Blender's Cycles gives its passes; a buffer not listed has none.
 struct DefaultPass {
     const char* buffer;
     std::vector<const char*> passes;
 };
 extern const std::vector<DefaultPass> kDefaultPasses;
-/// The image buffers a layer can be named for (those of kDefaultPasses), in that order.
+/// The image buffers a layer can be named for: those of BMFR_FRAME_BUFFERS, then the reference.
 std::vector<std::string> layeredBufferNames();
 
 std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory);

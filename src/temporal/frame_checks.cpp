@@ -1,5 +1,6 @@
 #include "temporal/frame_checks.h"
 #include "core/mat4.h"
+#include "temporal/frame_buffers.h"
 #include <bmfr/error.h>
 #include <cmath>
 #include <string>
@@ -7,12 +8,6 @@
 namespace bmfr {
 
 namespace {
-
-/// Channels a buffer may have: [lo, hi].
-struct ChannelRange {
-    int lo, hi;
-};
-constexpr ChannelRange kRgb{3, 4}, kScalar{1, 1}, kMotion{2, 4};
 
 const char* memoryName(Memory m) {
     return m == Memory::Cuda ? "CUDA device memory" : "host memory";
@@ -59,30 +54,15 @@ void checkFrameInput(const FrameInput& f, int extrasNeeded, const char* backend,
                     backend + " backend cannot read: use backend cuda");
     const auto check = [m](const ImageView& v, const std::string& name, ChannelRange c, int width,
                            int height) { checkImage(v, name, c, width, height, m); };
-    check(f.color, "color", kRgb, w, h);
-    check(f.albedo, "albedo", kRgb, w, h);
-    check(f.normal, "normal", kRgb, w, h);
-    check(f.position, "position", kRgb, w, h);
-    if (f.emission.data) check(f.emission, "emission", kRgb, w, h);
-    if (f.motion.data) check(f.motion, "motion", kMotion, w, h);
-    if (f.previousPosition.data) check(f.previousPosition, "previousPosition", kRgb, w, h);
-    if (f.previousNormal.data) check(f.previousNormal, "previousNormal", kRgb, w, h);
-    if (f.diffuseIndirect.data) check(f.diffuseIndirect, "diffuseIndirect", kRgb, w, h);
-    if (f.matteIndirect.data) check(f.matteIndirect, "matteIndirect", kRgb, w, h);
-    if (f.glossyIndirect.data) check(f.glossyIndirect, "glossyIndirect", kRgb, w, h);
-    if (f.directLight.data) check(f.directLight, "directLight", kRgb, w, h);
-    if (f.specularF0.data) check(f.specularF0, "specularF0", kRgb, w, h);
-    if (f.roughness.data) check(f.roughness, "roughness", kScalar, w, h);
-    if (f.glossyHitDistance.data) check(f.glossyHitDistance, "glossyHitDistance", kScalar, w, h);
+    for (const FrameBuffer& b : kFrameBuffers)
+        if (b.required || (f.*b.view).data) check(f.*b.view, b.member, b.channels, w, h);
     if (f.extras.size() > 16) throw Error("at most 16 extra buffers");
     for (size_t e = 0; e < f.extras.size(); ++e)
         check(f.extras[e], "extra" + std::to_string(e), kScalar, w, h);
-    if (f.visibility.data) check(f.visibility, "visibility", kScalar, w, h);
     if (extrasNeeded > int(f.extras.size()))
         throw Error("feature extra" + std::to_string(extrasNeeded - 1) + " needs " +
                     std::to_string(extrasNeeded) + " extra buffers, the frame has " +
                     std::to_string(f.extras.size()));
-    if (f.sampleMask.data) check(f.sampleMask, "sampleMask", kScalar, w, h);
     if (!isUsableCameraMatrix(f.viewProjection))
         throw Error("view-projection matrix is not finite or not invertible");
     for (float j : f.jitter)

@@ -2,46 +2,36 @@
 // passes read. Packed RGB buffers, what renderers usually hand over, are used in place; any
 // other is copied once per frame into buffers kept between frames.
 #pragma once
+#include "temporal/frame_buffers.h"
 #include "temporal/pixel_input.h"
 #include <bmfr/frame.h>
 #include <vector>
 
 namespace bmfr {
 
-/// Planes a frame can have: 17 buffers and the extras.
-inline constexpr int kStagedPlanes = 17 + InputPlanes::kMaxExtras;
+/// Planes a frame can have: one per buffer, the motion's depth offset and the extras.
+inline constexpr int kStagedPlanes = kFrameBufferCount + InputPlanes::kMaxExtras;
 
 /// The frame's planes, each from pack(view, channels, slot, first): channels [first, first +
 /// channels) of a buffer the frame has, packed; slot (below kStagedPlanes) names the buffer.
 /// One list of which buffer becomes which plane, for the host staging and the cuda backend's.
 template <class Pack> InputPlanes stagePlanes(const FrameInput& f, Pack&& pack) {
-    const auto put = [&pack](const ImageView& v, int channels, int slot,
-                             int first = 0) -> const float* {
-        return v.data ? pack(v, channels, slot, first) : nullptr;
-    };
     InputPlanes p;
     p.width = f.color.width, p.height = f.color.height;
-    p.color = put(f.color, 3, 0);
-    p.albedo = put(f.albedo, 3, 1);
-    p.normal = put(f.normal, 3, 2);
-    p.position = put(f.position, 3, 3);
-    p.emission = put(f.emission, 3, 4);
-    p.sampleMask = put(f.sampleMask, 1, 5);
-    p.motion = put(f.motion, 2, 6);
-    p.motionDepth = f.motion.channels >= 3 ? put(f.motion, 1, 7, 2) : nullptr;
-    p.diffuseIndirect = put(f.diffuseIndirect, 3, 8);
-    p.previousPosition = put(f.previousPosition, 3, 9);
-    p.previousNormal = put(f.previousNormal, 3, 10);
-    p.matteIndirect = put(f.matteIndirect, 3, 11);
-    p.glossyIndirect = put(f.glossyIndirect, 3, 12);
-    p.directLight = put(f.directLight, 3, 13);
-    p.specularF0 = put(f.specularF0, 3, 14);
-    p.roughness = put(f.roughness, 1, 15);
-    p.glossyHitDistance = put(f.glossyHitDistance, 1, 16);
+    int slot = 0;
+#define BMFR_STAGE_BUFFER(m, file, channels, staged, required, motion)                             \
+    p.m = f.m.data ? pack(f.m, staged, slot, 0) : nullptr;                                         \
+    ++slot;
+    BMFR_FRAME_BUFFERS(BMFR_STAGE_BUFFER)
+#undef BMFR_STAGE_BUFFER
+    p.motionDepth = f.motion.data && f.motion.channels >= 3 ? pack(f.motion, 1, slot, 2) : nullptr;
+    ++slot;
     p.extraCount = int(f.extras.size());
-    for (int e = 0; e < p.extraCount; ++e) p.extras[e] = put(f.extras[size_t(e)], 1, 17 + e);
-    if (f.visibility.data)
-        p.extras[p.extraCount++] = put(f.visibility, 1, 16 + InputPlanes::kMaxExtras);
+    for (int e = 0; e < p.extraCount; ++e)
+        p.extras[e] =
+            f.extras[size_t(e)].data ? pack(f.extras[size_t(e)], 1, slot + e, 0) : nullptr;
+    // The visibility is fitted as the extra after the frame's own (BmfrSettings).
+    if (p.visibility) p.extras[p.extraCount++] = p.visibility;
     return p;
 }
 

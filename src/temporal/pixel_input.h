@@ -6,7 +6,8 @@
 
 namespace bmfr {
 
-/// A frame's input buffers as packed arrays (3 floats per pixel; extras 1), on host or device.
+/// A frame's input buffers as packed arrays (3 floats per pixel; extras 1), on host or device,
+/// one per row of BMFR_FRAME_BUFFERS (temporal/frame_buffers.h) and the motion's depth offset.
 /// temporal/input_staging.h makes them from a FrameInput of any stride and channel count.
 struct InputPlanes {
     /// The frame's extras (at most 16), then its visibility when it has one.
@@ -29,6 +30,7 @@ struct InputPlanes {
     const float* specularF0 = nullptr;
     const float* roughness = nullptr;         ///< 1 float per pixel
     const float* glossyHitDistance = nullptr; ///< 1 float per pixel
+    const float* visibility = nullptr;        ///< 1 float per pixel; also the last extra
     const float* extras[kMaxExtras] = {};
     int extraCount = 0;
     int width = 0, height = 0;

@@ -17,10 +17,11 @@ inline void axpyFrom(float f, const float* v, float* a, int begin, int end) {
     for (int i = begin; i < end; ++i) a[i] -= f * v[i];
 }
 
-// Compiled for AVX2 and baseline, chosen at run time: the dot and axpy loops double in width.
-// Internal linkage: GCC would give an external clone's resolver default visibility.
-__attribute__((target_clones("avx2", "default"))) int
-solveHouseholderClones(float* columns, int featureCount, int rows, float* coeffs) {
+// Compiled for AVX2 and baseline (solveHouseholder, solveHouseholderAvx2): the dot and axpy loops
+// double in width.
+template <int kWide>
+[[gnu::always_inline]] inline int solveWith(float* columns, int featureCount, int rows,
+                                            float* coeffs) {
     const int M = featureCount, total = featureCount + 3;
     HouseholderSteps q;
     for (int k = 0; k < M; ++k) {
@@ -41,7 +42,18 @@ solveHouseholderClones(float* columns, int featureCount, int rows, float* coeffs
 } // namespace
 
 int solveHouseholder(float* columns, int featureCount, int rows, float* coeffs) {
-    return solveHouseholderClones(columns, featureCount, rows, coeffs);
+    return solveWith<0>(columns, featureCount, rows, coeffs);
 }
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+[[gnu::target("avx2")]] int solveHouseholderAvx2(float* columns, int featureCount, int rows,
+                                                 float* coeffs) {
+    return solveWith<1>(columns, featureCount, rows, coeffs);
+}
+#else
+int solveHouseholderAvx2(float* columns, int featureCount, int rows, float* coeffs) {
+    return solveHouseholder(columns, featureCount, rows, coeffs);
+}
+#endif
 
 } // namespace bmfr

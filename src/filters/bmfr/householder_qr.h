@@ -15,6 +15,9 @@ namespace bmfr {
 /// negligible (rank deficiency the regularisation did not cure) gets coefficient 0, so the
 /// result is always finite for finite input. Returns the number of such columns.
 int solveHouseholder(float* columns, int featureCount, int rows, float* coeffs);
+/// The same compiled for AVX2 (eight-wide dot products: other roundings); the reference backend
+/// takes it where the CPU path (BMFR_CPU_ISA) allows AVX2.
+int solveHouseholderAvx2(float* columns, int featureCount, int rows, float* coeffs);
 
 /// What the Householder solvers share: R of the augmented QR (M rows of M feature entries then
 /// 3 colour entries), the dependent-column decisions, and back substitution. Each solver brings

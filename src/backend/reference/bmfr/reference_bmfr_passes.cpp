@@ -2,6 +2,7 @@
 // (filters/bmfr/accumulation_kernels.h, fitting_kernel.h) and the shared TAA. The
 // specification every other backend is held to.
 #include "backend/backend_registry.h"
+#include "backend/reference/bmfr/reference_householder.h"
 #include "backend/reference/reference_taa.h"
 #include "core/image.h"
 #include "core/stopwatch.h"
@@ -69,10 +70,11 @@ PassCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
 /// Every block of a.grid.
 void fitGrid(const BmfrPassContext& ctx, Buffers& b, const BlockFit& a) {
     const BlockGrid& g = a.grid;
+    const HouseholderSolver solve = householderSolver();
     ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
         const BlockFitScratch sc = b.scratch[size_t(ThreadPool::currentThreadIndex())].view();
         for (long k = b0; k < b1; ++k)
-            fitBlock(a, int(k % g.blocksX), int(k / g.blocksX), sc, solveHouseholder);
+            fitBlock(a, int(k % g.blocksX), int(k / g.blocksX), sc, solve);
     });
 }
 
