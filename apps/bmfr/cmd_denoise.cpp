@@ -2,6 +2,7 @@
 #include "core/hash.h"
 #include "core/image.h"
 #include "core/stopwatch.h"
+#include "denoise_scores.h"
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
 #include "io/atomic_file.h"
@@ -35,6 +36,41 @@ ImageF copyOf(const ImageView& v) {
     return img;
 }
 
+/// The debug buffers of one frame into dir (EXR, and PNG previews of the two counts).
+void writeDebug(const fs::path& dir, const std::string& stem, const DebugBuffers& d) {
+    writeExr((dir / ("accumulated_" + stem + ".exr")).string(), copyOf(d.accumulatedNoisy));
+    writeExr((dir / ("fitted_" + stem + ".exr")).string(), copyOf(d.fitted));
+    writeExr((dir / ("history_length_" + stem + ".exr")).string(), copyOf(d.historyLength));
+    writeExr((dir / ("discard_mask_" + stem + ".exr")).string(), copyOf(d.discardMask));
+    writePngToneMapped((dir / ("history_length_" + stem + ".png")).string(),
+                       copyOf(d.historyLength), 1.0f / 16.0f);
+    writePngToneMapped((dir / ("discard_mask_" + stem + ".png")).string(), copyOf(d.discardMask),
+                       1.0f / 15.0f);
+}
+
+/// Fewer than 1 spp, simulated: a fixed pseudo-random `fraction` of the pixels of frame i.
+void fillSampleMask(ImageF& mask, int i, float fraction) {
+    for (long k = 0; k < mask.pixelCount(); ++k)
+        mask.data()[k] =
+            unitFloat(hashKeys(uint32_t(k), uint32_t(i), 0x5eedu)) < fraction ? 1.0f : 0.0f;
+}
+
+/// The feature columns the filter fits ("" for a filter without a `features` setting); throws
+/// when one reads an extra buffer the sequence at `input` lacks.
+std::string checkedFeatures(const std::string& filter, const SettingValues& values,
+                            const std::string& input, const SequenceInfo& info) {
+    std::string text;
+    for (const SettingDoc& d : filterSettings(filter))
+        if (d.key == "features") text = settingValue(values, "features", d.defaultValue);
+    if (text.empty()) return text;
+    const std::vector<Feature> features = parseFeatures(text);
+    for (const Feature& f : features)
+        if (f.source == FeatureSource::Extra && f.extraIndex >= int(info.extraNames.size()))
+            throw Error(fmt::format("feature extra{} requested, {} has {} extra buffers",
+                                    f.extraIndex, input, info.extraNames.size()));
+    return formatFeatures(features);
+}
+
 } // namespace
 
 int runDenoise(const DenoiseJob& job) {
@@ -42,46 +78,35 @@ int runDenoise(const DenoiseJob& job) {
     if (fs::exists(job.output, ec) && fs::equivalent(job.input, job.output, ec))
         throw Error("-o " + job.output + " is the input folder " + job.input +
                     "; refusing to write the results among the inputs (give another folder)");
+    if (!(job.sampleFraction > 0.0f && job.sampleFraction <= 1.0f))
+        throw Error(fmt::format("--sample-fraction {} is outside (0, 1]", job.sampleFraction));
     auto reader = SequenceReader::open(job.input);
     reader->setLayerOverrides(parseLayerMap(job.channels));
     const SequenceInfo& info = reader->info();
     const SettingValues values = job.options.resolve(
         job.filter, {info.positionLimitSquared, info.normalLimitSquared, info.colorIsDemodulated});
     std::unique_ptr<Filter> filter = makeFilter(job.filter, values);
-    auto* bmfrFilter = dynamic_cast<BmfrDenoiser*>(filter.get());
-    if (bmfrFilter)
-        for (const Feature& f : bmfrFilter->settings().features)
-            if (f.source == FeatureSource::Extra && f.extraIndex >= int(info.extraNames.size()))
-                throw Error(fmt::format("feature extra{} requested, {} has {} extra buffers",
-                                        f.extraIndex, job.input, info.extraNames.size()));
-    const std::string features =
-        bmfrFilter ? formatFeatures(bmfrFilter->settings().features) : std::string();
-    const int threads = std::stoi(settingValue(values, "threads", "0"));
+    const std::string features = checkedFeatures(job.filter, values, job.input, info);
+    const std::string backend = settingValue(values, "backend", "cpu");
     auto [first, last] = parseFrameRange(job.frames, info.frameCount);
+    const fs::path out(job.output), debugDir = out / "debug";
     fs::create_directories(job.output);
-    if (job.debug) fs::create_directories(fs::path(job.output) / "debug");
-
+    if (job.debug) fs::create_directories(debugDir);
     filter->setDebugOutputs(job.debug);
     if (!job.quiet)
         fmt::print("bmfr denoise ({}, {} backend): {} ({} layout, {}x{}, frames {}:{}){}\n",
-                   job.filter, settingValue(values, "backend", "cpu"), job.input, info.layout,
-                   info.width, info.height, first, last,
-                   bmfrFilter ? ", features " + features : std::string());
+                   job.filter, backend, job.input, info.layout, info.width, info.height, first,
+                   last, features.empty() ? std::string() : ", features " + features);
 
     Progress progress("denoise", last - first, job.quiet);
-    if (!(job.sampleFraction > 0.0f && job.sampleFraction <= 1.0f))
-        throw Error(fmt::format("--sample-fraction {} is outside (0, 1]", job.sampleFraction));
     ImageF sampleMask(info.width, info.height, 1);
     StageLog stages;
     std::vector<double> tRead, tWrite;
     int64_t nonFinite = 0;
     std::vector<int> badFrames;
-    std::vector<FrameScores> scores, noisyScores;
+    DenoiseScores scores(first, info.colorIsDemodulated, job.flip);
     FrameData frame;
-    ImageF previousOut, previousRef, previousNoisy;
-    std::vector<double> referenceTemporal;
     int motionFrames = 0; // frames that came with motion vectors or previous positions
-
     for (int i = first; i < last; ++i) {
         Stopwatch clock;
         reader->load(i, frame);
@@ -95,57 +120,21 @@ int runDenoise(const DenoiseJob& job) {
                        job.input);
         motionFrames += frame.motion.width || frame.previousPosition.width ? 1 : 0;
         if (job.sampleFraction < 1.0f) {
-            // Fewer than 1 spp, simulated: a fixed pseudo-random subset of pixels per frame.
-            for (long k = 0; k < sampleMask.pixelCount(); ++k)
-                sampleMask.data()[k] =
-                    unitFloat(hashKeys(uint32_t(k), uint32_t(i), 0x5eedu)) < job.sampleFraction
-                        ? 1.0f
-                        : 0.0f;
+            fillSampleMask(sampleMask, i, job.sampleFraction);
             in.sampleMask = view(sampleMask);
         }
-        ImageF out = copyOf(filter->denoise(in));
+        const ImageF result = copyOf(filter->denoise(in));
         const FrameStats& st = filter->lastStats();
         stages.add(st.times);
         if (st.nonFiniteInputs) nonFinite += st.nonFiniteInputs, badFrames.push_back(i);
 
         clock.lap();
         const std::string stem = fmt::format("{:04d}", i);
-        writeExr((fs::path(job.output) / ("denoised_" + stem + ".exr")).string(), out);
-        if (job.png)
-            writePngToneMapped((fs::path(job.output) / ("denoised_" + stem + ".png")).string(),
-                               out);
-        if (job.debug) {
-            DebugBuffers d = filter->debug();
-            const fs::path dd = fs::path(job.output) / "debug";
-            writeExr((dd / ("accumulated_" + stem + ".exr")).string(), copyOf(d.accumulatedNoisy));
-            writeExr((dd / ("fitted_" + stem + ".exr")).string(), copyOf(d.fitted));
-            writeExr((dd / ("history_length_" + stem + ".exr")).string(), copyOf(d.historyLength));
-            writeExr((dd / ("discard_mask_" + stem + ".exr")).string(), copyOf(d.discardMask));
-            writePngToneMapped((dd / ("history_length_" + stem + ".png")).string(),
-                               copyOf(d.historyLength), 1.0f / 16.0f);
-            writePngToneMapped((dd / ("discard_mask_" + stem + ".png")).string(),
-                               copyOf(d.discardMask), 1.0f / 15.0f);
-        }
+        writeExr((out / ("denoised_" + stem + ".exr")).string(), result);
+        if (job.png) writePngToneMapped((out / ("denoised_" + stem + ".png")).string(), result);
+        if (job.debug) writeDebug(debugDir, stem, filter->debug());
         tWrite.push_back(clock.lap());
-
-        if (info.hasReference) {
-            ImageF noisy = frame.color;
-            if (info.colorIsDemodulated)
-                for (size_t k = 0; k < noisy.pixels.size(); ++k)
-                    noisy.pixels[k] *= frame.albedo.pixels[k];
-            const PreviousScoredFrame before{previousOut, previousRef};
-            scores.push_back(
-                scoreFrame(out, frame.reference, i > first ? &before : nullptr, job.flip));
-            FrameScores n;
-            n.rmse = rmseToneMapped(noisy, frame.reference);
-            if (i > first) n.temporal = temporalError(noisy, previousNoisy);
-            noisyScores.push_back(n);
-            referenceTemporal.push_back(i > first ? temporalError(frame.reference, previousRef)
-                                                  : NAN);
-            previousRef = frame.reference;
-            previousNoisy = std::move(noisy);
-        }
-        previousOut = std::move(out);
+        if (info.hasReference) scores.add(i, result, frame);
         progress.step(i - first + 1);
     }
     progress.finish();
@@ -157,13 +146,12 @@ int runDenoise(const DenoiseJob& job) {
                    nonFinite, badFrames.size(), badFrames.front());
 
     nlohmann::json report;
-    std::string summary;
     report["input"] = job.input;
     report["frames"] = last - first;
     report["resolution"] = {info.width, info.height};
-    if (bmfrFilter) report["features"] = features;
+    if (!features.empty()) report["features"] = features;
     report["filter"] = job.filter;
-    report["backend"] = settingValue(values, "backend", "cpu");
+    report["backend"] = backend;
     report["reprojection"] = motionFrames == 0 ? "camera (the input has no motion vectors)"
                              : job.motion      ? "motion vectors"
                                                : "camera (motion vectors ignored: --no-motion)";
@@ -171,56 +159,20 @@ int runDenoise(const DenoiseJob& job) {
     report["median_ms"] = stages.medians();
     report["median_ms"]["total"] = stages.totalMedian();
     if (info.hasReference) {
-        std::ostringstream csv;
-        // The metric columns and keys of `bmfr eval`'s per_frame.csv, then the input's own.
-        csv << "frame";
-        for (const MetricInfo& m : metricList()) csv << "," << m.key;
-        csv << ",noisy_rmse,noisy_temporal_error,reference_temporal_error\n";
-        for (size_t k = 0; k < scores.size(); ++k) {
-            csv << first + int(k);
-            for (const MetricInfo& m : metricList())
-                csv << "," << csvNumber(metricValue(scores[k], m.key));
-            csv << "," << csvNumber(noisyScores[k].rmse) << ","
-                << csvNumber(noisyScores[k].temporal) << "," << csvNumber(referenceTemporal[k])
-                << "\n";
-        }
-        writeFileAtomically((fs::path(job.output) / "scores.csv").string(), csv.str());
-        const FrameScores m = meanScores(scores), nm = meanScores(noisyScores);
-        double refTemporal = 0;
-        int n = 0;
-        for (double v : referenceTemporal)
-            if (std::isfinite(v)) refTemporal += v, ++n;
-        refTemporal = n ? refTemporal / n : NAN;
-        auto num = [](double v) {
-            return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-        };
-        for (const MetricInfo& k : metricList())
-            report["scores"][k.key] = num(metricValue(m, k.key));
-        report["scores"]["noisy_rmse"] = num(nm.rmse);
-        report["scores"]["noisy_temporal_error"] = num(nm.temporal);
-        report["scores"]["reference_temporal_error"] = num(refTemporal);
-        report["scores"]["color_space"] = "tone-mapped: clamp(x^(1/2.2), 0, 1); relmse linear";
-        summary = fmt::format(
-            "\nScores vs reference (mean over frames; tone-mapped x^(1/2.2), relMSE linear):\n"
-            "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13} {:>11}\n"
-            "  {:<10} {:>8.4f} {:>8} {:>7} {:>7} {:>8} {:>13.4f} {:>11}\n"
-            "  {:<10} {:>8.4f} {:>8.2f} {:>7.4f} {:>7} {:>8.4f} {:>13.4f} {:>11.4f}\n"
-            "  {:<10} {:>8} {:>8} {:>7} {:>7} {:>8} {:>13.4f} {:>11}\n",
-            "", "RMSE", "PSNR dB", "SSIM", "FLIP", "relMSE", "temporal err", "change err", "noisy",
-            nm.rmse, "", "", "", "", nm.temporal, "", job.filter, m.rmse, m.psnr, m.ssim,
-            std::isfinite(m.flip) ? fmt::format("{:.4f}", m.flip) : "-", m.relmse, m.temporal,
-            m.temporalChange, "reference", "", "", "", "", "", refTemporal, "");
+        scores.writeCsv((out / "scores.csv").string());
+        scores.addTo(report);
     }
-    writeFileAtomically((fs::path(job.output) / "report.json").string(), report.dump(2) + "\n");
+    writeFileAtomically((out / "report.json").string(), report.dump(2) + "\n");
 
     if (!job.quiet) {
+        const int threads = std::stoi(settingValue(values, "threads", "0"));
         fmt::print("\n{} frames, {}x{}, {} threads. Median ms per frame:\n", last - first,
                    info.width, info.height,
                    threads ? threads : int(std::thread::hardware_concurrency()));
         fmt::print("  {}   (read {:.1f}, write {:.1f})\n", stages.line(), median(tRead),
                    median(tWrite));
         fmt::print("  reprojection: {}\n", report["reprojection"].get<std::string>());
-        fmt::print("{}", summary);
+        if (info.hasReference) fmt::print("{}", scores.summary(job.filter));
         fmt::print("\nwrote {}/denoised_NNNN.exr{}, report.json{}\n", job.output,
                    job.png ? " and .png" : "", info.hasReference ? ", scores.csv" : "");
     }
