@@ -1,5 +1,5 @@
 // After the first frame, denoising allocates nothing (all buffers are reused).
-#include "synth/procedural_scene.h"
+#include "test_support.h"
 #include <atomic>
 #include <bmfr/bmfr.h>
 #include <cstdlib>
@@ -26,13 +26,19 @@ void operator delete(void* p, std::size_t) noexcept {
 namespace bmfr {
 namespace {
 
-TEST(Allocation, SteadyStateFramesAllocateNothing) {
-    ProceduralSceneOptions o;
-    o.width = 200, o.height = 120, o.frames = 6;
-    ProceduralScene scene(o);
-    std::vector<FrameData> frames(6);
+constexpr int kWidth = 200, kHeight = 120;
+
+/// The procedural scene's first n frames, as inputs (their images live as long as the process).
+std::vector<FrameInput> frameInputs(int n) {
+    static std::vector<std::vector<FrameData>> kept;
+    kept.push_back(testing::proceduralFrames(kWidth, kHeight, n));
     std::vector<FrameInput> inputs;
-    for (int i = 0; i < 6; ++i) scene.render(i, frames[i]), inputs.push_back(frames[i].input());
+    for (const FrameData& f : kept.back()) inputs.push_back(f.input());
+    return inputs;
+}
+
+TEST(Allocation, SteadyStateFramesAllocateNothing) {
+    const std::vector<FrameInput> inputs = frameInputs(6);
     Denoiser d;
     d.setDebugOutputs(true);
     for (int i = 0; i < 3; ++i) d.denoise(inputs[i]);
@@ -47,15 +53,10 @@ TEST(Allocation, SteadyStateFramesAllocateNothing) {
 class AllocationOnAReservedDevice : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(AllocationOnAReservedDevice, FirstFrameAllocatesNothing) {
-    ProceduralSceneOptions o;
-    o.width = 200, o.height = 120, o.frames = 2;
-    ProceduralScene scene(o);
-    std::vector<FrameData> frames(2);
-    std::vector<FrameInput> inputs;
-    for (int i = 0; i < 2; ++i) scene.render(i, frames[i]), inputs.push_back(frames[i].input());
+    const std::vector<FrameInput> inputs = frameInputs(2);
     for (Backend b : {Backend::Reference, Backend::Cpu}) {
         Device device(b, 2);
-        device.reserve(o.width, o.height);
+        device.reserve(kWidth, kHeight);
         std::unique_ptr<Filter> f = device.makeFilter(GetParam());
         gAllocations = 0;
         gCounting = true;

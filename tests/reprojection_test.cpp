@@ -68,13 +68,19 @@ TEST(Reprojection, BilinearFootprintAndTapTests) {
               0b0001);
 }
 
-TEST(Reprojection, DisoccludedPixelsAreRejectedByTheDenoiser) {
-    const int w = 48, h = 32;
-    const Mat4 cam = test::cameraAt({0, 0, 0}, w, h);
+/// A wall at z = -10, then an object at z = -5 that covers its left half.
+struct LeftHalfCovered {
+    int w = 48, h = 32;
+    Mat4 cam = test::cameraAt({0, 0, 0}, w, h);
     FrameData background = test::planeFrame(cam, w, h, {1, 1, 1}, [](int, int) { return -10.0f; });
-    // Next frame: an object at z = -5 now covers the left half.
-    FrameData occluder = test::planeFrame(cam, w, h, {1, 1, 1},
-                                          [&](int x, int) { return x < w / 2 ? -5.0f : -10.0f; });
+    FrameData occluder = test::planeFrame(
+        cam, w, h, {1, 1, 1}, [this](int x, int) { return x < w / 2 ? -5.0f : -10.0f; });
+};
+
+TEST(Reprojection, DisoccludedPixelsAreRejectedByTheDenoiser) {
+    const LeftHalfCovered scene;
+    const int w = scene.w, h = scene.h;
+    const FrameData &background = scene.background, &occluder = scene.occluder;
     Settings s;
     s.threads = 2;
     s.positionLimitSquared = 1.0f; // neighbouring pixels lie 0.6 units apart at depth 10
@@ -103,11 +109,9 @@ TEST(Reprojection, DisoccludedPixelsAreRejectedByTheDenoiser) {
 class FrameStatsOfEveryFilter : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FrameStatsOfEveryFilter, CountTheDisoccludedHalfForEveryFilter) {
-    const int w = 48, h = 32;
-    const Mat4 cam = test::cameraAt({0, 0, 0}, w, h);
-    FrameData background = test::planeFrame(cam, w, h, {1, 1, 1}, [](int, int) { return -10.0f; });
-    FrameData occluder = test::planeFrame(cam, w, h, {1, 1, 1},
-                                          [&](int x, int) { return x < w / 2 ? -5.0f : -10.0f; });
+    const LeftHalfCovered scene;
+    const int w = scene.w, h = scene.h;
+    const FrameData &background = scene.background, &occluder = scene.occluder;
     for (const char* backend : {"reference", "cpu"}) {
         std::unique_ptr<Filter> f = makeFilter(
             GetParam(), {{"positionLimitSquared", "1"}, {"threads", "2"}, {"backend", backend}});
