@@ -22,7 +22,7 @@ for bin in old new; do
                 for b in reference cpu; do
                     o="$work/$bin/$(basename "$seq")/$f-$p-$b"
                     "$exe" denoise "$seq" -o "$o" --filter $f --backend $b --preset $p --debug \
-                        --no-png -q > /dev/null
+                        --no-png -q > /dev/null 2>> "$work/warnings.log"
                     runs=$((runs + 1))
                 done
             done
