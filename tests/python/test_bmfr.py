@@ -118,6 +118,22 @@ def test_bad_arguments_raise_value_error_naming_them(sequence):
         f.denoise(c, a, n, p, vp, extras=[c])
     with pytest.raises(ValueError, match="extras: expected a list"):
         f.denoise(c, a, n, p, vp, extras=c[..., 0])
+    with pytest.raises(ValueError, match=r"^emision: not an input buffer \(emission, sample_mask"):
+        f.denoise(c, a, n, p, vp, emision=c)
+    with pytest.raises(ValueError, match=r"sample_mask: shape \(32, 47\)"):
+        f.denoise(c, a, n, p, vp, sample_mask=c[:, :47, 0])
+
+
+def test_input_buffers_are_the_frame_buffer_table(sequence):
+    names = bmfr.input_buffers()
+    assert names[:4] == ["color", "albedo", "normal", "position"]
+    assert len(names) == len(set(names)) == 17
+    fr = next(iter(bmfr.read_sequence(str(sequence))))
+    # Every buffer a frame of the sequence carries goes back into denoise by the same keyword.
+    optional = {k: fr[k] for k in names[4:] if k in fr}
+    assert "visibility" in optional  # the synthetic sequence has one
+    out = bmfr.Filter().denoise(*frame_args(fr), jitter=fr["jitter"], **optional)
+    assert out.shape == fr["color"].shape
 
 
 def test_settings_errors_raise_value_error_with_the_python_name():
