@@ -28,8 +28,9 @@ class BMFR_API Device {
     std::unique_ptr<Filter> makeFilter(const std::string& name,
                                        const SettingValues& values = {}) const;
     /// Filters made from now on size their buffers for maxWidth x maxHeight frames when made, so
-    /// that their first frame of that size allocates nothing. Throws bmfr::Error for a size
-    /// below 1.
+    /// that on the host backends their first frame of that size, with packed RGB buffers, allocates
+    /// nothing (RGBA or padded rows are copied into buffers made on first use; the cuda backend
+    /// may allocate again). Throws bmfr::Error for a size below 1.
     void reserve(int maxWidth, int maxHeight);
     /// The reserved size, 0 x 0 when none.
     int reservedWidth() const;

@@ -71,17 +71,24 @@ struct FilterCore final : FrameLoop {
                         passes->readsDeviceMemory());
         bool changed = false;
         const S& active = hooks.select(settings, frame, history, changed);
-        if (history.begin(frame) || changed)
-            passes->allocate(history.width, history.height, active, pool->threadCount());
-        const PassContext<S> ctx{active, passes->stage(frame), frame, history, *pool};
-        counts.times.clear();
-        const PassCounters c = passes->run(ctx, counts.times);
-        counts.nonFiniteInputs = c.nonFinite;
-        counts.discardedPixels = c.discarded;
-        if (keepDebug) passes->captureDebug(history);
-        const int slot = history.cur;
-        history.end(frame);
-        return passes->output(slot);
+        try {
+            if (history.begin(frame) || changed)
+                passes->allocate(history.width, history.height, active, pool->threadCount());
+            const PassContext<S> ctx{active, passes->stage(frame), frame, history, *pool};
+            counts.times.clear();
+            const PassCounters c = passes->run(ctx, counts.times);
+            counts.nonFiniteInputs = c.nonFinite;
+            counts.discardedPixels = c.discarded;
+            if (keepDebug) passes->captureDebug(history);
+            const int slot = history.cur;
+            history.end(frame);
+            return passes->output(slot);
+        } catch (...) {
+            // A frame that failed half way (out of memory, a device error) leaves buffers of
+            // unknown size and a half-written slot: the next frame starts over, allocating.
+            history = TemporalHistory{};
+            throw;
+        }
     }
     ImageView denoise(const FrameInput& frame, const MutableImageView& out) override {
         checkOutput(out, frame.color.width, frame.color.height); // before the history moves on

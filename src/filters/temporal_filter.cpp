@@ -1,5 +1,6 @@
 #include "filters/filter_core.h"
 #include "temporal/input_staging.h"
+#include <bmfr/error.h>
 
 namespace bmfr {
 
@@ -30,9 +31,11 @@ DebugBuffers TemporalFilter::debug() const {
     return loop_->debug();
 }
 
-/// A Filter of the caller's own: host buffers only.
+/// A Filter of the caller's own: host results only.
 ImageView Filter::denoise(const FrameInput& frame, const MutableImageView& out) {
     checkOutput(out, frame.color.width, frame.color.height); // before the history moves on
+    if (out.memory == Memory::Cuda)
+        throw Error("output buffer is in CUDA device memory; this filter writes host memory");
     const ImageView result = denoise(frame);
     writeOutput(result, out);
     return result;
