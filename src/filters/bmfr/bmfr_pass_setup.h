@@ -31,8 +31,7 @@ NoisyAccumulation noisyAccumulation(const BmfrPassContext& ctx, const InputPlane
     a.previousPixel = b.previousPixel.data(), a.accept = b.acceptMask.data();
     if (t.hasHistory() && emitterExclusion(s, in, nullptr).on)
         a.prevEmitter = b.emitter[prev].data();
-    if (const float* visibility = stagedVisibility(in, ctx.frame.visibility.data);
-        t.hasHistory() && s.visibilityTaps && visibility)
+    if (const float* visibility = in.visibility; t.hasHistory() && s.visibilityTaps && visibility)
         a.visibility = visibility, a.prevLit = b.lit[prev].data();
     if (s.adaptiveHistory) {
         a.change = b.change.data();

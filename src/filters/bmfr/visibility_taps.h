@@ -9,11 +9,6 @@
 
 namespace bmfr {
 
-/// The frame's staged visibility (the plane after its own extras), or null without one.
-inline const float* stagedVisibility(const InputPlanes& in, bool frameHasVisibility) {
-    return frameHasVisibility && in.extraCount > 0 ? in.extras[in.extraCount - 1] : nullptr;
-}
-
 /// 1 where the key light reaches pixel i (visibility above 0), else 0 (NaN included).
 BMFR_HD uint8_t litClass(const float* visibility, long i) {
     return visibility[i] > 0.0f ? 1 : 0;

@@ -228,8 +228,7 @@ void fitBlockRow(const BmfrPassContext& ctx, Buffers& b, const BlockGrid& grid, 
 /// The visibility the tap classes read: the frame's staged one under
 /// BmfrSettings::visibilityTaps, else null.
 inline const float* tapVisibility(const BmfrPassContext& ctx) {
-    return ctx.settings.visibilityTaps ? stagedVisibility(ctx.input, ctx.frame.visibility.data)
-                                       : nullptr;
+    return ctx.settings.visibilityTaps ? ctx.input.visibility : nullptr;
 }
 /// The tap classes of pixels [from, from + n) without an emitter: kTapLit where `visibility`
 /// (null: none) is above 0. Inlined, as the fitter calls it for each row of a block.

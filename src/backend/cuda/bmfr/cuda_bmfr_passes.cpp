@@ -112,8 +112,7 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
                                   st),
                   "fit copy");
         }
-        if (const float* visibility = stagedVisibility(in, ctx.frame.visibility.data);
-            s.visibilityTaps && visibility)
+        if (const float* visibility = in.visibility; s.visibilityTaps && visibility)
             launchSameLitTaps(b.acceptMask.data(), b.previousPixel.data(), visibility,
                               t.hasHistory() ? b.lit[prev].data() : nullptr, b.lit[cur].data(),
                               t.width, t.height, st);

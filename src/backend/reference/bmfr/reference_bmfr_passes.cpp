@@ -120,7 +120,7 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
 /// sameLitTaps over the accept mask (visibilityTaps, with a visibility buffer).
 void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers& b) {
     const TemporalHistory& t = ctx.history;
-    const float* visibility = stagedVisibility(ctx.input, ctx.frame.visibility.data);
+    const float* visibility = ctx.input.visibility;
     if (!ctx.settings.visibilityTaps || !visibility) return;
     const uint8_t* prevLit = t.hasHistory() ? b.lit[1 - t.cur].data() : nullptr;
     uint8_t* lit = b.lit[t.cur].data();
