@@ -51,20 +51,20 @@ template <class S> void requireRuns(Backend b, const char* filter) {
 }
 
 template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const char* filter) {
+    // Errors when the filter is made, not inside a pass: a filter the backend does not run, a
+    // bad BMFR_CPU_ISA, "no CUDA device: ..." (in a build without CUDA too).
     requireRuns<S>(b, filter);
+    requireBackend(b);
     switch (b) {
     case Backend::Reference:
         return reference::makePasses<S>();
     case Backend::Cpu:
-        // A bad BMFR_CPU_ISA is an error when the filter is made, not inside a pass.
-        cpu::activeIsa();
         return cpu::makePasses<S>();
     case Backend::Cuda:
-        // "no CUDA device: ..." when the filter is made, in a build without CUDA too.
-        cuda::requireDevice();
 #if defined(BMFR_HAVE_CUDA)
         if constexpr (kOnCuda<S>) return cuda::makePasses<S>();
 #endif
+        break;
     }
     throw Error("unknown backend");
 }
