@@ -305,6 +305,83 @@ TEST(Hardening, FuzzerFindingsAreRejectedCleanly) {
     EXPECT_GT(n, 0);
 }
 
+// Round three. A sequence with a frame re-rendered at another size and one cut inside its
+// header fails before the first output, in one message that lists both; denoise and eval.
+TEST(Hardening, EveryFrameIsCheckedBeforeTheFirstOutput) {
+    const fs::path dir = testing::freshDir("hard", "check_first");
+    const fs::path seq = dir / "seq";
+    ASSERT_EQ(run("synth -o " + seq.string() + " --width 16 --height 8 --frames 6 -q").code, 0);
+    writeExr((seq / "color_0003.exr").string(), ImageF(17, 8, 3));
+    const std::string albedo = slurp(seq / "albedo_0005.exr");
+    std::ofstream(seq / "albedo_0005.exr", std::ios::binary) << albedo.substr(0, 40);
+    const fs::path out = dir / "out";
+    for (const std::string& args :
+         {"denoise " + seq.string() + " -o " + out.string() + " -q --no-flip",
+          "eval -r " + seq.string() + " -m noisy -o " + out.string() + " -q --no-flip"}) {
+        SCOPED_TRACE(args);
+        const Result r = run(args);
+        EXPECT_EQ(r.code, 1) << r.output;
+        EXPECT_NE(r.output.find("2 of 6 frames cannot be read"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("frame 3 color is 17x8, the sequence is 16x8"), std::string::npos)
+            << r.output;
+        EXPECT_NE(r.output.find("albedo_0005.exr"), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(out)) << "a folder was left behind";
+    }
+}
+
+// A frame whose pixels are cut short (its header intact) fails when it is read, and the error
+// says which frames were written.
+TEST(Hardening, AFrameBrokenInItsPixelsSaysWhichFramesWereWritten) {
+    const fs::path dir = testing::freshDir("hard", "cut_pixels");
+    const fs::path seq = dir / "seq", out = dir / "out";
+    ASSERT_EQ(run("synth -o " + seq.string() + " --width 16 --height 8 --frames 5 -q").code, 0);
+    const std::string color = slurp(seq / "color_0003.exr");
+    std::ofstream(seq / "color_0003.exr", std::ios::binary) << color.substr(0, color.size() - 60);
+    const Result r = run("denoise " + seq.string() + " -o " + out.string() + " -q --no-flip");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("color_0003.exr"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("frames 0 to 2 were written to " + out.string()), std::string::npos)
+        << r.output;
+    EXPECT_TRUE(fs::exists(out / "denoised_0002.exr"));
+    EXPECT_FALSE(fs::exists(out / "denoised_0003.exr"));
+    EXPECT_FALSE(fs::exists(out / "report.json"));
+    // Broken at its first frame: nothing written, no folder left.
+    const std::string first = slurp(seq / "color_0000.exr");
+    std::ofstream(seq / "color_0000.exr", std::ios::binary) << first.substr(0, first.size() - 60);
+    const fs::path none = dir / "none";
+    const Result r0 = run("denoise " + seq.string() + " -o " + none.string() + " -q --no-flip");
+    EXPECT_EQ(r0.code, 1) << r0.output;
+    EXPECT_NE(r0.output.find("no frame was written"), std::string::npos) << r0.output;
+    EXPECT_FALSE(fs::exists(none));
+}
+
+// Numbers are range-checked before they are converted (a conversion out of range is
+// undefined behaviour), and a far camera is named as such.
+TEST(Hardening, NumbersAreRangeCheckedBeforeConversion) {
+    const fs::path dir = testing::freshDir("hard", "numbers");
+    ASSERT_EQ(run("synth -o " + dir.string() + " --width 16 --height 8 --frames 1 -q").code, 0);
+    nlohmann::json doc = nlohmann::json::parse(slurp(dir / "sequence.json"));
+    doc["frames"][0]["aovs"] = {{{"name", "x"}, {"file", "color_0000.exr"}, {"channels", 1e20}}};
+    std::ofstream(dir / "sequence.json") << doc.dump();
+    auto reader = SequenceReader::open(dir.string());
+    reader->setLoadAovs(true);
+    FrameData f;
+    EXPECT_ERROR(reader->load(0, f), "channels = 1e+20 is outside [1, 3]");
+    doc["frames"][0]["jitter"] = {1e300, 0};
+    doc["frames"][0].erase("aovs");
+    std::ofstream(dir / "sequence.json") << doc.dump();
+    EXPECT_ERROR(SequenceReader::open(dir.string())->load(0, f),
+                 "jitter must be a finite number that a float holds");
+    // Settings: an unsigned seed of -1, an int of 3e9, a float of 1e300.
+    EXPECT_ERROR(makeFilter("bmfr", {{"seed", "-1"}}), "seed");
+    EXPECT_ERROR(makeFilter("svgf", {{"iterations", "3000000000"}}), "too large");
+    EXPECT_ERROR(makeFilter("bmfr", {{"noiseAmplitude", "1e300"}}), "too large");
+    render::CameraPose far;
+    far.position = {0, 0, 1e30f};
+    const std::string why = render::cameraPoseProblem(far);
+    EXPECT_NE(why.find("1e+30 units from its target"), std::string::npos) << why;
+}
+
 } // namespace
 } // namespace bmfr
 

@@ -179,5 +179,38 @@ TEST(MultilayerExr, SequencesUseTheDefaultPassesAndChannelOverrides) {
     fs::remove_all(dir);
 }
 
+// A Cycles render with its own denoiser on (tests/data/make_cycles_denoiser_on.py) holds both
+// Combined, the denoised result, and Noisy Image: the noisy one is read, and the run says so.
+TEST(MultilayerExr, CyclesOwnDenoiserIsNoticedAndItsNoisyImageRead) {
+    const fs::path file = fs::path(BMFR_SOURCE_DIR) / "tests" / "data" / "cycles_denoiser_on.exr";
+    const fs::path dir = testing::freshDir("ml", "cycles_denoiser");
+    fs::copy_file(file, dir / "frame_0000.exr");
+    std::ofstream(dir / "sequence.json") << R"({"format": "bmfr-sequence", "version": 1,
+        "width": 24, "height": 16, "frames": [{"color": "frame_0000.exr",
+        "albedo": "frame_0000.exr", "normal": "frame_0000.exr", "position": "frame_0000.exr",
+        "view_projection": [[1,0,0,0],[0,1,0,0],[0,0,-1,-0.2],[0,0,-1,0]]}]})";
+    const ImageF noisy = readExr(file.string(), 3, "ViewLayer.Noisy Image");
+    const ImageF denoised = readExr(file.string(), 3, "ViewLayer.Combined");
+    ASSERT_NE(noisy.pixels, denoised.pixels);
+    auto reader = SequenceReader::open(dir.string());
+    FrameData f;
+    reader->load(0, f);
+    EXPECT_EQ(f.color.pixels, noisy.pixels);
+    ASSERT_EQ(reader->notes().size(), 1u);
+    EXPECT_NE(reader->notes()[0].find("Cycles' own denoiser was on"), std::string::npos)
+        << reader->notes()[0];
+    // A layer the user names is taken as it is, without a note.
+    auto chosen = SequenceReader::open(dir.string());
+    chosen->setLayerOverrides({{"color", "ViewLayer.Combined"}});
+    chosen->load(0, f);
+    EXPECT_EQ(f.color.pixels, denoised.pixels);
+    EXPECT_TRUE(chosen->notes().empty());
+    const auto r = testing::runCli("denoise " + dir.string() + " -o " + (dir / "out").string() +
+                                   " -q --no-png");
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("bmfr: note: Cycles' own denoiser was on"), std::string::npos)
+        << r.output;
+}
+
 } // namespace
 } // namespace bmfr

@@ -1,6 +1,7 @@
 #include "commands.h"
 #include "eval/ablation.h"
 #include "filters/bmfr/bmfr_settings_table.h"
+#include "io/output_folder.h"
 #include "io/sequence.h"
 #include <fmt/core.h>
 #include <fstream>
@@ -34,6 +35,7 @@ void addAblateCommand(CLI::App& app, int& exitCode) {
                                           info.colorIsDemodulated}),
             "bmfr");
         validate(base);
+        const OutputFolder folder(job->output, invocation());
         int n = 0;
         const bool terminal = isatty(2);
         runAblation(job->input, job->output, job->frames, base, [&](const std::string& name) {

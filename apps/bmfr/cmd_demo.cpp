@@ -1,5 +1,6 @@
 #include "commands.h"
 #include "eval/comparison.h"
+#include "io/output_folder.h"
 #include "progress.h"
 #include "render/sequence_renderer.h"
 #include <filesystem>
@@ -33,6 +34,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
         render::SceneDescription d = render::loadSceneDescription(job->scene, job->scenesDir);
         d.width = job->width, d.height = job->height, d.frames = job->frames;
         d.referenceSpp = job->referenceSpp;
+        const OutputFolder folder(job->output, invocation());
         const std::string input = (fs::path(job->output) / "input").string();
         if (!job->quiet)
             fmt::print(

@@ -7,6 +7,7 @@
 #include "eval/frame_scores.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
+#include "io/output_folder.h"
 #include "io/png.h"
 #include "io/range_parsers.h"
 #include "io/sequence.h"
@@ -89,14 +90,16 @@ int runDenoise(const DenoiseJob& job) {
     const std::string features = checkedFeatures(job.filter, values, job.input, info);
     const std::string backend = settingValue(values, "backend", "cpu");
     auto [first, last] = parseFrameRange(job.frames, info.frameCount);
+    reader->checkFrames(first, last); // a bad frame fails the run before its first output
+    const OutputFolder folder(job.output, invocation());
     const fs::path out(job.output), debugDir = out / "debug";
-    fs::create_directories(job.output);
     if (job.debug) fs::create_directories(debugDir);
     filter->setDebugOutputs(job.debug);
     if (!job.quiet)
         fmt::print("bmfr denoise ({}, {} backend): {} ({} layout, {}x{}, frames {}:{}){}\n",
                    job.filter, backend, job.input, info.layout, info.width, info.height, first,
                    last, features.empty() ? std::string() : ", features " + features);
+    for (const std::string& note : reader->notes()) fmt::print(stderr, "bmfr: note: {}\n", note);
 
     Progress progress("denoise", last - first, job.quiet);
     ImageF sampleMask(info.width, info.height, 1);
@@ -107,7 +110,7 @@ int runDenoise(const DenoiseJob& job) {
     DenoiseScores scores(first, info.colorIsDemodulated, job.flip);
     FrameData frame;
     int motionFrames = 0; // frames that came with motion vectors or previous positions
-    for (int i = first; i < last; ++i) {
+    auto denoiseFrame = [&](int i) {
         Stopwatch clock;
         reader->load(i, frame);
         tRead.push_back(clock.lap());
@@ -126,7 +129,10 @@ int runDenoise(const DenoiseJob& job) {
         const ImageF result = copyOf(filter->denoise(in));
         const FrameStats& st = filter->lastStats();
         stages.add(st.times);
-        if (st.nonFiniteInputs) nonFinite += st.nonFiniteInputs, badFrames.push_back(i);
+        if (st.nonFiniteInputs) {
+            nonFinite += st.nonFiniteInputs;
+            badFrames.push_back(i);
+        }
 
         clock.lap();
         const std::string stem = fmt::format("{:04d}", i);
@@ -136,6 +142,21 @@ int runDenoise(const DenoiseJob& job) {
         tWrite.push_back(clock.lap());
         if (info.hasReference) scores.add(i, result, frame);
         progress.step(i - first + 1);
+    };
+    for (int i = first; i < last; ++i) {
+        try {
+            denoiseFrame(i);
+        } catch (const std::exception& e) {
+            // A file that breaks only when its pixels are read (truncated after its header).
+            throw Error(fmt::format("{}\n{}", e.what(),
+                                    i == first
+                                        ? "no frame was written"
+                                        : fmt::format("frames {} to {} were written to {} "
+                                                      "(denoised_{:04d}.exr to "
+                                                      "denoised_{:04d}.exr), report.json "
+                                                      "was not",
+                                                      first, i - 1, job.output, first, i - 1)));
+        }
     }
     progress.finish();
 

@@ -1,6 +1,7 @@
 #include "commands.h"
 #include "eval/comparison.h"
 #include "eval/score_tables.h"
+#include "io/output_folder.h"
 #include "io/range_parsers.h"
 #include "progress.h"
 #include <bmfr/error.h>
@@ -13,6 +14,7 @@ int runEval(const ComparisonOptions& options, bool quiet, bool json) {
     ComparisonOptions o = options;
     if (o.commandLine.empty()) o.commandLine = invocation();
     if (o.programVersion.empty()) o.programVersion = versionText();
+    const OutputFolder folder(o.output, invocation());
     std::unique_ptr<Progress> bar; // the frame count is known once the reference is open
     ComparisonResult r = runComparison(o, [&](int done, int total) {
         if (!bar) bar = std::make_unique<Progress>("eval", total, quiet);

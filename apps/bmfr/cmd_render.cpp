@@ -1,4 +1,5 @@
 #include "commands.h"
+#include "io/output_folder.h"
 #include "progress.h"
 #include "render/sequence_renderer.h"
 #include <atomic>
@@ -81,6 +82,7 @@ int runRender(const RenderJob& job) {
     if (!job.quiet)
         fmt::print("estimated {} on 2 cores of the CI's kind\n",
                    durationText(render::estimatedRenderSeconds(d)));
+    const OutputFolder folder(job.output, invocation());
     Progress progress("render", d.frames, job.quiet);
     render::SequenceRenderOptions o{job.output, job.layout, job.quiet, job.overwrite};
     render::SequenceRenderReport r = render::renderSequence(

@@ -1,4 +1,5 @@
 #include "commands.h"
+#include "io/output_folder.h"
 #include "io/sequence.h"
 #include "progress.h"
 #include "synth/procedural_scene.h"
@@ -17,6 +18,7 @@ struct SynthJob {
 
 void writeProcedural(const SynthJob& job) {
     ProceduralScene scene(job.scene);
+    const OutputFolder folder(job.output, invocation());
     Progress progress("synth", job.scene.frames, job.quiet);
     if (job.layout == "bmfr") {
         std::vector<FrameData> frames(size_t(job.scene.frames));

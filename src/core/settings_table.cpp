@@ -13,12 +13,14 @@ namespace {
 
 } // namespace
 
-double parseNumber(const std::string& key, const std::string& text, bool integer) {
+double parseNumber(const std::string& key, const std::string& text, bool integer, double lo,
+                   double hi) {
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || !std::isfinite(v)) badText(key, text, "is not a number");
     if (integer && v != std::floor(v)) badText(key, text, "is not a whole number");
-    if (integer && std::fabs(v) > 4e9) badText(key, text, "is too large");
+    // Checked before the conversion: a value the type cannot hold is undefined behaviour.
+    if (v < lo || v > hi) badText(key, text, integer ? "is too large" : "is too large for a float");
     return v;
 }
 

@@ -5,6 +5,8 @@
 #pragma once
 #include <bmfr/error.h>
 #include <bmfr/filter.h>
+#include <cfloat>
+#include <climits>
 #include <cstdint>
 #include <string>
 #include <variant>
@@ -41,7 +43,9 @@ template <class S> using SettingsTable = std::vector<Setting<S>>;
 #define BMFR_FIELD(S, member) (+[](S& s) -> decltype(auto) { return (s.member); })
 
 namespace detail {
-double parseNumber(const std::string& key, const std::string& text, bool integer);
+/// `text` as a number that the setting's type holds: in [lo, hi], and whole when `integer`.
+double parseNumber(const std::string& key, const std::string& text, bool integer, double lo,
+                   double hi);
 bool parseBool(const std::string& key, const std::string& text);
 std::string formatNumber(double v);
 std::string formatRange(const SettingRange& r, bool integer);
@@ -96,13 +100,13 @@ template <class S> void checkSetting(const Setting<S>& e, const S& s, const char
 template <class S> void assignSetting(const Setting<S>& e, S& s, const std::string& text) {
     switch (e.field.index()) {
     case 0:
-        std::get<0>(e.field)(s) = float(detail::parseNumber(e.key, text, false));
+        std::get<0>(e.field)(s) = float(detail::parseNumber(e.key, text, false, -FLT_MAX, FLT_MAX));
         break;
     case 1:
-        std::get<1>(e.field)(s) = int(detail::parseNumber(e.key, text, true));
+        std::get<1>(e.field)(s) = int(detail::parseNumber(e.key, text, true, INT_MIN, INT_MAX));
         break;
     case 2:
-        std::get<2>(e.field)(s) = uint32_t(detail::parseNumber(e.key, text, true));
+        std::get<2>(e.field)(s) = uint32_t(detail::parseNumber(e.key, text, true, 0, UINT32_MAX));
         break;
     case 3:
         std::get<3>(e.field)(s) = detail::parseBool(e.key, text);

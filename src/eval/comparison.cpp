@@ -45,9 +45,26 @@ class ResultSource {
             noisy_ = owned_.get();
         }
     }
+    /// Reads the headers of frames [first, last) (sizes against the reference's): throws one
+    /// bmfr::Error listing every frame that cannot be scored.
+    void checkFrames(int first, int last, int width, int height) const {
+        auto checkSize = [&](int w, int h, const std::string& what) {
+            if (w != width || h != height)
+                throw Error(
+                    fmt::format("{} is {}x{}, the reference is {}x{}", what, w, h, width, height));
+        };
+        if (owned_) {
+            owned_->checkFrames(first, last);
+            checkSize(owned_->info().width, owned_->info().height, "eval: method '" + name_ + "'");
+        } else if (!dir_.empty()) {
+            checkEveryFrame(first, last, "eval: method '" + name_ + "'", [&](int i) {
+                const ImageF img = readExr(denoised(i), 3, "", ExrContent::Header);
+                checkSize(img.width, img.height, denoised(i));
+            });
+        }
+    }
     ImageF frame(int i) const {
-        if (!dir_.empty())
-            return readExr((fs::path(dir_) / fmt::format("denoised_{:04d}.exr", i)).string(), 3);
+        if (!dir_.empty()) return readExr(denoised(i), 3);
         FrameData f;
         noisy_->load(i, f);
         if (noisy_->info().colorIsDemodulated)
@@ -57,6 +74,9 @@ class ResultSource {
     }
 
   private:
+    std::string denoised(int i) const {
+        return (fs::path(dir_) / fmt::format("denoised_{:04d}.exr", i)).string();
+    }
     std::string name_, dir_;
     const SequenceReader* noisy_ = nullptr;
     std::unique_ptr<SequenceReader> owned_;
@@ -181,6 +201,9 @@ ComparisonResult runComparison(const ComparisonOptions& o,
             c[2] > fullW - c[0] || c[3] > fullH - c[1])
             throw Error(fmt::format("eval: crop {},{},{},{} is outside the {}x{} frame", c[0], c[1],
                                     c[2], c[3], fullW, fullH));
+    // Every frame's headers before the first output: a bad frame fails the run here.
+    reference->checkFrames(r.first, r.last);
+    for (const auto& s : sources) s->checkFrames(r.first, r.last, fullW, fullH);
     const fs::path out(o.output);
 
     std::vector<std::string> columns{"reference"};

@@ -1,4 +1,5 @@
 #include "eval/video.h"
+#include "io/atomic_file.h"
 #include "io/shell_quote.h"
 #include <bmfr/error.h>
 #include <csignal>
@@ -26,7 +27,7 @@ std::string findFfmpeg() {
 }
 
 VideoWriter::VideoWriter(const std::string& ffmpeg, const std::string& path, int fps)
-    : ffmpeg_(ffmpeg), path_(path), partial_(path + ".partial.mp4"), fps_(fps) {}
+    : ffmpeg_(ffmpeg), path_(path), partial_(temporaryPathFor(path)), fps_(fps) {}
 
 VideoWriter::~VideoWriter() {
     if (pipe_) {
@@ -64,7 +65,7 @@ void VideoWriter::finish() {
         throw Error(fmt::format("eval --video: ffmpeg failed writing {} (exit status {})", path_,
                                 WIFEXITED(status) ? WEXITSTATUS(status) : status));
     }
-    fs::rename(partial_, path_);
+    commitTemporary(partial_, path_);
 }
 
 } // namespace bmfr

@@ -1,4 +1,5 @@
 #include "io/atomic_file.h"
+#include <atomic>
 #include <bmfr/error.h>
 #include <cerrno>
 #include <cstdio>
@@ -9,15 +10,18 @@
 namespace bmfr {
 
 std::string temporaryPathFor(const std::string& path) {
-    return path + ".part";
+    // Unique per process and per call: two writers of one path never share a temporary file.
+    static std::atomic<unsigned long> counter{0};
+    return path + "." + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".part";
 }
 
 void commitTemporary(const std::string& temporary, const std::string& path) {
-    std::error_code ec;
-    std::filesystem::rename(temporary, path, ec);
-    if (ec) {
-        std::filesystem::remove(temporary, ec);
-        throw Error("cannot write " + path + ": " + ec.message());
+    std::error_code renamed;
+    std::filesystem::rename(temporary, path, renamed);
+    if (renamed) {
+        std::error_code ignored; // the rename's reason is the one to report
+        std::filesystem::remove(temporary, ignored);
+        throw Error("cannot write " + path + ": " + renamed.message());
     }
 }
 

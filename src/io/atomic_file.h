@@ -9,9 +9,11 @@ namespace bmfr {
 void writeFileAtomically(const std::string& path, const std::string& bytes);
 void writeFileAtomically(const std::string& path, const void* data, size_t size);
 
-/// The temporary name writers use for `path` (for writers that produce the file themselves).
+/// A temporary name beside `path`, unique to this process and call, for writers that produce
+/// the file themselves ("<path>.<pid>-<n>.part").
 std::string temporaryPathFor(const std::string& path);
-/// Renames a finished temporary file over `path`; removes it and throws on failure.
+/// Renames a finished temporary file over `path`; on failure removes it and throws bmfr::Error
+/// with the rename's reason.
 void commitTemporary(const std::string& temporary, const std::string& path);
 
 } // namespace bmfr

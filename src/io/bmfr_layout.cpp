@@ -155,20 +155,21 @@ class BmfrLayoutReader : public SequenceReader {
                         " camera matrices for " + std::to_string(n) + " frames");
         info_.frameCount = n;
         info_.hasReference = fs::exists(path("reference", 0));
-        ImageF first = readExr(path("color", 0), 3);
+        const ImageF first = readExr(path("color", 0), 3, "", ExrContent::Header);
         info_.width = first.width;
         info_.height = first.height;
     }
 
-    void load(int index, FrameData& f) const override {
+    void read(int index, FrameData& f, ExrContent content) const override {
         if (index < 0 || index >= info_.frameCount)
             throw Error(info_.directory + ": frame " + std::to_string(index) + " out of range");
-        f.color = readExr(path("color", index), 3);
-        f.albedo = readExr(path("albedo", index), 3);
-        f.normal = readExr(path("shading_normal", index), 3);
-        f.position = readExr(path("world_position", index), 3);
+        f.color = readExr(path("color", index), 3, "", content);
+        f.albedo = readExr(path("albedo", index), 3, "", content);
+        f.normal = readExr(path("shading_normal", index), 3, "", content);
+        f.position = readExr(path("world_position", index), 3, "", content);
         f.extras.clear();
-        f.reference = info_.hasReference ? readExr(path("reference", index), 3) : ImageF();
+        f.reference =
+            info_.hasReference ? readExr(path("reference", index), 3, "", content) : ImageF();
         // Row vectors (clip = p * M) -> our column-vector convention.
         f.viewProjection = transpose(camera_.matrices[index]);
         if (!isUsableCameraMatrix(f.viewProjection))

@@ -126,7 +126,8 @@ std::string findExrLayer(const std::string& path, const std::string& pass) {
     return findExrLayer(exrChannelNames(path), pass, path);
 }
 
-void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& reads) {
+void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& reads,
+                   ExrContent content) {
     for (const ExrLayerRead& r : reads)
         if (r.channels < 1 || r.channels > 3)
             throw Error("readExr: " + std::to_string(r.channels) + " channels asked of " + path);
@@ -175,6 +176,13 @@ void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& rea
                 if (clash) continue;
                 const int ch = reads[k].channels;
                 ImageF& img = *reads[k].out;
+                done[k] = true;
+                --remaining;
+                if (content == ExrContent::Header) {
+                    img = ImageF();
+                    img.width = int(w), img.height = int(h), img.channels = ch;
+                    continue;
+                }
                 img.resize(int(w), int(h), ch);
                 const size_t xs = sizeof(float) * ch, ys = xs * size_t(w);
                 char* base =
@@ -182,9 +190,8 @@ void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& rea
                 for (int c = 0; c < ch; ++c)
                     fb.insert(picks[k][size_t(c)]->name,
                               Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
-                done[k] = true;
-                --remaining;
             }
+            if (content == ExrContent::Header) continue;
             Imf::InputPart in(file, part);
             in.setFrameBuffer(fb);
             in.readPixels(dw.min.y, dw.max.y);
@@ -196,9 +203,10 @@ void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& rea
     }
 }
 
-ImageF readExr(const std::string& path, int channels, const std::string& layer) {
+ImageF readExr(const std::string& path, int channels, const std::string& layer,
+               ExrContent content) {
     ImageF img;
-    readExrLayers(path, {{layer, channels, &img}});
+    readExrLayers(path, {{layer, channels, &img}}, content);
     return img;
 }
 

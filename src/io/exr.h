@@ -6,6 +6,10 @@
 
 namespace bmfr {
 
+/// What a read fills in: the pixels, or only the sizes (width, height, channels; no pixel
+/// storage), which checks a file's header, channels and completeness without decompressing it.
+enum class ExrContent { Pixels, Header };
+
 /// Reads an EXR as `channels` floats per pixel (3: R,G,B; 2: R,G; 1: Y, R or the only
 /// channel; never invented from fewer). Throws bmfr::Error naming the file when it is missing,
 /// unreadable, empty or lacks the channels.
@@ -14,7 +18,8 @@ namespace bmfr {
 /// in "ViewLayer.Denoising Albedo" for the channels "ViewLayer.Denoising Albedo.R/G/B"; X,Y,Z
 /// stand in for R,G,B and V or Z for a single channel. In a multi-part file a part's name is
 /// the layer prefix of its channels.
-ImageF readExr(const std::string& path, int channels, const std::string& layer = "");
+ImageF readExr(const std::string& path, int channels, const std::string& layer = "",
+               ExrContent content = ExrContent::Pixels);
 
 /// Every channel of an EXR by its full name (part name prefixed in multi-part files).
 std::vector<std::string> exrChannelNames(const std::string& path);
@@ -29,7 +34,8 @@ struct ExrLayerRead {
 /// Reads several layers of one file in one pass over each part's pixels (a multilayer frame
 /// holds every buffer: decompressing it once per buffer would multiply the cost). Same rules and
 /// errors as readExr.
-void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& reads);
+void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& reads,
+                   ExrContent content = ExrContent::Pixels);
 
 /// findExrLayer over a channel list already read (exrChannelNames); `path` names the file in
 /// errors.

@@ -91,6 +91,33 @@ int linesPerChunk(uint8_t compression) {
 
 } // namespace
 
+namespace {
+
+/// Tiles in one level of a tiled part: OpenEXR allocates an offset-table entry for each.
+double tilesIn(long w, long h, long tileX, long tileY) {
+    return double((w + tileX - 1) / tileX) * double((h + tileY - 1) / tileY);
+}
+
+/// The level sizes of a mip- or rip-mapped part (OpenEXR's rounding: 0 down, 1 up).
+long levelSize(long size, int level, int rounding) {
+    const long scaled = rounding ? (size + (1L << level) - 1) >> level : size >> level;
+    return std::max(scaled, 1L);
+}
+int levelCount(long size, int rounding) {
+    int levels = 1;
+    while (levelSize(size, levels - 1, rounding) > 1) ++levels;
+    return levels;
+}
+
+std::string bytesText(double bytes) {
+    const char* unit[] = {"bytes", "KiB", "MiB", "GiB"};
+    int k = 0;
+    for (; k < 3 && bytes >= 1024.0; ++k) bytes /= 1024.0;
+    return std::to_string(long(bytes)) + " " + unit[k];
+}
+
+} // namespace
+
 void precheckExr(const std::string& path, uint64_t fileBytes) {
     Reader r{std::ifstream(path, std::ios::binary), path, fileBytes};
     if (!r.in) throw Error("unreadable EXR " + path);
@@ -98,11 +125,18 @@ void precheckExr(const std::string& path, uint64_t fileBytes) {
     if (magic != 20000630u) r.fail("not an OpenEXR file (bad magic number)");
     const uint32_t version = r.value<uint32_t>("the version");
     if (version & 0x800) r.fail("deep images are not supported");
-    const bool tiled = version & 0x200, multipart = version & 0x1000;
+    const bool multipart = version & 0x1000;
     const size_t maxName = version & 0x400 ? 255 : 31; // long names are a version flag
+    // What one chunk (a block of lines or a tile) may hold uncompressed: OpenEXR allocates a
+    // buffer of that size per thread before reading a byte of pixel data.
+    const double chunkCap =
+        std::min(double(kMaxExrChunkBytes), double(kMaxExrCompressionRatio) * double(fileBytes));
     for (int part = 0;; ++part) {
-        long w = 0, h = 0, tileX = 0, tileY = 0;
-        int compression = -1;
+        long w = 0, h = 0, tileX = 0, tileY = 0, declaredChunks = -1;
+        int compression = -1, levelMode = 0, rounding = 0;
+        // A single-part file is tiled by its version flag, a part of a multi-part file by its
+        // "type" attribute.
+        bool tiled = !multipart && (version & 0x200);
         double bytesPerPixel = 0;
         bool any = false;
         while (true) {
@@ -133,9 +167,20 @@ void precheckExr(const std::string& path, uint64_t fileBytes) {
                 h = long(i32(12)) - i32(4) + 1;
             } else if (name == "compression" && n == 1) {
                 compression = uint8_t(v[0]);
-            } else if (name == "tiles" && n >= 8) {
+            } else if (name == "tiles" && n == 9) {
                 tileX = uint32_t(i32(0));
                 tileY = uint32_t(i32(4));
+                levelMode = uint8_t(v[8]) & 0xf;
+                rounding = uint8_t(v[8]) >> 4;
+            } else if (name == "type" && type == "string") {
+                const std::string partType(v.begin(), v.end());
+                if (partType == "deepscanline" || partType == "deeptile")
+                    r.fail("deep images are not supported");
+                if (partType != "scanlineimage" && partType != "tiledimage")
+                    r.fail("unknown part type '" + partType + "'");
+                tiled = partType == "tiledimage";
+            } else if (name == "chunkCount" && type == "int") {
+                declaredChunks = i32(0);
             } else if (type == "preview") {
                 // Width and height, then 4 bytes per pixel: OpenEXR allocates what they say.
                 const double pixels = double(uint32_t(i32(0))) * double(uint32_t(i32(4)));
@@ -165,29 +210,58 @@ void precheckExr(const std::string& path, uint64_t fileBytes) {
             if (part == 0) r.fail("no header attributes");
             break; // the empty header that ends a multi-part file
         }
-        if (w <= 0 || h <= 0) r.fail("zero-size or missing data window");
+        const std::string where = multipart ? " (part " + std::to_string(part) + ")" : "";
+        if (w <= 0 || h <= 0) r.fail("zero-size or missing data window" + where);
         if (w > kMaxExrSide || h > kMaxExrSide || w * h > kMaxExrPixels)
-            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
+            throw Error(path + where + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
                         " pixels, more than the " + std::to_string(kMaxExrPixels) + "-pixel limit");
-        // Every chunk has an 8-byte entry in the offset table, which lives in the file.
-        double chunks = 0;
-        if (tiled && tileX > 0 && tileY > 0)
-            chunks = double((w + tileX - 1) / tileX) * double((h + tileY - 1) / tileY);
-        else if (!tiled && linesPerChunk(uint8_t(compression)) > 0)
-            chunks = double((h + linesPerChunk(uint8_t(compression)) - 1) /
-                            linesPerChunk(uint8_t(compression)));
-        else
-            r.fail("unknown compression or tile size");
-        if (chunks * 8.0 > double(r.size))
-            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
-                        " pixels in " + std::to_string(long(chunks)) +
+        // Every chunk has an 8-byte entry in the offset table, which lives in the file; every
+        // chunk's pixels are one buffer in memory.
+        double chunks = 0, chunkBytes = 0;
+        std::string chunkWhat;
+        if (tiled) {
+            if (tileX <= 0 || tileY <= 0 || tileX > kMaxExrSide || tileY > kMaxExrSide)
+                r.fail("tile size " + std::to_string(tileX) + "x" + std::to_string(tileY) + where +
+                       " is outside 1.." + std::to_string(kMaxExrSide));
+            if (levelMode > 2 || rounding > 1) r.fail("unknown tile level mode" + where);
+            const int levelsX =
+                levelMode == 0 ? 1 : levelCount(levelMode == 1 ? std::max(w, h) : w, rounding);
+            const int levelsY = levelMode == 2 ? levelCount(h, rounding) : 1;
+            for (int lx = 0; lx < levelsX; ++lx)
+                for (int ly = 0; ly < levelsY; ++ly) {
+                    const int y = levelMode == 1 ? lx : ly; // mip-map levels shrink both sides
+                    chunks += tilesIn(levelSize(w, lx, rounding), levelSize(h, y, rounding), tileX,
+                                      tileY);
+                }
+            chunkBytes = double(tileX) * double(tileY) * bytesPerPixel;
+            chunkWhat = "a tile of " + std::to_string(tileX) + "x" + std::to_string(tileY);
+        } else if (linesPerChunk(uint8_t(compression)) > 0) {
+            const int lines = linesPerChunk(uint8_t(compression));
+            chunks = double((h + lines - 1) / lines);
+            chunkBytes = double(lines) * double(w) * bytesPerPixel;
+            chunkWhat = "a block of " + std::to_string(lines) + " lines of " + std::to_string(w);
+        } else {
+            r.fail("unknown compression" + where);
+        }
+        if (std::max(chunks, double(declaredChunks)) * 8.0 > double(r.size))
+            throw Error(path + where + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
+                        " pixels in " +
+                        std::to_string(long(std::max(chunks, double(declaredChunks)))) +
                         " chunks, but the file holds only " + std::to_string(r.size) +
                         " bytes: truncated or corrupt");
         if (double(w) * double(h) * bytesPerPixel >
             double(kMaxExrCompressionRatio) * double(r.size))
-            throw Error(path + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
+            throw Error(path + where + ": claims " + std::to_string(w) + "x" + std::to_string(h) +
                         " pixels, but the file holds only " + std::to_string(r.size) +
                         " bytes: truncated or corrupt");
+        if (chunkBytes > chunkCap)
+            throw Error(path + where + ": " + chunkWhat + " pixels of " +
+                        std::to_string(long(bytesPerPixel)) + " bytes would need " +
+                        bytesText(chunkBytes) + " at once, more than " + bytesText(chunkCap) +
+                        (chunkCap < double(kMaxExrChunkBytes)
+                             ? " (what a file of " + std::to_string(r.size) + " bytes can hold)"
+                             : " (the limit)") +
+                        ": corrupt or hostile");
         if (!multipart) break;
     }
 }

@@ -1,6 +1,7 @@
 #include "io/json_fields.h"
 #include <algorithm>
 #include <bmfr/error.h>
+#include <cfloat>
 #include <cmath>
 
 namespace bmfr {
@@ -55,8 +56,12 @@ long long integerField(const nlohmann::json& object, const char* key, long long 
     } else if (v.is_number_integer()) {
         x = v.get<long long>();
     } else if (v.is_number_float() && std::isfinite(v.get<double>()) &&
-               v.get<double>() == std::floor(v.get<double>()) &&
-               std::fabs(v.get<double>()) < 9e18) {
+               v.get<double>() == std::floor(v.get<double>())) {
+        // Range-checked as a double: converting one that a long long cannot hold is undefined.
+        if (v.get<double>() < double(lo) || v.get<double>() > double(hi) ||
+            std::fabs(v.get<double>()) >= 9.2e18)
+            throw Error(where + ": " + key + " = " + v.dump() + " is outside [" +
+                        std::to_string(lo) + ", " + std::to_string(hi) + "]");
         x = (long long)v.get<double>();
     } else {
         throw Error(where + ": " + key + " must be a whole number, got " + v.dump());
@@ -65,6 +70,13 @@ long long integerField(const nlohmann::json& object, const char* key, long long 
         throw Error(where + ": " + key + " = " + std::to_string(x) + " is outside [" +
                     std::to_string(lo) + ", " + std::to_string(hi) + "]");
     return x;
+}
+
+float floatValue(const nlohmann::json& value, const std::string& where) {
+    if (!value.is_number() || !std::isfinite(value.get<double>()) ||
+        std::fabs(value.get<double>()) > double(FLT_MAX))
+        throw Error(where + " must be a finite number that a float holds, got " + value.dump());
+    return float(value.get<double>());
 }
 
 double numberField(const nlohmann::json& object, const char* key, double lo, double hi,

@@ -17,6 +17,10 @@ void requireKnownKeys(const nlohmann::json& object, const std::vector<std::strin
 long long integerField(const nlohmann::json& object, const char* key, long long lo, long long hi,
                        long long fallback, const std::string& where);
 
+/// `value` as a float: a finite number that a float holds (checked before the conversion);
+/// anything else is an error naming `where`.
+float floatValue(const nlohmann::json& value, const std::string& where);
+
 /// object[key] as a finite number in [lo, hi], or `fallback` when absent.
 double numberField(const nlohmann::json& object, const char* key, double lo, double hi,
                    double fallback, const std::string& where);

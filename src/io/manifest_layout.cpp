@@ -50,9 +50,11 @@ class ManifestReader : public SequenceReader {
                             "x" + std::to_string(info_.height) + ")");
             info_.colorIsDemodulated = manifest_.value("color_is_demodulated", false);
             if (manifest_.contains("position_limit_squared"))
-                info_.positionLimitSquared = manifest_["position_limit_squared"].get<float>();
+                info_.positionLimitSquared = floatValue(manifest_["position_limit_squared"],
+                                                        mp.string() + ": position_limit_squared");
             if (manifest_.contains("normal_limit_squared"))
-                info_.normalLimitSquared = manifest_["normal_limit_squared"].get<float>();
+                info_.normalLimitSquared = floatValue(manifest_["normal_limit_squared"],
+                                                      mp.string() + ": normal_limit_squared");
             if (manifest_.contains("extras"))
                 info_.extraNames = manifest_["extras"].get<std::vector<std::string>>();
             if (manifest_.contains("layers")) {
@@ -78,7 +80,7 @@ class ManifestReader : public SequenceReader {
         }
     }
 
-    void load(int index, FrameData& f) const override {
+    void read(int index, FrameData& f, ExrContent content) const override {
         const std::string where = info_.directory + "/sequence.json frame " + std::to_string(index);
         if (index < 0 || index >= info_.frameCount) throw Error(where + ": out of range");
         try {
@@ -93,13 +95,14 @@ class ManifestReader : public SequenceReader {
             });
             f.reference = ImageF();
             if (info_.hasReference) buffers.push_back({"reference", &f.reference, 3});
-            readBuffers(j, buffers, where);
+            readBuffers(j, buffers, where, content);
             f.reset = j.value("reset", false);
             f.extras.clear();
             if (j.contains("extras")) {
                 for (const auto& e : j["extras"])
                     f.extras.push_back(
-                        readExr((fs::path(info_.directory) / e.get<std::string>()).string(), 1));
+                        readExr((fs::path(info_.directory) / e.get<std::string>()).string(), 1, "",
+                                content));
                 if (f.extras.size() != info_.extraNames.size())
                     throw Error(where + ": " + std::to_string(f.extras.size()) +
                                 " extra buffers, the sequence names " +
@@ -108,23 +111,29 @@ class ManifestReader : public SequenceReader {
             f.aovs.clear();
             if (loadAovs_ && j.contains("aovs"))
                 for (const json& entry : j["aovs"]) {
+                    requireKnownKeys(entry, {"name", "file", "channels"}, where + " aov");
                     const std::string path =
                         (fs::path(info_.directory) / entry.at("file").get<std::string>()).string();
+                    if (!entry.contains("channels"))
+                        throw Error(where + ": aov without \"channels\"");
+                    const int channels =
+                        int(integerField(entry, "channels", 1, 3, 0, where + " aov"));
                     f.aovs.emplace_back(entry.at("name").get<std::string>(),
-                                        readExr(path, entry.at("channels").get<int>()));
+                                        readExr(path, channels, "", content));
                 }
             const json& m = j.at("view_projection");
             if (m.size() != 4) throw Error(where + ": view_projection must be 4 rows of 4");
             for (int r = 0; r < 4; ++r) {
                 if (m[r].size() != 4) throw Error(where + ": view_projection must be 4 rows of 4");
-                for (int c = 0; c < 4; ++c) f.viewProjection.m[r][c] = m[r][c].get<float>();
+                for (int c = 0; c < 4; ++c)
+                    f.viewProjection.m[r][c] = floatValue(m[r][c], where + ": view_projection");
             }
             if (!isUsableCameraMatrix(f.viewProjection))
                 throw Error(where + ": view_projection is not finite or not invertible");
             f.jitter[0] = f.jitter[1] = 0.0f;
             if (j.contains("jitter")) {
-                f.jitter[0] = j["jitter"].at(0).get<float>();
-                f.jitter[1] = j["jitter"].at(1).get<float>();
+                f.jitter[0] = floatValue(j["jitter"].at(0), where + ": jitter");
+                f.jitter[1] = floatValue(j["jitter"].at(1), where + ": jitter");
             }
         } catch (const json::exception& e) {
             throw Error(where + ": " + e.what());
@@ -146,7 +155,7 @@ class ManifestReader : public SequenceReader {
     /// comes from --channel, then the entry, then the sequence's "layers", then kDefaultPasses
     /// when the file has only layered channels. Buffers in one file are read in one pass.
     void readBuffers(const json& frame, const std::vector<Buffer>& buffers,
-                     const std::string& where) const {
+                     const std::string& where, ExrContent content) const {
         std::map<std::string, std::vector<std::pair<const char*, ExrLayerRead>>> byFile;
         std::vector<std::string> order; // files in first-use order, for stable error messages
         for (const auto& [key, out, channels] : buffers) {
@@ -180,13 +189,13 @@ class ManifestReader : public SequenceReader {
                 }
                 reads.push_back(read);
             }
-            readExrLayers(path, reads);
+            readExrLayers(path, reads, content);
         }
     }
 
     /// "" when the file has plain channels, else the first of the buffer's default passes.
-    static std::string defaultLayer(const std::vector<std::string>& names, const char* key,
-                                    const std::string& path) {
+    std::string defaultLayer(const std::vector<std::string>& names, const char* key,
+                             const std::string& path) const {
         const bool plain = std::any_of(names.begin(), names.end(), [](const std::string& n) {
             return n.find('.') == std::string::npos;
         });
@@ -194,8 +203,16 @@ class ManifestReader : public SequenceReader {
         for (const DefaultPass& d : kDefaultPasses)
             if (d.buffer == std::string(key))
                 for (const char* pass : d.passes)
-                    if (std::string layer = findExrLayer(names, pass, path); !layer.empty())
+                    if (std::string layer = findExrLayer(names, pass, path); !layer.empty()) {
+                        if (std::string(pass) == "Noisy Image")
+                            note("Cycles' own denoiser was on (" + path + " has '" + layer +
+                                 "' beside Combined, Cycles' denoised result): the colour is "
+                                 "read from " +
+                                 layer +
+                                 ". Turn off the view layer's denoiser to render only the "
+                                 "noisy image, or choose a layer with --channel color=LAYER");
                         return layer;
+                    }
         throw Error(path + ": " + key +
                     ": no plain channels and none of the default passes; name the layer with "
                     "--channel " +

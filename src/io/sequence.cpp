@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <bmfr/error.h>
 #include <filesystem>
+#include <functional>
 
 namespace bmfr {
 
@@ -22,7 +23,9 @@ FrameInput FrameData::input(bool motionInput) const {
 }
 
 const std::vector<DefaultPass> kDefaultPasses = {
-    {"color", {"Combined"}},
+    // With its denoiser on, Cycles writes its denoised result as Combined and the render as
+    // Noisy Image: the noisy one is the input.
+    {"color", {"Noisy Image", "Combined"}},
     {"albedo", {"Denoising Albedo", "DiffCol"}},
     {"normal", {"Normal", "Denoising Normal"}},
     {"position", {"Position"}},
@@ -67,6 +70,35 @@ void SequenceReader::checkFrame(int index, const FrameData& f) const {
     });
     for (const ImageF& e : f.extras) check(e, "extra");
     if (f.reference.width) check(f.reference, "reference");
+}
+
+void SequenceReader::note(const std::string& text) const {
+    if (std::find(notes_.begin(), notes_.end(), text) == notes_.end()) notes_.push_back(text);
+}
+
+void checkEveryFrame(int first, int last, const std::string& what,
+                     const std::function<void(int)>& check) {
+    std::vector<std::string> problems;
+    for (int i = first; i < last; ++i) {
+        try {
+            check(i);
+        } catch (const Error& e) {
+            problems.push_back(e.what());
+        }
+    }
+    if (problems.empty()) return;
+    constexpr size_t kListed = 20;
+    std::string text = what + ": " + std::to_string(problems.size()) + " of " +
+                       std::to_string(last - first) + " frames cannot be read:";
+    for (size_t k = 0; k < std::min(problems.size(), kListed); ++k) text += "\n  " + problems[k];
+    if (problems.size() > kListed)
+        text += "\n  ... and " + std::to_string(problems.size() - kListed) + " more";
+    throw Error(text);
+}
+
+void SequenceReader::checkFrames(int first, int last) const {
+    FrameData f;
+    checkEveryFrame(first, last, info_.directory, [&](int i) { read(i, f, ExrContent::Header); });
 }
 
 std::unique_ptr<SequenceReader> SequenceReader::open(const std::string& directory) {

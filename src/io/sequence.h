@@ -1,9 +1,11 @@
 // Frame sequences on disk: auto-detected layout, frame loading, and writers for both layouts.
 #pragma once
 #include "core/image.h"
+#include "io/exr.h"
 #include "temporal/frame_buffers.h"
 #include <array>
 #include <bmfr/frame.h>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -67,12 +69,19 @@ class SequenceReader {
     virtual ~SequenceReader() = default;
     const SequenceInfo& info() const { return info_; }
     /// Loads frame `index` (0-based). Throws bmfr::Error naming file and frame.
-    virtual void load(int index, FrameData& out) const = 0;
+    void load(int index, FrameData& out) const { read(index, out, ExrContent::Pixels); }
+    /// Reads the headers of frames [first, last) (files, sizes, channels, layers, cameras)
+    /// without their pixels, so that a run fails before its first output rather than at a bad
+    /// frame half way. Throws one bmfr::Error listing every frame that cannot be loaded.
+    void checkFrames(int first, int last) const;
 
     /// Detects the layout of `directory` (sequence.json, or camera_matrices.h + color0.exr).
     static std::unique_ptr<SequenceReader> open(const std::string& directory);
     /// Also load FrameData::aovs (this project's layout only; off by default).
     void setLoadAovs(bool on) { loadAovs_ = on; }
+    /// What a run should tell its user about how the input was read (as "colour is read from
+    /// Cycles' Noisy Image"), each once; filled as frames are read or checked.
+    const std::vector<std::string>& notes() const { return notes_; }
     /// Which layer of a multilayer EXR each buffer comes from ("albedo" -> "ViewLayer.DiffCol"),
     /// replacing the sequence's own choice and the default mapping (kDefaultPasses). Buffers:
     /// layeredBufferNames(). Throws bmfr::Error for another name, or for a layout without
@@ -80,11 +89,21 @@ class SequenceReader {
     virtual void setLayerOverrides(const std::map<std::string, std::string>& layers);
 
   protected:
+    /// load() (Pixels) or checkFrames()'s pass over one frame (Header: images sized, not filled).
+    virtual void read(int index, FrameData& out, ExrContent content) const = 0;
     SequenceInfo info_;
     bool loadAovs_ = false;
+    mutable std::vector<std::string> notes_;
+    /// Adds `text` to notes() unless it is there already.
+    void note(const std::string& text) const;
     std::map<std::string, std::string> layerOverrides_;
     void checkFrame(int index, const FrameData& f) const;
 };
+
+/// Runs check(i) for every frame i in [first, last), then throws one bmfr::Error, headed
+/// `what`, that lists every frame whose check threw (the first 20 of them).
+void checkEveryFrame(int first, int last, const std::string& what,
+                     const std::function<void(int)>& check);
 
 /// Where a buffer is found in a multilayer EXR when neither the sequence nor the user names a
 /// layer: the first of these passes that the file holds, under any view layer. These are the

@@ -4,6 +4,7 @@
 #include <bmfr/error.h>
 #include <cmath>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <map>
 
@@ -34,7 +35,8 @@ namespace {
 Vec3 vec3(const json& j, const char* what) {
     if (!j.is_array() || j.size() != 3)
         throw Error(std::string("scene description: '") + what + "' must be [x, y, z]");
-    return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
+    const std::string where = std::string("scene description: '") + what + "'";
+    return {floatValue(j[0], where), floatValue(j[1], where), floatValue(j[2], where)};
 }
 
 /// {"centre", "u", "v"}: a sky portal or a bounce guide (`what`).
@@ -334,8 +336,9 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
                 if (k.contains("rotation_deg"))
                     key.rotation = quatFromEulerDegrees(vec3(k["rotation_deg"], "rotation_deg"));
                 if (k.contains("scale"))
-                    key.scale = k["scale"].is_number() ? Vec3{1, 1, 1} * k["scale"].get<float>()
-                                                       : vec3(k["scale"], "animation scale");
+                    key.scale = k["scale"].is_number()
+                                    ? Vec3{1, 1, 1} * floatValue(k["scale"], "animation scale")
+                                    : vec3(k["scale"], "animation scale");
                 for (float c : {key.scale.x, key.scale.y, key.scale.z})
                     if (!(c > 0.0f && c <= 1000.0f))
                         throw Error(what + ": scale must be in (0, 1000]");
@@ -400,11 +403,18 @@ void validate(const SceneDescription& d) {
 }
 
 std::string cameraPoseProblem(const CameraPose& p) {
+    // In double: a float's squared length overflows from about 1.8e19 units.
+    const double dx = double(p.target.x) - p.position.x, dy = double(p.target.y) - p.position.y,
+                 dz = double(p.target.z) - p.position.z;
+    const double distance = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (!std::isfinite(distance)) return "has a position or target that is not finite";
+    if (!(distance > 1e-6)) return "has its position equal to its target";
+    if (distance > kMaxCameraDistance)
+        return fmt::format("is {:g} units from its target, more than the {:g} that float maths "
+                           "can take",
+                           distance, kMaxCameraDistance);
     const Vec3 forward = p.target - p.position;
-    const float distance = length(forward);
-    if (!std::isfinite(distance) || !(distance > 1e-6f))
-        return "has its position equal to its target";
-    if (!(length(cross(forward / distance, normalize(p.up))) > 1e-4f))
+    if (!(length(cross(normalize(forward), normalize(p.up))) > 1e-4f))
         return "looks along its up vector (give a different \"up\")";
     if (!(p.fovY > 0.0f && p.fovY < 3.13f)) return "has a field of view outside (0, 179) degrees";
     return {};

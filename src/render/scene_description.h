@@ -56,6 +56,9 @@ inline constexpr int kMaxSceneFrames = 100000; ///< frames per sequence
 /// Throws bmfr::Error when a size, frame count, spp or bounce count is out of range (after
 /// command-line overrides too).
 void validate(const SceneDescription& d);
+/// The farthest a camera may be from its target, scene units (the renderer's float maths
+/// squares distances).
+inline constexpr double kMaxCameraDistance = 1e18;
 /// Why a camera pose cannot be rendered ("has its position equal to its target"), or "".
 std::string cameraPoseProblem(const CameraPose& pose);
 

@@ -2,6 +2,7 @@
 #include "core/mat4.h"
 #include "core/stopwatch.h"
 #include "io/atomic_file.h"
+#include "io/output_folder.h"
 #include "render/frame_renderer.h"
 #include <bmfr/error.h>
 #include <filesystem>
@@ -25,7 +26,7 @@ bool claimFolder(const std::string& dir, const std::string& fingerprint, bool ov
                  const nlohmann::json& about) {
     const fs::path marker = fs::path(dir) / kRenderFingerprintFile;
     std::error_code ec;
-    const bool empty = !fs::exists(dir, ec) || fs::is_empty(dir, ec);
+    const bool empty = !fs::exists(dir, ec) || isEmptyOutputFolder(dir);
     if (fs::exists(marker, ec)) {
         std::ifstream in(marker);
         std::string found;
