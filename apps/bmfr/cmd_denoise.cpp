@@ -5,6 +5,7 @@
 #include "denoise_scores.h"
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
+#include "filters/filter_inputs.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/output_folder.h"
@@ -101,6 +102,7 @@ int runDenoise(const DenoiseJob& job) {
                    last, features.empty() ? std::string() : ", features " + features);
     for (const std::string& note : reader->notes()) fmt::print(stderr, "bmfr: note: {}\n", note);
 
+    const std::vector<InputUse> inputs = filterInputs(job.filter, values);
     Progress progress("denoise", last - first, job.quiet);
     ImageF sampleMask(info.width, info.height, 1);
     StageLog stages;
@@ -115,12 +117,9 @@ int runDenoise(const DenoiseJob& job) {
         reader->load(i, frame);
         tRead.push_back(clock.lap());
         FrameInput in = frame.input(job.motion);
-        if (i == first && job.filter == "mara2017" && !in.matteIndirect.data)
-            fmt::print(stderr,
-                       "bmfr: warning: {} has no matte_indirect (render it with --paths mara): "
-                       "mara2017 filters the whole demodulated colour as matte light, with no "
-                       "glossy term and no separate direct light, a deviation from the paper\n",
-                       job.input);
+        if (i == first)
+            if (const std::string w = missingInputWarning(inputs, in); !w.empty())
+                fmt::print(stderr, "bmfr: warning: {}: {}\n", job.input, w);
         motionFrames += frame.motion.width || frame.previousPosition.width ? 1 : 0;
         if (job.sampleFraction < 1.0f) {
             fillSampleMask(sampleMask, i, job.sampleFraction);

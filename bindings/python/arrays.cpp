@@ -10,6 +10,11 @@ namespace {
     throw py::value_error(std::string(name) + ": " + what);
 }
 
+[[noreturn]] void notAnArray(const char* name, const py::handle& object) {
+    throw py::type_error(std::string(name) + ": expected a numpy array, got " +
+                         std::string(py::str(py::type::of(object).attr("__name__"))));
+}
+
 std::string shapeText(const py::array& a) {
     std::string s = "(";
     for (py::ssize_t d = 0; d < a.ndim(); ++d) s += (d ? ", " : "") + std::to_string(a.shape(d));
@@ -20,9 +25,7 @@ std::string shapeText(const py::array& a) {
 
 ImageArg imageArg(const py::handle& object, const char* name, int& height, int& width,
                   int minChannels) {
-    if (!py::isinstance<py::array>(object))
-        bad(name, std::string("expected a numpy array, got ") +
-                      std::string(py::str(py::type::of(object).attr("__name__"))));
+    if (!py::isinstance<py::array>(object)) notAnArray(name, object);
     py::array a = py::reinterpret_borrow<py::array>(object);
     if (!a.dtype().is(py::dtype::of<float>()))
         bad(name, "dtype " + std::string(py::str(a.dtype())) +
@@ -54,7 +57,7 @@ ImageArg imageArg(const py::handle& object, const char* name, int& height, int& 
 
 ImageArg channelArg(const py::handle& object, const std::string& name, int height, int width) {
     const char* n = name.c_str();
-    if (!py::isinstance<py::array>(object)) bad(n, "expected a numpy array");
+    if (!py::isinstance<py::array>(object)) notAnArray(n, object);
     py::array a = py::reinterpret_borrow<py::array>(object);
     if (!a.dtype().is(py::dtype::of<float>()))
         bad(n, "dtype " + std::string(py::str(a.dtype())) + ", expected float32");
@@ -83,6 +86,55 @@ Mat4 matrixArg(const py::handle& object, const char* name) {
     for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) m.m[r][c] = a.at(r, c);
     return m;
+}
+
+MutableImageView outArg(const py::handle& object, int height, int width) {
+    if (!py::isinstance<py::array>(object)) notAnArray("out", object);
+    py::array a = py::reinterpret_borrow<py::array>(object);
+    if (!a.dtype().is(py::dtype::of<float>()))
+        bad("out", "dtype " + std::string(py::str(a.dtype())) + ", expected float32");
+    if (a.ndim() != 3 || a.shape(0) != height || a.shape(1) != width ||
+        (a.shape(2) != 3 && a.shape(2) != 4))
+        bad("out", "shape " + shapeText(a) + ", expected (" + std::to_string(height) + ", " +
+                       std::to_string(width) + ", 3) or (" + std::to_string(height) + ", " +
+                       std::to_string(width) + ", 4)");
+    if (!a.writeable()) bad("out", "the array is read-only");
+    const py::ssize_t f = sizeof(float), channels = a.shape(2);
+    if (!(a.strides(2) == f && a.strides(1) == channels * f &&
+          a.strides(0) >= width * channels * f && a.strides(0) % f == 0))
+        bad("out", "its pixels must be packed within rows (a C-contiguous array, rows may be "
+                   "padded)");
+    return {static_cast<float*>(a.mutable_data()), width, height, int(channels),
+            long(a.strides(0) / f)};
+}
+
+std::pair<float, float> jitterArg(const py::handle& object) {
+    py::array_t<float, py::array::c_style | py::array::forcecast> a;
+    try {
+        a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(object);
+    } catch (const py::error_already_set&) {
+    }
+    if (!a || a.ndim() != 1 || a.shape(0) != 2)
+        bad("jitter", "expected two numbers (x, y), pixels, got " +
+                          std::string(py::str(py::repr(object))).substr(0, 60));
+    return {a.at(0), a.at(1)};
+}
+
+ImageF imageToWrite(const py::handle& object, const char* name) {
+    if (!py::isinstance<py::array>(object)) notAnArray(name, object);
+    py::array a = py::reinterpret_borrow<py::array>(object);
+    if (!a.dtype().is(py::dtype::of<float>()))
+        bad(name, "dtype " + std::string(py::str(a.dtype())) +
+                      ", expected float32 (use .astype(numpy.float32))");
+    const bool shapeOk = a.ndim() == 2 || (a.ndim() == 3 && a.shape(2) >= 1 && a.shape(2) <= 3);
+    if (!shapeOk || a.shape(0) <= 0 || a.shape(1) <= 0 || a.shape(0) > 65536 || a.shape(1) > 65536)
+        bad(name, "shape " + shapeText(a) +
+                      ", expected (height, width) or (height, width, C) "
+                      "with C 1 to 3");
+    const auto packed = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+    ImageF image(int(a.shape(1)), int(a.shape(0)), a.ndim() == 2 ? 1 : int(a.shape(2)));
+    std::copy(packed.data(), packed.data() + image.pixels.size(), image.data());
+    return image;
 }
 
 py::array_t<float> toArray(const ImageView& v) {

@@ -91,4 +91,16 @@ BMFR_API std::vector<std::string> presetNames();
 /// apply them before any others. Throws bmfr::Error for an unknown filter or preset.
 BMFR_API SettingValues presetSettings(const std::string& name, const std::string& preset);
 
+/// An optional input a filter reads (bmfr::filterInputs).
+struct InputUse {
+    std::string buffer; ///< its FrameInput name as bmfr.input_buffers() lists it, or "extras"
+    /// What the filter does without it where that departs from the filter's design (for a
+    /// warning); empty when a frame without it is simply a frame without it.
+    std::string without;
+};
+/// The optional inputs filter `name` reads with `values` (as makeFilter takes them), in the
+/// frame buffer table's order. A buffer not listed is ignored by it (only checked and counted).
+BMFR_API std::vector<InputUse> filterInputs(const std::string& name,
+                                            const SettingValues& values = {});
+
 } // namespace bmfr

@@ -55,6 +55,10 @@ std::vector<SettingDoc> filterSettings(const std::string& name) {
     return find(name).settings();
 }
 
+std::vector<InputUse> filterInputs(const std::string& name, const SettingValues& values) {
+    return find(name).inputs(values);
+}
+
 std::vector<std::string> presetNames() {
     return {"faithful", "quality"};
 }

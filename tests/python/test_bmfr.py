@@ -1,5 +1,6 @@
 """The Python module against the C++ CLI: the same frames give the same bits; bad arguments raise
-ValueError naming the argument; reset drops the history; the GIL is free while denoising."""
+TypeError or ValueError naming the argument, library errors bmfr.Error; reset drops the history;
+the GIL is free while denoising."""
 import os
 import subprocess
 import threading
@@ -72,8 +73,10 @@ def test_the_quality_preset_gives_the_cli_bits(sequence, tmp_path):
     assert bmfr.preset("bmfr", "faithful") == {}
     with pytest.raises(ValueError, match="unknown preset 'fast'"):
         bmfr.preset("bmfr", "fast")
+    with pytest.raises(ValueError, match="preset: unknown preset 'fast'"):
+        bmfr.Filter("bmfr", preset="fast")
     seq = bmfr.read_sequence(str(sequence))
-    f = bmfr.Filter("bmfr", **sequence_settings(seq.info), **bmfr.preset("bmfr", "quality"))
+    f = bmfr.Filter("bmfr", preset="quality", **sequence_settings(seq.info))
     for fr in seq:
         out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"),
                         extras=fr["extras"], visibility=fr.get("visibility"))
@@ -94,34 +97,40 @@ def test_rgba_and_padded_rows_give_the_same_result(sequence):
     assert np.array_equal(out, packed)
 
 
-def test_bad_arguments_raise_value_error_naming_them(sequence):
+def test_bad_arguments_raise_type_or_value_errors_naming_them(sequence):
     fr = next(iter(bmfr.read_sequence(str(sequence))))
     c, a, n, p, vp = frame_args(fr)
     f = bmfr.Filter()
     cases = [
-        ((c.astype(np.float64), a, n, p, vp), "color: dtype float64"),
-        ((c, a[:, :, :2], n, p, vp), "albedo: shape (32, 48, 2)"),
-        ((c, a, n[:16], p, vp), "normal: shape (16, 48, 3), the colour is 32x48"),
-        ((c, a, n, p[..., 0], vp), "position: shape (32, 48)"),
-        ((c, a, n, [[1, 2, 3]], vp), "position: expected a numpy array"),
-        ((c, a, n, p, np.eye(3)), "view_projection: expected a 4x4 matrix"),
-        ((c, a, n, p, np.zeros((4, 4))), "not finite or not invertible"),
-        ((c[:0], a[:0], n[:0], p[:0], vp), "color: empty image"),
+        ((c.astype(np.float64), a, n, p, vp), ValueError, "color: dtype float64"),
+        ((c, a[:, :, :2], n, p, vp), ValueError, "albedo: shape (32, 48, 2)"),
+        ((c, a, n[:16], p, vp), ValueError, "normal: shape (16, 48, 3), the colour is 32x48"),
+        ((c, a, n, p[..., 0], vp), ValueError, "position: shape (32, 48)"),
+        ((c, a, n, [[1, 2, 3]], vp), TypeError, "position: expected a numpy array, got list"),
+        ((c, a, n, p, np.eye(3)), ValueError, "view_projection: expected a 4x4 matrix"),
+        ((c, a, n, p, np.zeros((4, 4))), bmfr.Error, "not finite or not invertible"),
+        ((c[:0], a[:0], n[:0], p[:0], vp), ValueError, "color: empty image"),
+        ((c, a, n, p), TypeError, "denoise() missing required argument 'view_projection'"),
+        ((c, a, n), TypeError, "denoise() missing required argument 'position'"),
     ]
-    for args, message in cases:
-        with pytest.raises(ValueError) as e:
+    for args, kind, message in cases:
+        with pytest.raises(kind) as e:
             f.denoise(*args)
         assert message in str(e.value)
+        assert len(str(e.value)) < 300, "a long message: " + str(e.value)[:300]
     with pytest.raises(ValueError, match="emission: shape"):
         f.denoise(c, a, n, p, vp, emission=c[:8])
     with pytest.raises(ValueError, match=r"extras\[0\]: shape \(32, 48, 3\)"):
         f.denoise(c, a, n, p, vp, extras=[c])
-    with pytest.raises(ValueError, match="extras: expected a list"):
+    with pytest.raises(TypeError, match="extras: expected a list"):
         f.denoise(c, a, n, p, vp, extras=c[..., 0])
-    with pytest.raises(ValueError, match=r"^emision: not an input buffer \(emission, sample_mask"):
+    with pytest.raises(TypeError, match=r"^denoise\(\) got an unexpected argument 'emision' "
+                                        r"\(the buffers: color, albedo"):
         f.denoise(c, a, n, p, vp, emision=c)
     with pytest.raises(ValueError, match=r"sample_mask: shape \(32, 47\)"):
         f.denoise(c, a, n, p, vp, sample_mask=c[:, :47, 0])
+    with pytest.raises(TypeError, match="got multiple values for argument 'color'"):
+        f.denoise(c, a, n, p, vp, color=c)
 
 
 def test_input_buffers_are_the_frame_buffer_table(sequence):
@@ -136,18 +145,21 @@ def test_input_buffers_are_the_frame_buffer_table(sequence):
     assert out.shape == fr["color"].shape
 
 
-def test_settings_errors_raise_value_error_with_the_python_name():
-    with pytest.raises(ValueError, match=r"^block_size 7 is outside \[8, 64\]$"):
+def test_settings_errors_are_setting_errors_with_the_python_name():
+    with pytest.raises(bmfr.SettingError, match=r"^block_size 7 is outside \[8, 64\]$") as e:
         bmfr.Filter("bmfr", block_size=7)
-    with pytest.raises(ValueError, match="blockSize: 'x' is not a number|block_size x is not"):
+    assert (e.value.key, e.value.name, e.value.value, e.value.problem) == (
+        "blockSize", "block_size", "7", "is outside [8, 64]")
+    assert isinstance(e.value, bmfr.Error)
+    with pytest.raises(bmfr.SettingError, match="block_size x is not"):
         bmfr.Filter("bmfr", blockSize="x")
-    with pytest.raises(ValueError, match="no_such: not a setting of the bmfr filter"):
+    with pytest.raises(TypeError, match="no_such is not a setting of the bmfr filter"):
         bmfr.Filter("bmfr", no_such=1)
     with pytest.raises(ValueError, match="name: unknown filter 'nope'"):
         bmfr.Filter("nope")
-    with pytest.raises(ValueError, match="the cuda backend runs bmfr and svgf; walr runs on"):
+    with pytest.raises(bmfr.Error, match="the cuda backend runs bmfr and svgf; walr runs on"):
         bmfr.Filter("walr", backend="cuda")
-    with pytest.raises(ValueError, match="taa: expected a bool"):
+    with pytest.raises(TypeError, match="taa: expected a bool"):
         bmfr.Filter("bmfr", taa=[1])
     assert bmfr.Filter("svgf", svgf_iterations=3, taa=False).name == "svgf"
     assert {s["name"] for s in bmfr.settings("bmfr")} >= {"block_size", "taa", "backend"}
@@ -196,13 +208,13 @@ def test_the_gil_is_released_while_denoising():
 
 
 def test_read_sequence_errors_and_exr_round_trip(sequence, tmp_path):
-    with pytest.raises(ValueError, match="not found"):
+    with pytest.raises(bmfr.Error, match="not found"):
         bmfr.read_sequence(str(tmp_path / "missing"))
     fr = next(iter(bmfr.read_sequence(str(sequence))))
     assert set(fr) >= {"index", "color", "albedo", "normal", "position", "view_projection",
                        "jitter", "reference", "extras"}
     assert fr["view_projection"].shape == (4, 4)
-    assert issubclass(bmfr.Error, ValueError)
+    assert issubclass(bmfr.SettingError, bmfr.Error) and not issubclass(bmfr.Error, ValueError)
 
 
 @pytest.mark.parametrize("name,settings", [("bmfr", {}),

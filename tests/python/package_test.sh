@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The package as a user installs it: a fresh virtual environment, the wheel built by `pip wheel`
+# from the source tree (scikit-build-core, pybind11 from PyPI), installed with pinned numpy and
+# pytest, and the pytest suite run against that install from outside the source tree.
+# Usage: package_test.sh SOURCE_DIR WORK_DIR BMFR_CLI [PYTHON]
+set -euo pipefail
+src=$1
+work=$2
+cli=$3
+python=${4:-python3}
+rm -rf "$work"
+mkdir -p "$work"
+"$python" -m venv "$work/venv"
+pip=("$work/venv/bin/pip" --disable-pip-version-check -q)
+"${pip[@]}" install numpy==2.2.6 pytest==8.3.5
+start=$(date +%s)
+CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) "${pip[@]}" wheel --no-deps -w "$work/wheels" "$src"
+"${pip[@]}" install "$work"/wheels/bmfr-*.whl
+echo "wheel built and installed in $(($(date +%s) - start)) s: $(basename "$work"/wheels/bmfr-*.whl)"
+cd "$work"
+"$work/venv/bin/python" -c "import bmfr, os; print('bmfr', bmfr.__version__, 'from', os.path.dirname(bmfr.__file__))"
+BMFR_CLI=$cli "$work/venv/bin/python" -m pytest -q -p no:cacheprovider "$src/tests/python"
+echo "python package test passed"
