@@ -373,9 +373,11 @@ TEST(Hardening, NumbersAreRangeCheckedBeforeConversion) {
     EXPECT_ERROR(SequenceReader::open(dir.string())->load(0, f),
                  "jitter must be a finite number that a float holds");
     // Settings: an unsigned seed of -1, an int of 3e9, a float of 1e300.
-    EXPECT_ERROR(makeFilter("bmfr", {{"seed", "-1"}}), "seed");
-    EXPECT_ERROR(makeFilter("svgf", {{"iterations", "3000000000"}}), "too large");
-    EXPECT_ERROR(makeFilter("bmfr", {{"noiseAmplitude", "1e300"}}), "too large");
+    EXPECT_ERROR(makeFilter("bmfr", {{"seed", "-1"}}), "seed: '-1' is outside [0, 4294967295]");
+    EXPECT_ERROR(makeFilter("svgf", {{"iterations", "3000000000"}}),
+                 "'3000000000' is outside [-2147483648, 2147483647]");
+    EXPECT_ERROR(makeFilter("bmfr", {{"noiseAmplitude", "1e300"}}),
+                 "'1e300' is outside the range of a float");
     render::CameraPose far;
     far.position = {0, 0, 1e30f};
     const std::string why = render::cameraPoseProblem(far);

@@ -185,9 +185,13 @@ TEST(MultilayerExr, CyclesOwnDenoiserIsNoticedAndItsNoisyImageRead) {
     const fs::path file = fs::path(BMFR_SOURCE_DIR) / "tests" / "data" / "cycles_denoiser_on.exr";
     const fs::path dir = testing::freshDir("ml", "cycles_denoiser");
     fs::copy_file(file, dir / "frame_0000.exr");
+    fs::copy_file(file, dir / "frame_0001.exr");
     std::ofstream(dir / "sequence.json") << R"({"format": "bmfr-sequence", "version": 1,
         "width": 24, "height": 16, "frames": [{"color": "frame_0000.exr",
         "albedo": "frame_0000.exr", "normal": "frame_0000.exr", "position": "frame_0000.exr",
+        "view_projection": [[1,0,0,0],[0,1,0,0],[0,0,-1,-0.2],[0,0,-1,0]]},
+        {"color": "frame_0001.exr", "albedo": "frame_0001.exr", "normal": "frame_0001.exr",
+        "position": "frame_0001.exr",
         "view_projection": [[1,0,0,0],[0,1,0,0],[0,0,-1,-0.2],[0,0,-1,0]]}]})";
     const ImageF noisy = readExr(file.string(), 3, "ViewLayer.Noisy Image");
     const ImageF denoised = readExr(file.string(), 3, "ViewLayer.Combined");
@@ -196,7 +200,8 @@ TEST(MultilayerExr, CyclesOwnDenoiserIsNoticedAndItsNoisyImageRead) {
     FrameData f;
     reader->load(0, f);
     EXPECT_EQ(f.color.pixels, noisy.pixels);
-    ASSERT_EQ(reader->notes().size(), 1u);
+    reader->load(1, f);
+    ASSERT_EQ(reader->notes().size(), 1u) << "one note for the sequence, not one per frame";
     EXPECT_NE(reader->notes()[0].find("Cycles' own denoiser was on"), std::string::npos)
         << reader->notes()[0];
     // A layer the user names is taken as it is, without a note.
@@ -210,6 +215,7 @@ TEST(MultilayerExr, CyclesOwnDenoiserIsNoticedAndItsNoisyImageRead) {
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("bmfr: note: Cycles' own denoiser was on"), std::string::npos)
         << r.output;
+    EXPECT_EQ(r.output.find("bmfr: note:"), r.output.rfind("bmfr: note:")) << r.output;
 }
 
 } // namespace

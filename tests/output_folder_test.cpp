@@ -56,12 +56,8 @@ TEST(OutputFolder, AFolderMadeAndLeftEmptyIsRemoved) {
     }
     EXPECT_TRUE(fs::exists(deep / "result.txt"));
     EXPECT_FALSE(isEmptyOutputFolder(base.string()));
-    // A run that fails before its first output leaves no folder behind.
-    const fs::path out = base / "never";
-    const testing::CliResult r =
-        testing::runCli("denoise " + (base / "missing").string() + " -o " + out.string() + " -q");
-    EXPECT_EQ(r.code, 1) << r.output;
-    EXPECT_FALSE(fs::exists(out));
+    // A folder it made and could not lock (another run made it meanwhile) is not left behind
+    // either: (a run that fails at its first frame's pixels: Hardening.AFrameBrokenInItsPixels).
     // A folder that was there already stays, even when left empty.
     const fs::path existing = testing::freshDir("out", "existing");
     { const OutputFolder f(existing.string(), "test"); }

@@ -103,6 +103,7 @@ int runDenoise(const DenoiseJob& job) {
     for (const std::string& note : reader->notes()) fmt::print(stderr, "bmfr: note: {}\n", note);
 
     const std::vector<InputUse> inputs = filterInputs(job.filter, values);
+    int lastWritten = first - 1; // the last frame whose denoised EXR is on disk
     Progress progress("denoise", last - first, job.quiet);
     ImageF sampleMask(info.width, info.height, 1);
     StageLog stages;
@@ -136,6 +137,7 @@ int runDenoise(const DenoiseJob& job) {
         clock.lap();
         const std::string stem = fmt::format("{:04d}", i);
         writeExr((out / ("denoised_" + stem + ".exr")).string(), result);
+        lastWritten = i;
         if (job.png) writePngToneMapped((out / ("denoised_" + stem + ".png")).string(), result);
         if (job.debug) writeDebug(debugDir, stem, filter->debug());
         tWrite.push_back(clock.lap());
@@ -147,14 +149,13 @@ int runDenoise(const DenoiseJob& job) {
             denoiseFrame(i);
         } catch (const std::exception& e) {
             // A file that breaks only when its pixels are read (truncated after its header).
-            throw Error(fmt::format("{}\n{}", e.what(),
-                                    i == first
-                                        ? "no frame was written"
-                                        : fmt::format("frames {} to {} were written to {} "
-                                                      "(denoised_{:04d}.exr to "
-                                                      "denoised_{:04d}.exr), report.json "
-                                                      "was not",
-                                                      first, i - 1, job.output, first, i - 1)));
+            throw Error(fmt::format(
+                "{}\n{}", e.what(),
+                lastWritten < first
+                    ? std::string("no frame was written")
+                    : fmt::format("frames {} to {} were written to {} (denoised_{:04d}.exr to "
+                                  "denoised_{:04d}.exr), report.json was not",
+                                  first, lastWritten, job.output, first, lastWritten)));
         }
     }
     progress.finish();

@@ -10,6 +10,11 @@ namespace {
     throw py::value_error(std::string(name) + ": " + what);
 }
 
+/// float32 by value, not by the identity of numpy's dtype object (an unpickled array has its own).
+bool isFloat32(const py::array& a) {
+    return py::isinstance<py::array_t<float>>(a);
+}
+
 [[noreturn]] void notAnArray(const char* name, const py::handle& object) {
     throw py::type_error(std::string(name) + ": expected a numpy array, got " +
                          std::string(py::str(py::type::of(object).attr("__name__"))));
@@ -27,7 +32,7 @@ ImageArg imageArg(const py::handle& object, const char* name, int& height, int& 
                   int minChannels) {
     if (!py::isinstance<py::array>(object)) notAnArray(name, object);
     py::array a = py::reinterpret_borrow<py::array>(object);
-    if (!a.dtype().is(py::dtype::of<float>()))
+    if (!isFloat32(a))
         bad(name, "dtype " + std::string(py::str(a.dtype())) +
                       ", expected float32 (use .astype(numpy.float32))");
     if (a.ndim() != 3 || a.shape(2) < minChannels || a.shape(2) > 4)
@@ -59,8 +64,7 @@ ImageArg channelArg(const py::handle& object, const std::string& name, int heigh
     const char* n = name.c_str();
     if (!py::isinstance<py::array>(object)) notAnArray(n, object);
     py::array a = py::reinterpret_borrow<py::array>(object);
-    if (!a.dtype().is(py::dtype::of<float>()))
-        bad(n, "dtype " + std::string(py::str(a.dtype())) + ", expected float32");
+    if (!isFloat32(a)) bad(n, "dtype " + std::string(py::str(a.dtype())) + ", expected float32");
     const bool shapeOk = (a.ndim() == 2 || (a.ndim() == 3 && a.shape(2) == 1)) &&
                          a.shape(0) == height && a.shape(1) == width;
     if (!shapeOk)
@@ -91,7 +95,7 @@ Mat4 matrixArg(const py::handle& object, const char* name) {
 MutableImageView outArg(const py::handle& object, int height, int width) {
     if (!py::isinstance<py::array>(object)) notAnArray("out", object);
     py::array a = py::reinterpret_borrow<py::array>(object);
-    if (!a.dtype().is(py::dtype::of<float>()))
+    if (!isFloat32(a))
         bad("out", "dtype " + std::string(py::str(a.dtype())) + ", expected float32");
     if (a.ndim() != 3 || a.shape(0) != height || a.shape(1) != width ||
         (a.shape(2) != 3 && a.shape(2) != 4))
@@ -123,7 +127,7 @@ std::pair<float, float> jitterArg(const py::handle& object) {
 ImageF imageToWrite(const py::handle& object, const char* name) {
     if (!py::isinstance<py::array>(object)) notAnArray(name, object);
     py::array a = py::reinterpret_borrow<py::array>(object);
-    if (!a.dtype().is(py::dtype::of<float>()))
+    if (!isFloat32(a))
         bad(name, "dtype " + std::string(py::str(a.dtype())) +
                       ", expected float32 (use .astype(numpy.float32))");
     const bool shapeOk = a.ndim() == 2 || (a.ndim() == 3 && a.shape(2) >= 1 && a.shape(2) <= 3);

@@ -1,8 +1,16 @@
 #include "errors.h"
+#include <cstring>
 
 namespace bmfr::python {
 
 namespace {
+
+/// A message as a Python string: file bytes in it (a corrupt EXR's attribute names) that are not
+/// UTF-8 are escaped, never a UnicodeDecodeError in place of the error.
+py::object message(const char* text) {
+    return py::reinterpret_steal<py::object>(
+        PyUnicode_DecodeUTF8(text, Py_ssize_t(std::strlen(text)), "backslashreplace"));
+}
 
 PyObject* gError = nullptr;
 PyObject* gSettingError = nullptr;
@@ -32,7 +40,7 @@ void registerErrors(py::module_& m) {
         } catch (const SettingError& e) {
             const auto* named = dynamic_cast<const PythonSettingError*>(&e);
             py::object error = py::reinterpret_steal<py::object>(
-                PyObject_CallFunction(gSettingError, "s", e.what()));
+                PyObject_CallFunctionObjArgs(gSettingError, message(e.what()).ptr(), nullptr));
             if (!error) return; // the call set its own Python error
             error.attr("key") = e.key();
             error.attr("name") = named ? named->name : e.key();
@@ -40,7 +48,7 @@ void registerErrors(py::module_& m) {
             error.attr("problem") = e.problem();
             PyErr_SetObject(gSettingError, error.ptr());
         } catch (const Error& e) {
-            PyErr_SetString(gError, e.what());
+            PyErr_SetObject(gError, message(e.what()).ptr());
         }
     });
 }

@@ -5,21 +5,21 @@
 #include "temporal/frame_buffers.h"
 #include <algorithm>
 #include <bmfr/bmfr.h>
+#include <mutex>
 #include <pybind11/stl.h>
 #include <set>
 
 namespace bmfr::python {
 
-namespace {
-
-/// A setting's Python name: its flag with underscores ("block_size").
 std::string pythonName(const SettingDoc& d) {
     std::string n = d.flag;
     std::replace(n.begin(), n.end(), '-', '_');
     return n;
 }
 
-std::string pythonName(const std::string& filter, const std::string& key) {
+namespace {
+
+std::string keywordOf(const std::string& filter, const std::string& key) {
     for (const SettingDoc& d : filterSettings(filter))
         if (d.key == key) return pythonName(d);
     return key;
@@ -38,6 +38,10 @@ std::string settingText(const std::string& name, const py::handle& v) {
     if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
     if (py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v) || py::isinstance<py::str>(v))
         return std::string(py::str(v));
+    if (py::hasattr(v, "__index__")) // numpy's integers
+        return std::string(py::str(py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr()))));
+    if (py::hasattr(v, "__float__"))
+        return std::string(py::str(py::float_(py::reinterpret_borrow<py::object>(v))));
     throw py::type_error(name + ": expected a bool, number or string, got " +
                          std::string(py::str(py::type::of(v).attr("__name__"))));
 }
@@ -54,11 +58,20 @@ const char* const kPositional[] = {"color",    "albedo",          "normal",
 /// A read_sequence frame's keys that denoise takes and does not use.
 const char* const kFrameOnly[] = {"index", "reference"};
 
+/// The filters of one device run one at a time (bmfr::Device), and a filter is not
+/// thread-safe: Python threads take this lock, with the GIL released, around every call.
+using RunLock = std::shared_ptr<std::mutex>;
+
 class PyDevice {
   public:
     PyDevice(const std::string& backend, int threads) : device_(backendNamed(backend), threads) {}
     const Device& device() const { return device_; }
-    void reserve(int width, int height) { device_.reserve(width, height); }
+    const RunLock& lock() const { return lock_; }
+    void reserve(int width, int height) {
+        py::gil_scoped_release unlocked;
+        const std::lock_guard<std::mutex> held(*lock_);
+        device_.reserve(width, height);
+    }
     std::string repr() const {
         return "bmfr.Device(backend='" + std::string(backendName(device_.backend())) +
                "', threads=" + std::to_string(device_.threadCount()) + ")";
@@ -66,6 +79,7 @@ class PyDevice {
 
   private:
     Device device_;
+    RunLock lock_ = std::make_shared<std::mutex>();
 };
 
 class PyFilter {
@@ -99,6 +113,7 @@ class PyFilter {
                                          "device has its backend)");
                 const PyDevice& d = device.cast<const PyDevice&>();
                 filter_ = d.device().makeFilter(name, values);
+                lock_ = d.lock();
                 backend_ = backendName(d.device().backend());
             } else {
                 backend_ = backend.is_none() ? "cpu" : std::string(py::str(backend));
@@ -107,7 +122,7 @@ class PyFilter {
                 values.pop_back();
             }
         } catch (const SettingError& e) {
-            throwSettingError(e, pythonName(name, e.key()));
+            throwSettingError(e, keywordOf(name, e.key()));
         }
         inputs_ = filterInputs(name, values);
     }
@@ -120,27 +135,34 @@ class PyFilter {
             throw py::type_error(
                 "denoise() takes at most " + std::to_string(std::size(kPositional)) +
                 " positional arguments (" + std::to_string(args.size()) + " given)");
-        std::map<std::string, py::handle> given;
+        std::map<std::string, py::object> given;
         for (size_t k = 0; k < args.size(); ++k) given[kPositional[k]] = args[k];
         for (const auto& [k, v] : kwargs) {
             const std::string name = py::str(k);
             if (given.count(name))
                 throw py::type_error("denoise() got multiple values for argument '" + name + "'");
-            given[name] = v;
+            given[name] = py::reinterpret_borrow<py::object>(v);
         }
         return run(given);
     }
 
     /// A read_sequence frame, every buffer it holds.
     py::array denoiseFrame(const py::dict& frame, const py::object& out) {
-        std::map<std::string, py::handle> given;
-        for (const auto& [k, v] : frame) given[std::string(py::str(k))] = v;
+        // Owned references: Python code run while the frame is read cannot free them.
+        std::map<std::string, py::object> given;
+        for (const auto& [k, v] : frame)
+            given[std::string(py::str(k))] = py::reinterpret_borrow<py::object>(v);
         if (!out.is_none()) given["out"] = out;
         return run(given);
     }
 
     py::dict stats() const {
-        const FrameStats& s = filter_->lastStats();
+        FrameStats s;
+        {
+            py::gil_scoped_release unlocked;
+            const std::lock_guard<std::mutex> held(*lock_);
+            s = filter_->lastStats();
+        }
         py::dict stages;
         for (int k = 0; k < s.times.count; ++k) stages[s.times.name[k]] = s.times.ms[k];
         py::dict d;
@@ -167,7 +189,11 @@ class PyFilter {
         return s + ")";
     }
 
-    void reset() { filter_->reset(); }
+    void reset() {
+        py::gil_scoped_release unlocked;
+        const std::lock_guard<std::mutex> held(*lock_);
+        filter_->reset();
+    }
     const std::string& name() const { return name_; }
 
   private:
@@ -177,10 +203,12 @@ class PyFilter {
         return s;
     }
 
-    py::array run(const std::map<std::string, py::handle>& given) {
-        auto take = [&](const char* name) {
+    py::array run(const std::map<std::string, py::object>& given) {
+        // A handle to an object `given` owns for the whole call; empty when absent or None.
+        auto take = [&](const char* name) -> py::handle {
             auto it = given.find(name);
-            return it == given.end() || it->second.is_none() ? py::handle() : it->second;
+            if (it == given.end() || it->second.is_none()) return py::handle();
+            return it->second;
         };
         for (const auto& [name, value] : given) {
             bool known = std::count(std::begin(kPositional), std::end(kPositional), name) ||
@@ -239,6 +267,7 @@ class PyFilter {
         }
         {
             py::gil_scoped_release unlocked; // other Python threads run during the frame
+            const std::lock_guard<std::mutex> held(*lock_);
             filter_->denoise(in, target);
         }
         return result;
@@ -253,9 +282,10 @@ class PyFilter {
     /// A Python warning, once per message, for an input the filter is designed around.
     void warnOfMissingInputs(const FrameInput& in) {
         const std::string warning = missingInputWarning(inputs_, in);
-        if (warning.empty() || !warned_.insert(warning).second) return;
+        if (warning.empty() || warned_.count(warning)) return;
         if (PyErr_WarnEx(PyExc_UserWarning, (name_ + ": " + warning).c_str(), 1) != 0)
-            throw py::error_already_set();
+            throw py::error_already_set(); // warnings as errors: raised, and raised again
+        warned_.insert(warning);
     }
 
     std::string name_, preset_, backend_;
@@ -263,6 +293,7 @@ class PyFilter {
     std::vector<InputUse> inputs_;
     std::set<std::string> warned_;
     std::unique_ptr<Filter> filter_;
+    RunLock lock_ = std::make_shared<std::mutex>(); ///< the device's, or the filter's own
 };
 
 } // namespace

@@ -7,23 +7,11 @@
 #include "io/exr.h"
 #include "sequence_binding.h"
 #include "temporal/frame_buffers.h"
-#include <algorithm>
 #include <bmfr/bmfr.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 namespace py = pybind11;
-
-namespace {
-
-/// A setting's Python name: its flag with underscores ("block_size").
-std::string pythonName(const bmfr::SettingDoc& d) {
-    std::string n = d.flag;
-    std::replace(n.begin(), n.end(), '-', '_');
-    return n;
-}
-
-} // namespace
 
 PYBIND11_MODULE(bmfr, m) {
     using namespace bmfr;

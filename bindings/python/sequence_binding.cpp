@@ -23,10 +23,17 @@ Sequence::Sequence(const std::string& path, const std::map<std::string, std::str
 
 py::dict Sequence::frame(int index) const {
     FrameData f;
+    size_t notesBefore = 0;
     {
         py::gil_scoped_release unlocked;
+        notesBefore = reader_->notes().size();
         reader_->load(index, f);
     }
+    // What the CLI prints as "note:" (Cycles' own denoiser was on, ...), once per sequence.
+    const std::vector<std::string> notes = reader_->notes();
+    for (size_t k = notesBefore; k < notes.size(); ++k)
+        if (PyErr_WarnEx(PyExc_UserWarning, notes[k].c_str(), 1) != 0)
+            throw py::error_already_set();
     py::dict d;
     d["index"] = index;
     f.forEachBuffer([&d](const FrameBuffer& b, const ImageF& image) {
@@ -53,10 +60,12 @@ py::object Sequence::item(const py::object& key) const {
             picked.push_back(indices_[size_t(start + k * step)]);
         return py::cast(Sequence(reader_, picked));
     }
-    if (!py::isinstance<py::int_>(key))
+    if (!py::hasattr(key, "__index__"))
         throw py::type_error("Sequence indices must be integers or slices, not " +
                              std::string(py::str(py::type::of(key).attr("__name__"))));
-    py::ssize_t k = key.cast<py::ssize_t>();
+    const py::int_ index = py::reinterpret_steal<py::int_>(PyNumber_Index(key.ptr()));
+    if (index.ptr() == nullptr) throw py::error_already_set();
+    py::ssize_t k = PyNumber_AsSsize_t(index.ptr(), nullptr); // clamped: then out of range
     if (k < 0) k += n;
     if (k < 0 || k >= n)
         throw py::index_error("frame " + std::string(py::str(key)) + " is outside a sequence of " +
@@ -120,6 +129,10 @@ one, "extras", "view_projection", "jitter", "reset" and "index". Filter.denoise_
                                "layout, directory, frame_count, width, height, "
                                "color_is_demodulated, has_reference, position_limit_squared, "
                                "normal_limit_squared, extras")
+        .def_property_readonly(
+            "notes", [](const Sequence& s) { return s.notes(); },
+            "What bmfr denoise prints as notes about how the frames read so far were read (each "
+            "is also a UserWarning when first seen)")
         .def_property_readonly("settings", &Sequence::settings,
                                "What bmfr denoise takes from the sequence, as Filter keywords "
                                "(its discard limits, whether its colour is demodulated): "

@@ -21,6 +21,7 @@ class Sequence {
     int size() const { return int(indices_.size()); }
     int indexAt(int position) const { return indices_[size_t(position)]; }
     py::dict info() const;
+    std::vector<std::string> notes() const { return reader_->notes(); }
     /// What `bmfr denoise` takes from the sequence, as Filter keywords: its own discard limits
     /// and whether its colour is demodulated.
     py::dict settings() const;

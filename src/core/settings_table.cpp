@@ -1,5 +1,6 @@
 #include "core/settings_table.h"
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -20,7 +21,15 @@ double parseNumber(const std::string& key, const std::string& text, bool integer
     if (text.empty() || *end != '\0' || !std::isfinite(v)) badText(key, text, "is not a number");
     if (integer && v != std::floor(v)) badText(key, text, "is not a whole number");
     // Checked before the conversion: a value the type cannot hold is undefined behaviour.
-    if (v < lo || v > hi) badText(key, text, integer ? "is too large" : "is too large for a float");
+    if (v < lo || v > hi) {
+        char range[96];
+        if (integer)
+            std::snprintf(range, sizeof range, "is outside [%lld, %lld]", (long long)lo,
+                          (long long)hi);
+        else
+            std::snprintf(range, sizeof range, "is outside the range of a float");
+        badText(key, text, range);
+    }
     return v;
 }
 

@@ -34,8 +34,9 @@ void writeFileAtomically(const std::string& path, const void* data, size_t size)
     const int err = errno;
     const bool closed = std::fclose(f) == 0;
     if (!written || !closed) {
+        const int reason = written ? errno : err; // before remove() can change errno
         std::remove(tmp.c_str());
-        throw Error("cannot write " + path + ": " + std::strerror(written ? errno : err));
+        throw Error("cannot write " + path + ": " + std::strerror(reason));
     }
     commitTemporary(tmp, path);
 }

@@ -259,9 +259,10 @@ void precheckExr(const std::string& path, uint64_t fileBytes) {
                         std::to_string(long(bytesPerPixel)) + " bytes would need " +
                         bytesText(chunkBytes) + " at once, more than " + bytesText(chunkCap) +
                         (chunkCap < double(kMaxExrChunkBytes)
-                             ? " (what a file of " + std::to_string(r.size) + " bytes can hold)"
-                             : " (the limit)") +
-                        ": corrupt or hostile");
+                             ? " (what a file of " + std::to_string(r.size) +
+                                   " bytes can hold): corrupt or hostile"
+                             : ", bmfr's limit per chunk: write it with fewer lines per chunk "
+                               "(ZIP, 16) or fewer channels per part"));
         if (!multipart) break;
     }
 }

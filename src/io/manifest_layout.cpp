@@ -205,7 +205,7 @@ class ManifestReader : public SequenceReader {
                 for (const char* pass : d.passes)
                     if (std::string layer = findExrLayer(names, pass, path); !layer.empty()) {
                         if (std::string(pass) == "Noisy Image")
-                            note("Cycles' own denoiser was on (" + path + " has '" + layer +
+                            note("Cycles' own denoiser was on (the files have '" + layer +
                                  "' beside Combined, Cycles' denoised result): the colour is "
                                  "read from " +
                                  layer +

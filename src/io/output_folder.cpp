@@ -41,25 +41,37 @@ OutputFolder::OutputFolder(const std::string& directory, const std::string& comm
         if (p == p.parent_path()) break;
     }
     fs::create_directories(directory, ec);
-    if (ec || !fs::is_directory(directory))
+    if (ec || !fs::is_directory(directory)) {
+        removeMadeFolders();
         throw Error("cannot make the output folder " + directory + ": " +
                     (ec ? ec.message() : std::string("a file of that name exists")));
+    }
+    try {
+        lock(command);
+    } catch (...) {
+        removeMadeFolders();
+        throw;
+    }
+}
+
+void OutputFolder::lock(const std::string& command) {
     // The holder unlinks the lock file before it unlocks: a file locked after that is stale,
     // and the lock is taken again on the file now at the path.
     while (true) {
         fd_ = ::open(lockPath_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
         if (fd_ < 0)
-            throw Error("cannot lock the output folder " + directory + ": " + std::strerror(errno));
+            throw Error("cannot lock the output folder " + directory_ + ": " +
+                        std::strerror(errno));
         if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
             const int err = errno;
             const std::string holder = holderOf(fd_);
             ::close(fd_);
             fd_ = -1;
             if (err == EWOULDBLOCK)
-                throw Error("another run is writing to " + directory + " (" +
+                throw Error("another run is writing to " + directory_ + " (" +
                             (holder.empty() ? "it has not said which" : holder) +
                             "); wait for it to finish or give another output folder");
-            throw Error("cannot lock the output folder " + directory + ": " + std::strerror(err));
+            throw Error("cannot lock the output folder " + directory_ + ": " + std::strerror(err));
         }
         struct stat held {
         }, named{};
@@ -75,8 +87,17 @@ OutputFolder::OutputFolder(const std::string& directory, const std::string& comm
 }
 
 OutputFolder::~OutputFolder() {
-    ::unlink(lockPath_.c_str());
+    // Only its own lock file: a folder removed and made again during the run has another's.
+    struct stat held {
+    }, named{};
+    if (::fstat(fd_, &held) == 0 && ::stat(lockPath_.c_str(), &named) == 0 &&
+        held.st_ino == named.st_ino && held.st_dev == named.st_dev)
+        ::unlink(lockPath_.c_str());
     ::close(fd_);
+    removeMadeFolders();
+}
+
+void OutputFolder::removeMadeFolders() const {
     std::error_code ec;
     for (const std::string& dir : made_)
         if (fs::is_directory(dir, ec) && fs::is_empty(dir, ec)) fs::remove(dir, ec);

@@ -23,6 +23,8 @@ class OutputFolder {
     OutputFolder& operator=(const OutputFolder&) = delete;
 
   private:
+    void lock(const std::string& command);
+    void removeMadeFolders() const;
     std::string directory_, lockPath_;
     std::vector<std::string> made_; ///< the folders made here, deepest first
     int fd_ = -1;

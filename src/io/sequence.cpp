@@ -73,7 +73,13 @@ void SequenceReader::checkFrame(int index, const FrameData& f) const {
 }
 
 void SequenceReader::note(const std::string& text) const {
+    const std::lock_guard<std::mutex> held(notesLock_);
     if (std::find(notes_.begin(), notes_.end(), text) == notes_.end()) notes_.push_back(text);
+}
+
+std::vector<std::string> SequenceReader::notes() const {
+    const std::lock_guard<std::mutex> held(notesLock_);
+    return notes_;
 }
 
 void checkEveryFrame(int first, int last, const std::string& what,

@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,7 +82,7 @@ class SequenceReader {
     void setLoadAovs(bool on) { loadAovs_ = on; }
     /// What a run should tell its user about how the input was read (as "colour is read from
     /// Cycles' Noisy Image"), each once; filled as frames are read or checked.
-    const std::vector<std::string>& notes() const { return notes_; }
+    std::vector<std::string> notes() const;
     /// Which layer of a multilayer EXR each buffer comes from ("albedo" -> "ViewLayer.DiffCol"),
     /// replacing the sequence's own choice and the default mapping (kDefaultPasses). Buffers:
     /// layeredBufferNames(). Throws bmfr::Error for another name, or for a layout without
@@ -93,6 +94,7 @@ class SequenceReader {
     virtual void read(int index, FrameData& out, ExrContent content) const = 0;
     SequenceInfo info_;
     bool loadAovs_ = false;
+    mutable std::mutex notesLock_; ///< frames may be read from several threads (Python)
     mutable std::vector<std::string> notes_;
     /// Adds `text` to notes() unless it is there already.
     void note(const std::string& text) const;

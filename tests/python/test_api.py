@@ -191,3 +191,42 @@ def test_without_numpy_the_import_says_so():
     code = "import sys; sys.modules['numpy'] = None; import bmfr"
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode != 0 and "bmfr needs numpy" in r.stderr, r.stderr[-500:]
+
+
+def test_numpy_numbers_notes_and_threads(objects, tmp_path):
+    f = bmfr.Filter("bmfr", block_size=np.int64(16), noise=np.float64(0.01))
+    seq = bmfr.read_sequence(str(objects))
+    assert seq[np.int64(2)]["index"] == 2
+    # A Cycles render with its own denoiser on: the note is a warning, once per sequence.
+    for i in range(2):
+        os.link(os.path.join(ROOT, "tests", "data", "cycles_denoiser_on.exr"),
+                tmp_path / f"frame_{i:04d}.exr")
+    vp = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, -1, -0.2], [0, 0, -1, 0]]
+    frames = [{b: f"frame_{i:04d}.exr" for b in ("color", "albedo", "normal", "position")}
+              | {"view_projection": vp} for i in range(2)]
+    import json
+    (tmp_path / "sequence.json").write_text(json.dumps(
+        {"format": "bmfr-sequence", "version": 1, "width": 24, "height": 16, "frames": frames}))
+    cycles = bmfr.read_sequence(str(tmp_path))
+    with pytest.warns(UserWarning, match="Cycles' own denoiser was on") as caught:
+        cycles[0]
+        cycles[1]
+    assert len(caught) == 1 and len(cycles.notes) == 1
+    # Two Python threads on one filter take turns: the result is one of the orders' results.
+    import threading
+    frame = seq[0]
+    errors = []
+
+    def work():
+        try:
+            for _ in range(3):
+                f.denoise_frame(frame)
+        except Exception as e:  # noqa: BLE001 - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=work) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors and f.stats["total_ms"] > 0
