@@ -56,8 +56,7 @@ TEST(OutputFolder, AFolderMadeAndLeftEmptyIsRemoved) {
     }
     EXPECT_TRUE(fs::exists(deep / "result.txt"));
     EXPECT_FALSE(isEmptyOutputFolder(base.string()));
-    // A folder it made and could not lock (another run made it meanwhile) is not left behind
-    // either: (a run that fails at its first frame's pixels: Hardening.AFrameBrokenInItsPixels).
+    // (A command that fails at its first frame: Hardening.AFrameBrokenInItsPixels...)
     // A folder that was there already stays, even when left empty.
     const fs::path existing = testing::freshDir("out", "existing");
     { const OutputFolder f(existing.string(), "test"); }

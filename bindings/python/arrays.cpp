@@ -15,6 +15,18 @@ bool isFloat32(const py::array& a) {
     return py::isinstance<py::array_t<float>>(a);
 }
 
+/// A packed float32 copy (or the array itself when it is one already).
+using PackedFloats = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+/// Any array-like of numbers as PackedFloats; empty when it is none.
+PackedFloats numbersOf(const py::handle& object) {
+    try {
+        return PackedFloats::ensure(object);
+    } catch (const py::error_already_set&) {
+        return {};
+    }
+}
+
 [[noreturn]] void notAnArray(const char* name, const py::handle& object) {
     throw py::type_error(std::string(name) + ": expected a numpy array, got " +
                          std::string(py::str(py::type::of(object).attr("__name__"))));
@@ -50,7 +62,7 @@ ImageArg imageArg(const py::handle& object, const char* name, int& height, int& 
     // Pixels packed within rows (rows may be padded): a view without a copy.
     const bool inPlace = a.strides(2) == f && a.strides(1) == channels * f &&
                          a.strides(0) >= a.shape(1) * channels * f && a.strides(0) % f == 0;
-    if (!inPlace) a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+    if (!inPlace) a = PackedFloats::ensure(a);
     ImageView v;
     v.data = static_cast<const float*>(a.data());
     v.width = width;
@@ -73,17 +85,13 @@ ImageArg channelArg(const py::handle& object, const std::string& name, int heigh
                    std::to_string(width) + ", 1)");
     const py::ssize_t f = sizeof(float);
     if (!(a.strides(1) == f && a.strides(0) >= width * f && a.strides(0) % f == 0))
-        a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+        a = PackedFloats::ensure(a);
     ImageView v{static_cast<const float*>(a.data()), width, height, 1, long(a.strides(0) / f)};
     return {a, v};
 }
 
 Mat4 matrixArg(const py::handle& object, const char* name) {
-    py::array_t<float, py::array::c_style | py::array::forcecast> a;
-    try {
-        a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(object);
-    } catch (const py::error_already_set&) {
-    }
+    const PackedFloats a = numbersOf(object);
     if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
         bad(name, "expected a 4x4 matrix of numbers");
     Mat4 m;
@@ -113,11 +121,7 @@ MutableImageView outArg(const py::handle& object, int height, int width) {
 }
 
 std::pair<float, float> jitterArg(const py::handle& object) {
-    py::array_t<float, py::array::c_style | py::array::forcecast> a;
-    try {
-        a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(object);
-    } catch (const py::error_already_set&) {
-    }
+    const PackedFloats a = numbersOf(object);
     if (!a || a.ndim() != 1 || a.shape(0) != 2)
         bad("jitter", "expected two numbers (x, y), pixels, got " +
                           std::string(py::str(py::repr(object))).substr(0, 60));
@@ -135,7 +139,7 @@ ImageF imageToWrite(const py::handle& object, const char* name) {
         bad(name, "shape " + shapeText(a) +
                       ", expected (height, width) or (height, width, C) "
                       "with C 1 to 3");
-    const auto packed = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);
+    const auto packed = PackedFloats::ensure(a);
     ImageF image(int(a.shape(1)), int(a.shape(0)), a.ndim() == 2 ? 1 : int(a.shape(2)));
     std::copy(packed.data(), packed.data() + image.pixels.size(), image.data());
     return image;

@@ -17,6 +17,12 @@ std::string pythonName(const SettingDoc& d) {
     return n;
 }
 
+std::vector<std::string> inputBufferNames() {
+    std::vector<std::string> names;
+    for (const FrameBuffer& b : kFrameBuffers) names.push_back(b.file);
+    return names;
+}
+
 namespace {
 
 std::string keywordOf(const std::string& filter, const std::string& key) {
@@ -217,7 +223,7 @@ class PyFilter {
             for (const FrameBuffer& b : kFrameBuffers) known = known || name == b.file;
             if (!known)
                 throw py::type_error("denoise() got an unexpected argument '" + name +
-                                     "' (the buffers: " + joined(bufferNames()) + ")");
+                                     "' (the buffers: " + joined(inputBufferNames()) + ")");
         }
         int h = -1, w = -1;
         FrameInput in;
@@ -271,12 +277,6 @@ class PyFilter {
             filter_->denoise(in, target);
         }
         return result;
-    }
-
-    static std::vector<std::string> bufferNames() {
-        std::vector<std::string> names;
-        for (const FrameBuffer& b : kFrameBuffers) names.push_back(b.file);
-        return names;
     }
 
     /// A Python warning, once per message, for an input the filter is designed around.

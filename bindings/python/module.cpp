@@ -6,7 +6,6 @@
 #include "filter_binding.h"
 #include "io/exr.h"
 #include "sequence_binding.h"
-#include "temporal/frame_buffers.h"
 #include <bmfr/bmfr.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -62,15 +61,9 @@ PYBIND11_MODULE(bmfr, m) {
     m.def("exr_channels", &exrChannelNames, py::arg("path"),
           "Every channel of an EXR by its full name (\"ViewLayer.Combined.R\", ...).");
     m.def("filter_names", &filterNames, "The filters this build holds.");
-    m.def(
-        "input_buffers",
-        [] {
-            py::list names;
-            for (const FrameBuffer& b : kFrameBuffers) names.append(b.file);
-            return names;
-        },
-        "The image buffers a frame may have, by their keyword in Filter.denoise and their key in "
-        "read_sequence's frames: the four required ones first.");
+    m.def("input_buffers", &inputBufferNames,
+          "The image buffers a frame may have, by their keyword in Filter.denoise and their key in "
+          "read_sequence's frames: the four required ones first.");
     m.def("backends", &compiledBackends, "The backends this build holds.");
     m.def(
         "settings",
