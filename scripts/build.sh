@@ -1,11 +1,21 @@
 #!/usr/bin/env bash
 # Configures and builds bmfr (Release) into build/.
+#   build.sh          everything: the library, the CLI, the tests, the Python module and, when
+#                     nvcc is found, the CUDA backend (no GPU is needed to build it)
+#   build.sh --demo   only the `bmfr` command, without the CUDA backend (what the demo runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-# Debian's python3 (with its numpy and pytest) builds and runs the module, not a pyenv shim.
-py=()
-[ -x /usr/bin/python3 ] && py=(-DPython3_EXECUTABLE=/usr/bin/python3)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${py[@]}" > /dev/null
-cmake --build build -j "$(nproc)"
-# Which backends this build has (the cuda backend needs nvcc at configure time, no GPU).
+if [ "${1:-}" = --demo ]; then
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBMFR_BUILD_TESTS=OFF -DBMFR_CUDA=OFF \
+          -DBMFR_PYTHON=OFF > /dev/null
+    cmake --build build -j "$(nproc)" --target bmfr
+else
+    # Debian's python3 (with its numpy and pytest) builds and runs the module, not a pyenv shim.
+    py=()
+    [ -x /usr/bin/python3 ] && py=(-DPython3_EXECUTABLE=/usr/bin/python3)
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBMFR_BUILD_TESTS=ON -DBMFR_CUDA=AUTO \
+          -DBMFR_PYTHON=AUTO "${py[@]}" > /dev/null
+    cmake --build build -j "$(nproc)"
+fi
+# Which backends this build has.
 build/bmfr --version

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Quick start, first command: install, build, and run the main job on the built-in default.
+# Quick start, first command: install what `bmfr` needs, build only it, and run the demo on the
+# built-in scene (render, denoise seven ways, score, report). Arguments go to `bmfr demo`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
-bash scripts/build.sh
+bash scripts/install-deps.sh --demo
+bash scripts/build.sh --demo
 ./build/bmfr demo --output bmfr-demo "$@"

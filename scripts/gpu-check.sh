@@ -99,7 +99,7 @@ step demo 90 bash -c "
         set -- \$run
         echo \"== \$1 on \$2, \$3 preset\"
         '$bmfr' denoise '$demo/input' -o \"$demo/\$1-\$2-\$3\" --filter \$1 --backend \$2 \
-            --preset \$3 --no-png | grep -E 'RMSE|^  (noisy|bmfr|svgf) '
+            --preset \$3 --no-png --overwrite | grep -E 'RMSE|^  (noisy|bmfr|svgf) '
     done"
 
 step bench 80 "$bmfr" bench --backend cuda --baseline-backend cpu \
@@ -123,7 +123,7 @@ if command -v compute-sanitizer > /dev/null; then
                 args=\"--filter \$f\"
                 [ \$f = quality ] && args='--filter bmfr --preset quality'
                 compute-sanitizer --tool \$tool --error-exitcode 9 \
-                    '$bmfr' denoise '$small' -o \"$work/san-\$f\" \$args --backend cuda -q \
+                    '$bmfr' denoise '$small' -o \"$work/san-\$f\" \$args --backend cuda -q --overwrite \
                     || echo \"\$tool on \$f: FAILED (\$?)\"
             done
         done"

@@ -1,14 +1,18 @@
 #!/usr/bin/env bash
-# Installs the Debian packages bmfr needs to build and test. Skips apt when all are present.
-#   install-deps.sh [--tests]   --tests adds what only the tests need: Blender (the Cycles round
-#                               trip), chromium and chromium-driver (the report in a browser),
-#                               ffmpeg (eval --video) and python3-venv (the Python package in a
-#                               fresh venv); the library and the demo never need them.
+# Installs the Debian packages bmfr needs. Skips apt when all are present.
+#   install-deps.sh --demo    only what `bmfr` itself needs to build (the demo's command)
+#   install-deps.sh           also the libraries and tools the tests, sanitizers and the Python
+#                             module build with (GoogleTest, Google Benchmark, clang, pybind11...)
+#   install-deps.sh --tests   also what only the tests run: Blender (the Cycles round trip),
+#                             chromium and chromium-driver (the report in a browser), ffmpeg
+#                             (eval --video) and python3-venv (the Python package in a fresh venv)
 set -euo pipefail
-pkgs=(cmake g++ make pkg-config libopenexr-dev libimath-dev libtbb-dev libeigen3-dev libcli11-dev
-      nlohmann-json3-dev libfmt-dev libstb-dev libgtest-dev libbenchmark-dev libembree-dev
-      libtinygltf-dev libtinyobjloader-dev python3 python3-skimage clang libclang-rt-14-dev
-      python3-dev python3-numpy python3-pytest pybind11-dev python3-pil)
+pkgs=(cmake g++ make pkg-config libopenexr-dev libimath-dev libtbb-dev libcli11-dev
+      nlohmann-json3-dev libfmt-dev libstb-dev libembree-dev libtinygltf-dev libtinyobjloader-dev)
+if [ "${1:-}" != --demo ]; then
+    pkgs+=(libeigen3-dev libgtest-dev libbenchmark-dev python3 python3-skimage clang
+           libclang-rt-14-dev python3-dev python3-numpy python3-pytest pybind11-dev python3-pil)
+fi
 if [ "${1:-}" = --tests ]; then
     pkgs+=(blender chromium chromium-driver ffmpeg python3-venv)
 fi

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The quality tables of README's "Presets" section, from scratch: renders the small rooms
+# The quality tables of docs/results/ (the rooms page), from scratch: renders the small rooms
 # (room-dark, room-light), cornell-moving, and the rooms seen by a still camera without jitter
 # (scripts/scenes/*-static.json: there the temporal error is flicker alone) at 256x192, 24
 # frames, 64-spp references, in the original layout (no emission buffer), runs each method on
@@ -50,7 +50,7 @@ for scene in "${sequences[@]}"; do
     for m in "${methods[@]}"; do
         name=${m%%:*}
         # shellcheck disable=SC2086 # the options are words
-        "$bmfr" denoise "$dir/input" -o "$dir/$name" ${m#*:} -q --no-png --no-flip
+        "$bmfr" denoise "$dir/input" -o "$dir/$name" ${m#*:} -q --no-png --no-flip --overwrite
         args+=("$name=$dir/$name")
     done
     "$bmfr" eval -r "$dir/input" -m noisy "${args[@]}" -o "$dir/eval" --frames 8:24 --json -q \

@@ -373,12 +373,13 @@ TEST(Cli, CudaBackendDenoisesOrSaysWhyNot) {
     fs::remove_all(out);
 }
 
-TEST(Cli, ReadmeSettingsTableIsTheGeneratedOne) {
+TEST(Cli, SettingsDocTableIsTheGeneratedOne) {
     Result r = run("settings --markdown");
     ASSERT_EQ(r.code, 0) << r.output;
-    std::ifstream readme(std::string(BMFR_SOURCE_DIR) + "/README.md");
+    std::ifstream doc(std::string(BMFR_SOURCE_DIR) + "/docs/settings.md");
+    ASSERT_TRUE(doc) << "docs/settings.md is missing";
     std::stringstream ss;
-    ss << readme.rdbuf();
+    ss << doc.rdbuf();
     const std::string text = ss.str(), begin = "<!-- settings-table:begin",
                       end = "<!-- settings-table:end";
     const size_t a = text.find(begin), b = text.find(end);
@@ -386,8 +387,8 @@ TEST(Cli, ReadmeSettingsTableIsTheGeneratedOne) {
     ASSERT_NE(b, std::string::npos);
     const size_t first = text.find('\n', a) + 1;
     EXPECT_EQ(text.substr(first, b - first), r.output)
-        << "README.md's settings table is stale: paste `bmfr settings --markdown` between the "
-           "markers";
+        << "docs/settings.md's settings table is stale: run `bash scripts/update-settings-doc.sh` "
+           "(it pastes `bmfr settings --markdown` between the markers)";
 }
 
 } // namespace

@@ -29,12 +29,16 @@ void addAblateCommand(CLI::App& app, int& exitCode) {
         auto reader = SequenceReader::open(job->input);
         const SequenceInfo& info = reader->info();
         BmfrSettings base;
-        applySettings(
-            bmfrSettingsTable(), base,
-            job->options.resolve("bmfr", {info.positionLimitSquared, info.normalLimitSquared,
-                                          info.colorIsDemodulated}),
-            "bmfr");
-        validate(base);
+        try {
+            applySettings(
+                bmfrSettingsTable(), base,
+                job->options.resolve("bmfr", {info.positionLimitSquared, info.normalLimitSquared,
+                                              info.colorIsDemodulated}),
+                "bmfr");
+            validate(base);
+        } catch (const SettingError& e) {
+            job->options.rethrow("bmfr", e);
+        }
         const OutputFolder folder(job->output, invocation());
         int n = 0;
         const bool terminal = isatty(2);

@@ -6,6 +6,7 @@
 #include "stage_log.h"
 #include "stream_floor.h"
 #include "synth/procedural_scene.h"
+#include "usage.h"
 #include <algorithm>
 #include <bmfr/bmfr.h>
 #include <fmt/core.h>
@@ -19,6 +20,15 @@
 namespace bmfr::app {
 
 namespace {
+
+/// makeFilter for settings that all came from this command line: their errors are usage errors.
+std::unique_ptr<Filter> makeFromCommandLine(const std::string& name, const SettingValues& values) {
+    try {
+        return makeFilter(name, values);
+    } catch (const SettingError& e) {
+        throw UsageError(describeForCli(e));
+    }
+}
 
 struct BenchJob {
     std::vector<std::string> sizes{"1280x720", "1920x1080", "3840x2160"};
@@ -105,13 +115,13 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
         for (const std::string& kv : sets) {
             const size_t eq = kv.find('=');
             if (eq == std::string::npos || eq == 0)
-                throw Error(std::string(flag) + ": '" + kv + "' is not key=value");
+                throw UsageError(std::string(flag) + ": '" + kv + "' is not key=value");
             v.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
         }
     };
     for (const auto& kv : presetSettings(job.filter, job.preset)) values.push_back(kv);
     addSets(values, job.sets, "--set");
-    std::unique_ptr<Filter> d = makeFilter(job.filter, values);
+    std::unique_ptr<Filter> d = makeFromCommandLine(job.filter, values);
     // The baseline backend runs on the same frames, interleaved frame by frame with the
     // measured one, so both see the same machine load.
     std::unique_ptr<Filter> ref;
@@ -121,7 +131,7 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
         for (const auto& kv : presetSettings(job.referenceFilter(), job.baselinePreset))
             baseValues.push_back(kv);
         addSets(baseValues, job.baselineSets, "--baseline-set");
-        ref = makeFilter(job.referenceFilter(), baseValues);
+        ref = makeFromCommandLine(job.referenceFilter(), baseValues);
     }
     // The memory baselines, measured in this run on buffers freed before the passes start: the
     // BMFR fast passes' own traffic, and (any filter) the inputs and a float history once.
@@ -152,7 +162,7 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     };
     std::vector<FrameInput> deviceFrames, deviceBackwards;
     if (job.deviceBuffers) {
-        if (!gpu) throw Error("--device-buffers needs --backend cuda");
+        if (!gpu) throw UsageError("--device-buffers needs --backend cuda");
         for (const FrameData& f : frames) deviceFrames.push_back(onDevice(f.input()));
         for (const FrameData& f : backwards) deviceBackwards.push_back(onDevice(f.input()));
     }
@@ -227,18 +237,20 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         ->default_val("reference");
     cmd->add_option("--backend", job->backend, "the backend measured: reference, cpu or cuda")
         ->default_val("cpu");
-    cmd->add_option("--filter", job->filter, "the filter measured")->default_val("bmfr");
+    cmd->add_option("--filter", job->filter, "the filter measured")
+        ->check(oneOf(filterNames()))
+        ->default_val("bmfr");
     cmd->add_option("--baseline-filter", job->baselineFilter,
                     "another filter as the baseline, on --baseline-backend (walr beside bmfr: "
                     "--filter walr --baseline-filter bmfr --baseline-backend cpu)");
     cmd->add_option("--preset", job->preset,
                     "the measured filter's preset: faithful or quality (bmfr settings --preset)")
-        ->check(CLI::IsMember(presetNames()))
+        ->check(oneOf(presetNames()))
         ->default_val("faithful");
     cmd->add_option("--baseline-preset", job->baselinePreset,
                     "the baseline's preset (the quality preset against the faithful one: "
                     "--preset quality --baseline-backend cpu)")
-        ->check(CLI::IsMember(presetNames()))
+        ->check(oneOf(presetNames()))
         ->default_val("faithful");
     cmd->add_option("--baseline-set", job->baselineSets,
                     "key=value: a setting of the baseline, repeatable (half against float "
@@ -263,7 +275,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
             char x = 0;
             std::istringstream in(size);
             if (!(in >> w >> x >> h) || x != 'x' || w <= 0 || h <= 0)
-                throw Error("--sizes: '" + size + "' is not WxH");
+                throw UsageError("--sizes: '" + size + "' is not WxH");
             nlohmann::json r = benchOne(*job, w, h, [&] { progress.step(++done); });
             if (!job->json) {
                 progress.pause();

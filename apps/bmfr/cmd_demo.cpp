@@ -11,7 +11,8 @@ namespace bmfr::app {
 void addDemoCommand(CLI::App& app, int& exitCode) {
     struct DemoJob {
         std::string output = "bmfr-demo", scene = "cornell-moving", scenesDir = "../shared/scenes";
-        int width = 320, height = 240, frames = 30, referenceSpp = 256;
+        // Small enough that install, build and demo take under five minutes on 2 cores.
+        int width = 256, height = 192, frames = 24, referenceSpp = 128;
         bool quiet = false;
     };
     auto job = std::make_shared<DemoJob>();
@@ -23,11 +24,11 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
         ->default_val("cornell-moving");
     cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")
         ->default_val("../shared/scenes");
-    cmd->add_option("--width", job->width, "pixels")->default_val(320);
-    cmd->add_option("--height", job->height, "pixels")->default_val(240);
-    cmd->add_option("--frames", job->frames, "frame count")->default_val(30);
+    cmd->add_option("--width", job->width, "pixels")->default_val(256);
+    cmd->add_option("--height", job->height, "pixels")->default_val(192);
+    cmd->add_option("--frames", job->frames, "frame count")->default_val(24);
     cmd->add_option("--reference-spp", job->referenceSpp, "reference samples per pixel")
-        ->default_val(256);
+        ->default_val(128);
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     cmd->callback([job, &exitCode] {
         namespace fs = std::filesystem;
@@ -87,6 +88,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             dj.options.disabled = v.disabled;
             dj.options.preset = v.preset;
             dj.motion = v.motion;
+            dj.overwrite = true; // the demo's own folder: a second demo replaces the first's
             runDenoise(dj);
             eval.methods.push_back({v.name, dj.output});
         }

@@ -6,6 +6,7 @@
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
 #include "filters/filter_inputs.h"
+#include "help_format.h"
 #include "io/atomic_file.h"
 #include "io/exr.h"
 #include "io/output_folder.h"
@@ -15,6 +16,7 @@
 #include "metrics/basic_metrics.h"
 #include "progress.h"
 #include "stage_log.h"
+#include "usage.h"
 #include <algorithm>
 #include <bmfr/bmfr.h>
 #include <filesystem>
@@ -73,27 +75,64 @@ std::string checkedFeatures(const std::string& filter, const SettingValues& valu
     return formatFeatures(features);
 }
 
+/// The files an earlier denoise run wrote into `dir`: frames, report, scores, debug buffers.
+std::vector<fs::path> earlierOutputs(const fs::path& dir) {
+    std::vector<fs::path> found;
+    std::error_code ec;
+    auto isOurs = [](const std::string& name) {
+        for (const char* prefix :
+             {"denoised_", "accumulated_", "fitted_", "history_length_", "discard_mask_"})
+            if (name.rfind(prefix, 0) == 0 && (name.ends_with(".exr") || name.ends_with(".png")))
+                return true;
+        return name == "report.json" || name == "scores.csv";
+    };
+    for (const fs::path& d : {dir, dir / "debug"})
+        for (const auto& e : fs::directory_iterator(d, ec))
+            if (e.is_regular_file(ec) && isOurs(e.path().filename().string()))
+                found.push_back(e.path());
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
+/// Refuses `out` when it holds an earlier run's outputs (a shorter run would leave stale frames
+/// beside new scores), or with `overwrite` removes them first. Runs under the folder's lock.
+void claimOutputs(const fs::path& out, bool overwrite, bool quiet) {
+    const std::vector<fs::path> earlier = earlierOutputs(out);
+    if (earlier.empty()) return;
+    if (!overwrite)
+        throw Error(fmt::format("{} holds the outputs of an earlier run ({} files: {}{}); "
+                                "refusing to mix them with this run's. Use another folder, or "
+                                "--overwrite to replace them",
+                                out.string(), earlier.size(), earlier.front().filename().string(),
+                                earlier.size() > 1 ? ", ..." : ""));
+    for (const fs::path& p : earlier) fs::remove(p);
+    if (!quiet)
+        fmt::print("removed {} files of an earlier run from {} (--overwrite)\n", earlier.size(),
+                   out.string());
+}
+
 } // namespace
 
 int runDenoise(const DenoiseJob& job) {
     std::error_code ec;
     if (fs::exists(job.output, ec) && fs::equivalent(job.input, job.output, ec))
-        throw Error("-o " + job.output + " is the input folder " + job.input +
-                    "; refusing to write the results among the inputs (give another folder)");
+        throw UsageError("-o " + job.output + " is the input folder " + job.input +
+                         "; refusing to write the results among the inputs (give another folder)");
     if (!(job.sampleFraction > 0.0f && job.sampleFraction <= 1.0f))
-        throw Error(fmt::format("--sample-fraction {} is outside (0, 1]", job.sampleFraction));
+        throw UsageError(fmt::format("--sample-fraction {} is outside (0, 1]", job.sampleFraction));
     auto reader = SequenceReader::open(job.input);
-    reader->setLayerOverrides(parseLayerMap(job.channels));
+    reader->setLayerOverrides(usageChecked([&] { return parseLayerMap(job.channels); }));
     const SequenceInfo& info = reader->info();
     const SettingValues values = job.options.resolve(
         job.filter, {info.positionLimitSquared, info.normalLimitSquared, info.colorIsDemodulated});
-    std::unique_ptr<Filter> filter = makeFilter(job.filter, values);
+    std::unique_ptr<Filter> filter = job.options.makeFilter(job.filter, values);
     const std::string features = checkedFeatures(job.filter, values, job.input, info);
     const std::string backend = settingValue(values, "backend", "cpu");
-    auto [first, last] = parseFrameRange(job.frames, info.frameCount);
+    auto [first, last] = usageChecked([&] { return parseFrameRange(job.frames, info.frameCount); });
     reader->checkFrames(first, last); // a bad frame fails the run before its first output
     const OutputFolder folder(job.output, invocation());
     const fs::path out(job.output), debugDir = out / "debug";
+    claimOutputs(out, job.overwrite, job.quiet);
     if (job.debug) fs::create_directories(debugDir);
     filter->setDebugOutputs(job.debug);
     if (!job.quiet)
@@ -149,10 +188,13 @@ int runDenoise(const DenoiseJob& job) {
             denoiseFrame(i);
         } catch (const std::exception& e) {
             // A file that breaks only when its pixels are read (truncated after its header).
+            if (lastWritten < first && job.debug) fs::remove(debugDir, ec); // only if empty
             throw Error(fmt::format(
                 "{}\n{}", e.what(),
                 lastWritten < first
-                    ? std::string("no frame was written")
+                    ? fmt::format("no frame was written{}",
+                                  folder.madeHere() ? fmt::format(" ({} is removed)", job.output)
+                                                    : "")
                     : fmt::format("frames {} to {} were written to {} (denoised_{:04d}.exr to "
                                   "denoised_{:04d}.exr), report.json was not",
                                   first, lastWritten, job.output, first, lastWritten)));
@@ -202,12 +244,15 @@ int runDenoise(const DenoiseJob& job) {
 
 void addDenoiseCommand(CLI::App& app, int& exitCode) {
     auto job = std::make_shared<DenoiseJob>();
-    CLI::App* cmd = app.add_subcommand("denoise", "denoise a sequence (original BMFR dataset "
-                                                  "layout or bmfr's sequence.json layout)");
+    CLI::App* cmd = app.add_subcommand(
+        "denoise", "denoise a sequence into OUTPUT: denoised_NNNN.exr (linear) and .png "
+                   "(tone-mapped), report.json, and scores.csv when the input has references");
     cmd->add_option("input", job->input, "input directory")->required();
     cmd->add_option("-o,--output", job->output, "output directory")->required();
     cmd->add_option("--frames", job->frames, "frame range A:B (A..B-1), A: or :B");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
+    cmd->add_flag("--overwrite", job->overwrite,
+                  "replace the outputs of an earlier run in OUTPUT instead of refusing them");
     cmd->add_flag("--debug", job->debug,
                   "also write accumulated colour, fitted frame, history length, discard mask");
     cmd->add_flag("!--no-png", job->png, "skip the tone-mapped PNGs");
@@ -217,6 +262,7 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
                   "the cameras alone, as the BMFR paper does (for comparisons)");
     cmd->add_option("--filter", job->filter,
                     "the filter: " + fmt::format("{}", fmt::join(filterNames(), ", ")))
+        ->check(oneOf(filterNames()))
         ->default_val("bmfr");
     cmd->add_option("--sample-fraction", job->sampleFraction,
                     "simulate fewer than 1 spp: keep this fraction of pixels per frame (0, 1]")
@@ -227,6 +273,19 @@ void addDenoiseCommand(CLI::App& app, int& exitCode) {
                         ") from this layer of multilayer EXRs, as albedo=ViewLayer.DiffCol; "
                         "repeatable");
     job->options.addTo(*cmd, filterNames());
+    setHelpIntro(cmd, R"(examples:
+  bmfr denoise bmfr-demo/input -o denoised
+  bmfr denoise frames/ -o out --filter svgf --preset quality --frames 0:60
+
+input: a folder of linear EXR frames with noise-free features and the camera: sequence.json
+  naming each frame's files (`bmfr render` writes it, and tools/blender/render_sequence.py for
+  Blender Cycles, with multilayer EXRs), or the original BMFR dataset (color0.exr ... and
+  camera_matrices.h).
+  required per frame: color (1-spp radiance, RGB), albedo (RGB), normal (world space, XYZ),
+                      position (world space, XYZ), view_projection (4x4 camera matrix)
+  optional: motion (pixels; else reprojection by the cameras), reference (then every frame
+            is scored), emission, visibility, jitter, reset (a camera cut)
+  the layouts: docs/input-layouts.md; `bmfr settings FILTER` lists every setting)");
     cmd->callback([job, &exitCode] { exitCode = runDenoise(*job); });
 }
 

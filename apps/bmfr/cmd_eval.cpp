@@ -4,6 +4,7 @@
 #include "io/output_folder.h"
 #include "io/range_parsers.h"
 #include "progress.h"
+#include "usage.h"
 #include <bmfr/error.h>
 #include <fmt/core.h>
 #include <memory>
@@ -91,12 +92,13 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
         }
         for (const std::string& c : job->crops) o.crops.push_back(parseCrop(c));
         o.referenceLayers = parseLayerMap(job->channels);
-        if (o.zoom < 1 || o.zoom > 16) throw Error("--zoom must be in [1, 16]");
-        if (o.autoCrops < 0 || o.autoCrops > 16) throw Error("--crops must be in [0, 16]");
-        if (o.cropSize < 4 || o.cropSize > 1024) throw Error("--crop-size must be in [4, 1024]");
-        if (o.videoFps < 1 || o.videoFps > 120) throw Error("--video-fps must be in [1, 120]");
+        if (o.zoom < 1 || o.zoom > 16) throw UsageError("--zoom must be in [1, 16]");
+        if (o.autoCrops < 0 || o.autoCrops > 16) throw UsageError("--crops must be in [0, 16]");
+        if (o.cropSize < 4 || o.cropSize > 1024)
+            throw UsageError("--crop-size must be in [4, 1024]");
+        if (o.videoFps < 1 || o.videoFps > 120) throw UsageError("--video-fps must be in [1, 120]");
         if (o.viewerWidth < 64 || o.viewerWidth > 4096)
-            throw Error("--viewer-width must be in [64, 4096]");
+            throw UsageError("--viewer-width must be in [64, 4096]");
         o.flip = !job->noFlip;
         exitCode = runEval(o, job->quiet, job->json);
     });

@@ -2,10 +2,13 @@
 #include "io/output_folder.h"
 #include "progress.h"
 #include "render/sequence_renderer.h"
+#include "usage.h"
+#include <algorithm>
 #include <atomic>
 #include <bmfr/error.h>
 #include <csignal>
 #include <fmt/core.h>
+#include <thread>
 
 namespace bmfr::app {
 
@@ -17,12 +20,12 @@ extern "C" void onInterrupt(int) {
 }
 
 struct RenderJob {
-    std::string output, scene = "cornell-moving", scenesDir = "../shared/scenes",
-                        layout = "manifest";
+    std::string output, scenesDir = "../shared/scenes", layout = "manifest";
+    std::optional<std::string> scene;
     std::optional<int> width, height, frames, referenceSpp, bounces, directSpp;
     std::string paths;
     std::optional<uint32_t> seed;
-    bool noReference = false, quiet = false, list = false, overwrite = false;
+    bool noReference = false, quiet = false, list = false, overwrite = false, yes = false;
     bool diffuseIndirect = false;
 };
 
@@ -36,6 +39,24 @@ std::string durationText(double seconds) {
     if (seconds < 90) return fmt::format("about {:.0f} s", seconds);
     if (seconds < 5400) return fmt::format("about {:.0f} min", seconds / 60);
     return fmt::format("about {:.0f} h", seconds / 3600);
+}
+
+/// A render over this long needs --yes: a typo in a size should not start a day's work.
+constexpr double kLongRenderSeconds = 3600;
+
+/// With no scene and no size, `bmfr render -o OUT` renders the built-in box small enough to
+/// finish in about a minute on 2 cores, not the preset's full size.
+void applyQuickSize(render::SceneDescription& d) {
+    d.width = 256;
+    d.height = 192;
+    d.frames = 24;
+    d.referenceSpp = 128;
+}
+
+/// The estimate for this machine (estimatedRenderSeconds is for 2 cores).
+double estimatedHere(const render::SceneDescription& d) {
+    const unsigned cores = std::max(2u, std::thread::hardware_concurrency());
+    return render::estimatedRenderSeconds(d) * 2.0 / cores;
 }
 
 } // namespace
@@ -57,7 +78,11 @@ int runRender(const RenderJob& job) {
         return 0;
     }
     if (job.output.empty()) throw CLI::RequiredError("--output (the sequence folder to write)");
-    render::SceneDescription d = render::loadSceneDescription(job.scene, job.scenesDir);
+    const bool quick = !job.scene && !job.width && !job.height && !job.frames && !job.referenceSpp;
+    render::SceneDescription d =
+        render::loadSceneDescription(job.scene.value_or("cornell-moving"), job.scenesDir);
+    const render::SceneDescription full = d;
+    if (quick) applyQuickSize(d);
     if (job.width) d.width = *job.width;
     if (job.height) d.height = *job.height;
     if (job.frames) d.frames = *job.frames;
@@ -71,6 +96,13 @@ int runRender(const RenderJob& job) {
     if (job.directSpp && d.factoredDirectSpp == 0)
         throw CLI::ValidationError("--direct-spp", "needs --paths mara");
     render::validate(d);
+    const double estimate = estimatedHere(d);
+    if (estimate > kLongRenderSeconds && !job.yes)
+        throw UsageError(fmt::format(
+            "this render is estimated at {} here ({}x{}, {} frames, reference {} spp); add "
+            "--yes to start it, or make it cheaper with --width, --height, --frames and "
+            "--reference-spp (see --list-presets)",
+            durationText(estimate), d.width, d.height, d.frames, d.referenceSpp));
 
     gInterrupted = false;
     auto previous = std::signal(SIGINT, onInterrupt);
@@ -80,8 +112,15 @@ int runRender(const RenderJob& job) {
                    d.name, d.mesh, d.width, d.height, d.frames, d.bounces, d.referenceSpp,
                    job.output, job.layout);
     if (!job.quiet)
-        fmt::print("estimated {} on 2 cores of the CI's kind\n",
-                   durationText(render::estimatedRenderSeconds(d)));
+        fmt::print("estimated {} on {} cores\n", durationText(estimate),
+                   std::max(2u, std::thread::hardware_concurrency()));
+    if (quick && !job.quiet)
+        fmt::print("a quick render: no scene or size was given. The preset's full size is "
+                   "{}x{}, {} frames, reference {} spp ({}); ask for it with -s {} (and --yes), "
+                   "or for any size with --width, --height, --frames and --reference-spp; "
+                   "--list-presets lists the scenes\n",
+                   full.width, full.height, full.frames, full.referenceSpp,
+                   durationText(estimatedHere(full)), d.name);
     const OutputFolder folder(job.output, invocation());
     Progress progress("render", d.frames, job.quiet);
     render::SequenceRenderOptions o{job.output, job.layout, job.quiet, job.overwrite};
@@ -114,15 +153,16 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
         app.add_subcommand("render", "path trace a sequence: 1-spp input, features, reference");
     cmd->add_option("-o,--output", job->output,
                     "output directory (required unless --list-presets)");
-    cmd->add_option("-s,--scene", job->scene, "preset name or scene description JSON")
-        ->default_val("cornell-moving");
+    cmd->add_option("-s,--scene", job->scene,
+                    "preset name or scene description JSON (default cornell-moving; with no "
+                    "scene and no size, a quick 256x192, 24-frame, 128-spp render of it)");
     cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")
         ->default_val("../shared/scenes");
     cmd->add_option("--width", job->width, "pixels");
     cmd->add_option("--height", job->height, "pixels");
     cmd->add_option("--frames", job->frames, "frame count");
     cmd->add_option("--reference-spp", job->referenceSpp,
-                    "reference samples per pixel (default 4096)");
+                    "reference samples per pixel (default: the scene's; 4096 for the presets)");
     cmd->add_flag("--no-reference", job->noReference, "skip the reference");
     cmd->add_flag("--overwrite", job->overwrite,
                   "replace a folder holding another scene's sequence (or one bmfr did not "
@@ -140,13 +180,15 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                     "importance sampling, standing in for their rasterised direct light; also "
                     "writes matte_indirect, glossy_indirect, direct_light, specular_f0, "
                     "surface_roughness, glossy_hit_distance)")
-        ->check(CLI::IsMember({"bmfr", "mara"}));
+        ->check(oneOf({"bmfr", "mara"}));
     cmd->add_option("--direct-spp", job->directSpp,
                     "with --paths mara: light samples of the direct light at the first hit, "
                     "[1, 4096] (default 16)")
-        ->check(CLI::Range(1, 4096));
+        ->check(integerIn(1, 4096));
     cmd->add_option("--layout", job->layout, "manifest (sequence.json) or bmfr (original dataset)")
+        ->check(oneOf({"manifest", "bmfr"}))
         ->default_val("manifest");
+    cmd->add_flag("--yes", job->yes, "start a render estimated at over an hour");
     cmd->add_flag("--list-presets", job->list, "print the preset names");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     cmd->callback([job, &exitCode] { exitCode = runRender(*job); });

@@ -1,5 +1,6 @@
 // `bmfr settings`: every filter's settings table, as text or as the README's Markdown.
 #include "commands.h"
+#include "usage.h"
 #include <fmt/core.h>
 
 namespace bmfr::app {
@@ -39,11 +40,12 @@ void addSettingsCommand(CLI::App& app, int& exitCode) {
     auto job = std::make_shared<Job>();
     CLI::App* cmd = app.add_subcommand(
         "settings", "every setting of a filter: key, flag, unit, range, default and help");
-    cmd->add_option("filter", job->filter, "one filter (default: all)");
+    cmd->add_option("filter", job->filter, "one filter (default: all)")
+        ->check(oneOf(filterNames()));
     cmd->add_flag("--markdown", job->markdown, "the README's table");
     cmd->add_option("--preset", job->preset,
                     "print only what this preset sets (faithful, quality), as key=value")
-        ->check(CLI::IsMember(presetNames()));
+        ->check(oneOf(presetNames()));
     cmd->add_flag("-q,--quiet", job->quiet,
                   "accepted on every command; the table is this command's result");
     cmd->callback([job, &exitCode] {

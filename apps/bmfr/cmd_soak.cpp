@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "progress.h"
 #include "synth/procedural_scene.h"
+#include "usage.h"
 #include <bmfr/bmfr.h>
 #include <cmath>
 #include <cstdio>
@@ -41,8 +42,8 @@ int runSoak(const SoakJob& job) {
     char x = 0;
     std::istringstream in(job.size);
     if (!(in >> w >> x >> h) || x != 'x' || w < 1 || h < 1 || w > 4096 || h > 4096)
-        throw Error("--size: '" + job.size + "' is not WxH within 4096x4096");
-    if (job.frames < 1 || job.frames > 10000000) throw Error("--frames must be in [1, 1e7]");
+        throw UsageError("--size: '" + job.size + "' is not WxH within 4096x4096");
+    if (job.frames < 1 || job.frames > 10000000) throw UsageError("--frames must be in [1, 1e7]");
     ProceduralSceneOptions o;
     o.width = w, o.height = h, o.frames = 16;
     ProceduralScene scene(o);
@@ -88,7 +89,9 @@ void addSoakCommand(CLI::App& app, int& exitCode) {
     auto job = std::make_shared<SoakJob>();
     CLI::App* cmd = app.add_subcommand(
         "soak", "many frames through one filter: RSS at start and end, non-finite outputs");
-    cmd->add_option("--filter", job->filter, "the filter")->default_val("bmfr");
+    cmd->add_option("--filter", job->filter, "the filter")
+        ->check(oneOf(filterNames()))
+        ->default_val("bmfr");
     cmd->add_option("--backend", job->backend, "the backend")->default_val("cpu");
     cmd->add_option("--frames", job->frames, "frames to run")->default_val(2000);
     cmd->add_option("--size", job->size, "frame size WxH")->default_val("64x48");

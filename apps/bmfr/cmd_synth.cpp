@@ -3,6 +3,7 @@
 #include "io/sequence.h"
 #include "progress.h"
 #include "synth/procedural_scene.h"
+#include "usage.h"
 #include <bmfr/error.h>
 #include <fmt/core.h>
 
@@ -34,7 +35,7 @@ void writeProcedural(const SynthJob& job) {
             progress.step(i + 1);
         }
     } else {
-        throw Error("--layout must be manifest or bmfr");
+        throw UsageError("--layout must be manifest or bmfr");
     }
     progress.finish();
     if (!job.quiet)
@@ -56,6 +57,7 @@ void addSynthCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--camera-speed", job->scene.cameraSpeed, "0 = static camera")
         ->default_val(1.0);
     cmd->add_option("--layout", job->layout, "manifest (sequence.json) or bmfr (original dataset)")
+        ->check(oneOf({"manifest", "bmfr"}))
         ->default_val("manifest");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     cmd->callback([job, &exitCode] {

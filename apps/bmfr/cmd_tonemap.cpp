@@ -1,6 +1,7 @@
 #include "commands.h"
 #include "io/exr.h"
 #include "io/png.h"
+#include "usage.h"
 #include <bmfr/error.h>
 #include <cmath>
 #include <filesystem>
@@ -26,7 +27,7 @@ void addTonemapCommand(CLI::App& app, int& exitCode) {
             throw Error("tonemap: the output " + job->output +
                         " is the input; refusing to overwrite it");
         if (!(std::isfinite(job->exposure) && job->exposure > 0.0f))
-            throw Error("tonemap: --exposure must be a positive number");
+            throw UsageError("tonemap: --exposure must be a positive number");
         writePngToneMapped(job->output, readExr(job->input, 3), job->exposure);
         exitCode = 0;
     });

@@ -13,7 +13,8 @@ struct DenoiseJob {
     std::string input, output;
     std::string frames; ///< "A:B" (A..B-1), "A:" or ":B"; empty = all
     bool quiet = false, debug = false, png = true, flip = true;
-    bool motion = true; ///< reproject through the sequence's motion vectors when it has them
+    bool motion = true;     ///< reproject through the sequence's motion vectors when it has them
+    bool overwrite = false; ///< replace an earlier run's outputs in `output` instead of refusing
     std::string filter = "bmfr"; ///< a name from filterNames()
     float sampleFraction = 1.0f; ///< < 1 simulates fewer than 1 spp with a per-frame pixel mask
     std::vector<std::string> channels; ///< BUFFER=LAYER for multilayer EXR inputs

@@ -1,5 +1,8 @@
 #include "filter_options.h"
+#include "core/closest_name.h"
+#include "usage.h"
 #include <bmfr/error.h>
+#include <cctype>
 #include <fmt/format.h>
 #include <set>
 
@@ -14,10 +17,40 @@ const SettingDoc* findDoc(const std::vector<SettingDoc>& docs, const std::string
     return nullptr;
 }
 
+std::vector<std::string> keysOf(const std::vector<SettingDoc>& docs) {
+    std::vector<std::string> keys;
+    for (const SettingDoc& d : docs) keys.push_back(d.key);
+    return keys;
+}
+
+std::vector<std::string> switchesOf(const std::vector<SettingDoc>& docs) {
+    std::vector<std::string> flags;
+    for (const SettingDoc& d : docs)
+        if (d.range == "true, false") flags.push_back(d.flag);
+    return flags;
+}
+
+/// " (it is a setting of walr)" for a flag another filter has, or "".
+std::string ownerOf(const std::string& flag) {
+    std::vector<std::string> owners;
+    for (const std::string& f : filterNames())
+        if (findDoc(filterSettings(f), flag)) owners.push_back(f);
+    return owners.empty() ? std::string()
+                          : fmt::format(" (it is a setting of {})", fmt::join(owners, ", "));
+}
+
+/// "BMFR", "SVGF", "WALR", "Mara 2017": the filter as its paper names it.
+std::string filterTitle(const std::string& name) {
+    if (name == "mara2017") return "Mara 2017";
+    std::string t = name;
+    for (char& c : t) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return t;
+}
+
 std::string describe(const SettingDoc& d) {
     std::string s = d.help;
     if (!d.unit.empty()) s += "; " + d.unit;
-    if (!d.range.empty()) s += "; " + d.range;
+    if (!d.range.empty() && d.range != "true, false") s += "; " + d.range;
     return s + "; default " + (d.defaultValue.empty() ? "none" : d.defaultValue);
 }
 
@@ -28,8 +61,9 @@ void FilterOptions::addTo(CLI::App& cmd, const std::vector<std::string>& filters
     for (const std::string& f : filters)
         for (const SettingDoc& d : filterSettings(f)) {
             if (!added.insert(d.flag).second) continue;
-            const std::string help = (d.shared ? std::string() : "[" + f + "] ") + describe(d);
-            CLI::Option* o = cmd.add_option("--" + d.flag, flags[d.flag], help);
+            CLI::Option* o = cmd.add_option("--" + d.flag, flags[d.flag], describe(d));
+            o->group(d.shared ? std::string("Settings of every filter")
+                              : filterTitle(f) + " settings (--filter " + f + ")");
             if (d.range == "true, false") // a bare --flag means true
                 o->expected(0, 1)->default_str("true")->type_name("[BOOL]");
             else
@@ -39,14 +73,17 @@ void FilterOptions::addTo(CLI::App& cmd, const std::vector<std::string>& filters
                    "faithful (the papers' settings) or quality (with the improvements beyond "
                    "them; `bmfr settings FILTER --preset quality` lists them); flags and --set "
                    "override it")
-        ->check(CLI::IsMember(presetNames()))
-        ->default_val("faithful");
+        ->check(oneOf(presetNames()))
+        ->default_val("faithful")
+        ->group("Options");
     cmd.add_option("--set", sets,
-                   "any setting as key=value (keys: `bmfr settings FILTER`); repeatable");
+                   "any setting as key=value (keys: `bmfr settings FILTER`); repeatable")
+        ->group("Options");
     cmd.add_option("--disable", disabled,
                    "switches to turn off, comma-separated: demodulate, accumulation, fitting, "
                    "second-accumulation, taa")
-        ->delimiter(',');
+        ->delimiter(',')
+        ->group("Options");
 }
 
 SettingValues FilterOptions::resolve(const std::string& name, const SequenceDefaults& seq) const {
@@ -62,26 +99,56 @@ SettingValues FilterOptions::resolve(const std::string& name, const SequenceDefa
     for (const auto& [flag, text] : flags) {
         if (text.empty()) continue; // not given
         const SettingDoc* d = findDoc(docs, flag);
-        if (!d) throw Error("--" + flag + " is not a setting of the " + name + " filter");
+        if (!d)
+            throw UsageError("--" + flag + " is not a setting of the " + name + " filter" +
+                             ownerOf(flag));
         v.push_back({d->key, text});
     }
     for (const std::string& s : sets) {
         const size_t eq = s.find('=');
         if (eq == std::string::npos || eq == 0)
-            throw Error("--set '" + s + "': expected key=value");
-        const SettingDoc* d = findDoc(docs, s.substr(0, eq));
-        if (!d)
-            throw Error("--set: '" + s.substr(0, eq) + "' is not a setting of the " + name +
-                        " filter");
+            throw UsageError("--set '" + s + "': expected KEY=VALUE (keys: bmfr settings " + name +
+                             ")");
+        const std::string key = s.substr(0, eq);
+        const SettingDoc* d = findDoc(docs, key);
+        if (!d) {
+            const std::string hint = didYouMean(key, keysOf(docs));
+            throw UsageError("--set " + s + ": '" + key + "' is not a setting of the " + name +
+                             " filter" +
+                             (hint.empty() ? " (`bmfr settings " + name + "` lists them)" : hint));
+        }
         v.push_back({d->key, s.substr(eq + 1)});
     }
     for (const std::string& s : disabled) {
         const SettingDoc* d = findDoc(docs, s);
         if (!d || d->range != "true, false")
-            throw Error("--disable: unknown stage '" + s + "' for the " + name + " filter");
+            throw UsageError("--disable " + s + ": not a switch of the " + name + " filter" +
+                             didYouMean(s, switchesOf(docs)));
         v.push_back({d->key, "false"});
     }
     return v;
+}
+
+std::unique_ptr<Filter> FilterOptions::makeFilter(const std::string& name,
+                                                  const SettingValues& values) const {
+    try {
+        return bmfr::makeFilter(name, values);
+    } catch (const SettingError& e) {
+        rethrow(name, e);
+    }
+}
+
+void FilterOptions::rethrow(const std::string& name, const SettingError& e) const {
+    // A value typed on this command line is a usage error in the flag's words; one from the
+    // sequence's own settings is the input's.
+    const std::vector<SettingDoc> docs = filterSettings(name);
+    for (const auto& [flag, text] : flags)
+        if (const SettingDoc* d = findDoc(docs, flag); d && !text.empty() && d->key == e.key())
+            throw UsageError(describeForCli(e));
+    for (const std::string& s : sets)
+        if (const SettingDoc* d = findDoc(docs, s.substr(0, s.find('='))); d && d->key == e.key())
+            throw UsageError(describeForCli(e));
+    throw e;
 }
 
 std::string settingValue(const SettingValues& values, const std::string& key,

@@ -2,8 +2,10 @@
 // row, `--set key=value` for any row, and `--disable` for switches.
 #pragma once
 #include <CLI/CLI.hpp>
+#include <bmfr/error.h>
 #include <bmfr/filter.h>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,8 +23,13 @@ struct FilterOptions {
     void addTo(CLI::App& cmd, const std::vector<std::string>& filters);
     /// The values for filter `name`, in order: the sequence's, the preset's, the flags, --set,
     /// --disable.
-    /// Throws bmfr::Error for a flag or key that `name` does not have.
+    /// Throws UsageError for a flag, key or switch that `name` does not have.
     SettingValues resolve(const std::string& name, const SequenceDefaults& sequence) const;
+    /// makeFilter(name, values), with a setting error in a value from this command line thrown
+    /// as a UsageError in the flag's words (`--block-size 33 must be even`).
+    std::unique_ptr<Filter> makeFilter(const std::string& name, const SettingValues& values) const;
+    /// Throws `e` again, as a UsageError when its value came from this command line.
+    [[noreturn]] void rethrow(const std::string& name, const SettingError& e) const;
 
     std::string preset = "faithful";          ///< presetSettings(), applied before the flags
     std::map<std::string, std::string> flags; ///< flag -> text, as given

@@ -3,9 +3,12 @@
 #include "backend/cpu/isa.h"
 #include "backend/cuda/cuda_device.h"
 #include "commands.h"
+#include "core/closest_name.h"
 #include "git_commit.h"
+#include "help_format.h"
 #include "io/shell_quote.h"
 #include "usage.h"
+#include <algorithm>
 #include <bmfr/bmfr.h>
 #include <cstdio>
 #include <fmt/format.h>
@@ -50,6 +53,7 @@ int main(int argc, char** argv) {
     CLI::App app{"bmfr: real-time reconstruction of 1-spp path-traced sequences "
                  "(Blockwise Multi-Order Feature Regression, Koskela et al. 2019)",
                  "bmfr"};
+    app.formatter(std::make_shared<bmfr::app::HelpFormatter>());
     app.set_version_flag("--version", versionText());
     int exitCode = 0;
     bmfr::app::addDemoCommand(app, exitCode);
@@ -62,12 +66,14 @@ int main(int argc, char** argv) {
     bmfr::app::addTonemapCommand(app, exitCode);
     bmfr::app::addSettingsCommand(app, exitCode);
     bmfr::app::addSoakCommand(app, exitCode);
-    bool known = false;
-    for (const CLI::App* sub : app.get_subcommands({}))
-        known = known || (argc > 1 && sub->get_name() == argv[1]);
+    std::vector<std::string> commands;
+    for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
+    const bool known =
+        argc > 1 && std::find(commands.begin(), commands.end(), argv[1]) != commands.end();
     if (argc > 1 && argv[1][0] != '-' && !known) {
-        std::fprintf(stderr, "bmfr: unknown command '%s'\nusage: bmfr COMMAND [options]\n%s",
-                     argv[1], bmfr::app::commandList(app).c_str());
+        std::fprintf(stderr, "bmfr: unknown command '%s'%s\nusage: bmfr COMMAND [options]\n%s",
+                     argv[1], bmfr::didYouMean(argv[1], commands).c_str(),
+                     bmfr::app::commandList(app).c_str());
         return 2;
     }
     try {
@@ -84,9 +90,8 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         return bmfr::app::reportUsageError(app, e);
-    } catch (const bmfr::SettingError& e) {
-        std::fprintf(stderr, "bmfr: error: %s\n", bmfr::app::describeForCli(e).c_str());
-        return 1;
+    } catch (const bmfr::app::UsageError& e) {
+        return bmfr::app::reportUsageError(app, e.what());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bmfr: error: %s\n", e.what());
         return 1;

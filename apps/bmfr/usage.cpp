@@ -1,4 +1,5 @@
 #include "usage.h"
+#include "core/closest_name.h"
 #include <bmfr/filter.h>
 #include <cctype>
 #include <cstdio>
@@ -16,12 +17,15 @@ std::string commandList(const CLI::App& app) {
 
 namespace {
 
+std::string upper(std::string t) {
+    for (char& c : t) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return t;
+}
+
+} // namespace
+
 std::string usageLine(const CLI::App& cmd) {
     std::string s = "usage: bmfr " + cmd.get_name();
-    auto upper = [](std::string t) {
-        for (char& c : t) c = char(std::toupper(static_cast<unsigned char>(c)));
-        return t;
-    };
     for (const CLI::Option* o : cmd.get_options()) {
         if (o->get_positional()) {
             const std::string n = upper(o->get_name());
@@ -35,13 +39,80 @@ std::string usageLine(const CLI::App& cmd) {
     return s + " [options]";
 }
 
-} // namespace
+namespace {
 
-int reportUsageError(const CLI::App& app, const CLI::ParseError& error) {
+const CLI::App* activeCommand(const CLI::App& app) {
     const CLI::App* active = nullptr;
     for (const CLI::App* sub : app.get_subcommands({}))
         if (sub->parsed()) active = sub;
-    std::fprintf(stderr, "bmfr: %s\n", error.what());
+    return active;
+}
+
+/// The long option names of `cmd`, as "name" without the dashes.
+std::vector<std::string> longNames(const CLI::App& cmd) {
+    std::vector<std::string> names;
+    for (const CLI::Option* o : cmd.get_options())
+        for (const std::string& n : o->get_lnames()) names.push_back(n);
+    return names;
+}
+
+/// What the parser could not place: the first unknown option, or else the first extra value.
+std::string describeExtras(const CLI::App& cmd) {
+    const std::vector<std::string> extras = cmd.remaining();
+    for (const std::string& arg : extras)
+        if (arg.size() > 1 && arg[0] == '-') {
+            const std::string name = arg.substr(0, arg.find('='));
+            std::string bare = name;
+            bare.erase(0, bare.find_first_not_of('-'));
+            return fmt::format("unknown option '{}'{}", name,
+                               didYouMean(bare, longNames(cmd), "--"));
+        }
+    if (!extras.empty())
+        return fmt::format("unexpected argument '{}' (an option's value, or one input too many?)",
+                           extras.front());
+    return "unexpected arguments";
+}
+
+/// CLI11's "--width: 1 required INT missing", "Could not convert: --width = abc" and the like.
+std::string translate(const CLI::App& app, const CLI::ParseError& error) {
+    const std::string text = error.what();
+    const CLI::App* active = activeCommand(app);
+    if (dynamic_cast<const CLI::ExtrasError*>(&error))
+        return describeExtras(active ? *active : app);
+    if (dynamic_cast<const CLI::RequiredError*>(&error)) {
+        // "input is required" for a positional, "--output is required" for an option.
+        const std::string name = text.substr(0, text.find(' '));
+        return (name.rfind("-", 0) == 0 ? name : upper(name)) + " is required";
+    }
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&error))
+        return text.substr(0, text.find(':')) + " needs a value";
+    if (dynamic_cast<const CLI::ConversionError*>(&error)) {
+        const std::string convert = "Could not convert: ";
+        if (text.rfind(convert, 0) == 0) { // "Could not convert: --width = abc"
+            const std::string rest = text.substr(convert.size());
+            const size_t eq = rest.find(" = ");
+            if (eq != std::string::npos)
+                return fmt::format("{} {}: not a valid value (a number is expected)",
+                                   rest.substr(0, eq), rest.substr(eq + 3));
+        }
+        const std::string allowed = "The value ";
+        if (text.rfind(allowed, 0) == 0) { // "The value abc is not an allowed value for --w"
+            const size_t is = text.find(" is not an allowed value for ");
+            if (is != std::string::npos)
+                return fmt::format("{} {}: not a valid value (a number is expected)",
+                                   text.substr(is + 29), text.substr(10, is - 10));
+        }
+        const size_t colon = text.find(": Should be true/false");
+        if (colon != std::string::npos) return text.substr(0, colon) + ": expected true or false";
+    }
+    return text;
+}
+
+} // namespace
+
+int reportUsageError(const CLI::App& app, const std::string& message) {
+    const CLI::App* active = activeCommand(app);
+    std::fprintf(stderr, "bmfr: %s\n", message.c_str());
     if (active)
         std::fprintf(stderr, "%s\nrun 'bmfr %s --help' for the options\n",
                      usageLine(*active).c_str(), active->get_name().c_str());
@@ -50,12 +121,44 @@ int reportUsageError(const CLI::App& app, const CLI::ParseError& error) {
     return 2;
 }
 
+int reportUsageError(const CLI::App& app, const CLI::ParseError& error) {
+    return reportUsageError(app, translate(app, error));
+}
+
 std::string describeForCli(const SettingError& error) {
     for (const std::string& filter : filterNames())
         for (const SettingDoc& d : filterSettings(filter))
             if (d.key == error.key())
                 return fmt::format("--{} {} {}", d.flag, error.value(), error.problem());
     return error.what();
+}
+
+CLI::Validator oneOf(std::vector<std::string> names) {
+    const std::string list = fmt::format("{}", fmt::join(names, ", "));
+    return CLI::Validator(
+        [names, list](std::string& value) -> std::string {
+            for (const std::string& n : names)
+                if (n == value) return "";
+            return fmt::format("'{}' is not one of {}{}", value, list, didYouMean(value, names));
+        },
+        "{" + list + "}");
+}
+
+CLI::Validator integerIn(long long lo, long long hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& value) -> std::string {
+            long long x = 0;
+            size_t used = 0;
+            try {
+                x = std::stoll(value, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != value.size() || value.empty()) return "'" + value + "' is not an integer";
+            if (x < lo || x > hi) return fmt::format("{} is outside [{}, {}]", value, lo, hi);
+            return "";
+        },
+        fmt::format("[{}, {}]", lo, hi));
 }
 
 } // namespace bmfr::app

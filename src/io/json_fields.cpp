@@ -1,4 +1,5 @@
 #include "io/json_fields.h"
+#include "core/closest_name.h"
 #include <algorithm>
 #include <bmfr/error.h>
 #include <cfloat>
@@ -6,39 +7,12 @@
 
 namespace bmfr {
 
-namespace {
-
-size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diagonal = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-            diagonal = up;
-        }
-    }
-    return row[b.size()];
-}
-
-} // namespace
-
 void requireKnownKeys(const nlohmann::json& object, const std::vector<std::string>& known,
                       const std::string& where) {
     if (!object.is_object()) throw Error(where + " must be a JSON object");
     for (auto it = object.begin(); it != object.end(); ++it) {
         if (std::find(known.begin(), known.end(), it.key()) != known.end()) continue;
-        std::string best;
-        size_t bestDistance = 3; // suggest only near misses
-        for (const std::string& k : known)
-            if (const size_t d = editDistance(it.key(), k); d < bestDistance) {
-                best = k;
-                bestDistance = d;
-            }
-        throw Error("unknown key '" + it.key() + "' in " + where +
-                    (best.empty() ? "" : " (did you mean '" + best + "'?)"));
+        throw Error("unknown key '" + it.key() + "' in " + where + didYouMean(it.key(), known));
     }
 }
 
@@ -90,6 +64,23 @@ double numberField(const nlohmann::json& object, const char* key, double lo, dou
         throw Error(where + ": " + key + " = " + v.dump() + " is outside [" + std::to_string(lo) +
                     ", " + std::to_string(hi) + "]");
     return x;
+}
+
+std::string jsonProblem(const nlohmann::json::exception& e) {
+    std::string text = e.what();
+    // nlohmann prefixes "[json.exception.out_of_range.403] ": the library's name, not the user's.
+    if (text.rfind("[json.exception.", 0) == 0 && text.find("] ") != std::string::npos)
+        text = text.substr(text.find("] ") + 2);
+    const std::string missing = "key '";
+    if (e.id == 403 && text.rfind(missing, 0) == 0) { // "key 'x' not found"
+        const size_t end = text.find('\'', missing.size());
+        std::string problem = "\"";
+        problem.append(text, missing.size(), end - missing.size());
+        return problem.append("\" is missing");
+    }
+    if (e.id >= 300 && e.id < 400) return "a value has the wrong type (" + text + ")";
+    if (e.id >= 100 && e.id < 200) return "is not valid JSON (" + text + ")";
+    return text;
 }
 
 } // namespace bmfr

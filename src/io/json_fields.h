@@ -25,4 +25,8 @@ float floatValue(const nlohmann::json& value, const std::string& where);
 double numberField(const nlohmann::json& object, const char* key, double lo, double hi,
                    double fallback, const std::string& where);
 
+/// A JSON library error in a user's words, without the library's "[json.exception...]" tag:
+/// `"view_projection" is missing`, `a value has the wrong type (...)`.
+std::string jsonProblem(const nlohmann::json::exception& e);
+
 } // namespace bmfr

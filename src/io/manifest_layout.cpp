@@ -76,7 +76,7 @@ class ManifestReader : public SequenceReader {
                                 (info_.hasReference ? "has one" : "has none") +
                                 "; give every frame a reference or none");
         } catch (const json::exception& e) {
-            throw Error(mp.string() + ": " + e.what());
+            throw Error(mp.string() + ": " + jsonProblem(e));
         }
     }
 
@@ -136,7 +136,7 @@ class ManifestReader : public SequenceReader {
                 f.jitter[1] = floatValue(j["jitter"].at(1), where + ": jitter");
             }
         } catch (const json::exception& e) {
-            throw Error(where + ": " + e.what());
+            throw Error(where + ": " + jsonProblem(e));
         }
         checkFrame(index, f);
     }
@@ -241,7 +241,7 @@ ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo&
                         std::to_string(info.height) + " frames");
         for (const json& f : doc.at("frames")) frameJson_.push_back(f.dump());
     } catch (const json::exception& e) {
-        throw Error(existing.string() + ": " + e.what());
+        throw Error(existing.string() + ": " + jsonProblem(e));
     }
 }
 

@@ -21,6 +21,8 @@ class OutputFolder {
     ~OutputFolder();
     OutputFolder(const OutputFolder&) = delete;
     OutputFolder& operator=(const OutputFolder&) = delete;
+    /// True when this run made the folder (so a failed run leaves no folder behind).
+    bool madeHere() const { return !made_.empty(); }
 
   private:
     void lock(const std::string& command);

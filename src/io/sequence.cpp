@@ -1,8 +1,10 @@
 #include "io/sequence.h"
 #include <algorithm>
 #include <bmfr/error.h>
+#include <cctype>
 #include <filesystem>
 #include <functional>
+#include <map>
 
 namespace bmfr {
 
@@ -107,14 +109,45 @@ void SequenceReader::checkFrames(int first, int last) const {
     checkEveryFrame(first, last, info_.directory, [&](int i) { read(i, f, ExrContent::Header); });
 }
 
+namespace {
+
+/// ". It holds 12 .png files, display images, not ..." for a folder of 8-bit pictures.
+std::string notLinearFramesHint(const std::string& directory) {
+    std::map<std::string, int> pictures;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(directory, ec)) {
+        std::string ext = e.path().extension().string();
+        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff" ||
+            ext == ".bmp" || ext == ".exr")
+            ++pictures[ext];
+    }
+    if (pictures.empty()) return "";
+    std::string list;
+    for (const auto& [ext, n] : pictures)
+        list += (list.empty() ? "" : ", ") + std::to_string(n) + " " + ext;
+    const bool onlyExr = pictures.size() == 1 && pictures.count(".exr");
+    return "; it holds " + list + " files" +
+           (onlyExr ? ", but no file that says which is which or gives the cameras"
+                    : ": display images, not linear radiance");
+}
+
+} // namespace
+
 std::unique_ptr<SequenceReader> SequenceReader::open(const std::string& directory) {
     if (!fs::is_directory(directory)) throw Error("input directory not found: " + directory);
     if (fs::exists(fs::path(directory) / "sequence.json")) return openManifestLayout(directory);
     if (fs::exists(fs::path(directory) / "camera_matrices.h") ||
         fs::exists(fs::path(directory) / "color0.exr"))
         return openBmfrLayout(directory);
-    throw Error(directory + ": neither sequence.json (bmfr layout) nor camera_matrices.h / "
-                            "color0.exr (original BMFR dataset layout) found");
+    throw Error(directory +
+                ": not a sequence bmfr reads: no sequence.json (bmfr's layout) and "
+                "no camera_matrices.h or color0.exr (the original BMFR dataset)" +
+                notLinearFramesHint(directory) +
+                ". bmfr needs linear EXR frames with noise-free features (albedo, normal, "
+                "position) and each frame's camera; `bmfr render` and "
+                "tools/blender/render_sequence.py write them, and docs/input-layouts.md "
+                "describes the layouts");
 }
 
 } // namespace bmfr

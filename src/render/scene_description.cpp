@@ -383,7 +383,7 @@ SceneDescription parseSceneDescription(const json& j, const std::string& baseDir
             if (d.cameraKeys.empty()) throw Error("scene description: camera.keyframes is empty");
         }
     } catch (const json::exception& e) {
-        throw Error(std::string("scene description: ") + e.what());
+        throw Error("scene description: " + jsonProblem(e));
     }
     validate(d);
     return d;
@@ -448,7 +448,7 @@ SceneDescription loadSceneDescription(const std::string& presetOrFile, const std
     try {
         j = json::parse(in);
     } catch (const json::exception& e) {
-        throw Error(presetOrFile + ": " + e.what());
+        throw Error(presetOrFile + ": " + jsonProblem(e));
     }
     SceneDescription d = parseSceneDescription(j, fs::path(presetOrFile).parent_path().string());
     d.name = fs::path(presetOrFile).stem().string();

@@ -116,7 +116,9 @@ const SettingsTable<BmfrSettings>& bmfrSettingsTable() {
 
 void validate(const BmfrSettings& s) {
     checkSettings(bmfrSettingsTable(), s, "setting");
-    if (s.blockSize % 2 != 0) throw Error("setting blockSize must be even");
+    if (s.blockSize % 2 != 0)
+        throw SettingError("setting blockSize = " + std::to_string(s.blockSize) + " must be even",
+                           "blockSize", std::to_string(s.blockSize), "must be even");
     if (s.features.empty() || s.features.front().source != FeatureSource::One)
         throw Error("setting features: the first feature must be the constant 1");
     // Room for the visibility column too, so that turning it on never fails later.

@@ -98,8 +98,11 @@ const SettingsTable<Mara2017Settings>& mara2017SettingsTable() {
 void validate(const Mara2017Settings& s) {
     checkSettings(mara2017SettingsTable(), s, "Mara 2017 setting");
     if (!(s.confidenceFar > s.confidenceNear))
-        throw Error("Mara 2017 setting confidenceFar (" + std::to_string(s.confidenceFar) +
-                    ") must exceed confidenceNear (" + std::to_string(s.confidenceNear) + ")");
+        throw SettingError(
+            "Mara 2017 setting confidenceFar (" + detail::formatNumber(s.confidenceFar) +
+                ") must exceed confidenceNear (" + detail::formatNumber(s.confidenceNear) + ")",
+            "confidenceFar", detail::formatNumber(s.confidenceFar),
+            "must exceed confidenceNear (" + detail::formatNumber(s.confidenceNear) + ")");
 }
 
 } // namespace bmfr

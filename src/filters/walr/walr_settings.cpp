@@ -103,8 +103,10 @@ int walrIterations(const WalrSettings& s, int width, int height) {
 void validate(const WalrSettings& s) {
     checkSettings(walrSettingsTable(), s, "WALR setting");
     if (!(s.edgeFar > s.edgeNear))
-        throw Error("WALR setting edgeFar (" + std::to_string(s.edgeFar) +
-                    ") must exceed edgeNear (" + std::to_string(s.edgeNear) + ")");
+        throw SettingError("WALR setting edgeFar (" + detail::formatNumber(s.edgeFar) +
+                               ") must exceed edgeNear (" + detail::formatNumber(s.edgeNear) + ")",
+                           "edgeFar", detail::formatNumber(s.edgeFar),
+                           "must exceed edgeNear (" + detail::formatNumber(s.edgeNear) + ")");
     if (s.signal == WalrSignal::DiffuseIndirect && s.colorIsDemodulated)
         throw Error("WALR setting signal=diffuse-indirect needs the colour as radiance "
                     "(colorIsDemodulated=false): the unfiltered rest is colour - albedo x signal");
