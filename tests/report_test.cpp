@@ -1,10 +1,14 @@
 // The comparison report's pieces: tick choice, inset choice, escaping, the CSV/JSON schema, the
-// SVG plots and the videos.
+// score tables' bold values and notes, the SVG plots, the viewer's opening error scales and
+// frame rate, and the videos.
 #include "cli_runner.h"
 #include "eval/crops.h"
 #include "eval/frame_scores.h"
 #include "eval/plot.h"
+#include "eval/score_tables.h"
+#include "eval/viewer_frames.h"
 #include "test_support.h"
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -106,6 +110,226 @@ TEST(ReportPlots, SvgHasEveryNameInFullAndOneLinePerSeries) {
     EXPECT_GT(dark, 500u) << "text and axes are drawn";
 }
 
+const MetricInfo& metricNamed(const std::string& key) {
+    for (const MetricInfo& m : metricList())
+        if (m.key == key) return m;
+    throw std::runtime_error("no metric " + key);
+}
+
+TEST(ReportPlots, SsimIsPlottedAsOneMinusSsimOnALogAxis) {
+    // SSIM 0.99 and 0.999 are 1 - SSIM = 0.01 and 0.001: a decade apart on the log axis, whose
+    // ticks are 0.001, 0.002, 0.005 and 0.01.
+    const MetricPlot p =
+        metricPlot(metricNamed("ssim"), {{"a", {0.99, 0.999}}, {"b", {0.995, NAN}}}, "auto", 5);
+    ASSERT_EQ(p.series.size(), 2u);
+    EXPECT_NEAR(p.series[0].values[0], 0.01, 1e-12);
+    EXPECT_NEAR(p.series[0].values[1], 0.001, 1e-12);
+    EXPECT_NEAR(p.series[1].values[0], 0.005, 1e-12);
+    EXPECT_TRUE(std::isnan(p.series[1].values[1]));
+    EXPECT_TRUE(p.spec.logY);
+    EXPECT_EQ(p.spec.firstFrame, 5);
+    EXPECT_NE(p.spec.title.find("1 - SSIM (log)"), std::string::npos) << p.spec.title;
+    const std::string svg = toSvg(linePlot(p.spec, p.series));
+    for (const char* tick : {">0.001<", ">0.002<", ">0.005<", ">0.01<"})
+        EXPECT_NE(svg.find(tick), std::string::npos) << tick;
+    EXPECT_NE(svg.find("1 - SSIM (log)"), std::string::npos);
+    // A log axis even where the values span under 10x; --log-plots off keeps 1 - SSIM, linear.
+    EXPECT_TRUE(metricPlot(metricNamed("ssim"), {{"a", {0.96, 0.97}}}, "auto", 0).spec.logY);
+    const MetricPlot off = metricPlot(metricNamed("ssim"), {{"a", {0.96, 0.97}}}, "off", 0);
+    EXPECT_FALSE(off.spec.logY);
+    EXPECT_NEAR(off.series[0].values[0], 0.04, 1e-12);
+    EXPECT_EQ(off.spec.title, "1 - SSIM, lower is better");
+    // The other metrics as before: log where they span more than 10x or when asked.
+    const MetricPlot rmse = metricPlot(metricNamed("rmse"), {{"a", {0.02, 0.03}}}, "auto", 0);
+    EXPECT_FALSE(rmse.spec.logY);
+    EXPECT_EQ(rmse.series[0].values[0], 0.02);
+    EXPECT_EQ(rmse.spec.title, "RMSE (lower is better)");
+    EXPECT_TRUE(metricPlot(metricNamed("rmse"), {{"a", {0.02, 0.03}}}, "on", 0).spec.logY);
+    EXPECT_EQ(metricPlot(metricNamed("psnr_db"), {{"a", {30, 31}}}, "on", 0).spec.title,
+              "PSNR dB (higher is better)");
+    // The temporal error's target is the reference's value: its title says so, not "lower".
+    EXPECT_EQ(metricPlot(metricNamed("temporal_error"), {{"a", {0.02, 0.03}}}, "off", 0).spec.title,
+              "temporal error (the reference's is the target)");
+}
+
+/// A table of three methods whose means are set by hand (FLIP and relMSE missing).
+ComparisonResult threeMethods(std::vector<std::string> names) {
+    ComparisonResult r;
+    r.names = std::move(names);
+    const double v[3][5] = {// rmse, psnr, ssim, temporal, change
+                            {0.05, 26, 0.90, 0.010, 0.004},
+                            {0.10, 20, 0.95, 0.030, 0.006},
+                            {0.08, 22, 0.92, 0.018, 0.005}};
+    for (const auto& row : v) {
+        FrameScores f;
+        f.rmse = row[0], f.psnr = row[1], f.ssim = row[2], f.temporal = row[3];
+        f.temporalChange = row[4];
+        r.means.push_back(f);
+        r.perFrame.push_back({f});
+    }
+    r.referenceTemporalMean = 0.020;
+    return r;
+}
+
+TEST(ReportTables, BoldOnlyWhereLowerOrHigherIsBetterAndNoneForTemporalError) {
+    // Temporal errors 0.010, 0.030 and 0.018 against the reference's 0.020: the lowest, 0.010,
+    // is not the best (its target is the reference's value), and none is bold. Change error: the
+    // lowest, 0.004, is best; RMSE the lowest, PSNR and SSIM the highest.
+    const std::string md = markdownTable(threeMethods({"a", "b", "c"}));
+    EXPECT_NE(md.find("| method | RMSE ↓ | PSNR dB ↑ | SSIM ↑ | FLIP ↓ | relMSE ↓ | temporal "
+                      "error → ref | change error ↓ |\n"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| a | **0.0500** | **26.0000** | 0.9000 | - | - | 0.0100 | **0.0040** |\n"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| b | 0.1000 | 20.0000 | **0.9500** | - | - | 0.0300 | 0.0060 |\n"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| c | 0.0800 | 22.0000 | 0.9200 | - | - | 0.0180 | 0.0050 |\n"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| reference |  |  |  |  |  | 0.0200 |  |\n"), std::string::npos) << md;
+
+    const std::string html = tableHtml(threeMethods({"a", "b", "c"}));
+    EXPECT_NE(html.find("<th>temporal error &rarr; ref</th>"), std::string::npos) << html;
+    EXPECT_NE(html.find("<th>change error &darr;</th>"), std::string::npos) << html;
+    for (const char* v : {"0.0100", "0.0300", "0.0180"})
+        EXPECT_EQ(html.find(std::string("<b>") + v), std::string::npos) << v;
+    EXPECT_NE(html.find("<td><b>0.0040</b></td>"), std::string::npos) << html;
+    EXPECT_NE(html.find("<td><b>0.9500</b></td>"), std::string::npos) << html;
+}
+
+TEST(ReportTables, NotesSayWhatTheDemosRowsAreAndHowTheTemporalColumnsRead) {
+    // The demo's names: each gets its gloss, and the TAA trade is explained.
+    const ComparisonResult demo = threeMethods({"noisy", "bmfr", "bmfr without TAA"});
+    const std::string md = markdownTable(demo);
+    const size_t notes = md.find("\n\n- ");
+    ASSERT_NE(notes, std::string::npos) << md;
+    EXPECT_EQ(md.find("- Rows: noisy = the input; bmfr = BMFR as in the paper, TAA on; bmfr "
+                      "without TAA = bmfr, TAA off.\n"),
+              notes + 2)
+        << md;
+    EXPECT_NE(md.find("TAA blends each frame with its reprojected history", notes),
+              std::string::npos);
+    EXPECT_NE(md.find("read it against the reference row's value: lower is not better (lag, "
+                      "smearing); none is bold.",
+                      notes),
+              std::string::npos);
+    EXPECT_NE(md.find("change error: mean |ΔY - ΔY of the reference|, lower is better", notes),
+              std::string::npos);
+    // Short there: at most four lines under the table.
+    EXPECT_LE(std::count(md.begin() + long(notes) + 2, md.end(), '\n'), 4) << md;
+
+    const std::string html = tableHtml(demo);
+    const size_t end = html.find("</table>");
+    for (const char* text :
+         {"<i>bmfr</i>, BMFR as the paper describes it (the faithful preset), ending with its TAA",
+          "<i>bmfr without TAA</i>, bmfr with its final TAA turned off",
+          "temporal anti-aliasing over the already-denoised output",
+          "per-frame scores (RMSE, PSNR, SSIM, FLIP, relMSE) are worse with TAA",
+          "temporal stability", "lower than the reference's is not better, it means lag or",
+          "Temporal error (&rarr; ref)", "Change error (&darr;)"}) {
+        const size_t at = html.find(text);
+        EXPECT_NE(at, std::string::npos) << text;
+        EXPECT_GT(at, end) << text;
+    }
+
+    // Eval's own names: no gloss and no TAA line, only the columns' reading.
+    const ComparisonResult eval = threeMethods({"mine", "theirs", "<b>x</b>"});
+    const std::string plain = markdownTable(eval), evalHtml = tableHtml(eval);
+    EXPECT_EQ(plain.find("Rows:"), std::string::npos) << plain;
+    EXPECT_EQ(plain.find("TAA"), std::string::npos) << plain;
+    EXPECT_NE(plain.find("- temporal error: mean |ΔY| from the previous frame"), std::string::npos);
+    EXPECT_EQ(evalHtml.find("Rows:"), std::string::npos);
+    EXPECT_EQ(evalHtml.find("<b>x</b>"), std::string::npos) << "names stay escaped";
+    EXPECT_NE(evalHtml.find("Temporal error (&rarr; ref)"), std::string::npos);
+    // A user's name with TAA in it brings the TAA line, but no gloss.
+    const std::string ablation = markdownTable(threeMethods({"ours", "ours no taa", "x"}));
+    EXPECT_EQ(ablation.find("Rows:"), std::string::npos);
+    EXPECT_NE(ablation.find("TAA blends each frame"), std::string::npos);
+}
+
+/// Rasters for the viewer's error scales: one colour everywhere but for `changed`, pixel i of
+/// which gets colour changed[i].
+Raster rasterWith(Rgb8 base, const std::vector<std::pair<int, Rgb8>>& changed) {
+    Raster r(10, 10, base);
+    for (auto [i, c] : changed) r.pixels[size_t(i)] = c;
+    return r;
+}
+
+TEST(ReportViewer, ErrorViewsPerPixelAsTheViewerComputesThem) {
+    const Raster white = rasterWith({255, 255, 255}, {});
+    const Raster a =
+        rasterWith({255, 255, 255}, {{0, {0, 255, 255}}, {1, {0, 0, 255}}, {2, {0, 0, 0}}});
+    const std::vector<float> abs = viewerError(a, white, ViewerError::Absolute);
+    ASSERT_EQ(abs.size(), 100u);
+    EXPECT_NEAR(abs[0], 1.0 / 3, 1e-6);
+    EXPECT_NEAR(abs[1], 2.0 / 3, 1e-6);
+    EXPECT_NEAR(abs[2], 1.0, 1e-6);
+    EXPECT_EQ(abs[3], 0.0f);
+    // Relative: |0 - 1| / (1 + 0.01) per black channel, over three channels.
+    const std::vector<float> rel = viewerError(a, white, ViewerError::Relative);
+    EXPECT_NEAR(rel[0], 1 / 1.01 / 3, 1e-6);
+    EXPECT_NEAR(rel[2], 1 / 1.01, 1e-6);
+    // Half grey (128) against white: (1 - (128/255)^2.2) / 1.01 on every channel.
+    const Raster grey = rasterWith({128, 128, 128}, {});
+    EXPECT_NEAR(viewerError(grey, white, ViewerError::Relative)[0],
+                (1 - std::pow(128.0 / 255, 2.2)) / 1.01, 1e-5);
+    // FLIP: the grey map's level / 255; B is not used.
+    EXPECT_NEAR(viewerError(grey, Raster(0, 0), ViewerError::Flip)[0], 128.0 / 255, 1e-7);
+}
+
+TEST(ReportViewer, OpeningErrorScaleIsTheBestMethodsNinetyNinthPercentile) {
+    // 100 values 0.00 .. 0.99: the 99th percentile (nearest rank: the 99th smallest) is 0.98.
+    std::vector<float> ramp;
+    for (int i = 0; i < 100; ++i) ramp.push_back(float(i) / 100);
+    std::vector<float> doubled;
+    for (float v : ramp) doubled.push_back(2 * v);
+    const std::vector<float> zero(100, 0.0f);
+    // The best (lowest mean) of the eligible: the ramp, not the doubled ramp, and not the zero
+    // map, which is not eligible (the noisy input's place).
+    EXPECT_NEAR(openingErrorScale({zero, doubled, ramp}, {false, true, true}), 0.98, 1e-6);
+    EXPECT_NEAR(openingErrorScale({doubled}, {true}), 1.96, 1e-6);
+    // None eligible: all compete. The scale stays within the slider, [0.001, 10].
+    EXPECT_NEAR(openingErrorScale({zero, ramp}, {false, false}), 0.001, 1e-12);
+    EXPECT_NEAR(openingErrorScale({std::vector<float>(100, 50.0f)}, {true}), 10.0, 1e-12);
+    EXPECT_NEAR(openingErrorScale({ramp}, {true}, 0.5), 0.49, 1e-6);
+}
+
+TEST(ReportViewer, JsonCarriesTheOpeningErrorScalesAndTheFrameRate) {
+    // A white reference; "good" darkens 5 pixels in one channel, 4 in two and 1 in all three
+    // (abs errors 1/3, 2/3, 1: the 99th smallest of 100 is 2/3); "worse" blackens 10 pixels;
+    // "noisy" is exact and left out. FLIP maps: good's pixel i is i/100, stored as the level
+    // round(255 i / 100): the 99th smallest is 250/255; worse's is 1 everywhere.
+    const int w = 10, h = 10;
+    const fs::path dir = testing::freshDir("report", "viewer");
+    ViewerFrames v({"reference", "noisy", "worse", "good"}, w, h, 0, 1, 0, true, 640, dir.string(),
+                   30);
+    auto image = [&](auto darkChannels) {
+        ImageF img(w, h, 3);
+        for (int p = 0; p < w * h; ++p)
+            for (int c = 0; c < 3; ++c) img.pixels[size_t(3 * p + c)] = c < darkChannels(p) ? 0 : 1;
+        return img;
+    };
+    const ImageF white = image([](int) { return 0; });
+    const ImageF good = image([](int p) { return p >= 99 ? 3 : p >= 95 ? 2 : p >= 90 ? 1 : 0; });
+    const ImageF worse = image([](int p) { return p >= 90 ? 3 : 0; });
+    ImageF zeroMap(w, h, 1), oneMap(w, h, 1), rampMap(w, h, 1);
+    for (int p = 0; p < w * h; ++p)
+        oneMap.pixels[size_t(p)] = 1, rampMap.pixels[size_t(p)] = p / 100.0f;
+    v.add(0, 0, white, nullptr);
+    v.add(1, 0, white, &zeroMap);
+    v.add(2, 0, worse, &oneMap);
+    v.add(3, 0, good, &rampMap);
+    const auto j = nlohmann::json::parse(v.json());
+    ASSERT_TRUE(j.contains("errorScale")) << j.dump().substr(0, 200);
+    EXPECT_NEAR(j["errorScale"]["abs"].get<double>(), 2.0 / 3, 1e-6);
+    EXPECT_NEAR(j["errorScale"]["rel"].get<double>(), 2.0 / 3 / 1.01, 1e-6);
+    EXPECT_NEAR(j["errorScale"]["flip"].get<double>(), 250.0 / 255, 1e-6);
+    EXPECT_EQ(j["fps"], 30);
+}
+
 ImageF spots(int w, int h, std::vector<std::array<int, 3>> centres) {
     ImageF m(w, h, 1);
     for (auto [cx, cy, strength] : centres)
@@ -200,6 +424,18 @@ TEST(ReportOutputs, NamesAreEscapedAndTablesShareOneNumericSchema) {
     }
     // The first frame's temporal error is missing: empty in CSV, null in JSON.
     EXPECT_TRUE(eval_json["methods"]["noisy"]["per_frame"]["temporal_error"][0].is_null());
+    // The report holds the notes under its table, SSIM as 1 - SSIM on a log axis, a play button
+    // and the viewer's frame rate (--video-fps, 24 by default) and opening error scales.
+    const size_t notes = html.find("<p class=\"notes\">");
+    EXPECT_NE(notes, std::string::npos);
+    EXPECT_GT(notes, html.find("</table>"));
+    EXPECT_NE(slurp(out / "plot_ssim.svg").find("1 - SSIM (log)"), std::string::npos);
+    EXPECT_NE(html.find("<button id=\"v-play\">"), std::string::npos);
+    EXPECT_EQ(viewer["fps"], 24);
+    for (const char* view : {"abs", "rel", "flip"}) {
+        EXPECT_GE(viewer["errorScale"][view].get<double>(), 0.001) << view;
+        EXPECT_LE(viewer["errorScale"][view].get<double>(), 10.0) << view;
+    }
     for (const fs::path& p : {in, den, out}) fs::remove_all(p);
 }
 

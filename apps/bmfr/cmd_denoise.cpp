@@ -128,7 +128,9 @@ int runDenoise(const DenoiseJob& job) {
     std::unique_ptr<Filter> filter = job.options.makeFilter(job.filter, values);
     const std::string features = checkedFeatures(job.filter, values, job.input, info);
     const std::string backend = settingValue(values, "backend", "cpu");
-    auto [first, last] = usageChecked([&] { return parseFrameRange(job.frames, info.frameCount); });
+    // A range that does not parse is the command line's error; one the input lacks is the input's.
+    usageChecked([&] { checkFrameRangeSyntax(job.frames); });
+    auto [first, last] = parseFrameRange(job.frames, info.frameCount);
     reader->checkFrames(first, last); // a bad frame fails the run before its first output
     const OutputFolder folder(job.output, invocation());
     const fs::path out(job.output), debugDir = out / "debug";

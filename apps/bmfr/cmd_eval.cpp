@@ -90,8 +90,12 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
                                     ? MethodSource{m, ""}
                                     : MethodSource{m.substr(0, eq), m.substr(eq + 1)});
         }
-        for (const std::string& c : job->crops) o.crops.push_back(parseCrop(c));
-        o.referenceLayers = parseLayerMap(job->channels);
+        for (const std::string& c : job->crops)
+            o.crops.push_back(usageChecked([&] { return parseCrop(c); }));
+        o.referenceLayers = usageChecked([&] { return parseLayerMap(job->channels); });
+        // A range that does not parse is the command line's error; one the input lacks is the
+        // input's.
+        usageChecked([&] { checkFrameRangeSyntax(o.frames); });
         if (o.zoom < 1 || o.zoom > 16) throw UsageError("--zoom must be in [1, 16]");
         if (o.autoCrops < 0 || o.autoCrops > 16) throw UsageError("--crops must be in [0, 16]");
         if (o.cropSize < 4 || o.cropSize > 1024)

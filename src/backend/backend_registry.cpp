@@ -45,9 +45,12 @@ void requireBackend(Backend b) {
 }
 
 template <class S> void requireRuns(Backend b, const char* filter) {
-    if (b == Backend::Cuda && !kOnCuda<S>)
-        throw Error(std::string("the cuda backend runs bmfr and svgf; ") + filter +
-                    " runs on --backend cpu or reference");
+    if (b == Backend::Cuda && !kOnCuda<S>) {
+        const std::string problem = std::string("is not a backend of ") + filter +
+                                    ": the cuda backend runs bmfr and svgf; " + filter +
+                                    " runs on cpu or reference";
+        throw SettingError("setting backend cuda " + problem, "backend", "cuda", problem);
+    }
 }
 
 template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const char* filter) {

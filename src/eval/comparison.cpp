@@ -105,16 +105,8 @@ std::vector<ReportPlot> writePlots(const ComparisonResult& r, const ComparisonOp
         }
         if (std::string(m.key) == "temporal_error")
             series.push_back({"reference", r.referenceTemporal});
-        PlotSpec spec;
-        spec.firstFrame = r.first;
-        spec.zeroBased = m.nonNegative;
-        spec.logY = o.logPlots == "on"
-                        ? m.nonNegative
-                        : o.logPlots == "auto" && m.nonNegative && wantsLogAxis(series);
-        spec.title =
-            fmt::format("{} ({} is better{})", m.label, m.lowerIsBetter ? "lower" : "higher",
-                        spec.logY ? ", log scale" : "");
-        const Figure fig = linePlot(spec, series);
+        const MetricPlot plot = metricPlot(m, std::move(series), o.logPlots, r.first);
+        const Figure fig = linePlot(plot.spec, plot.series);
         const std::string stem = fmt::format("plot_{}", m.key);
         writePlot((fs::path(o.output) / stem).string(), fig);
         plots.push_back({toSvg(fig), stem});
@@ -209,7 +201,7 @@ ComparisonResult runComparison(const ComparisonOptions& o,
     std::vector<std::string> columns{"reference"};
     columns.insert(columns.end(), r.names.begin(), r.names.end());
     ViewerFrames viewer(columns, fullW, fullH, r.first, r.last, show, o.flip, o.viewerWidth,
-                        o.output);
+                        o.output, o.videoFps);
 
     // Videos, when asked for and ffmpeg is there.
     const std::string ffmpeg = o.video ? findFfmpeg() : std::string();

@@ -35,7 +35,7 @@ struct ComparisonOptions {
     bool flip = true;
     std::string logPlots = "auto"; ///< "auto" (log y where values span > 10x), "on" or "off"
     bool video = false;            ///< methods.mp4 and flicker.mp4 through ffmpeg
-    int videoFps = 24;             ///< frames per second of the videos
+    int videoFps = 24;             ///< frames per second of the videos and the viewer's playback
     int viewerWidth = 640;         ///< pixels; wider frames are embedded downscaled
     std::string commandLine;       ///< for the report's run section
     std::string programVersion;    ///< for the report's run section

@@ -90,6 +90,30 @@ bool wantsLogAxis(const std::vector<Series>& series, double ratio) {
     return hi > 0 && hi / lo > ratio;
 }
 
+MetricPlot metricPlot(const MetricInfo& m, std::vector<Series> series, const std::string& logPlots,
+                      int firstFrame) {
+    MetricPlot p{{}, std::move(series)};
+    p.spec.firstFrame = firstFrame;
+    p.spec.zeroBased = m.nonNegative;
+    if (std::string(m.key) == "ssim") {
+        for (Series& s : p.series)
+            for (double& v : s.values) v = 1 - v;
+        p.spec.zeroBased = true;
+        p.spec.logY = logPlots != "off";
+        p.spec.title =
+            p.spec.logY ? "1 - SSIM (log), lower is better" : "1 - SSIM, lower is better";
+        return p;
+    }
+    p.spec.logY =
+        m.nonNegative && (logPlots == "on" || (logPlots == "auto" && wantsLogAxis(p.series)));
+    const std::string better = std::string(m.key) == "temporal_error"
+                                   ? "the reference's is the target"
+                               : m.lowerIsBetter ? "lower is better"
+                                                 : "higher is better";
+    p.spec.title = fmt::format("{} ({}{})", m.label, better, p.spec.logY ? ", log scale" : "");
+    return p;
+}
+
 Figure linePlot(const PlotSpec& spec, const std::vector<Series>& series) {
     Figure f;
     f.width = spec.width, f.height = spec.height;
@@ -102,7 +126,7 @@ Figure linePlot(const PlotSpec& spec, const std::vector<Series>& series) {
             if (std::isfinite(v) && (!spec.logY || v > 0))
                 lo = std::min(lo, v), hi = std::max(hi, v);
     }
-    if (!std::isfinite(lo)) lo = 0, hi = 1;
+    if (!std::isfinite(lo)) lo = spec.logY ? 0.1 : 0, hi = 1; // nothing to draw: an empty axis
     const Ticks yt = spec.logY ? logTicks(lo, hi) : niceTicks(lo, hi, 5, spec.zeroBased);
     // Legend width from the longest name, so that no name is clipped.
     double legendW = 0;

@@ -3,6 +3,7 @@
 // matplotlib: `bmfr eval` stays one C++ program with no Python at run time, and the SVG is
 // byte-for-byte deterministic.
 #pragma once
+#include "eval/frame_scores.h"
 #include "eval/raster.h"
 #include <string>
 #include <vector>
@@ -66,6 +67,20 @@ struct Figure {
     std::vector<Path> paths;
     std::vector<Text> texts;
 };
+
+/// A metric's plot: its axis and title, and the series as drawn.
+struct MetricPlot {
+    PlotSpec spec;
+    std::vector<Series> series;
+};
+/// How the report plots metric `m` per frame. SSIM is drawn as 1 - SSIM on a log axis (unless
+/// `logPlots` is "off"): good denoisers' SSIM all lie within a few hundredths of 1, one band on a
+/// linear axis, while their distances from 1 differ by factors, which a log axis separates. The
+/// other non-negative metrics get a log axis per `logPlots`: "on", or "auto" where the values
+/// span more than 10x (wantsLogAxis). The title says which way is better, and for the temporal
+/// error that the reference's value is the target.
+MetricPlot metricPlot(const MetricInfo& m, std::vector<Series> series, const std::string& logPlots,
+                      int firstFrame);
 
 /// The plot's layout: axes, ticks, grid, one line per series (colour and dash distinct), a full
 /// legend to the right.

@@ -18,6 +18,7 @@ const char* kStyle =
     ".plots{display:grid;grid-template-columns:repeat(auto-fill,minmax(520px,1fr));gap:12px}"
     ".plots figure{margin:0}.plots svg{width:100%;height:auto}"
     "figcaption{font-size:0.85em;color:#555}"
+    "p.notes{font-size:0.9em;max-width:60em;margin:0.3em 0}"
     "img{max-width:100%;image-rendering:pixelated}"
     "#viewer .controls{display:flex;flex-wrap:wrap;gap:6px 16px;align-items:center;margin:6px 0}"
     "#v-box{width:100%;overflow:hidden;background:#222}"
@@ -37,11 +38,8 @@ std::string reportHtml(const ReportContent& c) {
     h += "<p>" + c.heading + "</p>";
     h += "<p>RMSE, PSNR, SSIM, FLIP and the temporal errors are computed on tone-mapped frames, "
          "clamp(x<sup>1/2.2</sup>, 0, 1), as the BMFR paper scores; relMSE on linear radiance. "
-         "Temporal error: mean |&Delta;Y| between consecutive frames (Schied et al. 2017); under "
-         "motion it also counts the image's true change, which the reference row shows. Change "
-         "error: mean |&Delta;Y &minus; &Delta;Y<sub>reference</sub>|, the change the reference "
-         "does not make (flicker, lag); the reference's own noise adds to it. "
-         "Best value per column in bold.</p>";
+         "Best value per column in bold; none for the temporal error, whose target is the "
+         "reference's own value (notes under the table).</p>";
     h += c.tableHtml;
     h += "<h2>Per frame</h2><div class=\"plots\">";
     for (const ReportPlot& p : c.plots)
@@ -52,14 +50,14 @@ std::string reportHtml(const ReportContent& c) {
 
     h += "<h2>Viewer</h2><section id=\"viewer\"><div class=\"controls\">"
          "<label>frame <input type=\"range\" id=\"v-frame\" min=\"0\" value=\"0\"></label>"
-         "<span id=\"v-frame-label\"></span>"
+         "<span id=\"v-frame-label\"></span><button id=\"v-play\">play</button>"
          "<label>A <select id=\"v-a\"></select></label>"
          "<label>B <select id=\"v-b\"></select></label>"
          "<label>view <select id=\"v-mode\"></select></label>"
          "<label>exposure <input type=\"range\" id=\"v-ev\" min=\"-6\" max=\"6\" step=\"0.5\" "
          "value=\"0\"></label><span id=\"v-ev-label\"></span>"
-         "<label>error scale <input type=\"range\" id=\"v-vmax\" min=\"-3\" max=\"0\" "
-         "step=\"0.1\" value=\"-0.3\"></label>"
+         "<label>error scale <input type=\"range\" id=\"v-vmax\" min=\"-3\" max=\"1\" "
+         "step=\"0.1\"></label>"
          "<button id=\"v-zoom-out\">-</button><button id=\"v-zoom-in\">+</button>"
          "<button id=\"v-zoom-1\">1:1</button><button id=\"v-zoom-fit\">fit</button>"
          "<span id=\"v-zoom-label\"></span></div>"
@@ -69,9 +67,12 @@ std::string reportHtml(const ReportContent& c) {
          "<div id=\"v-bar-box\"><span id=\"v-bar-what\"></span>: "
          "<span id=\"v-bar-lo\"></span> <canvas id=\"v-bar\" width=\"256\" height=\"12\"></canvas>"
          " <span id=\"v-bar-mid\"></span> ... <span id=\"v-bar-hi\"></span></div>"
-         "<p><small>Keys: left/right step frames; space flips A and B; a, b show one; s compares "
-         "with a slider (click to move it); e cycles the error views; +/- zoom, or the wheel; "
-         "drag to pan. Pixels stay square at any zoom. Exposure acts on linear values: the "
+         "<p><small>Keys: space plays and pauses (at the sequence's frame rate, looping; the "
+         "frame slider stops it); left/right step frames; f flips between A and B; a, b show "
+         "one; s compares with a slider (click to move it); e cycles the error views; +/- zoom, "
+         "or the wheel; drag to pan. Each error view opens where the 99th percentile of the best "
+         "non-noisy method's error is full brightness; the error scale slider sets it. Pixels "
+         "stay square at any zoom. Exposure acts on linear values: the "
          "frames are stored as clamp(x<sup>1/2.2</sup>) in 8 bits, and the viewer shows "
          "clamp((2<sup>EV</sup> x)<sup>1/2.2</sup>), so a negative EV cannot bring back what the "
          "display clipped; the EXR outputs hold the HDR values.</small></p></section>";

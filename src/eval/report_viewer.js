@@ -1,6 +1,7 @@
 // The report's image viewer: plain JavaScript, no network. It reads the JSON in
-// #viewer-data: per method (the reference first) one tone-mapped PNG per frame, and per method a
-// FLIP map against the reference as an 8-bit grey PNG.
+// #viewer-data: per method (the reference first) one tone-mapped PNG per frame, per method a
+// FLIP map against the reference as an 8-bit grey PNG, the error views' opening scales and the
+// frame rate to play at (viewer_frames.cpp).
 (function () {
   'use strict';
   const data = JSON.parse(document.getElementById('viewer-data').textContent);
@@ -14,8 +15,14 @@
   const cache = new Map();
   // A starts on the first method that is not the noisy input, B on the reference.
   const firstDenoised = data.methods.findIndex((m, i) => i > 0 && m !== 'noisy');
+  // Each error view opens at its own scale, from the data: at the frame the viewer opens on, the
+  // 99th percentile of the best non-noisy method's error against the reference maps to full
+  // brightness. A fixed scale (0.5) showed a good denoiser's error, a few hundredths, as black.
+  // The scale slider still sets it, for the error view shown last.
+  const scales = data.errorScale || {};
   const state = {frame: Math.max(0, data.frames.indexOf(data.shown)), a: firstDenoised > 0 ? firstDenoised : Math.min(1, data.methods.length - 1), b: 0, mode: 'a', ev: 0,
-                 vmax: 0.5, zoom: 1, ox: 0, oy: 0, split: 0.5, fitted: true};
+                 vmax: {abs: scales.abs || 0.5, rel: scales.rel || 0.5, flip: scales.flip || 0.5},
+                 errorMode: 'abs', playing: false, zoom: 1, ox: 0, oy: 0, split: 0.5, fitted: true};
   const modes = {a: 'A', b: 'B', slider: 'slider', abs: 'absolute error',
                  rel: 'relative error', flip: 'FLIP error'};
 
@@ -68,8 +75,9 @@
       g.fillRect(x, 0, 1, bar.height);
     }
     $('v-bar-lo').textContent = '0';
-    $('v-bar-mid').textContent = (state.vmax / 2).toPrecision(2);
-    $('v-bar-hi').textContent = state.vmax.toPrecision(2) + ' and above';
+    const vmax = state.vmax[state.mode];
+    $('v-bar-mid').textContent = (vmax / 2).toPrecision(2);
+    $('v-bar-hi').textContent = vmax.toPrecision(2) + ' and above';
     $('v-bar-what').textContent = {abs: '|A - B| of displayed values, mean of RGB',
       rel: '|A - B| / (B + 0.01) of the decoded linear values (display range: clipped at 1), mean of RGB',
       flip: 'FLIP of A against the reference'}[state.mode];
@@ -80,7 +88,7 @@
     const [a, b, fl] = await Promise.all([decoded('img', state.a, f), decoded('img', state.b, f),
       mode === 'flip' ? decoded('flip', state.a, f) : Promise.resolve(null)]);
     const out = bctx.createImageData(W, H), o = out.data;
-    const lut = exposureLut(state.ev), inv = 1 / state.vmax;
+    const lut = exposureLut(state.ev), inv = 1 / (state.vmax[mode] || 1);
     const splitX = Math.round(state.split * W);
     for (let i = 0, p = 0; p < W * H; ++p, i += 4) {
       let r, g, bl;
@@ -139,7 +147,9 @@
   let pending = Promise.resolve();
   function update() {
     const frameIndex = data.frames[state.frame];
+    if (state.vmax[state.mode]) state.errorMode = state.mode;
     $('v-frame').value = state.frame;
+    $('v-vmax').value = Math.log10(state.vmax[state.errorMode]);
     $('v-frame-label').textContent = 'frame ' + frameIndex +
         (data.every > 1 ? ' (every ' + data.every + ' frames embedded; all in viewer/)' : '') +
         (data.factor > 1 ? ' (embedded at 1/' + data.factor + ' size)' : '');
@@ -165,6 +175,26 @@
     return pending;
   }
 
+  // Playback steps through the embedded frames, looping, at the sequence's frame rate: each
+  // embedded frame stands for data.every frames. The next step waits for the last one's drawing,
+  // so a slow machine plays slower rather than queueing frames; `run` ends a stopped loop.
+  let run = 0;
+  function setPlaying(on) {
+    state.playing = on;
+    run += 1;
+    $('v-play').textContent = on ? 'pause' : 'play';
+    if (on) step(run, performance.now());
+  }
+  function step(id, since) {
+    const period = 1000 * data.every / (data.fps || 24);
+    setTimeout(() => {
+      if (id !== run) return;
+      const started = performance.now();
+      state.frame = (state.frame + 1) % data.frames.length;
+      update().then(() => { if (id === run) step(id, started); }, () => setPlaying(false));
+    }, Math.max(0, period - (performance.now() - since)));
+  }
+
   function setup() {
     for (const id of ['v-a', 'v-b'])
       data.methods.forEach((name, i) => {
@@ -180,13 +210,24 @@
       $('v-mode').appendChild(o);
     }
     $('v-frame').max = data.frames.length - 1;
-    $('v-frame').addEventListener('input', (e) => { state.frame = +e.target.value; update(); });
+    // Taking the frame slider stops playback at the frame it is dragged to.
+    $('v-frame').addEventListener('pointerdown', () => setPlaying(false));
+    $('v-frame').addEventListener('input', (e) => {
+      setPlaying(false);
+      state.frame = +e.target.value;
+      update();
+    });
+    $('v-play').addEventListener('click', () => setPlaying(!state.playing));
+    // A button clicked with the mouse keeps no focus, so that space stays the play key; one
+    // reached with Tab keeps its own space.
+    for (const b of document.querySelectorAll('#viewer button'))
+      b.addEventListener('mousedown', (e) => e.preventDefault());
     $('v-a').addEventListener('change', (e) => { state.a = +e.target.value; update(); });
     $('v-b').addEventListener('change', (e) => { state.b = +e.target.value; update(); });
     $('v-mode').addEventListener('change', (e) => { state.mode = e.target.value; update(); });
     $('v-ev').addEventListener('input', (e) => { state.ev = +e.target.value; update(); });
     $('v-vmax').addEventListener('input', (e) => {
-      state.vmax = Math.pow(10, +e.target.value);
+      state.vmax[state.errorMode] = Math.pow(10, +e.target.value);
       update();
     });
     $('v-zoom-in').addEventListener('click', () => { state.zoom = Math.min(32, state.zoom * 2); update(); });
@@ -226,14 +267,21 @@
       update();
     }, {passive: false});
     document.addEventListener('keydown', (e) => {
-      // Selects and sliders keep their own arrow and space keys; letters work everywhere.
-      const own = e.target.tagName === 'SELECT' || e.target.tagName === 'INPUT';
-      if (own && (e.key.startsWith('Arrow') || e.key === ' ')) return;
+      // Selects and sliders keep their own arrow keys, selects and buttons their space; letters
+      // work everywhere.
+      const tag = e.target.tagName;
+      if ((tag === 'SELECT' || tag === 'INPUT') && e.key.startsWith('Arrow')) return;
+      if ((tag === 'SELECT' || tag === 'BUTTON') && e.key === ' ') return;
+      if (e.key === ' ') {
+        e.preventDefault();
+        setPlaying(!state.playing);
+        return;
+      }
       const n = data.frames.length;
       const keys = {
-        ArrowRight: () => { state.frame = (state.frame + 1) % n; },
-        ArrowLeft: () => { state.frame = (state.frame + n - 1) % n; },
-        ' ': () => { state.mode = state.mode === 'a' ? 'b' : 'a'; },
+        ArrowRight: () => { setPlaying(false); state.frame = (state.frame + 1) % n; },
+        ArrowLeft: () => { setPlaying(false); state.frame = (state.frame + n - 1) % n; },
+        f: () => { state.mode = state.mode === 'a' ? 'b' : 'a'; },
         a: () => { state.mode = 'a'; }, b: () => { state.mode = 'b'; },
         s: () => { state.mode = 'slider'; },
         e: () => { state.mode = state.mode === 'abs' ? 'rel' : state.mode === 'rel' ? 'flip' : 'abs'; },
@@ -248,7 +296,7 @@
     fit();
   }
 
-  window.bmfrViewer = {ready: false, draws: 0, state: state, update: update};
+  window.bmfrViewer = {ready: false, draws: 0, state: state, update: update, setPlaying: setPlaying};
   setup();
   update();
 })();

@@ -1,5 +1,6 @@
 #include "eval/score_tables.h"
 #include "io/atomic_file.h"
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fmt/core.h>
@@ -16,10 +17,28 @@ std::string fmtValue(double v) {
     return std::isfinite(v) ? fmt::format("{:.4f}", v) : "-";
 }
 
-/// Whether method i has the best mean of metric m (ties count as best).
+/// The temporal error counts the scene's real motion as well as flicker: the reference's own
+/// value is its target, so neither lower nor higher is better.
+bool targetIsReference(const MetricInfo& m) {
+    return std::string(m.key) == "temporal_error";
+}
+
+/// The header's arrow: lower or higher is better, or "towards the reference's value".
+std::string direction(const MetricInfo& m, bool html) {
+    if (targetIsReference(m)) return html ? "&rarr; ref" : "→ ref";
+    if (html) return m.lowerIsBetter ? "&darr;" : "&uarr;";
+    return m.lowerIsBetter ? "↓" : "↑";
+}
+
+/// Whether method i has the best mean of metric m (ties count as best). The temporal error has
+/// none: its target, the reference's own value, holds the reference's residual noise too (a
+/// 64-spp reference's is about twice a 1024-spp one's, docs/evaluation.md), so the value closest
+/// to it is no better. On the demo at 160x120, 16 frames, 256 spp, the closest was WALR's, not
+/// the best on change error; at 96x64, 8 frames, 32 spp, "accumulation only", the denoiser with
+/// the highest change error.
 bool isBest(const ComparisonResult& r, size_t i, const MetricInfo& m) {
     const double v = metricValue(r.means[i], m.key);
-    if (!std::isfinite(v)) return false;
+    if (!std::isfinite(v) || targetIsReference(m)) return false;
     for (const FrameScores& o : r.means) {
         const double w = metricValue(o, m.key);
         if (std::isfinite(w) && (m.lowerIsBetter ? w < v : w > v)) return false;
@@ -34,12 +53,103 @@ std::string referenceCell(const ComparisonResult& r, const MetricInfo& m, Format
     return std::string(m.key) == "temporal_error" ? format(r.referenceTemporalMean) : "";
 }
 
+/// A row that `bmfr demo` names, and what it is: `brief` for the terminal and table.md, `full`
+/// for the report.
+struct KnownRow {
+    const char* name;
+    const char* brief;
+    const char* full;
+};
+
+// The demo's rows (apps/bmfr/cmd_demo.cpp). Eval's rows are named by the user: a name not here
+// gets no gloss, as what made it is unknown.
+const KnownRow kKnownRows[] = {
+    {"noisy", "the input", "the sequence's noisy input colour, not denoised"},
+    {"bmfr", "BMFR as in the paper, TAA on",
+     "BMFR as the paper describes it (the faithful preset), ending with its TAA"},
+    {"accumulation only", "bmfr without the fit",
+     "BMFR without its blockwise fit (phase II): temporal accumulation and TAA alone"},
+    {"bmfr without TAA", "bmfr, TAA off", "bmfr with its final TAA turned off, all else the same"},
+    {"svgf", "SVGF, TAA on", "SVGF (Schied et al. 2017), with its TAA"},
+    {"walr", "WALR, TAA on", "WALR, with its TAA"},
+    {"bmfr quality", "BMFR, --preset quality",
+     "BMFR with --preset quality, the improvements beyond the paper (among them a TAA that "
+     "takes its history from the same surface only)"},
+    {"svgf quality", "SVGF, --preset quality", "SVGF with --preset quality"},
+    {"bmfr camera path", "BMFR, camera-only reprojection",
+     "BMFR reprojecting by the camera path alone, without the objects' motion vectors (the "
+     "paper's reprojection)"},
+};
+
+/// "Rows: name: what it is; ..." for the rows of known names; empty when there is none.
+std::string rowGlosses(const ComparisonResult& r, bool html) {
+    std::string text;
+    for (const std::string& name : r.names)
+        for (const KnownRow& k : kKnownRows)
+            if (name == k.name)
+                text += (text.empty() ? "Rows: " : "; ") +
+                        (html ? "<i>" + escapeHtml(name) + "</i>, " + escapeHtml(k.full)
+                              : name + " = " + k.brief);
+    return text.empty() ? text : text + ".";
+}
+
+/// Whether a row's name says it differs from another by its TAA ("bmfr without TAA").
+bool comparesTaa(const ComparisonResult& r) {
+    for (const std::string& name : r.names) {
+        std::string lower;
+        for (char c : name) lower += char(std::tolower(static_cast<unsigned char>(c)));
+        if (lower.find("taa") != std::string::npos) return true;
+    }
+    return false;
+}
+
+/// The notes under the table: what the rows are, what TAA trades, and how the two temporal
+/// columns read, in the terms of what metrics/basic_metrics.cpp computes (temporalError,
+/// temporalChangeError).
+std::string tableNotes(const ComparisonResult& r, bool html) {
+    std::vector<std::string> notes;
+    if (const std::string rows = rowGlosses(r, html); !rows.empty()) notes.push_back(rows);
+    if (comparesTaa(r))
+        notes.push_back(
+            html ? "TAA (temporal anti-aliasing over the already-denoised output) blends each "
+                   "frame with its reprojected history to hide the flicker and aliasing that a "
+                   "per-frame blockwise fit leaves, at the cost of some blur: against the sharp "
+                   "reference the per-frame scores (RMSE, PSNR, SSIM, FLIP, relMSE) are worse "
+                   "with TAA. What it is for is temporal stability, less flicker from frame to "
+                   "frame, which per-frame scores cannot show: the two temporal columns measure "
+                   "it (under camera motion, TAA's lag adds to the change error too)."
+                 : "TAA blends each frame with its reprojected history: steadier but blurred, so "
+                   "its per-frame scores against the sharp reference are worse.");
+    notes.push_back(
+        html ? "Temporal error (&rarr; ref): the mean over pixels of |Y &minus; "
+               "Y<sub>previous</sub>|, Y the luminance of the tone-mapped frame, averaged over "
+               "every frame but the first. It counts the scene's real motion as well as flicker, "
+               "so the reference row's value (the real motion plus the reference's residual "
+               "noise) is the target: lower than the reference's is not better, it means lag or "
+               "smearing. Read it as the distance to the reference's value. No value in it is "
+               "bold: with the reference's noise in the target, the closest is not the best "
+               "either; the change error ranks flicker and lag."
+             : "temporal error: mean |ΔY| from the previous frame (tone-mapped luminance); the "
+               "scene's motion counts too, so read it against the reference row's value: lower "
+               "is not better (lag, smearing); none is bold.");
+    notes.push_back(html ? "Change error (&darr;): the mean over pixels of |&Delta;Y &minus; "
+                           "&Delta;Y<sub>reference</sub>|, the part of each frame-to-frame "
+                           "change that the reference does not make (flicker, lag, ghosting); "
+                           "lower is better, though the reference's own residual noise adds to "
+                           "every row."
+                         : "change error: mean |ΔY - ΔY of the reference|, lower is better.");
+    std::string text;
+    for (const std::string& n : notes)
+        text += html ? "<p class=\"notes\">" + n + "</p>" : "- " + n + "\n";
+    return text;
+}
+
 } // namespace
 
 std::string markdownTable(const ComparisonResult& r) {
     std::string md = "| method |";
     for (const MetricInfo& m : metricList())
-        md += fmt::format(" {} {} |", m.label, m.lowerIsBetter ? "↓" : "↑");
+        md += fmt::format(" {} {} |", m.label, direction(m, false));
     md += "\n|---|";
     for (size_t k = 0; k < metricList().size(); ++k) md += "---|";
     md += "\n";
@@ -57,7 +167,7 @@ std::string markdownTable(const ComparisonResult& r) {
     md += "| reference |";
     for (const MetricInfo& m : metricList())
         md += fmt::format(" {} |", referenceCell(r, m, fmtValue));
-    return md + "\n";
+    return md + "\n\n" + tableNotes(r, false);
 }
 
 /// The tables: table.md, table.csv, per_frame.csv, table.json (keys of metricList()).
@@ -119,7 +229,7 @@ void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::str
 std::string tableHtml(const ComparisonResult& r) {
     std::string html = "<table><tr><th>method</th>";
     for (const MetricInfo& m : metricList())
-        html += fmt::format("<th>{} {}</th>", m.label, m.lowerIsBetter ? "&darr;" : "&uarr;");
+        html += fmt::format("<th>{} {}</th>", m.label, direction(m, true));
     html += "</tr>";
     for (size_t i = 0; i < r.names.size(); ++i) {
         html += "<tr><td>" + escapeHtml(r.names[i]) + "</td>";
@@ -132,7 +242,7 @@ std::string tableHtml(const ComparisonResult& r) {
     html += "<tr><td>reference</td>";
     for (const MetricInfo& m : metricList())
         html += "<td>" + referenceCell(r, m, fmtValue) + "</td>";
-    return html + "</tr></table>";
+    return html + "</tr></table>" + tableNotes(r, true);
 }
 
 } // namespace bmfr

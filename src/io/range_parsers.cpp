@@ -5,15 +5,22 @@
 
 namespace bmfr {
 
-std::pair<int, int> parseFrameRange(const std::string& spec, int count) {
-    if (spec.empty()) return {0, count};
-    size_t colon = spec.find(':');
+void checkFrameRangeSyntax(const std::string& spec) {
+    if (spec.empty()) return;
+    const size_t colon = spec.find(':');
     if (colon == std::string::npos)
         throw Error("frame range expects A:B, A: or :B, got '" + spec + "'");
-    auto num = [&](const std::string& s, int dflt) {
-        if (s.empty()) return dflt;
+    for (const std::string& s : {spec.substr(0, colon), spec.substr(colon + 1)})
         if (s.find_first_not_of("0123456789") != std::string::npos)
             throw Error("frame range: '" + s + "' is not a frame number");
+}
+
+std::pair<int, int> parseFrameRange(const std::string& spec, int count) {
+    checkFrameRangeSyntax(spec);
+    if (spec.empty()) return {0, count};
+    const size_t colon = spec.find(':');
+    auto num = [&](const std::string& s, int dflt) {
+        if (s.empty()) return dflt;
         if (s.size() > 9 || std::stol(s) > count)
             throw Error(fmt::format("frame range {}: the sequence has frames 0:{}", spec, count));
         return int(std::stol(s));

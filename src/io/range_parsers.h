@@ -8,6 +8,10 @@
 
 namespace bmfr {
 
+/// Throws bmfr::Error when `spec` is not of the form "A:B", "A:", ":B" or "" (whatever the
+/// sequence's length).
+void checkFrameRangeSyntax(const std::string& spec);
+
 /// "A:B" (frames A..B-1), "A:" or ":B" of a sequence of `count` frames; "" = all. Throws
 /// bmfr::Error for anything else or a range outside [0, count).
 std::pair<int, int> parseFrameRange(const std::string& spec, int count);
