@@ -304,9 +304,8 @@ TEST(Cli, Mara2017FiltersTheFactoredPathsOrWarnsOnceWithoutThem) {
             plain.string())
             .code,
         0);
-    Result fallback =
-        run("denoise " + plain.string() + " -o " + out.string() +
-            " --no-png -q --overwrite --filter mara2017");
+    Result fallback = run("denoise " + plain.string() + " -o " + out.string() +
+                          " --no-png -q --overwrite --filter mara2017");
     ASSERT_EQ(fallback.code, 0) << fallback.output;
     const size_t at = fallback.output.find(warning);
     EXPECT_NE(at, std::string::npos) << fallback.output;

@@ -70,7 +70,8 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("--video", job->options.video,
                   "also write methods.mp4 (side by side) and flicker.mp4 (frame-to-frame "
                   "change) with ffmpeg (H.264)");
-    cmd->add_option("--video-fps", job->options.videoFps, "frames per second of the videos, 1-120")
+    cmd->add_option("--video-fps", job->options.videoFps,
+                    "frames per second of the videos and of the report viewer's playback, 1-120")
         ->default_val(24);
     cmd->add_option("--viewer-width", job->options.viewerWidth,
                     "pixels: wider frames are embedded downscaled in the viewer (full-size PNGs "

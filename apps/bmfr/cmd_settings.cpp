@@ -1,4 +1,4 @@
-// `bmfr settings`: every filter's settings table, as text or as the README's Markdown.
+// `bmfr settings`: every filter's settings table, as text or as docs/settings.md's Markdown.
 #include "commands.h"
 #include "usage.h"
 #include <fmt/core.h>
@@ -42,7 +42,7 @@ void addSettingsCommand(CLI::App& app, int& exitCode) {
         "settings", "every setting of a filter: key, flag, unit, range, default and help");
     cmd->add_option("filter", job->filter, "one filter (default: all)")
         ->check(oneOf(filterNames()));
-    cmd->add_flag("--markdown", job->markdown, "the README's table");
+    cmd->add_flag("--markdown", job->markdown, "docs/settings.md's table");
     cmd->add_option("--preset", job->preset,
                     "print only what this preset sets (faithful, quality), as key=value")
         ->check(oneOf(presetNames()));

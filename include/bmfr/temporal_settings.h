@@ -1,7 +1,7 @@
 // The settings every temporal filter shares (BMFR, SVGF and those to come): the backend, the
 // reprojection discard test, TAA, demodulation and threads. Each filter's settings derive from it.
 // Ranges and defaults are stated once, in the settings table (src/temporal/temporal_settings.cpp),
-// which validation, the command line and the README's table are made from.
+// which validation, the command line and docs/settings.md's table are made from.
 #pragma once
 #include <bmfr/api.h>
 #include <string>

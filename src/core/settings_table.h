@@ -1,7 +1,7 @@
 // A filter's settings as one table: key, command-line flag, unit, range and one-line help per
 // setting, with the default taken from a default-constructed settings struct. Validation, the
-// command line, `--help` and the README's table are all made from it, so each range is written
-// once.
+// command line, `--help` and docs/settings.md's table are all made from it, so each range is
+// written once.
 #pragma once
 #include <bmfr/error.h>
 #include <bmfr/filter.h>
@@ -27,7 +27,7 @@ template <class S> struct TextField {
 };
 
 template <class S> struct Setting {
-    const char* key;  ///< name in --set key=value, in the library and the README
+    const char* key;  ///< name in --set key=value, in the library and docs/settings.md
     const char* flag; ///< command-line flag without the dashes
     const char* unit; ///< "pixels", "scene units^2", "" for unitless
     SettingRange range;

@@ -107,9 +107,9 @@ const std::map<std::string, std::string>& presets() {
                 {"frame": 0,  "position": [-0.45, 1.0, 0.95], "target": [0.1, 0.8, -1.0],  "fov_deg": 70},
                 {"frame": 30, "position": [0.0, 1.2, 0.9],    "target": [0.0, 0.85, -1.0], "fov_deg": 70},
                 {"frame": 59, "position": [0.45, 1.0, 0.95],  "target": [-0.1, 0.8, -1.0], "fov_deg": 70}]}})"},
-        // Two small rooms for measuring quality (README, "Presets"): the built-in box at the
-        // paper's one bounce, seen through its open front by a panning camera, the lamp out of
-        // view and in view.
+        // Two small rooms for measuring quality (docs/rendering.md, "Presets"): the built-in
+        // box at the paper's one bounce, seen through its open front by a panning camera, the
+        // lamp out of view and in view.
         // Rendered in the original layout (no emission buffer) the second is the case of a
         // visible light that a filter must find by itself.
         {"room-dark", R"({

@@ -1,5 +1,5 @@
 // BMFR, Blockwise Multi-Order Feature Regression (Koskela et al., ACM TOG 2019): its settings
-// and its denoiser. Ranges, units and defaults: `bmfr settings bmfr` or the README's table.
+// and its denoiser. Ranges, units and defaults: `bmfr settings bmfr` or docs/settings.md.
 #pragma once
 #include <bmfr/device.h>
 #include <bmfr/features.h>

@@ -5,7 +5,7 @@
 // and a separable bilateral whose width follows roughness; then composed with the materials and
 // the direct light. Reads FrameInput::matteIndirect and the other factorisation buffers; without
 // them it filters the whole demodulated colour as matte. Ranges, units and defaults:
-// `bmfr settings mara2017` or the README.
+// `bmfr settings mara2017` or docs/settings.md.
 #pragma once
 #include <bmfr/device.h>
 #include <bmfr/filter.h>

@@ -1,5 +1,5 @@
 // Spatiotemporal Variance-Guided Filtering (Schied et al. 2017), with the progressive variant of
-// Dundr's thesis as settings. Ranges, units and defaults: `bmfr settings svgf` or the README.
+// Dundr's thesis as settings. Ranges, units and defaults: `bmfr settings svgf` or docs/settings.md.
 #pragma once
 #include <bmfr/device.h>
 #include <bmfr/filter.h>

@@ -1,7 +1,7 @@
 // WALR, Weighted A-Trous Linear Regression (Meunier and Harada 2022): BMFR's pipeline with the
 // blockwise fit replaced by a per-pixel weighted regression on edge-traced a-trous averages, and
 // REFWLR, the paper's direct reference solver. Ranges, units and defaults: `bmfr settings walr`
-// or the README.
+// or docs/settings.md.
 #pragma once
 #include <bmfr/device.h>
 #include <bmfr/filter.h>

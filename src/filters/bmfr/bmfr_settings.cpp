@@ -13,7 +13,7 @@ TextField<S> featuresField() {
 }
 
 // The last value of a row, where there is one, is the quality preset's: the switches that
-// measured better than the paper on our sequences (README, "Presets"). Half the paper's block:
+// measured better than the paper on our sequences (docs/presets.md). Half the paper's block:
 // multi-bounce light in Sponza varies faster than a 32-pixel block's polynomial follows, at
 // 320x180 and at 640x360 alike; the emitter mask then needs the lower ratio, as a lamp's smeared
 // edge is a larger share of a smaller block. Half the paper's regularisation noise shrinks the
