@@ -185,19 +185,27 @@ TEST(CliTeaches, DenoiseHelpOpensWithUsageExamplesAndTheInput) {
     EXPECT_EQ(r.code, 0);
     EXPECT_EQ(r.output.rfind("usage: bmfr denoise INPUT -o OUTPUT [options]", 0), 0u) << r.output;
     // In this order: examples, the input format, the command's options, the settings every
-    // filter has, then each filter's own.
+    // filter has, then the chosen filter's own (bmfr by default) and where the others' are.
     size_t at = 0;
     for (const char* part :
          {"examples:", "bmfr denoise ", "input:", "required per frame:", "\nOptions:", "--preset",
-          "\nSettings of every filter:", "\nBMFR settings (--filter bmfr):", "\nSVGF settings",
-          "\nWALR settings", "\nMara 2017 settings"}) {
+          "\nSettings of every filter:", "\nBMFR settings (--filter bmfr):", "--block-size",
+          "The other filters' settings (svgf, walr, mara2017): bmfr denoise "
+          "--filter NAME --help"}) {
         const size_t found = r.output.find(part, at);
         ASSERT_NE(found, std::string::npos) << part << " after offset " << at << ":\n" << r.output;
         at = found;
     }
+    EXPECT_EQ(r.output.find("--svgf-iterations"), std::string::npos) << "one filter at a time";
     // A switch reads as one: no "=true" beside "default false".
     EXPECT_EQ(r.output.find("[BOOL]=true"), std::string::npos);
     EXPECT_NE(r.output.find("--taa-same-surface[=true|false]"), std::string::npos);
+
+    const auto svgf = runCli("denoise --filter svgf --help");
+    EXPECT_EQ(svgf.code, 0);
+    EXPECT_NE(svgf.output.find("\nSVGF settings (--filter svgf):"), std::string::npos);
+    EXPECT_NE(svgf.output.find("--svgf-iterations"), std::string::npos) << svgf.output;
+    EXPECT_EQ(svgf.output.find("--block-size"), std::string::npos) << svgf.output;
 }
 
 } // namespace

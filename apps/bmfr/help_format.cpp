@@ -44,8 +44,38 @@ HelpFormatter::HelpFormatter() {
 
 std::string HelpFormatter::make_help(const CLI::App* app, std::string name,
                                      CLI::AppFormatMode mode) const {
-    std::string s = CLI::Formatter::make_help(app, std::move(name), mode);
+    if (mode == CLI::AppFormatMode::Sub) return make_expanded(app);
+    std::string s = make_description(app) + make_usage(app, name) + make_positionals(app) +
+                    groups(app) + make_subcommands(app, mode) + "\n" + make_footer(app);
     for (size_t at; (at = s.find("\n\n\n")) != std::string::npos;) s.erase(at, 1);
+    return s;
+}
+
+std::string HelpFormatter::groups(const CLI::App* app) const {
+    // One filter's settings at a time: all four filters' would bury the command's own options.
+    const CLI::Option* filter = nullptr;
+    for (const CLI::Option* o : app->get_options())
+        if (o->check_lname("filter")) filter = o;
+    const std::string shown = !filter           ? ""
+                              : filter->count() ? filter->results().front()
+                                                : filter->get_default_str();
+    std::string s, others;
+    for (const std::string& group : app->get_groups()) {
+        const size_t tag = group.find("(--filter ");
+        if (filter && tag != std::string::npos && group.substr(tag) != "(--filter " + shown + ")") {
+            others +=
+                (others.empty() ? "" : ", ") + group.substr(tag + 10, group.size() - tag - 11);
+            continue;
+        }
+        std::vector<const CLI::Option*> opts = app->get_options(
+            [&](const CLI::Option* o) { return o->get_group() == group && o->nonpositional(); });
+        if (!group.empty() && !opts.empty()) s += make_group(group, false, opts) + "\n";
+    }
+    if (!others.empty())
+        s += wrapped("The other filters' settings (" + others + "): bmfr " + app->get_name() +
+                         " --filter NAME --help; `bmfr settings` lists them all.",
+                     0, 0) +
+             "\n";
     return s;
 }
 

@@ -9,16 +9,15 @@ python=${PYTHON:-/usr/bin/python3}
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 fail() { echo "check_links_test: $*" >&2; exit 1; }
+# Runs the checker on a scratch repository: its output in $out, its exit status in $rc.
+check() { out=$("$python" "$here/check_links.py" "$1" 2>&1) && rc=0 || rc=$?; }
 
 # A broken one: a missing file, and a missing anchor in a page that exists.
 mkdir -p "$scratch/bad/docs"
 printf '# Bad\n\nSee [the guide](docs/guide.md).\n\nAnd [a section](docs/page.md#no-such-heading).\n' \
     > "$scratch/bad/README.md"
 printf '# Page\n\n## A heading\n' > "$scratch/bad/docs/page.md"
-set +e
-out=$("$python" "$here/check_links.py" "$scratch/bad" 2>&1)
-rc=$?
-set -e
+check "$scratch/bad"
 [ $rc -eq 1 ] || fail "a broken link gave exit $rc, not 1: $out"
 grep -q 'README.md:3: broken link docs/guide.md' <<<"$out" || fail "the broken link is not named: $out"
 grep -q 'README.md:5: broken anchor docs/page.md#no-such-heading' <<<"$out" ||
@@ -27,10 +26,7 @@ grep -q 'README.md:5: broken anchor docs/page.md#no-such-heading' <<<"$out" ||
 # Too long a README.
 mkdir -p "$scratch/long"
 { echo '# Long'; for i in $(seq 1 150); do echo "line $i"; done; } > "$scratch/long/README.md"
-set +e
-out=$("$python" "$here/check_links.py" "$scratch/long" 2>&1)
-rc=$?
-set -e
+check "$scratch/long"
 [ $rc -eq 1 ] || fail "a 151-line README gave exit $rc, not 1: $out"
 grep -q 'README.md: 151 lines' <<<"$out" || fail "the length is not named: $out"
 
