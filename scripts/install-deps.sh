@@ -7,6 +7,13 @@
 #                             chromium and chromium-driver (the report in a browser), ffmpeg
 #                             (eval --video) and python3-venv (the Python package in a fresh venv)
 set -euo pipefail
+case "${1:-}" in
+"" | --demo | --tests) ;;
+*)
+    echo "install-deps.sh: unknown option '$1' (use --demo, --tests or nothing)" >&2
+    exit 2
+    ;;
+esac
 pkgs=(cmake g++ make pkg-config libopenexr-dev libimath-dev libtbb-dev libcli11-dev
       nlohmann-json3-dev libfmt-dev libstb-dev libembree-dev libtinygltf-dev libtinyobjloader-dev)
 if [ "${1:-}" != --demo ]; then

@@ -13,6 +13,9 @@ render objects -s cornell-objects-moving --width 80 --height 60 --frames 6
 render factored -s cornell-objects-moving --paths mara --width 80 --height 60 --frames 6
 render lamp -s room-light --width 96 --height 72 --frames 6
 runs=0
+# The renders are kept for a second call; the outputs are made again (denoise refuses a folder
+# holding an earlier run's outputs, and OLD may predate --overwrite).
+rm -rf "$work/old" "$work/new"
 for bin in old new; do
     exe=$old
     [ $bin = new ] && exe=$new

@@ -69,10 +69,20 @@ TEST(CliTeaches, MistypedNamesAreUsageErrorsThatSuggestTheNearestName) {
     EXPECT_NE(c.output.find("unknown command 'denoize' (did you mean 'denoise'?)"),
               std::string::npos)
         << c.output;
-    for (const char* other : {"bench --filter oidn", "soak --filter oidn", "settings oidn"}) {
+    for (const char* other : {"bench --filter oidn", "soak --filter oidn", "settings oidn",
+                              "bench --baseline-filter oidn"}) {
         const auto r = runCli(other);
         EXPECT_EQ(r.code, 2) << other << ": " << r.output;
         EXPECT_NE(r.output.find("'oidn' is not one of"), std::string::npos) << r.output;
+    }
+    // Other commands' values out of their bounds or lists are usage errors too.
+    for (const char* other :
+         {"soak --backend cdua", "bench --set blok=3 --sizes 16x16", "render -o x --width 0",
+          "synth -o x --frames 0", "eval -r x -m noisy -o y --log-plots maybe",
+          "tonemap a.exr -o a.exr"}) {
+        const auto r = runCli(other);
+        EXPECT_EQ(r.code, 2) << other << ": " << r.output;
+        expectNoLibraryWords(r.output);
     }
 }
 
@@ -88,11 +98,29 @@ TEST(CliTeaches, SettingErrorsNameTheFlagAndExit2) {
              Expect{"--frames x", 2, "frame range expects A:B, A: or :B, got 'x'"},
              Expect{"--sample-fraction abc", 2, "--sample-fraction abc: not a valid value"},
              Expect{"--taa-same-surface maybe", 2, "--taa-same-surface maybe is not true or false"},
+             // `iterations` is a key of SVGF and WALR: the flag named is the chosen filter's.
+             Expect{"--filter walr --walr-iterations 999", 2, "--walr-iterations 999 is outside"},
+             Expect{"--filter walr --set edgeNear=0.9", 2, "must exceed edgeNear (0.9)"},
+             Expect{"--features n.x,n.y", 2, "--features n.x,n.y must begin with the constant 1"},
+             Expect{"--frames 2:1", 2, "frame range 2:1 is empty"},
+             Expect{"--frames 0:9", 1, "frame range 0:9: the sequence has frames 0:3"},
+             Expect{"-o other", 2, "--output is given more than once"},
+             Expect{"--backend gpu", 2, "--backend gpu: unknown backend 'gpu'"},
          }) {
         const auto r = runCli(io + e.args);
         EXPECT_EQ(r.code, e.code) << e.args << ": " << r.output;
         EXPECT_NE(r.output.find(e.message), std::string::npos) << e.args << ": " << r.output;
         expectNoLibraryWords(r.output);
+    }
+    const std::string bare = "denoise " + in.string() + " -o " + out.string();
+    for (const Expect& e : {
+             Expect{"--quiet=maybe", 2,
+                    "--quiet maybe: not a valid value (true or false is expected)"},
+             Expect{"-- extra", 2, "unexpected argument 'extra'"},
+         }) {
+        const auto r = runCli(bare + " " + e.args);
+        EXPECT_EQ(r.code, e.code) << e.args << ": " << r.output;
+        EXPECT_NE(r.output.find(e.message), std::string::npos) << e.args << ": " << r.output;
     }
 }
 
@@ -136,12 +164,31 @@ TEST(CliTeaches, DenoiseRefusesAnEarlierRunsOutputsUnlessOverwrite) {
     EXPECT_NE(refused.output.find("--overwrite"), std::string::npos) << refused.output;
     EXPECT_EQ(bmfr::testing::slurp(out / "report.json"), before) << "a refusal changes nothing";
 
+    // Files that only look like outputs are the user's: a report.json of another program, a
+    // frame name without its number.
+    std::ofstream(out / "denoised_final.png") << "the user's picture";
+    const auto ours = nlohmann::json::parse(before);
+    std::ofstream(in.string() + "_other_report.json") << R"({"tool": "another"})";
+
     const auto replaced = runCli(io + " --frames 0:2 --overwrite");
     EXPECT_EQ(replaced.code, 0) << replaced.output;
     EXPECT_TRUE(fs::exists(out / "denoised_0001.exr"));
     EXPECT_FALSE(fs::exists(out / "denoised_0002.exr")) << "no stale frame is left";
     EXPECT_EQ(nlohmann::json::parse(bmfr::testing::slurp(out / "report.json"))["frames"], 2);
     EXPECT_TRUE(fs::exists(out / "notes.txt")) << "only the earlier run's outputs are removed";
+    EXPECT_TRUE(fs::exists(out / "denoised_final.png"));
+    EXPECT_TRUE(ours.contains("median_ms")) << "what marks a report as a denoise run's";
+
+    // A folder whose report.json is not a denoise run's and that holds no frames is not refused,
+    // and the file is left alone.
+    const fs::path mixed = in.string() + "_mixed";
+    fs::create_directories(mixed);
+    std::ofstream(mixed / "report.json") << R"({"tool": "another"})";
+    std::ofstream(mixed / "scores.csv") << "a,b\n1,2\n";
+    const auto intoMixed = runCli("denoise " + in.string() + " -o " + mixed.string() +
+                                  " -q --no-flip --no-png --frames 0:1");
+    EXPECT_EQ(intoMixed.code, 1) << intoMixed.output; // its report.json would be replaced
+    EXPECT_NE(intoMixed.output.find("report.json"), std::string::npos) << intoMixed.output;
 }
 
 TEST(CliTeaches, AFailedRunSaysWhatItLeft) {
@@ -161,8 +208,9 @@ TEST(CliTeaches, AFailedRunSaysWhatItLeft) {
 
 TEST(CliTeaches, RenderWithNoSceneOrSizeIsQuickAndAnHourNeedsYes) {
     const fs::path out = bmfr::testing::scratchPath("teaches", "render");
-    // The full preset is hours: refused before anything is written, with the way on.
-    const auto full = runCli("render -o " + out.string() + " -s cornell-moving");
+    // Days on any machine: refused before anything is written, with the way on.
+    const auto full = runCli("render -o " + out.string() +
+                             " -s cornell-moving --width 4096 --height 4096 --frames 1000");
     EXPECT_EQ(full.code, 2) << full.output;
     EXPECT_NE(full.output.find("add --yes to start it"), std::string::npos) << full.output;
     EXPECT_FALSE(fs::exists(out));

@@ -28,16 +28,15 @@ void addAblateCommand(CLI::App& app, int& exitCode) {
     cmd->callback([job, &exitCode] {
         auto reader = SequenceReader::open(job->input);
         const SequenceInfo& info = reader->info();
+        usageChecked([&] { checkFrameRangeSyntax(job->frames); });
+        const SequenceDefaults own{info.positionLimitSquared, info.normalLimitSquared,
+                                   info.colorIsDemodulated};
         BmfrSettings base;
         try {
-            applySettings(
-                bmfrSettingsTable(), base,
-                job->options.resolve("bmfr", {info.positionLimitSquared, info.normalLimitSquared,
-                                              info.colorIsDemodulated}),
-                "bmfr");
+            applySettings(bmfrSettingsTable(), base, job->options.resolve("bmfr", own), "bmfr");
             validate(base);
         } catch (const SettingError& e) {
-            job->options.rethrow("bmfr", e);
+            job->options.rethrow("bmfr", e, own);
         }
         const OutputFolder folder(job->output, invocation());
         int n = 0;

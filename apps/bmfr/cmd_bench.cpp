@@ -26,7 +26,7 @@ std::unique_ptr<Filter> makeFromCommandLine(const std::string& name, const Setti
     try {
         return makeFilter(name, values);
     } catch (const SettingError& e) {
-        throw UsageError(describeForCli(e));
+        throw UsageError(describeForCli(e, name));
     }
 }
 
@@ -111,16 +111,12 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
             for (FrameData& f : *set) addFactorisation(f);
     const std::string threads = std::to_string(job.threads);
     SettingValues values = {{"threads", threads}, {"backend", job.backend}};
-    auto addSets = [](SettingValues& v, const std::vector<std::string>& sets, const char* flag) {
-        for (const std::string& kv : sets) {
-            const size_t eq = kv.find('=');
-            if (eq == std::string::npos || eq == 0)
-                throw UsageError(std::string(flag) + ": '" + kv + "' is not key=value");
-            v.push_back({kv.substr(0, eq), kv.substr(eq + 1)});
-        }
+    auto addSets = [](SettingValues& v, const std::string& filter,
+                      const std::vector<std::string>& sets, const char* flag) {
+        for (const std::string& kv : sets) v.push_back(parseSetting(filter, kv, flag));
     };
     for (const auto& kv : presetSettings(job.filter, job.preset)) values.push_back(kv);
-    addSets(values, job.sets, "--set");
+    addSets(values, job.filter, job.sets, "--set");
     std::unique_ptr<Filter> d = makeFromCommandLine(job.filter, values);
     // The baseline backend runs on the same frames, interleaved frame by frame with the
     // measured one, so both see the same machine load.
@@ -130,7 +126,7 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
         SettingValues baseValues = {{"threads", threads}, {"backend", baseline}};
         for (const auto& kv : presetSettings(job.referenceFilter(), job.baselinePreset))
             baseValues.push_back(kv);
-        addSets(baseValues, job.baselineSets, "--baseline-set");
+        addSets(baseValues, job.referenceFilter(), job.baselineSets, "--baseline-set");
         ref = makeFromCommandLine(job.referenceFilter(), baseValues);
     }
     // The memory baselines, measured in this run on buffers freed before the passes start: the
@@ -234,15 +230,18 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "skip the baseline backend run interleaved with the measured one");
     cmd->add_option("--baseline-backend", job->baselineBackend,
                     "the backend the speed-up is measured against")
+        ->check(oneOf(kBackendNames))
         ->default_val("reference");
     cmd->add_option("--backend", job->backend, "the backend measured: reference, cpu or cuda")
+        ->check(oneOf(kBackendNames))
         ->default_val("cpu");
     cmd->add_option("--filter", job->filter, "the filter measured")
         ->check(oneOf(filterNames()))
         ->default_val("bmfr");
     cmd->add_option("--baseline-filter", job->baselineFilter,
                     "another filter as the baseline, on --baseline-backend (walr beside bmfr: "
-                    "--filter walr --baseline-filter bmfr --baseline-backend cpu)");
+                    "--filter walr --baseline-filter bmfr --baseline-backend cpu)")
+        ->check(oneOf(filterNames()));
     cmd->add_option("--preset", job->preset,
                     "the measured filter's preset: faithful or quality (bmfr settings --preset)")
         ->check(oneOf(presetNames()))

@@ -3,6 +3,7 @@
 #include "io/output_folder.h"
 #include "progress.h"
 #include "render/sequence_renderer.h"
+#include "usage.h"
 #include <filesystem>
 #include <fmt/core.h>
 
@@ -24,10 +25,17 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
         ->default_val("cornell-moving");
     cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")
         ->default_val("../shared/scenes");
-    cmd->add_option("--width", job->width, "pixels")->default_val(256);
-    cmd->add_option("--height", job->height, "pixels")->default_val(192);
-    cmd->add_option("--frames", job->frames, "frame count")->default_val(24);
+    cmd->add_option("--width", job->width, "pixels")
+        ->check(integerIn(1, render::kMaxSceneSide))
+        ->default_val(256);
+    cmd->add_option("--height", job->height, "pixels")
+        ->check(integerIn(1, render::kMaxSceneSide))
+        ->default_val(192);
+    cmd->add_option("--frames", job->frames, "frame count")
+        ->check(integerIn(1, render::kMaxSceneFrames))
+        ->default_val(24);
     cmd->add_option("--reference-spp", job->referenceSpp, "reference samples per pixel")
+        ->check(integerIn(0, 1 << 20))
         ->default_val(128);
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     cmd->callback([job, &exitCode] {

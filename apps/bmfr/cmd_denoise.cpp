@@ -40,16 +40,30 @@ ImageF copyOf(const ImageView& v) {
     return img;
 }
 
-/// The debug buffers of one frame into dir (EXR, and PNG previews of the two counts).
+/// The frames a run writes into its folder: NAME_NNNN.exr and .png.
+constexpr const char* kFrameOutput = "denoised";
+
+/// The debug buffers a run writes into its debug/ folder: NAME_NNNN.exr, and for the two counts
+/// a PNG preview scaled by `pngScale`.
+struct DebugOutput {
+    const char* name;
+    ImageView DebugBuffers::*buffer;
+    float pngScale; ///< 0: no PNG
+};
+constexpr DebugOutput kDebugOutputs[] = {
+    {"accumulated", &DebugBuffers::accumulatedNoisy, 0.0f},
+    {"fitted", &DebugBuffers::fitted, 0.0f},
+    {"history_length", &DebugBuffers::historyLength, 1.0f / 16.0f},
+    {"discard_mask", &DebugBuffers::discardMask, 1.0f / 15.0f},
+};
+
+/// The debug buffers of one frame into dir.
 void writeDebug(const fs::path& dir, const std::string& stem, const DebugBuffers& d) {
-    writeExr((dir / ("accumulated_" + stem + ".exr")).string(), copyOf(d.accumulatedNoisy));
-    writeExr((dir / ("fitted_" + stem + ".exr")).string(), copyOf(d.fitted));
-    writeExr((dir / ("history_length_" + stem + ".exr")).string(), copyOf(d.historyLength));
-    writeExr((dir / ("discard_mask_" + stem + ".exr")).string(), copyOf(d.discardMask));
-    writePngToneMapped((dir / ("history_length_" + stem + ".png")).string(),
-                       copyOf(d.historyLength), 1.0f / 16.0f);
-    writePngToneMapped((dir / ("discard_mask_" + stem + ".png")).string(), copyOf(d.discardMask),
-                       1.0f / 15.0f);
+    for (const DebugOutput& o : kDebugOutputs) {
+        const std::string base = (dir / (std::string(o.name) + "_" + stem)).string();
+        writeExr(base + ".exr", copyOf(d.*o.buffer));
+        if (o.pngScale > 0) writePngToneMapped(base + ".png", copyOf(d.*o.buffer), o.pngScale);
+    }
 }
 
 /// Fewer than 1 spp, simulated: a fixed pseudo-random `fraction` of the pixels of frame i.
@@ -75,46 +89,85 @@ std::string checkedFeatures(const std::string& filter, const SettingValues& valu
     return formatFeatures(features);
 }
 
-/// The files an earlier denoise run wrote into `dir`: frames, report, scores, debug buffers.
-std::vector<fs::path> earlierOutputs(const fs::path& dir) {
+/// True for "PREFIX_NNNN.exr" or ".png" (four or more digits) with a prefix in `prefixes`.
+bool isFrameFile(const std::string& name, const std::vector<std::string>& prefixes) {
+    for (const std::string& p : prefixes) {
+        if (name.rfind(p + "_", 0) != 0) continue;
+        const size_t digits = p.size() + 1, dot = name.find('.', digits);
+        if (dot == std::string::npos || dot - digits < 4) continue;
+        if (name.find_first_not_of("0123456789", digits) != dot) continue;
+        if (name.substr(dot) == ".exr" || name.substr(dot) == ".png") return true;
+    }
+    return false;
+}
+
+/// A report.json that a denoise run wrote (not a user's file of that name).
+bool isDenoiseReport(const fs::path& p) {
+    try {
+        const nlohmann::json j = nlohmann::json::parse(std::ifstream(p));
+        return j.is_object() && j.contains("filter") && j.contains("median_ms");
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+/// The files an earlier denoise run wrote into `dir` (frames, report, scores) and into its
+/// debug/ folder, never inside `input`.
+std::vector<fs::path> earlierOutputs(const fs::path& dir, const fs::path& input) {
     std::vector<fs::path> found;
     std::error_code ec;
-    auto isOurs = [](const std::string& name) {
-        for (const char* prefix :
-             {"denoised_", "accumulated_", "fitted_", "history_length_", "discard_mask_"})
-            if (name.rfind(prefix, 0) == 0 && (name.ends_with(".exr") || name.ends_with(".png")))
-                return true;
-        return name == "report.json" || name == "scores.csv";
-    };
-    for (const fs::path& d : {dir, dir / "debug"})
-        for (const auto& e : fs::directory_iterator(d, ec))
-            if (e.is_regular_file(ec) && isOurs(e.path().filename().string()))
+    std::vector<std::string> debugNames;
+    for (const DebugOutput& o : kDebugOutputs) debugNames.push_back(o.name);
+    for (const auto& e : fs::directory_iterator(dir, ec))
+        if (e.is_regular_file(ec) && isFrameFile(e.path().filename().string(), {kFrameOutput}))
+            found.push_back(e.path());
+    const bool frames = !found.empty();
+    if (isDenoiseReport(dir / "report.json")) found.push_back(dir / "report.json");
+    if ((frames || !found.empty()) && fs::is_regular_file(dir / "scores.csv", ec))
+        found.push_back(dir / "scores.csv");
+    if (!fs::equivalent(dir / "debug", input, ec))
+        for (const auto& e : fs::directory_iterator(dir / "debug", ec))
+            if (e.is_regular_file(ec) && isFrameFile(e.path().filename().string(), debugNames))
                 found.push_back(e.path());
     std::sort(found.begin(), found.end());
     return found;
 }
 
 /// Refuses `out` when it holds an earlier run's outputs (a shorter run would leave stale frames
-/// beside new scores), or with `overwrite` removes them first. Runs under the folder's lock.
-void claimOutputs(const fs::path& out, bool overwrite, bool quiet) {
-    const std::vector<fs::path> earlier = earlierOutputs(out);
-    if (earlier.empty()) return;
+/// beside new scores), or with `overwrite` removes them first; returns how many it removed.
+/// Runs under the folder's lock.
+size_t claimOutputs(const fs::path& out, const fs::path& input, bool overwrite, bool quiet) {
+    const std::vector<fs::path> earlier = earlierOutputs(out, input);
+    // A file of a name this run writes that no earlier run wrote is the user's: never replaced.
+    std::error_code ec;
+    for (const char* name : {"report.json", "scores.csv"})
+        if (fs::exists(out / name, ec) &&
+            std::find(earlier.begin(), earlier.end(), out / name) == earlier.end())
+            throw Error(fmt::format("{} is not the output of an earlier bmfr denoise run, and this "
+                                    "run would replace it; give another folder",
+                                    (out / name).string()));
+    if (earlier.empty()) return 0;
     if (!overwrite)
         throw Error(fmt::format("{} holds the outputs of an earlier run ({} files: {}{}); "
                                 "refusing to mix them with this run's. Use another folder, or "
                                 "--overwrite to replace them",
                                 out.string(), earlier.size(), earlier.front().filename().string(),
                                 earlier.size() > 1 ? ", ..." : ""));
-    for (const fs::path& p : earlier) fs::remove(p);
+    for (const fs::path& p : earlier)
+        if (!fs::remove(p, ec) && ec)
+            throw Error("cannot remove " + p.string() +
+                        " (an earlier run's output): " + ec.message());
     if (!quiet)
         fmt::print("removed {} files of an earlier run from {} (--overwrite)\n", earlier.size(),
                    out.string());
+    return earlier.size();
 }
 
 } // namespace
 
 int runDenoise(const DenoiseJob& job) {
     std::error_code ec;
+    if (job.output.empty()) throw UsageError("-o: the output folder is an empty name");
     if (fs::exists(job.output, ec) && fs::equivalent(job.input, job.output, ec))
         throw UsageError("-o " + job.output + " is the input folder " + job.input +
                          "; refusing to write the results among the inputs (give another folder)");
@@ -123,9 +176,10 @@ int runDenoise(const DenoiseJob& job) {
     auto reader = SequenceReader::open(job.input);
     reader->setLayerOverrides(usageChecked([&] { return parseLayerMap(job.channels); }));
     const SequenceInfo& info = reader->info();
-    const SettingValues values = job.options.resolve(
-        job.filter, {info.positionLimitSquared, info.normalLimitSquared, info.colorIsDemodulated});
-    std::unique_ptr<Filter> filter = job.options.makeFilter(job.filter, values);
+    const SequenceDefaults own{info.positionLimitSquared, info.normalLimitSquared,
+                               info.colorIsDemodulated};
+    const SettingValues values = job.options.resolve(job.filter, own);
+    std::unique_ptr<Filter> filter = job.options.makeFilter(job.filter, values, own);
     const std::string features = checkedFeatures(job.filter, values, job.input, info);
     const std::string backend = settingValue(values, "backend", "cpu");
     // A range that does not parse is the command line's error; one the input lacks is the input's.
@@ -134,8 +188,10 @@ int runDenoise(const DenoiseJob& job) {
     reader->checkFrames(first, last); // a bad frame fails the run before its first output
     const OutputFolder folder(job.output, invocation());
     const fs::path out(job.output), debugDir = out / "debug";
-    claimOutputs(out, job.overwrite, job.quiet);
-    if (job.debug) fs::create_directories(debugDir);
+    const size_t removed = claimOutputs(out, job.input, job.overwrite, job.quiet);
+    if (job.debug && !fs::create_directories(debugDir, ec) && !fs::is_directory(debugDir, ec))
+        throw Error("cannot make the debug folder " + debugDir.string() +
+                    (ec ? ": " + ec.message() : ": a file of that name is in the way"));
     filter->setDebugOutputs(job.debug);
     if (!job.quiet)
         fmt::print("bmfr denoise ({}, {} backend): {} ({} layout, {}x{}, frames {}:{}){}\n",
@@ -177,9 +233,10 @@ int runDenoise(const DenoiseJob& job) {
 
         clock.lap();
         const std::string stem = fmt::format("{:04d}", i);
-        writeExr((out / ("denoised_" + stem + ".exr")).string(), result);
+        const std::string frameBase = (out / (std::string(kFrameOutput) + "_" + stem)).string();
+        writeExr(frameBase + ".exr", result);
         lastWritten = i;
-        if (job.png) writePngToneMapped((out / ("denoised_" + stem + ".png")).string(), result);
+        if (job.png) writePngToneMapped(frameBase + ".png", result);
         if (job.debug) writeDebug(debugDir, stem, filter->debug());
         tWrite.push_back(clock.lap());
         if (info.hasReference) scores.add(i, result, frame);
@@ -194,9 +251,13 @@ int runDenoise(const DenoiseJob& job) {
             throw Error(fmt::format(
                 "{}\n{}", e.what(),
                 lastWritten < first
-                    ? fmt::format("no frame was written{}",
+                    ? fmt::format("no frame was written{}{}",
                                   folder.madeHere() ? fmt::format(" ({} is removed)", job.output)
-                                                    : "")
+                                                    : "",
+                                  removed ? fmt::format("; the {} files of the earlier run were "
+                                                        "removed before (--overwrite)",
+                                                        removed)
+                                          : "")
                     : fmt::format("frames {} to {} were written to {} (denoised_{:04d}.exr to "
                                   "denoised_{:04d}.exr), report.json was not",
                                   first, lastWritten, job.output, first, lastWritten)));

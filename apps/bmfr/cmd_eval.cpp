@@ -66,6 +66,7 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("--no-flip", job->noFlip, "skip FLIP (the slowest metric)");
     cmd->add_option("--log-plots", job->options.logPlots,
                     "auto: a log y axis where a metric's values span more than 10x; on; off")
+        ->check(oneOf({"auto", "on", "off"}))
         ->default_val("auto");
     cmd->add_flag("--video", job->options.video,
                   "also write methods.mp4 (side by side) and flicker.mp4 (frame-to-frame "

@@ -53,10 +53,14 @@ void applyQuickSize(render::SceneDescription& d) {
     d.referenceSpp = 128;
 }
 
-/// The estimate for this machine (estimatedRenderSeconds is for 2 cores).
+/// The cores the estimate divides by (estimatedRenderSeconds is for 2; a machine that does not
+/// say counts as 2).
+unsigned coresHere() {
+    return std::max(2u, std::thread::hardware_concurrency());
+}
+
 double estimatedHere(const render::SceneDescription& d) {
-    const unsigned cores = std::max(2u, std::thread::hardware_concurrency());
-    return render::estimatedRenderSeconds(d) * 2.0 / cores;
+    return render::estimatedRenderSeconds(d) * 2.0 / coresHere();
 }
 
 } // namespace
@@ -111,9 +115,7 @@ int runRender(const RenderJob& job) {
                    "({} layout)\n",
                    d.name, d.mesh, d.width, d.height, d.frames, d.bounces, d.referenceSpp,
                    job.output, job.layout);
-    if (!job.quiet)
-        fmt::print("estimated {} on {} cores\n", durationText(estimate),
-                   std::max(2u, std::thread::hardware_concurrency()));
+    if (!job.quiet) fmt::print("estimated {} on {} cores\n", durationText(estimate), coresHere());
     if (quick && !job.quiet)
         fmt::print("a quick render: no scene or size was given. The preset's full size is "
                    "{}x{}, {} frames, reference {} spp ({}); ask for it with -s {} (and --yes), "
@@ -158,17 +160,20 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                     "scene and no size, a quick 256x192, 24-frame, 128-spp render of it)");
     cmd->add_option("--scenes", job->scenesDir, "folder holding sponza/ (for the presets)")
         ->default_val("../shared/scenes");
-    cmd->add_option("--width", job->width, "pixels");
-    cmd->add_option("--height", job->height, "pixels");
-    cmd->add_option("--frames", job->frames, "frame count");
+    cmd->add_option("--width", job->width, "pixels")->check(integerIn(1, render::kMaxSceneSide));
+    cmd->add_option("--height", job->height, "pixels")->check(integerIn(1, render::kMaxSceneSide));
+    cmd->add_option("--frames", job->frames, "frame count")
+        ->check(integerIn(1, render::kMaxSceneFrames));
     cmd->add_option("--reference-spp", job->referenceSpp,
-                    "reference samples per pixel (default: the scene's; 4096 for the presets)");
+                    "reference samples per pixel (default: the scene's; 4096 for the presets)")
+        ->check(integerIn(0, 1 << 20));
     cmd->add_flag("--no-reference", job->noReference, "skip the reference");
     cmd->add_flag("--overwrite", job->overwrite,
                   "replace a folder holding another scene's sequence (or one bmfr did not "
                   "render) instead of refusing it");
     cmd->add_option("--bounces", job->bounces,
-                    "BSDF-sampled secondary rays per path (default 1, as the paper)");
+                    "BSDF-sampled secondary rays per path (default 1, as the paper)")
+        ->check(integerIn(0, 64));
     cmd->add_option("--seed", job->seed, "random seed");
     cmd->add_flag("--diffuse-indirect-only", job->diffuseIndirect,
                   "colour and reference hold only the diffuse indirect light, no emission (the "

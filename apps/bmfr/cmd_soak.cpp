@@ -92,7 +92,9 @@ void addSoakCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--filter", job->filter, "the filter")
         ->check(oneOf(filterNames()))
         ->default_val("bmfr");
-    cmd->add_option("--backend", job->backend, "the backend")->default_val("cpu");
+    cmd->add_option("--backend", job->backend, "the backend")
+        ->check(oneOf(kBackendNames))
+        ->default_val("cpu");
     cmd->add_option("--frames", job->frames, "frames to run")->default_val(2000);
     cmd->add_option("--size", job->size, "frame size WxH")->default_val("64x48");
     cmd->add_option("--threads", job->threads, "worker threads, 0 = all cores")->default_val(0);

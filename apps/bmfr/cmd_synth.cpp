@@ -2,6 +2,7 @@
 #include "io/output_folder.h"
 #include "io/sequence.h"
 #include "progress.h"
+#include "render/scene_description.h"
 #include "synth/procedural_scene.h"
 #include "usage.h"
 #include <bmfr/error.h>
@@ -50,9 +51,15 @@ void addSynthCommand(CLI::App& app, int& exitCode) {
     CLI::App* cmd = app.add_subcommand(
         "synth", "write the built-in procedural sequence (noisy input, features, exact truth)");
     cmd->add_option("-o,--output", job->output, "output directory")->required();
-    cmd->add_option("--width", job->scene.width, "pixels")->default_val(640);
-    cmd->add_option("--height", job->scene.height, "pixels")->default_val(360);
-    cmd->add_option("--frames", job->scene.frames, "frame count")->default_val(30);
+    cmd->add_option("--width", job->scene.width, "pixels")
+        ->check(integerIn(1, render::kMaxSceneSide))
+        ->default_val(640);
+    cmd->add_option("--height", job->scene.height, "pixels")
+        ->check(integerIn(1, render::kMaxSceneSide))
+        ->default_val(360);
+    cmd->add_option("--frames", job->scene.frames, "frame count")
+        ->check(integerIn(1, render::kMaxSceneFrames))
+        ->default_val(30);
     cmd->add_option("--seed", job->scene.seed, "noise seed")->default_val(1);
     cmd->add_option("--camera-speed", job->scene.cameraSpeed, "0 = static camera")
         ->default_val(1.0);

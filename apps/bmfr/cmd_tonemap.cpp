@@ -24,8 +24,8 @@ void addTonemapCommand(CLI::App& app, int& exitCode) {
     cmd->callback([job, &exitCode] {
         std::error_code ec;
         if (job->output == job->input || std::filesystem::equivalent(job->input, job->output, ec))
-            throw Error("tonemap: the output " + job->output +
-                        " is the input; refusing to overwrite it");
+            throw UsageError("tonemap: the output " + job->output +
+                             " is the input; refusing to overwrite it");
         if (!(std::isfinite(job->exposure) && job->exposure > 0.0f))
             throw UsageError("tonemap: --exposure must be a positive number");
         writePngToneMapped(job->output, readExr(job->input, 3), job->exposure);

@@ -41,10 +41,7 @@ std::string ownerOf(const std::string& flag) {
 
 /// "BMFR", "SVGF", "WALR", "Mara 2017": the filter as its paper names it.
 std::string filterTitle(const std::string& name) {
-    if (name == "mara2017") return "Mara 2017";
-    std::string t = name;
-    for (char& c : t) c = char(std::toupper(static_cast<unsigned char>(c)));
-    return t;
+    return name == "mara2017" ? "Mara 2017" : upperCase(name);
 }
 
 std::string describe(const SettingDoc& d) {
@@ -104,21 +101,7 @@ SettingValues FilterOptions::resolve(const std::string& name, const SequenceDefa
                              ownerOf(flag));
         v.push_back({d->key, text});
     }
-    for (const std::string& s : sets) {
-        const size_t eq = s.find('=');
-        if (eq == std::string::npos || eq == 0)
-            throw UsageError("--set '" + s + "': expected KEY=VALUE (keys: bmfr settings " + name +
-                             ")");
-        const std::string key = s.substr(0, eq);
-        const SettingDoc* d = findDoc(docs, key);
-        if (!d) {
-            const std::string hint = didYouMean(key, keysOf(docs));
-            throw UsageError("--set " + s + ": '" + key + "' is not a setting of the " + name +
-                             " filter" +
-                             (hint.empty() ? " (`bmfr settings " + name + "` lists them)" : hint));
-        }
-        v.push_back({d->key, s.substr(eq + 1)});
-    }
+    for (const std::string& s : sets) v.push_back(parseSetting(name, s, "--set"));
     for (const std::string& s : disabled) {
         const SettingDoc* d = findDoc(docs, s);
         if (!d || d->range != "true, false")
@@ -129,25 +112,52 @@ SettingValues FilterOptions::resolve(const std::string& name, const SequenceDefa
     return v;
 }
 
+std::pair<std::string, std::string> parseSetting(const std::string& filter, const std::string& text,
+                                                 const std::string& flag) {
+    const size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw UsageError(flag + " '" + text + "': expected KEY=VALUE (keys: bmfr settings " +
+                         filter + ")");
+    const std::string key = text.substr(0, eq);
+    const std::vector<SettingDoc> docs = filterSettings(filter);
+    const SettingDoc* d = findDoc(docs, key);
+    if (!d) {
+        const std::string hint = didYouMean(key, keysOf(docs));
+        throw UsageError(flag + " " + text + ": '" + key + "' is not a setting of the " + filter +
+                         " filter" +
+                         (hint.empty() ? " (`bmfr settings " + filter + "` lists them)" : hint));
+    }
+    return {d->key, text.substr(eq + 1)};
+}
+
 std::unique_ptr<Filter> FilterOptions::makeFilter(const std::string& name,
-                                                  const SettingValues& values) const {
+                                                  const SettingValues& values,
+                                                  const SequenceDefaults& sequence) const {
     try {
         return bmfr::makeFilter(name, values);
     } catch (const SettingError& e) {
-        rethrow(name, e);
+        rethrow(name, e, sequence);
     }
 }
 
-void FilterOptions::rethrow(const std::string& name, const SettingError& e) const {
-    // A value typed on this command line is a usage error in the flag's words; one from the
-    // sequence's own settings is the input's.
+void FilterOptions::rethrow(const std::string& name, const SettingError& e,
+                            const SequenceDefaults& sequence) const {
+    // The defaults and presets are valid, so a bad value was typed on this command line (a
+    // usage error in the flag's words), unless it is one the sequence gave and the command
+    // line did not replace: then it is the input's.
     const std::vector<SettingDoc> docs = filterSettings(name);
+    bool typed = false;
     for (const auto& [flag, text] : flags)
         if (const SettingDoc* d = findDoc(docs, flag); d && !text.empty() && d->key == e.key())
-            throw UsageError(describeForCli(e));
+            typed = true;
     for (const std::string& s : sets)
         if (const SettingDoc* d = findDoc(docs, s.substr(0, s.find('='))); d && d->key == e.key())
-            throw UsageError(describeForCli(e));
+            typed = true;
+    const bool fromSequence =
+        (e.key() == "positionLimitSquared" && sequence.positionLimitSquared) ||
+        (e.key() == "normalLimitSquared" && sequence.normalLimitSquared) ||
+        (e.key() == "colorIsDemodulated" && sequence.colorIsDemodulated);
+    if (typed || !fromSequence) throw UsageError(describeForCli(e, name));
     throw e;
 }
 

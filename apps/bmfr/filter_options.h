@@ -27,15 +27,22 @@ struct FilterOptions {
     SettingValues resolve(const std::string& name, const SequenceDefaults& sequence) const;
     /// makeFilter(name, values), with a setting error in a value from this command line thrown
     /// as a UsageError in the flag's words (`--block-size 33 must be even`).
-    std::unique_ptr<Filter> makeFilter(const std::string& name, const SettingValues& values) const;
-    /// Throws `e` again, as a UsageError when its value came from this command line.
-    [[noreturn]] void rethrow(const std::string& name, const SettingError& e) const;
+    std::unique_ptr<Filter> makeFilter(const std::string& name, const SettingValues& values,
+                                       const SequenceDefaults& sequence = {}) const;
+    /// Throws `e` again: as a UsageError unless its value is the sequence's own.
+    [[noreturn]] void rethrow(const std::string& name, const SettingError& e,
+                              const SequenceDefaults& sequence = {}) const;
 
     std::string preset = "faithful";          ///< presetSettings(), applied before the flags
     std::map<std::string, std::string> flags; ///< flag -> text, as given
     std::vector<std::string> sets;            ///< "key=value"
     std::vector<std::string> disabled;        ///< switch flags to turn off
 };
+
+/// "key=value" (or "flag=value") given to `flag` as filter `filter`'s (key, value); throws
+/// UsageError naming the nearest key for one the filter does not have.
+std::pair<std::string, std::string> parseSetting(const std::string& filter, const std::string& text,
+                                                 const std::string& flag);
 
 /// The value of `key` in `values` (the last one given), or `fallback`.
 std::string settingValue(const SettingValues& values, const std::string& key,

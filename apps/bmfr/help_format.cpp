@@ -108,9 +108,7 @@ std::string HelpFormatter::make_usage(const CLI::App* app, std::string) const {
 
 std::string HelpFormatter::make_option_name(const CLI::Option* opt, bool positional) const {
     if (positional) {
-        std::string n = opt->get_name(true, false);
-        for (char& c : n) c = char(std::toupper(static_cast<unsigned char>(c)));
-        return n;
+        return upperCase(opt->get_name(true, false));
     }
     std::string s;
     for (const std::string& n : opt->get_snames()) s += (s.empty() ? "-" : ", -") + n;

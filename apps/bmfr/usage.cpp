@@ -15,25 +15,18 @@ std::string commandList(const CLI::App& app) {
            "run 'bmfr COMMAND --help' for a command's options, 'bmfr --version' for the build\n";
 }
 
-namespace {
-
-std::string upper(std::string t) {
-    for (char& c : t) c = char(std::toupper(static_cast<unsigned char>(c)));
-    return t;
-}
-
-} // namespace
+namespace {} // namespace
 
 std::string usageLine(const CLI::App& cmd) {
     std::string s = "usage: bmfr " + cmd.get_name();
     for (const CLI::Option* o : cmd.get_options()) {
         if (o->get_positional()) {
-            const std::string n = upper(o->get_name());
+            const std::string n = upperCase(o->get_name());
             s += o->get_required() ? " " + n : " [" + n + "]";
         } else if (o->get_required()) {
             const std::string flags = o->get_name(false, true);
             const std::string longName = o->get_lnames().empty() ? "VALUE" : o->get_lnames()[0];
-            s += " " + flags.substr(0, flags.find(',')) + " " + upper(longName);
+            s += " " + flags.substr(0, flags.find(',')) + " " + upperCase(longName);
         }
     }
     return s + " [options]";
@@ -57,8 +50,10 @@ std::vector<std::string> longNames(const CLI::App& cmd) {
 }
 
 /// What the parser could not place: the first unknown option, or else the first extra value.
-std::string describeExtras(const CLI::App& cmd) {
-    const std::vector<std::string> extras = cmd.remaining();
+std::string describeExtras(const CLI::App& app, const CLI::App& cmd) {
+    // After "--", what is left belongs to the whole command line, not to the command.
+    std::vector<std::string> extras = cmd.remaining();
+    if (extras.empty()) extras = app.remaining(true);
     for (const std::string& arg : extras)
         if (arg.size() > 1 && arg[0] == '-') {
             const std::string name = arg.substr(0, arg.find('='));
@@ -78,29 +73,38 @@ std::string translate(const CLI::App& app, const CLI::ParseError& error) {
     const std::string text = error.what();
     const CLI::App* active = activeCommand(app);
     if (dynamic_cast<const CLI::ExtrasError*>(&error))
-        return describeExtras(active ? *active : app);
+        return describeExtras(app, active ? *active : app);
     if (dynamic_cast<const CLI::RequiredError*>(&error)) {
         // "input is required" for a positional, "--output is required" for an option.
         const std::string name = text.substr(0, text.find(' '));
-        return (name.rfind("-", 0) == 0 ? name : upper(name)) + " is required";
+        return (name.rfind("-", 0) == 0 ? name : upperCase(name)) + " is required";
     }
-    if (dynamic_cast<const CLI::ArgumentMismatch*>(&error))
-        return text.substr(0, text.find(':')) + " needs a value";
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&error)) {
+        const std::string name = text.substr(0, text.find(':'));
+        if (text.find(": At Most ") != std::string::npos) return name + " is given more than once";
+        if (text.find("disallowed flag override") != std::string::npos)
+            return text.substr(0, text.find(' ')) + " takes no value";
+        return name + " needs a value";
+    }
+    // "--width abc" expects a number, "--quiet=maybe" true or false.
+    auto badValue = [&](const std::string& name, const std::string& value) {
+        const CLI::Option* o = active ? active->get_option_no_throw(name) : nullptr;
+        const bool flag = o && o->get_expected_max() == 0;
+        return fmt::format("{} {}: not a valid value ({} expected)", name, value,
+                           flag ? "true or false is" : "a number is");
+    };
     if (dynamic_cast<const CLI::ConversionError*>(&error)) {
         const std::string convert = "Could not convert: ";
         if (text.rfind(convert, 0) == 0) { // "Could not convert: --width = abc"
             const std::string rest = text.substr(convert.size());
             const size_t eq = rest.find(" = ");
-            if (eq != std::string::npos)
-                return fmt::format("{} {}: not a valid value (a number is expected)",
-                                   rest.substr(0, eq), rest.substr(eq + 3));
+            if (eq != std::string::npos) return badValue(rest.substr(0, eq), rest.substr(eq + 3));
         }
         const std::string allowed = "The value ";
         if (text.rfind(allowed, 0) == 0) { // "The value abc is not an allowed value for --w"
             const size_t is = text.find(" is not an allowed value for ");
             if (is != std::string::npos)
-                return fmt::format("{} {}: not a valid value (a number is expected)",
-                                   text.substr(is + 29), text.substr(10, is - 10));
+                return badValue(text.substr(is + 29), text.substr(10, is - 10));
         }
         const size_t colon = text.find(": Should be true/false");
         if (colon != std::string::npos) return text.substr(0, colon) + ": expected true or false";
@@ -125,11 +129,18 @@ int reportUsageError(const CLI::App& app, const CLI::ParseError& error) {
     return reportUsageError(app, translate(app, error));
 }
 
-std::string describeForCli(const SettingError& error) {
-    for (const std::string& filter : filterNames())
-        for (const SettingDoc& d : filterSettings(filter))
-            if (d.key == error.key())
-                return fmt::format("--{} {} {}", d.flag, error.value(), error.problem());
+std::string upperCase(std::string text) {
+    for (char& c : text) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return text;
+}
+
+std::string describeForCli(const SettingError& error, const std::string& filter) {
+    // "--block-size 7 is outside [8, 64]", but "--backend gpu: unknown backend 'gpu'".
+    const std::string& p = error.problem();
+    const bool predicate = p.rfind("is ", 0) == 0 || p.rfind("must ", 0) == 0;
+    for (const SettingDoc& d : filterSettings(filter))
+        if (d.key == error.key())
+            return fmt::format("--{} {}{}{}", d.flag, error.value(), predicate ? " " : ": ", p);
     return error.what();
 }
 

@@ -38,8 +38,15 @@ int reportUsageError(const CLI::App& app, const std::string& message);
 /// '--block-size'?)"), reported as above.
 int reportUsageError(const CLI::App& app, const CLI::ParseError& error);
 
-/// A settings error in the CLI's words: `--block-size 7 is outside [8, 64]`.
-std::string describeForCli(const SettingError& error);
+/// A settings error of `filter` in the CLI's words: `--block-size 7 is outside [8, 64]` (keys
+/// such as `seed` are settings of several filters, under other flags).
+std::string describeForCli(const SettingError& error, const std::string& filter);
+
+/// "TEXT" for "text": the CLI's placeholders for values.
+std::string upperCase(std::string text);
+
+/// The backends a command line may name (`bmfr --version` says which this build has).
+inline const std::vector<std::string> kBackendNames = {"reference", "cpu", "cuda"};
 
 /// A validator for an option that takes one of `names`: "'fast' is not one of faithful,
 /// quality", with "did you mean" for a near miss.

@@ -1,4 +1,5 @@
 #include "io/range_parsers.h"
+#include <algorithm>
 #include <bmfr/error.h>
 #include <cstdio>
 #include <fmt/core.h>
@@ -10,9 +11,18 @@ void checkFrameRangeSyntax(const std::string& spec) {
     const size_t colon = spec.find(':');
     if (colon == std::string::npos)
         throw Error("frame range expects A:B, A: or :B, got '" + spec + "'");
-    for (const std::string& s : {spec.substr(0, colon), spec.substr(colon + 1)})
+    const std::string a = spec.substr(0, colon), b = spec.substr(colon + 1);
+    for (const std::string& s : {a, b})
         if (s.find_first_not_of("0123456789") != std::string::npos)
             throw Error("frame range: '" + s + "' is not a frame number");
+    // Compared as digit strings: they may be longer than any integer.
+    auto value = [](const std::string& s) {
+        return s.substr(std::min(s.find_first_not_of('0'), s.size()));
+    };
+    const std::string va = value(a), vb = value(b);
+    if (!a.empty() && !b.empty() && (va.size() > vb.size() || (va.size() == vb.size() && va >= vb)))
+        throw Error("frame range " + spec +
+                    " is empty: A:B runs frames A to B-1, so B must exceed A");
 }
 
 std::pair<int, int> parseFrameRange(const std::string& spec, int count) {

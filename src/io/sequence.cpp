@@ -126,10 +126,11 @@ std::string notLinearFramesHint(const std::string& directory) {
     std::string list;
     for (const auto& [ext, n] : pictures)
         list += (list.empty() ? "" : ", ") + std::to_string(n) + " " + ext;
-    const bool onlyExr = pictures.size() == 1 && pictures.count(".exr");
-    return "; it holds " + list + " files" +
-           (onlyExr ? ", but no file that says which is which or gives the cameras"
-                    : ": display images, not linear radiance");
+    if (pictures.count(".exr"))
+        return "; it holds " + list +
+               " files, but no file that says which is which or gives "
+               "the cameras";
+    return "; it holds " + list + " files: display images, not linear radiance";
 }
 
 } // namespace

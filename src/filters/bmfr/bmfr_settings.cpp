@@ -119,16 +119,21 @@ void validate(const BmfrSettings& s) {
     if (s.blockSize % 2 != 0)
         throw SettingError("setting blockSize = " + std::to_string(s.blockSize) + " must be even",
                            "blockSize", std::to_string(s.blockSize), "must be even");
+    auto featuresError = [&](const std::string& problem) {
+        const std::string value = formatFeatures(s.features);
+        return SettingError("setting features " + value + " " + problem, "features", value,
+                            problem);
+    };
     if (s.features.empty() || s.features.front().source != FeatureSource::One)
-        throw Error("setting features: the first feature must be the constant 1");
+        throw featuresError("must begin with the constant 1");
     // Room for the visibility column too, so that turning it on never fails later.
     const int columns = int(s.features.size()) + (s.visibilityFeature ? 1 : 0);
     if (columns > kMaxFeatures)
-        throw Error("setting features: " + std::to_string(s.features.size()) + " features" +
-                    (s.visibilityFeature ? " and the visibility" : "") + ", at most " +
-                    std::to_string(kMaxFeatures) + " columns");
+        throw featuresError("is " + std::to_string(s.features.size()) + " features" +
+                            (s.visibilityFeature ? " and the visibility" : "") + ", more than " +
+                            std::to_string(kMaxFeatures) + " columns");
     if (columns + 3 > s.blockSize * s.blockSize)
-        throw Error("setting features: more features than pixels in a block");
+        throw featuresError("is more features than pixels in a block");
 }
 
 } // namespace bmfr
