@@ -1,8 +1,8 @@
-// FLIP against two independent references. NVIDIA's test pair (images/reference.png and
-// images/test.png of github.com/NVlabs/flip, expected mean 0.159691) is not reachable from here,
-// so: (1) constant images, whose FLIP is the colour term alone, from published CIELAB values of
-// the sRGB primaries; (2) a direct, non-separable transcription of NVIDIA's published algorithm
-// (full 2-D kernels, clamp-to-edge borders), pixel by pixel on textured images.
+// FLIP against two independent references (NVIDIA's own code is the third:
+// Metrics.FlipAgreesWithNvidiasImplementation, tests/python/flip_against_nvidia.py): (1) constant
+// images, whose FLIP is the colour term alone, from published CIELAB values of the sRGB primaries;
+// (2) a direct, non-separable transcription of NVIDIA's published algorithm (full 2-D kernels,
+// clamp-to-edge borders), pixel by pixel on textured images.
 #include "core/hash.h"
 #include "metrics/flip.h"
 #include <algorithm>

@@ -5,6 +5,7 @@
 #include "errors.h"
 #include "filter_binding.h"
 #include "io/exr.h"
+#include "metrics/flip.h"
 #include "sequence_binding.h"
 #include <bmfr/bmfr.h>
 #include <pybind11/pybind11.h>
@@ -65,6 +66,34 @@ PYBIND11_MODULE(bmfr, m) {
           "The image buffers a frame may have, by their keyword in Filter.denoise and their key in "
           "read_sequence's frames: the four required ones first.");
     m.def("backends", &compiledBackends, "The backends this build holds.");
+    m.def(
+        "flip",
+        [](const py::handle& reference, const py::handle& test, double ppd) {
+            const ImageF ref = imageToWrite(reference, "reference");
+            const ImageF tst = imageToWrite(test, "test");
+            if (ref.channels != 3 || tst.channels != 3)
+                throw py::value_error("flip: reference and test must be (height, width, 3)");
+            if (ref.width != tst.width || ref.height != tst.height)
+                throw py::value_error("flip: reference is " + std::to_string(ref.width) + "x" +
+                                      std::to_string(ref.height) + ", test " +
+                                      std::to_string(tst.width) + "x" + std::to_string(tst.height));
+            for (const ImageF* image : {&ref, &tst})
+                for (const float v : image->pixels)
+                    if (!(v >= 0.0f && v <= 1.0f))
+                        throw py::value_error("flip: values must be sRGB-encoded in [0, 1] (LDR "
+                                              "FLIP; tone-map linear images first)");
+            if (!(ppd > 0.0 && ppd < 1e4)) throw py::value_error("flip: ppd must be in (0, 1e4)");
+            ImageF map;
+            {
+                py::gil_scoped_release unlocked;
+                map = flipMap(ref, tst, ppd);
+            }
+            return py::make_tuple(flipMean(map), toArray(view(map)));
+        },
+        py::arg("reference"), py::arg("test"), py::arg("ppd") = kFlipDefaultPpd,
+        "LDR FLIP (Andersson et al. 2020) of `test` against `reference`, float32 (height, width, "
+        "3) sRGB-encoded in [0, 1], at `ppd` pixels per degree (NVIDIA's default 67.02): (mean, "
+        "the (height, width, 1) per-pixel map), the metric bmfr eval reports.");
     m.def(
         "settings",
         [](const std::string& name) {

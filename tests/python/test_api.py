@@ -231,3 +231,17 @@ def test_numpy_numbers_notes_and_threads(objects, tmp_path):
     for t in threads:
         t.join()
     assert not errors and f.stats["total_ms"] > 0
+
+
+def test_flip_takes_ldr_images_and_says_what_is_wrong():
+    grey = np.full((6, 5, 3), 0.5, np.float32)
+    mean, flip_map = bmfr.flip(grey, grey)
+    assert mean == 0.0 and flip_map.shape == (6, 5, 1) and flip_map.dtype == np.float32
+    mean, flip_map = bmfr.flip(grey, np.ones_like(grey))
+    assert 0.0 < mean <= 1.0 and np.allclose(flip_map[..., 0], mean)  # flat: one value
+    with pytest.raises(ValueError, match=r"sRGB-encoded in \[0, 1\]"):
+        bmfr.flip(grey, grey * 3)
+    with pytest.raises(ValueError, match="reference is 5x6, test 5x5"):
+        bmfr.flip(grey, grey[:5])
+    with pytest.raises(ValueError, match=r"\(height, width, 3\)"):
+        bmfr.flip(grey[..., 0], grey[..., 0])
