@@ -26,9 +26,9 @@ void addAblateCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     job->options.addTo(*cmd, {"bmfr"});
     cmd->callback([job, &exitCode] {
+        usageChecked([&] { checkFrameRangeSyntax(job->frames); });
         auto reader = SequenceReader::open(job->input);
         const SequenceInfo& info = reader->info();
-        usageChecked([&] { checkFrameRangeSyntax(job->frames); });
         const SequenceDefaults own{info.positionLimitSquared, info.normalLimitSquared,
                                    info.colorIsDemodulated};
         BmfrSettings base;

@@ -230,10 +230,10 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "skip the baseline backend run interleaved with the measured one");
     cmd->add_option("--baseline-backend", job->baselineBackend,
                     "the backend the speed-up is measured against")
-        ->check(oneOf(kBackendNames))
+        ->check(oneOf(backendNames()))
         ->default_val("reference");
     cmd->add_option("--backend", job->backend, "the backend measured: reference, cpu or cuda")
-        ->check(oneOf(kBackendNames))
+        ->check(oneOf(backendNames()))
         ->default_val("cpu");
     cmd->add_option("--filter", job->filter, "the filter measured")
         ->check(oneOf(filterNames()))

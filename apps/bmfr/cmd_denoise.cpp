@@ -173,6 +173,8 @@ int runDenoise(const DenoiseJob& job) {
                          "; refusing to write the results among the inputs (give another folder)");
     if (!(job.sampleFraction > 0.0f && job.sampleFraction <= 1.0f))
         throw UsageError(fmt::format("--sample-fraction {} is outside (0, 1]", job.sampleFraction));
+    // A range that does not parse is the command line's error; one the input lacks is the input's.
+    usageChecked([&] { checkFrameRangeSyntax(job.frames); });
     auto reader = SequenceReader::open(job.input);
     reader->setLayerOverrides(usageChecked([&] { return parseLayerMap(job.channels); }));
     const SequenceInfo& info = reader->info();
@@ -182,8 +184,6 @@ int runDenoise(const DenoiseJob& job) {
     std::unique_ptr<Filter> filter = job.options.makeFilter(job.filter, values, own);
     const std::string features = checkedFeatures(job.filter, values, job.input, info);
     const std::string backend = settingValue(values, "backend", "cpu");
-    // A range that does not parse is the command line's error; one the input lacks is the input's.
-    usageChecked([&] { checkFrameRangeSyntax(job.frames); });
     auto [first, last] = parseFrameRange(job.frames, info.frameCount);
     reader->checkFrames(first, last); // a bad frame fails the run before its first output
     const OutputFolder folder(job.output, invocation());

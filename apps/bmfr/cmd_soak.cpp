@@ -93,7 +93,7 @@ void addSoakCommand(CLI::App& app, int& exitCode) {
         ->check(oneOf(filterNames()))
         ->default_val("bmfr");
     cmd->add_option("--backend", job->backend, "the backend")
-        ->check(oneOf(kBackendNames))
+        ->check(oneOf(backendNames()))
         ->default_val("cpu");
     cmd->add_option("--frames", job->frames, "frames to run")->default_val(2000);
     cmd->add_option("--size", job->size, "frame size WxH")->default_val("64x48");

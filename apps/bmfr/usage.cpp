@@ -144,6 +144,13 @@ std::string describeForCli(const SettingError& error, const std::string& filter)
     return error.what();
 }
 
+std::vector<std::string> backendNames() {
+    std::vector<std::string> names;
+    for (const Backend b : {Backend::Reference, Backend::Cpu, Backend::Cuda})
+        names.push_back(backendName(b));
+    return names;
+}
+
 CLI::Validator oneOf(std::vector<std::string> names) {
     const std::string list = fmt::format("{}", fmt::join(names, ", "));
     return CLI::Validator(

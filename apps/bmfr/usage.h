@@ -45,8 +45,9 @@ std::string describeForCli(const SettingError& error, const std::string& filter)
 /// "TEXT" for "text": the CLI's placeholders for values.
 std::string upperCase(std::string text);
 
-/// The backends a command line may name (`bmfr --version` says which this build has).
-inline const std::vector<std::string> kBackendNames = {"reference", "cpu", "cuda"};
+/// The backends a command line may name, as the library names them (`bmfr --version` says
+/// which this build has).
+std::vector<std::string> backendNames();
 
 /// A validator for an option that takes one of `names`: "'fast' is not one of faithful,
 /// quality", with "did you mean" for a near miss.

@@ -103,8 +103,7 @@ std::vector<ReportPlot> writePlots(const ComparisonResult& r, const ComparisonOp
             for (const FrameScores& f : r.perFrame[i]) line.values.push_back(metricValue(f, m.key));
             series.push_back(line);
         }
-        if (std::string(m.key) == "temporal_error")
-            series.push_back({"reference", r.referenceTemporal});
+        if (m.referenceIsTarget) series.push_back({"reference", r.referenceTemporal});
         const MetricPlot plot = metricPlot(m, std::move(series), o.logPlots, r.first);
         const Figure fig = linePlot(plot.spec, plot.series);
         const std::string stem = fmt::format("plot_{}", m.key);

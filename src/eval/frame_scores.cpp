@@ -13,7 +13,7 @@ const std::vector<MetricInfo>& metricList() {
         {"ssim", "SSIM", false, false},
         {"flip", "FLIP", true, true},
         {"relmse", "relMSE", true, true},
-        {"temporal_error", "temporal error", true, true},
+        {"temporal_error", "temporal error", true, true, true},
         {"temporal_change_error", "change error", true, true}};
     return list;
 }

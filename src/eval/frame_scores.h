@@ -24,6 +24,9 @@ struct MetricInfo {
     const char* label;
     bool lowerIsBetter;
     bool nonNegative; ///< plots start their axis at 0
+    /// The reference sequence has its own value, and that is the target: neither lower nor
+    /// higher is better (the temporal error, which counts the scene's real motion too).
+    bool referenceIsTarget = false;
 };
 const std::vector<MetricInfo>& metricList();
 double metricValue(const FrameScores& s, const std::string& key);

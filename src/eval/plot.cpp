@@ -106,10 +106,9 @@ MetricPlot metricPlot(const MetricInfo& m, std::vector<Series> series, const std
     }
     p.spec.logY =
         m.nonNegative && (logPlots == "on" || (logPlots == "auto" && wantsLogAxis(p.series)));
-    const std::string better = std::string(m.key) == "temporal_error"
-                                   ? "the reference's is the target"
-                               : m.lowerIsBetter ? "lower is better"
-                                                 : "higher is better";
+    const std::string better = m.referenceIsTarget ? "the reference's is the target"
+                               : m.lowerIsBetter   ? "lower is better"
+                                                   : "higher is better";
     p.spec.title = fmt::format("{} ({}{})", m.label, better, p.spec.logY ? ", log scale" : "");
     return p;
 }

@@ -17,15 +17,9 @@ std::string fmtValue(double v) {
     return std::isfinite(v) ? fmt::format("{:.4f}", v) : "-";
 }
 
-/// The temporal error counts the scene's real motion as well as flicker: the reference's own
-/// value is its target, so neither lower nor higher is better.
-bool targetIsReference(const MetricInfo& m) {
-    return std::string(m.key) == "temporal_error";
-}
-
 /// The header's arrow: lower or higher is better, or "towards the reference's value".
 std::string direction(const MetricInfo& m, bool html) {
-    if (targetIsReference(m)) return html ? "&rarr; ref" : "→ ref";
+    if (m.referenceIsTarget) return html ? "&rarr; ref" : "→ ref";
     if (html) return m.lowerIsBetter ? "&darr;" : "&uarr;";
     return m.lowerIsBetter ? "↓" : "↑";
 }
@@ -38,7 +32,7 @@ std::string direction(const MetricInfo& m, bool html) {
 /// the highest change error.
 bool isBest(const ComparisonResult& r, size_t i, const MetricInfo& m) {
     const double v = metricValue(r.means[i], m.key);
-    if (!std::isfinite(v) || targetIsReference(m)) return false;
+    if (!std::isfinite(v) || m.referenceIsTarget) return false;
     for (const FrameScores& o : r.means) {
         const double w = metricValue(o, m.key);
         if (std::isfinite(w) && (m.lowerIsBetter ? w < v : w > v)) return false;
@@ -50,7 +44,7 @@ bool isBest(const ComparisonResult& r, size_t i, const MetricInfo& m) {
 /// other cells are empty.
 template <class Format>
 std::string referenceCell(const ComparisonResult& r, const MetricInfo& m, Format format) {
-    return std::string(m.key) == "temporal_error" ? format(r.referenceTemporalMean) : "";
+    return m.referenceIsTarget ? format(r.referenceTemporalMean) : "";
 }
 
 /// A row that `bmfr demo` names, and what it is: `brief` for the terminal and table.md, `full`

@@ -1,5 +1,4 @@
 #include "io/range_parsers.h"
-#include <algorithm>
 #include <bmfr/error.h>
 #include <cstdio>
 #include <fmt/core.h>
@@ -15,12 +14,8 @@ void checkFrameRangeSyntax(const std::string& spec) {
     for (const std::string& s : {a, b})
         if (s.find_first_not_of("0123456789") != std::string::npos)
             throw Error("frame range: '" + s + "' is not a frame number");
-    // Compared as digit strings: they may be longer than any integer.
-    auto value = [](const std::string& s) {
-        return s.substr(std::min(s.find_first_not_of('0'), s.size()));
-    };
-    const std::string va = value(a), vb = value(b);
-    if (!a.empty() && !b.empty() && (va.size() > vb.size() || (va.size() == vb.size() && va >= vb)))
+    // Longer numbers than a frame count can be are left to the sequence's range check.
+    if (!a.empty() && !b.empty() && a.size() <= 9 && b.size() <= 9 && std::stol(a) >= std::stol(b))
         throw Error("frame range " + spec +
                     " is empty: A:B runs frames A to B-1, so B must exceed A");
 }
