@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Installs the Debian packages bmfr needs. Skips apt when all are present.
+# Installs the Debian packages bmfr needs (skipping apt when all are present), then Intel Open
+# Image Denoise from PyPI into .venv/ (scripts/install-oidn.sh), the peer the demo compares with.
 #   install-deps.sh --demo    only what `bmfr` itself needs to build (the demo's command)
 #   install-deps.sh           also the libraries and tools the tests, sanitizers and the Python
 #                             module build with (GoogleTest, Google Benchmark, clang, pybind11...)
 #   install-deps.sh --tests   also what only the tests run: Blender (the Cycles round trip),
 #                             chromium and chromium-driver (the report in a browser), ffmpeg
-#                             (eval --video) and python3-venv (the Python package in a fresh venv)
+#                             (eval --video)
 set -euo pipefail
 case "${1:-}" in
 "" | --demo | --tests) ;;
@@ -15,13 +16,14 @@ case "${1:-}" in
     ;;
 esac
 pkgs=(cmake g++ make pkg-config libopenexr-dev libimath-dev libtbb-dev libcli11-dev
-      nlohmann-json3-dev libfmt-dev libstb-dev libembree-dev libtinygltf-dev libtinyobjloader-dev)
+      nlohmann-json3-dev libfmt-dev libstb-dev libembree-dev libtinygltf-dev libtinyobjloader-dev
+      python3-venv)
 if [ "${1:-}" != --demo ]; then
     pkgs+=(libeigen3-dev libgtest-dev libbenchmark-dev python3 python3-skimage clang
            libclang-rt-14-dev python3-dev python3-numpy python3-pytest pybind11-dev python3-pil)
 fi
 if [ "${1:-}" = --tests ]; then
-    pkgs+=(blender chromium chromium-driver ffmpeg python3-venv)
+    pkgs+=(blender chromium chromium-driver ffmpeg)
 fi
 missing=()
 for p in "${pkgs[@]}"; do
@@ -33,3 +35,4 @@ if [ ${#missing[@]} -gt 0 ]; then
     apt-get update -qq
     apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+bash "$(dirname "$0")/install-oidn.sh"

@@ -250,6 +250,46 @@ TEST(ReportTables, NotesSayWhatTheDemosRowsAreAndHowTheTemporalColumnsRead) {
     EXPECT_NE(ablation.find("TAA blends each frame"), std::string::npos);
 }
 
+TEST(ReportTables, TimeColumnFromEachRunsRecordWithItsMachineAndOidnSaysSingleFrame) {
+    // No method recorded a time: no column, no note.
+    EXPECT_EQ(markdownTable(threeMethods({"a", "b", "c"})).find("ms/frame"), std::string::npos);
+
+    ComparisonResult r = threeMethods({"noisy", "fast one", "theirs"});
+    r.runs.resize(3);
+    r.runs[1].stageMs = {{"fit", 1.0}, {"total", 2.5}};
+    r.runs[1].machine = "CPU X, 2 threads";
+    r.runs[2].stageMs = {{"filter", 150.0}, {"total", 168.4}};
+    r.runs[2].machine = "CPU X, 2 threads";
+    r.runs[2].filter = "oidn";
+    r.runs[2].description = "OIDN 2.5.1, RT filter";
+    const std::string md = markdownTable(r);
+    EXPECT_NE(md.find("| change error ↓ | ms/frame ↓ |\n|---|---|---|---|---|---|---|---|---|\n"),
+              std::string::npos)
+        << md;
+    EXPECT_NE(md.find("| **0.0040** | - |\n"), std::string::npos) << "the input has no time\n"
+                                                                  << md;
+    EXPECT_NE(md.find("| **2.50** |\n"), std::string::npos) << "the fastest in bold\n" << md;
+    EXPECT_NE(md.find("| 168 |\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("theirs = Intel Open Image Denoise, single-frame"), std::string::npos) << md;
+    EXPECT_NE(md.find("ms/frame: the median time per frame of each method's own run (its "
+                      "report.json), reading and writing files excluded, on CPU X, 2 threads.\n"),
+              std::string::npos)
+        << md;
+    const std::string html = tableHtml(r);
+    EXPECT_NE(html.find("<th>ms/frame &darr;</th>"), std::string::npos) << html;
+    EXPECT_NE(html.find("<td><b>2.50</b></td>"), std::string::npos) << html;
+    EXPECT_NE(html.find("Intel Open Image Denoise (OIDN 2.5.1, RT filter), the denoiser Blender "
+                        "and most offline renderers ship: single-frame"),
+              std::string::npos)
+        << html;
+
+    // Times from two machines: each named with its methods.
+    r.runs[2].machine = "CPU Y, 16 threads";
+    EXPECT_NE(markdownTable(r).find("on CPU X, 2 threads (fast one); CPU Y, 16 threads (theirs)."),
+              std::string::npos)
+        << markdownTable(r);
+}
+
 /// Rasters for the viewer's error scales: one colour everywhere but for `changed`, pixel i of
 /// which gets colour changed[i].
 Raster rasterWith(Rgb8 base, const std::vector<std::pair<int, Rgb8>>& changed) {
@@ -399,7 +439,7 @@ TEST(ReportOutputs, NamesAreEscapedAndTablesShareOneNumericSchema) {
     for (const MetricInfo& m : metricList()) keys += std::string(",") + m.key;
     EXPECT_EQ(header(scores).rfind("frame" + keys, 0), 0u) << header(scores);
     EXPECT_EQ(header(perFrame), "method,frame" + keys);
-    EXPECT_EQ(header(slurp(out / "table.csv")), "method" + keys);
+    EXPECT_EQ(header(slurp(out / "table.csv")), "method" + keys + ",ms_per_frame");
     std::istringstream rows(scores);
     std::string row;
     std::getline(rows, row);
@@ -424,6 +464,12 @@ TEST(ReportOutputs, NamesAreEscapedAndTablesShareOneNumericSchema) {
     }
     // The first frame's temporal error is missing: empty in CSV, null in JSON.
     EXPECT_TRUE(eval_json["methods"]["noisy"]["per_frame"]["temporal_error"][0].is_null());
+    // Times per frame as the denoise run recorded them, with its machine; none for the input.
+    EXPECT_TRUE(eval_json["methods"]["noisy"]["ms_per_frame"].is_null());
+    const auto& denoised = eval_json["methods"][viewer["methods"][2].get<std::string>()];
+    EXPECT_EQ(denoised["ms_per_frame"].get<double>(), den_json["median_ms"]["total"].get<double>());
+    EXPECT_EQ(denoised["machine"], den_json["machine"]);
+    EXPECT_NE(den_json["machine"].get<std::string>().find(" threads"), std::string::npos);
     // The report holds the notes under its table, SSIM as 1 - SSIM on a log axis, a play button
     // and the viewer's frame rate (--video-fps, 24 by default) and opening error scales.
     const size_t notes = html.find("<p class=\"notes\">");

@@ -1,6 +1,7 @@
 #include "commands.h"
 #include "eval/comparison.h"
 #include "io/output_folder.h"
+#include "peers/oidn_library.h"
 #include "progress.h"
 #include "render/sequence_renderer.h"
 #include "usage.h"
@@ -99,6 +100,21 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             dj.overwrite = true; // the demo's own folder: a second demo replaces the first's
             runDenoise(dj);
             eval.methods.push_back({v.name, dj.output});
+        }
+        // What users run today, beside them, where it is installed.
+        if (oidn::available()) {
+            DenoiseJob dj;
+            dj.input = input;
+            dj.output = (fs::path(job->output) / "oidn").string();
+            dj.quiet = true;
+            dj.filter = "oidn";
+            dj.oidn = oidn::PeerSettings();
+            dj.overwrite = true;
+            runDenoise(dj);
+            eval.methods.push_back({"oidn", dj.output});
+        } else if (!job->quiet) {
+            fmt::print("Intel Open Image Denoise is not installed (bash scripts/install-oidn.sh): "
+                       "the comparison runs without it\n");
         }
         exitCode = runEval(eval, job->quiet);
     });

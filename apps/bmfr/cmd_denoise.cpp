@@ -1,3 +1,4 @@
+#include "backend/cuda/cuda_device.h"
 #include "commands.h"
 #include "core/hash.h"
 #include "core/image.h"
@@ -5,6 +6,7 @@
 #include "denoise_scores.h"
 #include "eval/comparison.h"
 #include "eval/frame_scores.h"
+#include "eval/run_metadata.h"
 #include "filters/filter_inputs.h"
 #include "help_format.h"
 #include "io/atomic_file.h"
@@ -163,6 +165,43 @@ size_t claimOutputs(const fs::path& out, const fs::path& input, bool overwrite, 
     return earlier.size();
 }
 
+/// What denoises a run: one of the library's filters, or a peer method.
+struct Method {
+    std::unique_ptr<Filter> filter;
+    SettingValues values;         ///< for report.json, by setting key
+    std::string features;         ///< the feature columns fitted, or ""
+    std::string backend;          ///< the backend's name
+    std::string title;            ///< the summary's first words
+    std::string description;      ///< a peer's own words on what ran
+    std::vector<InputUse> inputs; ///< optional buffers it reads
+};
+
+Method makeMethod(const DenoiseJob& job, const SequenceInfo& info) {
+    Method m;
+    if (job.oidn) {
+        oidn::PeerSettings s = *job.oidn;
+        s.colorIsDemodulated = info.colorIsDemodulated;
+        oidn::Peer peer = oidn::makePeer(s);
+        m.filter = std::move(peer.filter);
+        m.description = peer.description;
+        m.values = {{"quality", s.quality},
+                    {"prefilter", s.prefilter},
+                    {"threads", std::to_string(s.threads)}};
+        m.backend = "cpu";
+        m.title = "bmfr peer oidn";
+        return m;
+    }
+    const SequenceDefaults own{info.positionLimitSquared, info.normalLimitSquared,
+                               info.colorIsDemodulated};
+    m.values = job.options.resolve(job.filter, own);
+    m.filter = job.options.makeFilter(job.filter, m.values, own);
+    m.features = checkedFeatures(job.filter, m.values, job.input, info);
+    m.backend = settingValue(m.values, "backend", "cpu");
+    m.title = fmt::format("bmfr denoise ({}, {} backend)", job.filter, m.backend);
+    m.inputs = filterInputs(job.filter, m.values);
+    return m;
+}
+
 } // namespace
 
 int runDenoise(const DenoiseJob& job) {
@@ -178,12 +217,8 @@ int runDenoise(const DenoiseJob& job) {
     auto reader = SequenceReader::open(job.input);
     reader->setLayerOverrides(usageChecked([&] { return parseLayerMap(job.channels); }));
     const SequenceInfo& info = reader->info();
-    const SequenceDefaults own{info.positionLimitSquared, info.normalLimitSquared,
-                               info.colorIsDemodulated};
-    const SettingValues values = job.options.resolve(job.filter, own);
-    std::unique_ptr<Filter> filter = job.options.makeFilter(job.filter, values, own);
-    const std::string features = checkedFeatures(job.filter, values, job.input, info);
-    const std::string backend = settingValue(values, "backend", "cpu");
+    const Method method = makeMethod(job, info);
+    Filter* filter = method.filter.get();
     auto [first, last] = parseFrameRange(job.frames, info.frameCount);
     reader->checkFrames(first, last); // a bad frame fails the run before its first output
     const OutputFolder folder(job.output, invocation());
@@ -194,12 +229,11 @@ int runDenoise(const DenoiseJob& job) {
                     (ec ? ": " + ec.message() : ": a file of that name is in the way"));
     filter->setDebugOutputs(job.debug);
     if (!job.quiet)
-        fmt::print("bmfr denoise ({}, {} backend): {} ({} layout, {}x{}, frames {}:{}){}\n",
-                   job.filter, backend, job.input, info.layout, info.width, info.height, first,
-                   last, features.empty() ? std::string() : ", features " + features);
+        fmt::print("{}: {} ({} layout, {}x{}, frames {}:{}){}\n", method.title, job.input,
+                   info.layout, info.width, info.height, first, last,
+                   method.features.empty() ? std::string() : ", features " + method.features);
     for (const std::string& note : reader->notes()) fmt::print(stderr, "bmfr: note: {}\n", note);
 
-    const std::vector<InputUse> inputs = filterInputs(job.filter, values);
     int lastWritten = first - 1; // the last frame whose denoised EXR is on disk
     Progress progress("denoise", last - first, job.quiet);
     ImageF sampleMask(info.width, info.height, 1);
@@ -216,7 +250,7 @@ int runDenoise(const DenoiseJob& job) {
         tRead.push_back(clock.lap());
         FrameInput in = frame.input(job.motion);
         if (i == first)
-            if (const std::string w = missingInputWarning(inputs, in); !w.empty())
+            if (const std::string w = missingInputWarning(method.inputs, in); !w.empty())
                 fmt::print(stderr, "bmfr: warning: {}: {}\n", job.input, w);
         motionFrames += frame.motion.width || frame.previousPosition.width ? 1 : 0;
         if (job.sampleFraction < 1.0f) {
@@ -275,15 +309,22 @@ int runDenoise(const DenoiseJob& job) {
     report["input"] = job.input;
     report["frames"] = last - first;
     report["resolution"] = {info.width, info.height};
-    if (!features.empty()) report["features"] = features;
+    if (!method.features.empty()) report["features"] = method.features;
     report["filter"] = job.filter;
-    report["backend"] = backend;
-    report["reprojection"] = motionFrames == 0 ? "camera (the input has no motion vectors)"
-                             : job.motion      ? "motion vectors"
-                                               : "camera (motion vectors ignored: --no-motion)";
-    for (const auto& [key, value] : values) report["settings"][key] = value;
+    report["backend"] = method.backend;
+    if (job.oidn) report["method"] = method.description;
+    report["reprojection"] = job.oidn            ? "none (single-frame)"
+                             : motionFrames == 0 ? "camera (the input has no motion vectors)"
+                             : job.motion        ? "motion vectors"
+                                                 : "camera (motion vectors ignored: --no-motion)";
+    for (const auto& [key, value] : method.values) report["settings"][key] = value;
     report["median_ms"] = stages.medians();
     report["median_ms"]["total"] = stages.totalMedian();
+    const int threads = std::stoi(settingValue(method.values, "threads", "0"));
+    const int threadsUsed = threads ? threads : int(std::thread::hardware_concurrency());
+    report["machine"] = method.backend == "cuda"
+                            ? fmt::format("GPU {} (host CPU {})", cuda::deviceName(), cpuModel())
+                            : fmt::format("{}, {} threads", cpuModel(), threadsUsed);
     if (info.hasReference) {
         scores.writeCsv((out / "scores.csv").string());
         scores.addTo(report);
@@ -291,13 +332,12 @@ int runDenoise(const DenoiseJob& job) {
     writeFileAtomically((out / "report.json").string(), report.dump(2) + "\n");
 
     if (!job.quiet) {
-        const int threads = std::stoi(settingValue(values, "threads", "0"));
         fmt::print("\n{} frames, {}x{}, {} threads. Median ms per frame:\n", last - first,
-                   info.width, info.height,
-                   threads ? threads : int(std::thread::hardware_concurrency()));
+                   info.width, info.height, threadsUsed);
         fmt::print("  {}   (read {:.1f}, write {:.1f})\n", stages.line(), median(tRead),
                    median(tWrite));
         fmt::print("  reprojection: {}\n", report["reprojection"].get<std::string>());
+        if (job.oidn) fmt::print("  {}\n", method.description);
         if (info.hasReference) fmt::print("{}", scores.summary(job.filter));
         fmt::print("\nwrote {}/denoised_NNNN.exr{}, report.json{}\n", job.output,
                    job.png ? " and .png" : "", info.hasReference ? ", scores.csv" : "");

@@ -2,6 +2,7 @@
 #pragma once
 #include "eval/comparison.h"
 #include "filter_options.h"
+#include "peers/oidn_filter.h"
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
@@ -19,6 +20,8 @@ struct DenoiseJob {
     float sampleFraction = 1.0f; ///< < 1 simulates fewer than 1 spp with a per-frame pixel mask
     std::vector<std::string> channels; ///< BUFFER=LAYER for multilayer EXR inputs
     FilterOptions options;
+    /// A peer method (`bmfr peer oidn`) in place of a filter: `filter` and `options` unused.
+    std::optional<oidn::PeerSettings> oidn;
 };
 
 /// Denoises a sequence into job.output; prints a timing summary (and scores when the input has
@@ -44,5 +47,6 @@ void addEvalCommand(CLI::App& app, int& exitCode);
 void addAblateCommand(CLI::App& app, int& exitCode);
 void addSettingsCommand(CLI::App& app, int& exitCode);
 void addSoakCommand(CLI::App& app, int& exitCode);
+void addPeerCommand(CLI::App& app, int& exitCode);
 
 } // namespace bmfr::app

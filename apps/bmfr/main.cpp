@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
     bmfr::app::addTonemapCommand(app, exitCode);
     bmfr::app::addSettingsCommand(app, exitCode);
     bmfr::app::addSoakCommand(app, exitCode);
+    bmfr::app::addPeerCommand(app, exitCode);
     std::vector<std::string> commands;
     for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
     const bool known =

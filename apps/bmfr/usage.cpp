@@ -15,10 +15,16 @@ std::string commandList(const CLI::App& app) {
            "run 'bmfr COMMAND --help' for a command's options, 'bmfr --version' for the build\n";
 }
 
-namespace {} // namespace
+std::string commandPath(const CLI::App& cmd) {
+    std::string s = cmd.get_name();
+    for (const CLI::App* p = cmd.get_parent(); p && p->get_parent(); p = p->get_parent())
+        s = p->get_name() + " " + s;
+    return s;
+}
 
 std::string usageLine(const CLI::App& cmd) {
-    std::string s = "usage: bmfr " + cmd.get_name();
+    std::string s = "usage: bmfr " + commandPath(cmd);
+    if (cmd.get_require_subcommand_min() > 0) s += " COMMAND";
     for (const CLI::Option* o : cmd.get_options()) {
         if (o->get_positional()) {
             const std::string n = upperCase(o->get_name());
@@ -34,10 +40,13 @@ std::string usageLine(const CLI::App& cmd) {
 
 namespace {
 
+/// The innermost command given ("oidn" of `bmfr peer oidn`), or null.
 const CLI::App* activeCommand(const CLI::App& app) {
     const CLI::App* active = nullptr;
     for (const CLI::App* sub : app.get_subcommands({}))
         if (sub->parsed()) active = sub;
+    if (active)
+        if (const CLI::App* inner = activeCommand(*active)) return inner;
     return active;
 }
 
@@ -119,7 +128,7 @@ int reportUsageError(const CLI::App& app, const std::string& message) {
     std::fprintf(stderr, "bmfr: %s\n", message.c_str());
     if (active)
         std::fprintf(stderr, "%s\nrun 'bmfr %s --help' for the options\n",
-                     usageLine(*active).c_str(), active->get_name().c_str());
+                     usageLine(*active).c_str(), commandPath(*active).c_str());
     else
         std::fprintf(stderr, "usage: bmfr COMMAND [options]\n%s", commandList(app).c_str());
     return 2;

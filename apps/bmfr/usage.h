@@ -27,6 +27,8 @@ template <class F> auto usageChecked(F&& f) -> decltype(f()) {
 
 /// "usage: bmfr denoise INPUT -o OUTPUT [options]".
 std::string usageLine(const CLI::App& cmd);
+/// The command's words after `bmfr`: "denoise", "peer oidn".
+std::string commandPath(const CLI::App& cmd);
 
 /// "commands:" and one line per subcommand with its description.
 std::string commandList(const CLI::App& app);

@@ -243,6 +243,13 @@ ComparisonResult runComparison(const ComparisonOptions& o,
     for (double v : r.referenceTemporal)
         if (std::isfinite(v)) s += v, ++n;
     r.referenceTemporalMean = n ? s / n : NAN;
+    RunMetadata meta = collectRunMetadata(o.commandLine, o.programVersion, o.reference, [&] {
+        std::vector<std::pair<std::string, std::string>> m;
+        for (const MethodSource& x : o.methods) m.emplace_back(x.name, x.path);
+        return m;
+    }());
+    meta.width = fullW, meta.height = fullH, meta.firstFrame = r.first, meta.lastFrame = r.last;
+    r.runs = meta.methods;
     writeTables(r, o, r.scoresJson);
 
     ReportContent report;
@@ -255,12 +262,6 @@ ComparisonResult runComparison(const ComparisonOptions& o,
     report.pictures = writePictures(r, o, show, shownRef, shown, shownFlip);
     report.viewerJson = viewer.json();
 
-    RunMetadata meta = collectRunMetadata(o.commandLine, o.programVersion, o.reference, [&] {
-        std::vector<std::pair<std::string, std::string>> m;
-        for (const MethodSource& x : o.methods) m.emplace_back(x.name, x.path);
-        return m;
-    }());
-    meta.width = fullW, meta.height = fullH, meta.firstFrame = r.first, meta.lastFrame = r.last;
     report.metadataHtml = metadataHtml(meta);
     writeFileAtomically((out / "run.json").string(), metadataJson(meta) + "\n");
 

@@ -5,6 +5,7 @@
 #pragma once
 #include "eval/escape_html.h"
 #include "eval/frame_scores.h"
+#include "eval/run_metadata.h"
 #include "io/range_parsers.h"
 #include <array>
 #include <functional>
@@ -46,6 +47,8 @@ struct ComparisonResult {
     std::vector<std::string> names;
     std::vector<std::vector<FrameScores>> perFrame; ///< [method][frame - first]
     std::vector<FrameScores> means;
+    /// [method]: what its run recorded (report.json): filter, settings, ms per frame, machine.
+    std::vector<MethodMetadata> runs;
     std::vector<double> referenceTemporal; ///< [frame - first], NaN for the first
     double referenceTemporalMean = NAN;
     std::string reportPath;

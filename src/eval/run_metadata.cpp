@@ -1,6 +1,7 @@
 #include "eval/run_metadata.h"
 #include "eval/escape_html.h"
 #include "render/sequence_renderer.h"
+#include <cmath>
 #include <filesystem>
 #include <fmt/core.h>
 #include <fstream>
@@ -28,6 +29,12 @@ std::string text(const nlohmann::json& v) {
 }
 
 } // namespace
+
+double MethodMetadata::msPerFrame() const {
+    for (const auto& [stage, ms] : stageMs)
+        if (stage == "total") return ms;
+    return NAN;
+}
 
 std::string cpuModel() {
     std::ifstream in("/proc/cpuinfo");
@@ -64,6 +71,8 @@ RunMetadata collectRunMetadata(const std::string& commandLine, const std::string
             mm.filter = r.value("filter", "");
             mm.backend = r.value("backend", "");
             mm.reprojection = r.value("reprojection", "");
+            if (r.contains("method") && r["method"].is_string()) mm.description = r["method"];
+            if (r.contains("machine") && r["machine"].is_string()) mm.machine = r["machine"];
             if (r.contains("settings") && r["settings"].is_object())
                 for (const auto& [k, v] : r["settings"].items())
                     mm.settings.emplace_back(k, text(v));
@@ -100,7 +109,9 @@ std::string metadataHtml(const RunMetadata& m) {
         for (const auto& [k, v] : mm.stageMs)
             stages += (stages.empty() ? "" : ", ") + fmt::format("{} {:.2f}", k, v);
         h += "<tr><td>" + escapeHtml(mm.name) + "</td><td>" + escapeHtml(mm.path) + "</td><td>" +
-             escapeHtml(mm.filter.empty() ? "-" : mm.filter + ", " + mm.backend) +
+             escapeHtml(mm.filter.empty()        ? "-"
+                        : mm.description.empty() ? mm.filter + ", " + mm.backend
+                                                 : mm.description) +
              "</td><td class=\"wrap\">" + escapeHtml(settings.empty() ? "-" : settings) +
              "</td><td class=\"wrap\">" + escapeHtml(stages.empty() ? "-" : stages) + "</td></tr>";
     }
@@ -120,6 +131,8 @@ std::string metadataJson(const RunMetadata& m) {
         nlohmann::json x{{"name", mm.name}, {"source", mm.path}};
         if (!mm.filter.empty()) {
             x["filter"] = mm.filter, x["backend"] = mm.backend;
+            if (!mm.description.empty()) x["method"] = mm.description;
+            if (!mm.machine.empty()) x["machine"] = mm.machine;
             for (const auto& [k, v] : mm.settings) x["settings"][k] = v;
             for (const auto& [k, v] : mm.stageMs) x["median_ms"][k] = v;
         }

@@ -11,8 +11,12 @@ namespace bmfr {
 struct MethodMetadata {
     std::string name, path;
     std::string filter, backend, reprojection; ///< empty when the folder has no report.json
+    std::string description; ///< a peer method's own words on what ran ("OIDN 2.5.1, ...")
+    std::string machine;     ///< where its times were measured, as its run recorded it
     std::vector<std::pair<std::string, std::string>> settings;
     std::vector<std::pair<std::string, double>> stageMs; ///< median ms per frame, per stage
+    /// The median total ms per frame its run measured, or NaN when it recorded none.
+    double msPerFrame() const;
 };
 
 struct RunMetadata {

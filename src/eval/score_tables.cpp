@@ -1,9 +1,11 @@
 #include "eval/score_tables.h"
 #include "io/atomic_file.h"
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fmt/core.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -75,16 +77,89 @@ const KnownRow kKnownRows[] = {
      "paper's reprojection)"},
 };
 
-/// "Rows: name: what it is; ..." for the rows of known names; empty when there is none.
+/// The run record of method i, or null (a sequence's noisy colour has none).
+const MethodMetadata* runOf(const ComparisonResult& r, size_t i) {
+    return i < r.runs.size() ? &r.runs[i] : nullptr;
+}
+
+/// Whether the run of method i is `bmfr peer oidn`'s, whatever the user named it.
+bool isOidn(const ComparisonResult& r, size_t i) {
+    const MethodMetadata* run = runOf(r, i);
+    return run && run->filter == "oidn";
+}
+
+/// "Rows: name: what it is; ..." for the rows of known names and OIDN's; empty when there is
+/// none.
 std::string rowGlosses(const ComparisonResult& r, bool html) {
     std::string text;
-    for (const std::string& name : r.names)
+    auto add = [&](const std::string& name, const std::string& brief, const std::string& full) {
+        text +=
+            (text.empty() ? "Rows: " : "; ") +
+            (html ? "<i>" + escapeHtml(name) + "</i>, " + escapeHtml(full) : name + " = " + brief);
+    };
+    for (size_t i = 0; i < r.names.size(); ++i) {
+        if (isOidn(r, i)) {
+            add(r.names[i], "Intel Open Image Denoise, single-frame",
+                "Intel Open Image Denoise (" + r.runs[i].description +
+                    "), the denoiser Blender and most offline renderers ship: single-frame, it "
+                    "denoises each frame alone and keeps no history");
+            continue;
+        }
         for (const KnownRow& k : kKnownRows)
-            if (name == k.name)
-                text += (text.empty() ? "Rows: " : "; ") +
-                        (html ? "<i>" + escapeHtml(name) + "</i>, " + escapeHtml(k.full)
-                              : name + " = " + k.brief);
+            if (r.names[i] == k.name) add(r.names[i], k.brief, k.full);
+    }
     return text.empty() ? text : text + ".";
+}
+
+/// Milliseconds per frame of method i as its run measured them; NaN when not recorded.
+double msPerFrame(const ComparisonResult& r, size_t i) {
+    const MethodMetadata* run = runOf(r, i);
+    return run ? run->msPerFrame() : NAN;
+}
+
+/// Whether any method recorded its time: the table has a time column then.
+bool hasTimes(const ComparisonResult& r) {
+    for (size_t i = 0; i < r.names.size(); ++i)
+        if (std::isfinite(msPerFrame(r, i))) return true;
+    return false;
+}
+
+std::string fmtMs(double v) {
+    if (!std::isfinite(v)) return "-";
+    return fmt::format("{:.{}f}", v, v >= 100 ? 0 : v >= 10 ? 1 : 2);
+}
+
+/// The time cell of method i, the fastest in bold (`bold` wraps a string).
+template <class Bold> std::string timeCell(const ComparisonResult& r, size_t i, Bold bold) {
+    const double v = msPerFrame(r, i);
+    for (size_t k = 0; k < r.names.size(); ++k)
+        if (std::isfinite(v) && msPerFrame(r, k) < v) return fmtMs(v);
+    return std::isfinite(v) ? bold(fmtMs(v)) : fmtMs(v);
+}
+
+/// "ms/frame: ... on MACHINE" naming where each method's time was measured.
+std::string timeNote(const ComparisonResult& r, bool html) {
+    std::vector<std::pair<std::string, std::vector<std::string>>> machines; // machine, methods
+    for (size_t i = 0; i < r.names.size(); ++i) {
+        if (!std::isfinite(msPerFrame(r, i))) continue;
+        const std::string m =
+            r.runs[i].machine.empty() ? "a machine its run did not record" : r.runs[i].machine;
+        auto it = std::find_if(machines.begin(), machines.end(),
+                               [&](const auto& e) { return e.first == m; });
+        if (it == machines.end()) it = machines.insert(machines.end(), {m, {}});
+        it->second.push_back(r.names[i]);
+    }
+    std::string where;
+    for (const auto& [machine, names] : machines) {
+        where += where.empty() ? "" : "; ";
+        where += machine;
+        if (machines.size() > 1) where += fmt::format(" ({})", fmt::join(names, ", "));
+    }
+    const std::string text =
+        "ms/frame: the median time per frame of each method's own run (its report.json), "
+        "reading and writing files excluded, on " +
+        where + ".";
+    return html ? escapeHtml(text) : text;
 }
 
 /// Whether a row's name says it differs from another by its TAA ("bmfr without TAA").
@@ -103,6 +178,7 @@ bool comparesTaa(const ComparisonResult& r) {
 std::string tableNotes(const ComparisonResult& r, bool html) {
     std::vector<std::string> notes;
     if (const std::string rows = rowGlosses(r, html); !rows.empty()) notes.push_back(rows);
+    if (hasTimes(r)) notes.push_back(timeNote(r, html));
     if (comparesTaa(r))
         notes.push_back(
             html ? "TAA (temporal anti-aliasing over the already-denoised output) blends each "
@@ -144,8 +220,10 @@ std::string markdownTable(const ComparisonResult& r) {
     std::string md = "| method |";
     for (const MetricInfo& m : metricList())
         md += fmt::format(" {} {} |", m.label, direction(m, false));
+    const bool times = hasTimes(r);
+    if (times) md += " ms/frame ↓ |";
     md += "\n|---|";
-    for (size_t k = 0; k < metricList().size(); ++k) md += "---|";
+    for (size_t k = 0; k < metricList().size() + (times ? 1 : 0); ++k) md += "---|";
     md += "\n";
     for (size_t i = 0; i < r.names.size(); ++i) {
         std::string name;
@@ -156,11 +234,16 @@ std::string markdownTable(const ComparisonResult& r) {
             const bool best = isBest(r, i, m);
             md += best ? fmt::format(" **{}** |", fmtValue(v)) : fmt::format(" {} |", fmtValue(v));
         }
+        if (times)
+            md += fmt::format(" {} |", timeCell(r, i, [](const std::string& t) {
+                                  return fmt::format("**{}**", t);
+                              }));
         md += "\n";
     }
     md += "| reference |";
     for (const MetricInfo& m : metricList())
         md += fmt::format(" {} |", referenceCell(r, m, fmtValue));
+    if (times) md += " |";
     return md + "\n\n" + tableNotes(r, false);
 }
 
@@ -177,12 +260,12 @@ void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::str
     std::ostringstream csv, pf;
     csv << "method", pf << "method,frame";
     for (const MetricInfo& m : metricList()) csv << "," << m.key, pf << "," << m.key;
-    csv << "\n", pf << "\n";
+    csv << ",ms_per_frame\n", pf << "\n";
     for (size_t i = 0; i < r.names.size(); ++i) {
         csv << csvText(r.names[i]);
         for (const MetricInfo& m : metricList())
             csv << "," << csvNumber(metricValue(r.means[i], m.key));
-        csv << "\n";
+        csv << "," << csvNumber(msPerFrame(r, i)) << "\n";
         for (size_t k = 0; k < r.perFrame[i].size(); ++k) {
             pf << csvText(r.names[i]) << "," << r.first + int(k);
             for (const MetricInfo& m : metricList())
@@ -193,7 +276,7 @@ void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::str
     // The reference's own temporal error, for scale; its other cells are empty.
     csv << "reference";
     for (const MetricInfo& m : metricList()) csv << "," << referenceCell(r, m, csvNumber);
-    csv << "\n";
+    csv << ",\n";
     writeFileAtomically((out / "table.csv").string(), csv.str());
     writeFileAtomically((out / "per_frame.csv").string(), pf.str());
 
@@ -214,6 +297,9 @@ void writeTables(const ComparisonResult& r, const ComparisonOptions& o, std::str
             for (const FrameScores& f : r.perFrame[i]) arr.push_back(num(metricValue(f, m.key)));
             mj["per_frame"][m.key] = arr;
         }
+        mj["ms_per_frame"] = num(msPerFrame(r, i));
+        if (const MethodMetadata* run = runOf(r, i); run && !run->machine.empty())
+            mj["machine"] = run->machine;
         j["methods"][r.names[i]] = mj;
     }
     json = j.dump(2) + "\n";
@@ -224,6 +310,8 @@ std::string tableHtml(const ComparisonResult& r) {
     std::string html = "<table><tr><th>method</th>";
     for (const MetricInfo& m : metricList())
         html += fmt::format("<th>{} {}</th>", m.label, direction(m, true));
+    const bool times = hasTimes(r);
+    if (times) html += "<th>ms/frame &darr;</th>";
     html += "</tr>";
     for (size_t i = 0; i < r.names.size(); ++i) {
         html += "<tr><td>" + escapeHtml(r.names[i]) + "</td>";
@@ -231,11 +319,17 @@ std::string tableHtml(const ComparisonResult& r) {
             const std::string v = fmtValue(metricValue(r.means[i], m.key));
             html += isBest(r, i, m) ? "<td><b>" + v + "</b></td>" : "<td>" + v + "</td>";
         }
+        if (times)
+            html +=
+                "<td>" +
+                timeCell(r, i, [](const std::string& t) { return fmt::format("<b>{}</b>", t); }) +
+                "</td>";
         html += "</tr>";
     }
     html += "<tr><td>reference</td>";
     for (const MetricInfo& m : metricList())
         html += "<td>" + referenceCell(r, m, fmtValue) + "</td>";
+    if (times) html += "<td></td>";
     return html + "</tr></table>" + tableNotes(r, true);
 }
 

@@ -2,7 +2,9 @@
 // all keyed by metricList(); missing values are empty cells or JSON null. The Markdown and HTML
 // tables bold the best value of each column, the lowest or highest, but none of the temporal
 // error's (it counts the scene's motion: the reference's own value is its target); notes under
-// them say what the rows the demo names are and how the temporal columns read.
+// them say what the rows the demo names (and OIDN's) are and how the temporal columns read. When
+// any method's run recorded its time (report.json), a last column gives ms per frame and a note
+// names the machine it was measured on.
 #pragma once
 #include "eval/comparison.h"
 #include <string>
