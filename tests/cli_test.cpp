@@ -3,6 +3,7 @@
 #include "backend/cuda/cuda_device.h"
 #include "cli_runner.h"
 #include "io/exr.h"
+#include "peers/oidn_library.h"
 #include "test_support.h"
 #include <array>
 #include <bmfr/error.h>
@@ -160,19 +161,25 @@ TEST(Cli, EvalWritesTablesPlotsCropsHeatMapsAndAReport) {
     for (const fs::path& p : {in, den, noTaa, out}) fs::remove_all(p);
 }
 
-TEST(Cli, DemoRendersDenoisesSevenWaysAndWritesTheReport) {
+TEST(Cli, DemoRendersDenoisesEveryWayAndWritesTheReport) {
     const fs::path out = bmfr::testing::scratchPath("cli", "demo");
     const Result r =
         run("demo -o " + out.string() + " --width 48 --height 36 --frames 3 --reference-spp 4 -q");
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* folder : {"denoised", "accumulation_only", "bmfr_no_taa", "svgf", "walr",
-                               "bmfr_quality", "svgf_quality"})
+    std::vector<std::string> folders = {
+        "denoised", "accumulation_only", "bmfr_no_taa",  "svgf",
+        "walr",     "bmfr_quality",      "svgf_quality", "mara2017"};
+    // OIDN where it is installed (scripts/install-oidn.sh; never in a sanitizer build).
+    if (bmfr::oidn::available()) folders.push_back("oidn");
+    for (const std::string& folder : folders)
         EXPECT_TRUE(fs::exists(out / folder / "denoised_0002.exr")) << folder;
     EXPECT_TRUE(fs::exists(out / "report" / "report.html"));
     std::ifstream json(out / "report" / "table.json");
     const std::string table((std::istreambuf_iterator<char>(json)), {});
-    for (const char* key : {"\"bmfr quality\"", "\"svgf quality\"", "\"temporal_change_error\""})
+    for (const char* key : {"\"bmfr quality\"", "\"svgf quality\"", "\"mara2017\"",
+                            "\"temporal_change_error\"", "\"ms_per_frame\""})
         EXPECT_NE(table.find(key), std::string::npos) << key;
+    EXPECT_EQ(table.find("\"oidn\"") != std::string::npos, bmfr::oidn::available());
     // The preset is applied: its output is not the faithful one's.
     EXPECT_NE(bmfr::readExr((out / "denoised" / "denoised_0002.exr").string(), 3).pixels,
               bmfr::readExr((out / "bmfr_quality" / "denoised_0002.exr").string(), 3).pixels);

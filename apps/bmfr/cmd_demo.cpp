@@ -61,8 +61,8 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
                 "rendered {} frames: {:.3f} s per 1-spp frame, {:.2f} s per reference frame\n\n",
                 r.rendered, r.inputSeconds / r.rendered, r.referenceSeconds / r.rendered);
         // BMFR and two ablations, as the paper compares them, SVGF and WALR, BMFR and SVGF with
-        // the quality preset, then the report. Where objects move, also BMFR by the camera path
-        // alone (the paper's reprojection).
+        // the quality preset, Mara 2017, OIDN where it is installed, then the report. Where objects
+        // move, also BMFR by the camera path alone (the paper's reprojection).
         struct Variant {
             const char* name;
             const char* folder;
@@ -100,6 +100,24 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             dj.overwrite = true; // the demo's own folder: a second demo replaces the first's
             runDenoise(dj);
             eval.methods.push_back({v.name, dj.output});
+        }
+        // Mara et al. 2017 filters its own factored paths: the same frames rendered that way
+        // (other noise, no reference of their own), scored against the same reference.
+        {
+            render::SceneDescription m = d;
+            m.referenceSpp = 0;
+            m.factoredDirectSpp = 16;
+            DenoiseJob dj;
+            dj.input = (fs::path(job->output) / "mara_input").string();
+            render::renderSequence(
+                m, {dj.input, "manifest", true}, nullptr, [](int, int) {},
+                [](const std::string& w) { fmt::print(stderr, "bmfr: warning: {}\n", w); });
+            dj.output = (fs::path(job->output) / "mara2017").string();
+            dj.quiet = true;
+            dj.filter = "mara2017";
+            dj.overwrite = true;
+            runDenoise(dj);
+            eval.methods.push_back({"mara2017", dj.output});
         }
         // What users run today, beside them, where it is installed.
         if (oidn::available()) {

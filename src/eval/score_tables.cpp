@@ -72,6 +72,9 @@ const KnownRow kKnownRows[] = {
      "BMFR with --preset quality, the improvements beyond the paper (among them a TAA that "
      "takes its history from the same surface only)"},
     {"svgf quality", "SVGF, --preset quality", "SVGF with --preset quality"},
+    {"mara2017", "Mara et al. 2017 on its own factored paths",
+     "Mara et al. 2017 (the paper's filter), on the same frames rendered with its own factored "
+     "paths (bmfr render --paths mara: other noise, the same reference)"},
     {"bmfr camera path", "BMFR, camera-only reprojection",
      "BMFR reprojecting by the camera path alone, without the objects' motion vectors (the "
      "paper's reprojection)"},

@@ -69,7 +69,25 @@ std::vector<std::string> libraryCandidates(const std::string& explicitPath) {
     return c;
 }
 
+/// AddressSanitizer aborts the process when OIDN's TBB loads tbbbind with RTLD_DEEPBIND
+/// (google/sanitizers issue 611): such a build says so instead of loading it.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitizerBuild = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitizerBuild = true;
+#else
+constexpr bool kSanitizerBuild = false;
+#endif
+#else
+constexpr bool kSanitizerBuild = false;
+#endif
+
 const Api& loadApi(const std::string& explicitPath) {
+    if (kSanitizerBuild)
+        throw Error("this bmfr is built with AddressSanitizer, under which OIDN cannot run (its "
+                    "TBB loads libraries with RTLD_DEEPBIND, which the sanitizer aborts on); use "
+                    "a build without sanitizers");
     static std::mutex mutex;
     static std::map<std::string, std::unique_ptr<Api>> loaded; // by the path asked for
     const std::lock_guard<std::mutex> lock(mutex);
