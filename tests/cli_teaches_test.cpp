@@ -15,10 +15,7 @@ using bmfr::testing::runCli;
 
 /// A 3-frame synthetic sequence with references, made once per test.
 fs::path sequence(const std::string& name) {
-    const fs::path p = bmfr::testing::scratchPath("teaches", name);
-    const auto r = runCli("synth -o " + p.string() + " --width 32 --height 24 --frames 3 -q");
-    EXPECT_EQ(r.code, 0) << r.output;
-    return p;
+    return bmfr::testing::synthSequence("teaches", name, 32, 24, 3);
 }
 
 /// No parser's or JSON library's own wording reaches the user.

@@ -14,10 +14,7 @@ using bmfr::testing::runCli;
 using bmfr::testing::slurp;
 
 fs::path sequence(const std::string& name) {
-    const fs::path p = bmfr::testing::scratchPath("peer", name);
-    const auto r = runCli("synth -o " + p.string() + " --width 40 --height 24 --frames 3 -q");
-    EXPECT_EQ(r.code, 0) << r.output;
-    return p;
+    return bmfr::testing::synthSequence("peer", name, 40, 24, 3);
 }
 
 TEST(Peer, WithoutOidnSaysWhereItLookedAndHowToInstallIt) {
@@ -63,15 +60,17 @@ bool sanitizerBuild() {
 }
 
 TEST(Peer, OidnWritesWhatDenoiseWritesAndEvalScoresItWithItsTime) {
+    const fs::path in = sequence("run"), out = in.string() + "_oidn", eval = in.string() + "_eval";
     if (sanitizerBuild()) {
-        const auto r = runCli("peer oidn in -o out");
+        const auto r = runCli("peer oidn " + in.string() + " -o " + out.string());
         EXPECT_EQ(r.code, 1);
         EXPECT_NE(r.output.find("built with AddressSanitizer"), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(out));
+        fs::remove_all(in);
         GTEST_SKIP() << "OIDN cannot run under AddressSanitizer";
     }
     ASSERT_TRUE(bmfr::oidn::available())
         << "OIDN is not installed: run scripts/install-oidn.sh (scripts/install-deps.sh does)";
-    const fs::path in = sequence("run"), out = in.string() + "_oidn", eval = in.string() + "_eval";
     const auto r = runCli("peer oidn " + in.string() + " -o " + out.string() +
                           " --quality fast --prefilter none --threads 1");
     ASSERT_EQ(r.code, 0) << r.output;

@@ -47,6 +47,7 @@ int qualityValue(const std::string& name) {
 class PeerFilter final : public Filter {
   public:
     explicit PeerFilter(const PeerSettings& s) : settings_(s), api_(loadApi(s.library)) {
+        checkCanRun();
         qualityValue(s.quality); // checked before the device is made
         const std::vector<std::string> p = prefilterNames();
         if (std::find(p.begin(), p.end(), s.prefilter) == p.end())

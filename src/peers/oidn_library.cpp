@@ -70,7 +70,7 @@ std::vector<std::string> libraryCandidates(const std::string& explicitPath) {
 }
 
 /// AddressSanitizer aborts the process when OIDN's TBB loads tbbbind with RTLD_DEEPBIND
-/// (google/sanitizers issue 611): such a build says so instead of loading it.
+/// (google/sanitizers issue 611): such a build says so instead of running it.
 #if defined(__SANITIZE_ADDRESS__)
 constexpr bool kSanitizerBuild = true;
 #elif defined(__has_feature)
@@ -83,11 +83,14 @@ constexpr bool kSanitizerBuild = false;
 constexpr bool kSanitizerBuild = false;
 #endif
 
-const Api& loadApi(const std::string& explicitPath) {
+void checkCanRun() {
     if (kSanitizerBuild)
         throw Error("this bmfr is built with AddressSanitizer, under which OIDN cannot run (its "
                     "TBB loads libraries with RTLD_DEEPBIND, which the sanitizer aborts on); use "
                     "a build without sanitizers");
+}
+
+const Api& loadApi(const std::string& explicitPath) {
     static std::mutex mutex;
     static std::map<std::string, std::unique_ptr<Api>> loaded; // by the path asked for
     const std::lock_guard<std::mutex> lock(mutex);
@@ -106,6 +109,7 @@ const Api& loadApi(const std::string& explicitPath) {
 }
 
 bool available(const std::string& explicitPath) {
+    if (kSanitizerBuild) return false;
     try {
         loadApi(explicitPath);
         return true;

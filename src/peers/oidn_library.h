@@ -44,7 +44,12 @@ std::vector<std::string> libraryCandidates(const std::string& explicitPath);
 /// Throws bmfr::Error naming each file tried and why it failed, and how to install OIDN.
 const Api& loadApi(const std::string& explicitPath = "");
 
-/// True when loadApi(explicitPath) would succeed (for "include OIDN when it is installed").
+/// Throws bmfr::Error in a build where OIDN cannot run (with AddressSanitizer: OIDN's TBB loads
+/// libraries with RTLD_DEEPBIND, on which the sanitizer aborts the process).
+void checkCanRun();
+
+/// True when loadApi(explicitPath) would succeed and OIDN can run in this build (for "include
+/// OIDN when it is installed").
 bool available(const std::string& explicitPath = "");
 
 } // namespace bmfr::oidn
