@@ -8,7 +8,9 @@
 #
 #   bash scripts/compare-oidn.sh [WORK_DIR] [SEQUENCE ...]   # default /tmp/bmfr-compare-oidn
 #
-# A SEQUENCE is a preset or a scene description file. Needs build/bmfr and OIDN
+# A SEQUENCE is a preset, a scene description file, or a sequence folder rendered elsewhere (as
+# tools/blender/render_sequence.py writes; scored as it is, without Mara). FRAMES (default 8:24)
+# picks the frames scored. Needs build/bmfr and OIDN
 # (scripts/install-oidn.sh). About 7 minutes per sequence on 2 cores, most of it the reference.
 # Mara et al. 2017 filters its own factored paths: its input is the same scene rendered with
 # `--paths mara` (other noise, same reference), scored against the same reference.
@@ -22,6 +24,7 @@ sequences=("$@")
 [ ${#sequences[@]} -gt 0 ] ||
     sequences=(cornell-moving cornell-objects room-light scripts/scenes/room-light-unjittered.json)
 mkdir -p "$work"
+FRAMES=${FRAMES:-8:24}
 
 # name: the command and its options (INPUT is the sequence, MARA_INPUT its factored-path render)
 methods=(
@@ -38,10 +41,14 @@ tables=()
 for scene in "${sequences[@]}"; do
     seq=$(basename "$scene" .json)
     dir=$work/$seq
-    if [ ! -f "$dir/.done" ]; then
+    input=$dir/input
+    if [ -f "$scene/sequence.json" ]; then
+        # A sequence rendered elsewhere (Blender Cycles): no factored paths, so no Mara row.
+        input=$(cd "$scene" && pwd)
+    elif [ ! -f "$dir/.done" ]; then
         echo "rendering $seq (1024-spp reference) ..." >&2
         rm -rf "$dir"
-        "$bmfr" render -o "$dir/input" -s "$scene" --width 256 --height 192 --frames 24 \
+        "$bmfr" render -o "$input" -s "$scene" --width 256 --height 192 --frames 24 \
             --reference-spp 1024 -q
         "$bmfr" render -o "$dir/mara_input" -s "$scene" --width 256 --height 192 --frames 24 \
             --paths mara --no-reference -q
@@ -52,41 +59,45 @@ for scene in "${sequences[@]}"; do
         name=${m%%:*}
         out="$dir/out/${name// /_}"
         cmd=${m#*:}
-        cmd=${cmd/MARA_INPUT/$dir/mara_input}
-        cmd=${cmd/INPUT/$dir/input}
+        if [[ $cmd == *MARA_INPUT* ]]; then
+            [ -d "$dir/mara_input" ] || continue
+            cmd=${cmd/MARA_INPUT/$dir/mara_input}
+        fi
+        cmd=${cmd/INPUT/$input}
         echo "$seq: $name" >&2
         # shellcheck disable=SC2086 # the options are words
         "$bmfr" $cmd -o "$out" -q --no-png --no-flip --overwrite
         args+=("$name=$out")
     done
-    "$bmfr" eval -r "$dir/input" -m noisy "${args[@]}" -o "$dir/eval" --frames 8:24 --json -q \
+    "$bmfr" eval -r "$input" -m noisy "${args[@]}" -o "$dir/eval" --frames "$FRAMES" --json -q \
         > "$dir/scores.json"
     tables+=("$seq=$dir/scores.json")
 done
-/usr/bin/python3 - "${tables[@]}" <<'PY'
+/usr/bin/python3 - "${tables[@]}" -- noisy "${methods[@]%%:*}" <<'PY'
 import json, math, sys
-runs = [(a.split("=", 1)[0], json.load(open(a.split("=", 1)[1]))) for a in sys.argv[1:]]
+split = sys.argv.index("--")
+runs = [(a.split("=", 1)[0], json.load(open(a.split("=", 1)[1]))) for a in sys.argv[1:split]]
+order = sys.argv[split + 1:]  # the methods in the script's order (JSON objects come sorted)
 cols = [("rmse", "RMSE", "{:.4f}"), ("ssim", "SSIM", "{:.4f}"), ("flip", "FLIP", "{:.4f}"),
         ("temporal_error", "temporal", "{:.4f}"), ("temporal_change_error", "change", "{:.4f}")]
 head = "| {} | " + " | ".join(c[1] for c in cols) + " | ms/frame |\n|---|" + "---|" * (len(cols) + 1)
-order = list(runs[0][1]["methods"])
 for seq, s in runs:
     print("\n" + head.format(seq))
-    for m in order:
+    for m in [m for m in order if m in s["methods"]]:
         v = s["methods"][m]["mean"]
         ms = s["methods"][m].get("ms_per_frame")
         print(f"| {m} | " + " | ".join(f.format(v[k]) for k, _, f in cols) +
               f" | {'-' if ms is None else f'{ms:.1f}'} |")
     print(f"| reference | | | | {s['reference_temporal_error']:.4f} | | |")
-    machines = {s["methods"][m].get("machine") for m in order} - {None}
+    machines = {s["methods"][m].get("machine") for m in s["methods"]} - {None}
     print(f"\nms/frame on {', '.join(sorted(machines))}; frames {s['frames'][0]}:{s['frames'][1]}")
 if len(runs) > 1:
     print("\n" + head.format("geometric mean"))
     for m in order:
         cells = []
         for k, _, f in cols + [("ms_per_frame", "", "{:.1f}")]:
-            vals = [s["methods"][m]["mean"].get(k) if k != "ms_per_frame"
-                    else s["methods"][m].get(k) for _, s in runs]
+            vals = [(s["methods"][m]["mean"].get(k) if k != "ms_per_frame"
+                     else s["methods"][m].get(k)) if m in s["methods"] else None for _, s in runs]
             ok = [x for x in vals if x is not None and x > 0]
             cells.append(f.format(math.exp(sum(map(math.log, ok)) / len(ok))) if len(ok) == len(vals) else "-")
         print(f"| {m} | " + " | ".join(cells) + " |")
