@@ -104,6 +104,18 @@ TEST(Peer, OidnWritesWhatDenoiseWritesAndEvalScoresItWithItsTime) {
     EXPECT_EQ(table["methods"]["theirs"]["ms_per_frame"].get<double>(),
               report["median_ms"]["total"].get<double>());
     EXPECT_NE(slurp(eval / "report.html").find("single-frame"), std::string::npos);
+    // eval --oidn runs the peer on the reference sequence's input itself.
+    const auto own = runCli("eval -r " + in.string() + " -m noisy -o " + eval.string() +
+                            "_own --no-flip -q --frames 1:3 --oidn");
+    ASSERT_EQ(own.code, 0) << own.output;
+    EXPECT_TRUE(fs::exists(fs::path(eval.string() + "_own") / "oidn" / "denoised_0002.exr"));
+    EXPECT_FALSE(fs::exists(fs::path(eval.string() + "_own") / "oidn" / "denoised_0000.exr"));
+    const auto ownTable =
+        nlohmann::json::parse(slurp(fs::path(eval.string() + "_own") / "table.json"));
+    EXPECT_GT(ownTable["methods"]["oidn"]["ms_per_frame"].get<double>(), 0.0);
+    EXPECT_LT(ownTable["methods"]["oidn"]["mean"]["rmse"].get<double>(),
+              ownTable["methods"]["noisy"]["mean"]["rmse"].get<double>());
+    fs::remove_all(eval.string() + "_own");
     for (const fs::path& p : {in, out, eval}) fs::remove_all(p);
 }
 

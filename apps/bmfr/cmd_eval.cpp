@@ -6,6 +6,7 @@
 #include "progress.h"
 #include "usage.h"
 #include <bmfr/error.h>
+#include <filesystem>
 #include <fmt/core.h>
 #include <memory>
 
@@ -37,7 +38,7 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
     struct Job {
         ComparisonOptions options;
         std::vector<std::string> methods, crops, channels;
-        bool quiet = false, noFlip = false, json = false;
+        bool quiet = false, noFlip = false, json = false, oidn = false;
     };
     auto job = std::make_shared<Job>();
     CLI::App* cmd =
@@ -81,6 +82,9 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--channel", job->channels,
                     "BUFFER=LAYER: the reference sequence's layer for a buffer in multilayer "
                     "EXRs, as reference=ViewLayer.Combined; repeatable");
+    cmd->add_flag("--oidn", job->oidn,
+                  "also denoise the reference sequence's noisy input with Intel Open Image Denoise "
+                  "(bmfr peer oidn, its defaults) into OUTPUT/oidn and score it as `oidn`");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress or summary");
     cmd->add_flag("--json", job->json,
                   "print the scores as JSON on stdout (as table.json) instead of the table");
@@ -106,6 +110,23 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
         if (o.viewerWidth < 64 || o.viewerWidth > 4096)
             throw UsageError("--viewer-width must be in [64, 4096]");
         o.flip = !job->noFlip;
+        if (job->oidn) {
+            DenoiseJob dj;
+            dj.input = o.reference;
+            dj.output = (std::filesystem::path(o.output) / "oidn").string();
+            dj.frames = o.frames;
+            dj.channels = job->channels;
+            dj.quiet = true;
+            dj.png = dj.flip = false;
+            dj.filter = "oidn";
+            dj.oidn = oidn::PeerSettings();
+            dj.overwrite = true; // eval's own folder: a second eval replaces the first's
+            if (!job->quiet && !job->json)
+                fmt::print("eval --oidn: denoising {} with Intel Open Image Denoise into {}\n",
+                           o.reference, dj.output);
+            runDenoise(dj);
+            o.methods.push_back({"oidn", dj.output});
+        }
         exitCode = runEval(o, job->quiet, job->json);
     });
 }
