@@ -15,14 +15,18 @@
 # Mara et al. 2017 filters its own factored paths: its input is the same scene rendered with
 # `--paths mara` (other noise, same reference), scored against the same reference.
 set -euo pipefail
+# Paths given relative to where the script is run from, before it moves to the repository.
+work=$(realpath -m "${1:-/tmp/bmfr-compare-oidn}")
+shift || true
+sequences=()
+for a in "$@"; do
+    if [ -e "$a" ]; then sequences+=("$(realpath "$a")"); else sequences+=("$a"); fi # a preset
+done
 cd "$(dirname "$0")/.."
 bmfr=$PWD/build/bmfr
 [ -x "$bmfr" ] || { echo "no build/bmfr: run bash scripts/build.sh first" >&2; exit 1; }
-work=${1:-/tmp/bmfr-compare-oidn}
-shift || true
-sequences=("$@")
 [ ${#sequences[@]} -gt 0 ] ||
-    sequences=(cornell-moving cornell-objects room-light scripts/scenes/room-light-unjittered.json)
+    sequences=(cornell-moving cornell-objects room-light "$PWD/scripts/scenes/room-light-unjittered.json")
 mkdir -p "$work"
 FRAMES=${FRAMES:-8:24}
 
@@ -58,15 +62,19 @@ for scene in "${sequences[@]}"; do
     for m in "${methods[@]}"; do
         name=${m%%:*}
         out="$dir/out/${name// /_}"
-        cmd=${m#*:}
-        if [[ $cmd == *MARA_INPUT* ]]; then
-            [ -d "$dir/mara_input" ] || continue
-            cmd=${cmd/MARA_INPUT/$dir/mara_input}
-        fi
-        cmd=${cmd/INPUT/$input}
+        # The method's words, with INPUT and MARA_INPUT replaced as whole words (paths may hold
+        # spaces or any character).
+        read -ra words <<< "${m#*:}"
+        skip=false
+        for k in "${!words[@]}"; do
+            case ${words[k]} in
+            INPUT) words[k]=$input ;;
+            MARA_INPUT) if [ -d "$dir/mara_input" ]; then words[k]=$dir/mara_input; else skip=true; fi ;;
+            esac
+        done
+        $skip && continue
         echo "$seq: $name" >&2
-        # shellcheck disable=SC2086 # the options are words
-        "$bmfr" $cmd -o "$out" -q --no-png --no-flip --overwrite
+        "$bmfr" "${words[@]}" -o "$out" -q --no-png --no-flip --overwrite
         args+=("$name=$out")
     done
     "$bmfr" eval -r "$input" -m noisy "${args[@]}" -o "$dir/eval" --frames "$FRAMES" --json -q \

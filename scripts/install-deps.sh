@@ -35,4 +35,7 @@ if [ ${#missing[@]} -gt 0 ]; then
     apt-get update -qq
     apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-bash "$(dirname "$0")/install-oidn.sh"
+# Without PyPI the rest still builds and the demo runs without OIDN (it says so); the tests that
+# run OIDN fail and say how to install it.
+bash "$(dirname "$0")/install-oidn.sh" ||
+    echo "install-deps.sh: warning: Intel Open Image Denoise was not installed (see above)" >&2

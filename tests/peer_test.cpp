@@ -42,6 +42,11 @@ TEST(Peer, MistakesOnItsCommandLineAreUsageErrors) {
     EXPECT_NE(bare.output.find("usage: bmfr peer COMMAND"), std::string::npos) << bare.output;
     const auto unknown = runCli("peer nidon in -o out");
     EXPECT_EQ(unknown.code, 2) << unknown.output;
+    const auto twice = runCli("eval -r in -m a -m a -o out");
+    EXPECT_EQ(twice.code, 2) << twice.output;
+    EXPECT_NE(twice.output.find("two methods are named 'a'"), std::string::npos) << twice.output;
+    const auto clash = runCli("eval -r in -m noisy -m oidn=x -o out --oidn");
+    EXPECT_EQ(clash.code, 2) << clash.output;
     const auto quality = runCli("peer oidn in -o out --quality ultra");
     EXPECT_EQ(quality.code, 2) << quality.output;
     EXPECT_NE(quality.output.find("usage: bmfr peer oidn INPUT -o OUTPUT"), std::string::npos)
@@ -50,21 +55,14 @@ TEST(Peer, MistakesOnItsCommandLineAreUsageErrors) {
         << quality.output;
 }
 
-/// True in a build with AddressSanitizer, where OIDN cannot be loaded (oidn_library.cpp).
-bool sanitizerBuild() {
-#if defined(__SANITIZE_ADDRESS__)
-    return true;
-#else
-    return false;
-#endif
-}
-
 TEST(Peer, OidnWritesWhatDenoiseWritesAndEvalScoresItWithItsTime) {
     const fs::path in = sequence("run"), out = in.string() + "_oidn", eval = in.string() + "_eval";
-    if (sanitizerBuild()) {
+    if (bmfr::oidn::sanitizerBuild()) {
         const auto r = runCli("peer oidn " + in.string() + " -o " + out.string());
         EXPECT_EQ(r.code, 1);
-        EXPECT_NE(r.output.find("built with AddressSanitizer"), std::string::npos) << r.output;
+        EXPECT_TRUE(r.output.find("built with AddressSanitizer") != std::string::npos ||
+                    r.output.find("was not found") != std::string::npos)
+            << r.output;
         EXPECT_FALSE(fs::exists(out));
         fs::remove_all(in);
         GTEST_SKIP() << "OIDN cannot run under AddressSanitizer";
@@ -116,6 +114,12 @@ TEST(Peer, OidnWritesWhatDenoiseWritesAndEvalScoresItWithItsTime) {
     EXPECT_LT(ownTable["methods"]["oidn"]["mean"]["rmse"].get<double>(),
               ownTable["methods"]["noisy"]["mean"]["rmse"].get<double>());
     fs::remove_all(eval.string() + "_own");
+    // A failed eval --oidn (a method that is not there) leaves no folder behind.
+    const fs::path failed = eval.string() + "_failed";
+    const auto bad = runCli("eval -r " + in.string() + " -m noisy -m gone=" + failed.string() +
+                            "_nothing -o " + failed.string() + " --no-flip -q --oidn");
+    EXPECT_EQ(bad.code, 1) << bad.output;
+    EXPECT_FALSE(fs::exists(failed)) << bad.output;
     for (const fs::path& p : {in, out, eval}) fs::remove_all(p);
 }
 

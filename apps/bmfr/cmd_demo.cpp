@@ -120,7 +120,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             eval.methods.push_back({"mara2017", dj.output});
         }
         // What users run today, beside them, where it is installed.
-        if (oidn::available()) {
+        if (const std::string why = oidn::whyUnavailable(); why.empty()) {
             DenoiseJob dj;
             dj.input = input;
             dj.output = (fs::path(job->output) / "oidn").string();
@@ -131,8 +131,7 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
             runDenoise(dj);
             eval.methods.push_back({"oidn", dj.output});
         } else if (!job->quiet) {
-            fmt::print("Intel Open Image Denoise is not installed (bash scripts/install-oidn.sh): "
-                       "the comparison runs without it\n");
+            fmt::print("The comparison runs without Intel Open Image Denoise: {}\n", why);
         }
         exitCode = runEval(eval, job->quiet);
     });

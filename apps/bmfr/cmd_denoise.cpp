@@ -174,6 +174,7 @@ struct Method {
     std::string title;            ///< the summary's first words
     std::string description;      ///< a peer's own words on what ran
     std::vector<InputUse> inputs; ///< optional buffers it reads
+    int threads = 0;              ///< the CPU threads it runs on (0: every core)
 };
 
 Method makeMethod(const DenoiseJob& job, const SequenceInfo& info) {
@@ -184,6 +185,7 @@ Method makeMethod(const DenoiseJob& job, const SequenceInfo& info) {
         oidn::Peer peer = oidn::makePeer(s);
         m.filter = std::move(peer.filter);
         m.description = peer.description;
+        m.threads = peer.threads;
         m.values = {{"quality", s.quality},
                     {"prefilter", s.prefilter},
                     {"threads", std::to_string(s.threads)}};
@@ -199,6 +201,7 @@ Method makeMethod(const DenoiseJob& job, const SequenceInfo& info) {
     m.backend = settingValue(m.values, "backend", "cpu");
     m.title = fmt::format("bmfr denoise ({}, {} backend)", job.filter, m.backend);
     m.inputs = filterInputs(job.filter, m.values);
+    m.threads = std::stoi(settingValue(m.values, "threads", "0"));
     return m;
 }
 
@@ -320,8 +323,8 @@ int runDenoise(const DenoiseJob& job) {
     for (const auto& [key, value] : method.values) report["settings"][key] = value;
     report["median_ms"] = stages.medians();
     report["median_ms"]["total"] = stages.totalMedian();
-    const int threads = std::stoi(settingValue(method.values, "threads", "0"));
-    const int threadsUsed = threads ? threads : int(std::thread::hardware_concurrency());
+    const int threadsUsed =
+        method.threads ? method.threads : int(std::thread::hardware_concurrency());
     report["machine"] = method.backend == "cuda"
                             ? fmt::format("GPU {} (host CPU {})", cuda::deviceName(), cpuModel())
                             : fmt::format("{}, {} threads", cpuModel(), threadsUsed);

@@ -12,16 +12,33 @@
 
 namespace bmfr::app {
 
-int runEval(const ComparisonOptions& options, bool quiet, bool json) {
+int runEval(const ComparisonOptions& options, bool quiet, bool json,
+            const std::optional<DenoiseJob>& oidnFirst) {
     ComparisonOptions o = options;
     if (o.commandLine.empty()) o.commandLine = invocation();
     if (o.programVersion.empty()) o.programVersion = versionText();
     const OutputFolder folder(o.output, invocation());
     std::unique_ptr<Progress> bar; // the frame count is known once the reference is open
-    ComparisonResult r = runComparison(o, [&](int done, int total) {
-        if (!bar) bar = std::make_unique<Progress>("eval", total, quiet);
-        bar->step(done);
-    });
+    ComparisonResult r;
+    std::error_code ec;
+    // What a failed eval may remove: the peer's folder, when this run made it.
+    const bool peerFolderWasThere = oidnFirst && std::filesystem::exists(oidnFirst->output, ec);
+    try {
+        if (oidnFirst) {
+            if (!quiet && !json)
+                fmt::print("eval --oidn: denoising {} with Intel Open Image Denoise into {}\n",
+                           oidnFirst->input, oidnFirst->output);
+            runDenoise(*oidnFirst);
+            o.methods.push_back({"oidn", oidnFirst->output});
+        }
+        r = runComparison(o, [&](int done, int total) {
+            if (!bar) bar = std::make_unique<Progress>("eval", total, quiet);
+            bar->step(done);
+        });
+    } catch (const std::exception&) {
+        if (oidnFirst && !peerFolderWasThere) std::filesystem::remove_all(oidnFirst->output, ec);
+        throw;
+    }
     if (bar) bar->finish();
     if (json) {
         fmt::print("{}", r.scoresJson);
@@ -110,6 +127,7 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
         if (o.viewerWidth < 64 || o.viewerWidth > 4096)
             throw UsageError("--viewer-width must be in [64, 4096]");
         o.flip = !job->noFlip;
+        std::optional<DenoiseJob> oidnFirst;
         if (job->oidn) {
             DenoiseJob dj;
             dj.input = o.reference;
@@ -121,13 +139,19 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
             dj.filter = "oidn";
             dj.oidn = oidn::PeerSettings();
             dj.overwrite = true; // eval's own folder: a second eval replaces the first's
-            if (!job->quiet && !job->json)
-                fmt::print("eval --oidn: denoising {} with Intel Open Image Denoise into {}\n",
-                           o.reference, dj.output);
-            runDenoise(dj);
-            o.methods.push_back({"oidn", dj.output});
+            oidnFirst = dj;
         }
-        exitCode = runEval(o, job->quiet, job->json);
+        for (size_t i = 0; i < o.methods.size(); ++i)
+            for (size_t k = 0; k < i; ++k)
+                if (o.methods[i].name == o.methods[k].name)
+                    throw UsageError("-m: two methods are named '" + o.methods[i].name +
+                                     "'; give each its own name");
+        if (oidnFirst)
+            for (const MethodSource& m : o.methods)
+                if (m.name == "oidn")
+                    throw UsageError("--oidn scores its run as 'oidn', and a -m method has that "
+                                     "name; rename it");
+        exitCode = runEval(o, job->quiet, job->json, oidnFirst);
     });
 }
 

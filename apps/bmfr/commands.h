@@ -34,8 +34,10 @@ const std::string& invocation();
 std::string versionText();
 
 /// Runs `bmfr eval`; prints the table and the report path unless quiet, or with `json` the
-/// scores as JSON on stdout.
-int runEval(const ComparisonOptions& options, bool quiet, bool json = false);
+/// scores as JSON on stdout. With `oidnFirst`, first runs that peer job into the eval's own
+/// folder (under its lock) and scores it as `oidn`; a failed eval removes what it wrote.
+int runEval(const ComparisonOptions& options, bool quiet, bool json = false,
+            const std::optional<DenoiseJob>& oidnFirst = std::nullopt);
 
 void addDenoiseCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);

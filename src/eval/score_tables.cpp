@@ -103,8 +103,9 @@ std::string rowGlosses(const ComparisonResult& r, bool html) {
     for (size_t i = 0; i < r.names.size(); ++i) {
         if (isOidn(r, i)) {
             add(r.names[i], "Intel Open Image Denoise, single-frame",
-                "Intel Open Image Denoise (" + r.runs[i].description +
-                    "), the denoiser Blender and most offline renderers ship: single-frame, it "
+                "Intel Open Image Denoise" +
+                    (r.runs[i].description.empty() ? "" : " (" + r.runs[i].description + ")") +
+                    ", the denoiser Blender and most offline renderers ship: single-frame, it "
                     "denoises each frame alone and keeps no history");
             continue;
         }

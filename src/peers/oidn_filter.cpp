@@ -55,7 +55,12 @@ class PeerFilter final : public Filter {
         if (s.threads < 0 || s.threads > 1024)
             throw Error(fmt::format("OIDN threads {} is outside [0, 1024]", s.threads));
         device_ = api_.newDevice(kDeviceCpu);
-        if (!device_) throw Error("OIDN (" + api_.path + ") made no CPU device");
+        if (!device_) {
+            const char* message = nullptr; // OIDN keeps errors without a device per thread
+            api_.getDeviceError(nullptr, &message);
+            throw Error(fmt::format("OIDN ({}) made no CPU device: {}", api_.path,
+                                    message ? message : "no reason given"));
+        }
         try {
             if (s.threads) api_.setDeviceInt(device_, "numThreads", s.threads);
             api_.commitDevice(device_);
@@ -108,6 +113,7 @@ class PeerFilter final : public Filter {
     void setDebugOutputs(bool) override {} // no intermediate buffers worth showing
     DebugBuffers debug() const override { return {}; }
 
+    int threads() const { return threads_; }
     std::string description() const {
         return fmt::format("OIDN {}, RT filter, CPU device ({} threads), quality {}, prefilter {}",
                            versionText(), threads_, settings_.quality, settings_.prefilter);
@@ -123,9 +129,9 @@ class PeerFilter final : public Filter {
         if (api_.getDeviceError(device_, &message))
             throw Error(fmt::format("OIDN failed {}: {}", what, message ? message : "no message"));
     }
-    void image(FilterHandle f, const char* name, Plane& p) {
-        api_.setSharedFilterImage(f, name, p.data(), kFormatFloat3, size_t(width_), size_t(height_),
-                                  0, 3 * sizeof(float), 3 * sizeof(float) * size_t(width_));
+    void image(FilterHandle f, const char* name, Plane& p, int width, int height) {
+        api_.setSharedFilterImage(f, name, p.data(), kFormatFloat3, size_t(width), size_t(height),
+                                  0, 3 * sizeof(float), 3 * sizeof(float) * size_t(width));
     }
     FilterHandle newFilter() {
         FilterHandle f = api_.newFilter(device_, "RT");
@@ -135,8 +141,7 @@ class PeerFilter final : public Filter {
     }
     /// The filters, for a frame size; the planes keep their addresses until the size changes.
     void build(int width, int height) {
-        width_ = width;
-        height_ = height;
+        width_ = height_ = 0; // a size whose filters are not committed is not kept
         output_.pixels.assign(size_t(width) * height * 3, 0.0f);
         if (!main_) {
             main_ = newFilter();
@@ -146,21 +151,23 @@ class PeerFilter final : public Filter {
             }
         }
         if (albedoFilter_) {
-            image(albedoFilter_, "albedo", albedo_);
-            image(albedoFilter_, "output", albedo_);
+            image(albedoFilter_, "albedo", albedo_, width, height);
+            image(albedoFilter_, "output", albedo_, width, height);
             api_.commitFilter(albedoFilter_);
-            image(normalFilter_, "normal", normal_);
-            image(normalFilter_, "output", normal_);
+            image(normalFilter_, "normal", normal_, width, height);
+            image(normalFilter_, "output", normal_, width, height);
             api_.commitFilter(normalFilter_);
         }
-        image(main_, "color", color_);
-        image(main_, "albedo", albedo_);
-        image(main_, "normal", normal_);
-        image(main_, "output", output_);
+        image(main_, "color", color_, width, height);
+        image(main_, "albedo", albedo_, width, height);
+        image(main_, "normal", normal_, width, height);
+        image(main_, "output", output_, width, height);
         api_.setFilterBool(main_, "hdr", true);
         api_.setFilterBool(main_, "cleanAux", settings_.prefilter != "fast");
         api_.commitFilter(main_);
         check("setting up the filters");
+        width_ = width;
+        height_ = height;
     }
 
     PeerSettings settings_;
@@ -185,7 +192,8 @@ std::vector<std::string> prefilterNames() {
 Peer makePeer(const PeerSettings& settings) {
     auto filter = std::make_unique<PeerFilter>(settings);
     std::string description = filter->description();
-    return {std::move(filter), std::move(description)};
+    const int threads = filter->threads();
+    return {std::move(filter), std::move(description), threads};
 }
 
 } // namespace bmfr::oidn

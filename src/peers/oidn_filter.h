@@ -29,6 +29,7 @@ struct Peer {
     /// What runs, for reports: "OIDN 2.5.1, RT filter, CPU device (2 threads), quality high,
     /// prefilter accurate".
     std::string description;
+    int threads = 0; ///< the worker threads OIDN's device runs
 };
 
 /// The peer, its OIDN device made and committed. Throws bmfr::Error when OIDN cannot be loaded

@@ -83,6 +83,10 @@ constexpr bool kSanitizerBuild = false;
 constexpr bool kSanitizerBuild = false;
 #endif
 
+bool sanitizerBuild() {
+    return kSanitizerBuild;
+}
+
 void checkCanRun() {
     if (kSanitizerBuild)
         throw Error("this bmfr is built with AddressSanitizer, under which OIDN cannot run (its "
@@ -108,14 +112,18 @@ const Api& loadApi(const std::string& explicitPath) {
                             kHowToInstall));
 }
 
-bool available(const std::string& explicitPath) {
-    if (kSanitizerBuild) return false;
+std::string whyUnavailable(const std::string& explicitPath) {
     try {
+        checkCanRun();
         loadApi(explicitPath);
-        return true;
-    } catch (const Error&) {
-        return false;
+        return "";
+    } catch (const Error& e) {
+        return e.what();
     }
+}
+
+bool available(const std::string& explicitPath) {
+    return whyUnavailable(explicitPath).empty();
 }
 
 } // namespace bmfr::oidn

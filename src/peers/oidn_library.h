@@ -44,12 +44,18 @@ std::vector<std::string> libraryCandidates(const std::string& explicitPath);
 /// Throws bmfr::Error naming each file tried and why it failed, and how to install OIDN.
 const Api& loadApi(const std::string& explicitPath = "");
 
-/// Throws bmfr::Error in a build where OIDN cannot run (with AddressSanitizer: OIDN's TBB loads
-/// libraries with RTLD_DEEPBIND, on which the sanitizer aborts the process).
+/// True in a build with AddressSanitizer, where OIDN cannot run: OIDN's TBB loads libraries
+/// with RTLD_DEEPBIND, on which the sanitizer aborts the process.
+bool sanitizerBuild();
+
+/// Throws bmfr::Error, saying why, in a build where OIDN cannot run (sanitizerBuild()).
 void checkCanRun();
 
-/// True when loadApi(explicitPath) would succeed and OIDN can run in this build (for "include
-/// OIDN when it is installed").
+/// Why OIDN cannot run here: "" when loadApi(explicitPath) succeeds and this build can run it
+/// (for "include OIDN when it is installed"), else the reason, with how to install it.
+std::string whyUnavailable(const std::string& explicitPath = "");
+
+/// whyUnavailable(explicitPath).empty().
 bool available(const std::string& explicitPath = "");
 
 } // namespace bmfr::oidn
