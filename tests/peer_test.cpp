@@ -40,6 +40,8 @@ TEST(Peer, MistakesOnItsCommandLineAreUsageErrors) {
     const auto bare = runCli("peer");
     EXPECT_EQ(bare.code, 2) << bare.output;
     EXPECT_NE(bare.output.find("usage: bmfr peer COMMAND"), std::string::npos) << bare.output;
+    EXPECT_NE(bare.output.find("bmfr peer needs a command: oidn"), std::string::npos)
+        << bare.output;
     const auto unknown = runCli("peer nidon in -o out");
     EXPECT_EQ(unknown.code, 2) << unknown.output;
     const auto twice = runCli("eval -r in -m a -m a -o out");

@@ -84,6 +84,15 @@ std::string translate(const CLI::App& app, const CLI::ParseError& error) {
     if (dynamic_cast<const CLI::ExtrasError*>(&error))
         return describeExtras(app, active ? *active : app);
     if (dynamic_cast<const CLI::RequiredError*>(&error)) {
+        // A command of commands given none (`bmfr peer`): name them.
+        if (active && active->get_require_subcommand_min() > 0 &&
+            text.find("subcommand") != std::string::npos) {
+            std::vector<std::string> names;
+            for (const CLI::App* sub : active->get_subcommands({}))
+                names.push_back(sub->get_name());
+            return fmt::format("bmfr {} needs a command: {}", commandPath(*active),
+                               fmt::join(names, ", "));
+        }
         // "input is required" for a positional, "--output is required" for an option.
         const std::string name = text.substr(0, text.find(' '));
         return (name.rfind("-", 0) == 0 ? name : upperCase(name)) + " is required";
