@@ -121,12 +121,8 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
         }
         // What users run today, beside them, where it is installed.
         if (const std::string why = oidn::whyUnavailable(); why.empty()) {
-            DenoiseJob dj;
-            dj.input = input;
-            dj.output = (fs::path(job->output) / "oidn").string();
+            DenoiseJob dj = oidnJob(input, (fs::path(job->output) / "oidn").string());
             dj.quiet = true;
-            dj.filter = "oidn";
-            dj.oidn = oidn::PeerSettings();
             dj.overwrite = true;
             runDenoise(dj);
             eval.methods.push_back({"oidn", dj.output});

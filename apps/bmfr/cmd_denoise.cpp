@@ -172,7 +172,8 @@ struct Method {
     std::string features;         ///< the feature columns fitted, or ""
     std::string backend;          ///< the backend's name
     std::string title;            ///< the summary's first words
-    std::string description;      ///< a peer's own words on what ran
+    std::string description;      ///< a peer's own words on what ran ("" for a filter)
+    std::string reprojection;     ///< how it uses history when that is fixed ("" for a filter)
     std::vector<InputUse> inputs; ///< optional buffers it reads
     int threads = 0;              ///< the CPU threads it runs on (0: every core)
 };
@@ -191,6 +192,7 @@ Method makeMethod(const DenoiseJob& job, const SequenceInfo& info) {
                     {"threads", std::to_string(s.threads)}};
         m.backend = "cpu";
         m.title = "bmfr peer oidn";
+        m.reprojection = "none (single-frame)";
         return m;
     }
     const SequenceDefaults own{info.positionLimitSquared, info.normalLimitSquared,
@@ -315,8 +317,8 @@ int runDenoise(const DenoiseJob& job) {
     if (!method.features.empty()) report["features"] = method.features;
     report["filter"] = job.filter;
     report["backend"] = method.backend;
-    if (job.oidn) report["method"] = method.description;
-    report["reprojection"] = job.oidn            ? "none (single-frame)"
+    if (!method.description.empty()) report["method"] = method.description;
+    report["reprojection"] = !method.reprojection.empty() ? method.reprojection
                              : motionFrames == 0 ? "camera (the input has no motion vectors)"
                              : job.motion        ? "motion vectors"
                                                  : "camera (motion vectors ignored: --no-motion)";
@@ -340,7 +342,7 @@ int runDenoise(const DenoiseJob& job) {
         fmt::print("  {}   (read {:.1f}, write {:.1f})\n", stages.line(), median(tRead),
                    median(tWrite));
         fmt::print("  reprojection: {}\n", report["reprojection"].get<std::string>());
-        if (job.oidn) fmt::print("  {}\n", method.description);
+        if (!method.description.empty()) fmt::print("  {}\n", method.description);
         if (info.hasReference) fmt::print("{}", scores.summary(job.filter));
         fmt::print("\nwrote {}/denoised_NNNN.exr{}, report.json{}\n", job.output,
                    job.png ? " and .png" : "", info.hasReference ? ", scores.csv" : "");

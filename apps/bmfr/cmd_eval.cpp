@@ -129,15 +129,12 @@ void addEvalCommand(CLI::App& app, int& exitCode) {
         o.flip = !job->noFlip;
         std::optional<DenoiseJob> oidnFirst;
         if (job->oidn) {
-            DenoiseJob dj;
-            dj.input = o.reference;
-            dj.output = (std::filesystem::path(o.output) / "oidn").string();
+            DenoiseJob dj =
+                oidnJob(o.reference, (std::filesystem::path(o.output) / "oidn").string());
             dj.frames = o.frames;
             dj.channels = job->channels;
             dj.quiet = true;
             dj.png = dj.flip = false;
-            dj.filter = "oidn";
-            dj.oidn = oidn::PeerSettings();
             dj.overwrite = true; // eval's own folder: a second eval replaces the first's
             oidnFirst = dj;
         }

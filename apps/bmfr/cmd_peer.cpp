@@ -6,14 +6,21 @@
 
 namespace bmfr::app {
 
+DenoiseJob oidnJob(const std::string& input, const std::string& output) {
+    DenoiseJob job;
+    job.input = input;
+    job.output = output;
+    job.filter = "oidn";
+    job.oidn = oidn::PeerSettings();
+    return job;
+}
+
 void addPeerCommand(CLI::App& app, int& exitCode) {
     CLI::App* peer = app.add_subcommand(
         "peer", "run a method bmfr is compared with on a sequence, writing what `bmfr denoise` "
                 "writes, so that `bmfr eval` scores it beside the filters");
     peer->require_subcommand(1);
-    auto job = std::make_shared<DenoiseJob>();
-    job->filter = "oidn";
-    job->oidn = oidn::PeerSettings();
+    auto job = std::make_shared<DenoiseJob>(oidnJob("", ""));
     CLI::App* cmd = peer->add_subcommand(
         "oidn", "Intel Open Image Denoise's RT filter on each frame alone (colour, albedo, "
                 "normal): denoised_NNNN.exr (linear) and .png, report.json, scores.csv");

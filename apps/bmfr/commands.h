@@ -24,6 +24,10 @@ struct DenoiseJob {
     std::optional<oidn::PeerSettings> oidn;
 };
 
+/// The job `bmfr peer oidn INPUT -o OUTPUT` runs with its defaults (the demo and eval --oidn
+/// run it into their own folders, replacing an earlier run's outputs there).
+DenoiseJob oidnJob(const std::string& input, const std::string& output);
+
 /// Denoises a sequence into job.output; prints a timing summary (and scores when the input has
 /// references). Returns the process exit code.
 int runDenoise(const DenoiseJob& job);
