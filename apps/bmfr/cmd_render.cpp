@@ -8,6 +8,7 @@
 #include <bmfr/error.h>
 #include <csignal>
 #include <fmt/core.h>
+#include <tbb/global_control.h>
 #include <thread>
 
 namespace bmfr::app {
@@ -25,6 +26,8 @@ struct RenderJob {
     std::optional<int> width, height, frames, referenceSpp, bounces, directSpp;
     std::string paths;
     std::optional<uint32_t> seed;
+    std::optional<std::string> frameRange;
+    int threads = 0;
     bool noReference = false, quiet = false, list = false, overwrite = false, yes = false;
     bool diffuseIndirect = false;
 };
@@ -39,6 +42,28 @@ std::string durationText(double seconds) {
     if (seconds < 90) return fmt::format("about {:.0f} s", seconds);
     if (seconds < 5400) return fmt::format("about {:.0f} min", seconds / 60);
     return fmt::format("about {:.0f} h", seconds / 3600);
+}
+
+/// "A:B" as frames [A, B) of a sequence of `frames`.
+std::pair<int, int> parseFrameRange(const std::string& text, int frames) {
+    const size_t colon = text.find(':');
+    int a = -1, b = -1;
+    try {
+        size_t used = 0;
+        if (colon != std::string::npos) a = std::stoi(text.substr(0, colon), &used);
+        if (colon != std::string::npos && used == colon) {
+            b = std::stoi(text.substr(colon + 1), &used);
+            if (used != text.size() - colon - 1) b = -1;
+        }
+    } catch (const std::exception&) {
+        a = b = -1;
+    }
+    if (a < 0 || b <= a || b > frames)
+        throw CLI::ValidationError("--frame-range",
+                                   fmt::format("'{}' is not A:B with 0 <= A < B <= {} (the frame "
+                                               "count); it renders frames A to B-1",
+                                               text, frames));
+    return {a, b};
 }
 
 /// A render over this long needs --yes: a typo in a size should not start a day's work.
@@ -100,7 +125,19 @@ int runRender(const RenderJob& job) {
     if (job.directSpp && d.factoredDirectSpp == 0)
         throw CLI::ValidationError("--direct-spp", "needs --paths mara");
     render::validate(d);
-    const double estimate = estimatedHere(d);
+    std::optional<std::pair<int, int>> range;
+    if (job.frameRange) {
+        if (job.layout != "manifest")
+            throw CLI::ValidationError("--frame-range", "needs the manifest layout");
+        range = parseFrameRange(*job.frameRange, d.frames);
+    }
+    const int partFrames = range ? range->second - range->first : d.frames;
+    std::optional<tbb::global_control> threadCap;
+    if (job.threads > 0)
+        threadCap.emplace(tbb::global_control::max_allowed_parallelism, size_t(job.threads));
+    double estimate = estimatedHere(d) * partFrames / d.frames;
+    if (job.threads > 0)
+        estimate *= double(coresHere()) / std::min(unsigned(job.threads), coresHere());
     if (estimate > kLongRenderSeconds && !job.yes)
         throw UsageError(fmt::format(
             "this render is estimated at {} here ({}x{}, {} frames, reference {} spp); add "
@@ -115,7 +152,12 @@ int runRender(const RenderJob& job) {
                    "({} layout)\n",
                    d.name, d.mesh, d.width, d.height, d.frames, d.bounces, d.referenceSpp,
                    job.output, job.layout);
-    if (!job.quiet) fmt::print("estimated {} on {} cores\n", durationText(estimate), coresHere());
+    if (range && !job.quiet)
+        fmt::print("part: frames {} to {} of {}; sequence.json is written once all {} are in\n",
+                   range->first, range->second - 1, d.frames, d.frames);
+    if (!job.quiet)
+        fmt::print("estimated {} on {} cores\n", durationText(estimate),
+                   job.threads > 0 ? std::min(unsigned(job.threads), coresHere()) : coresHere());
     if (quick && !job.quiet)
         fmt::print("a quick render: no scene or size was given. The preset's full size is "
                    "{}x{}, {} frames, reference {} spp ({}); ask for it with -s {} (and --yes), "
@@ -123,9 +165,17 @@ int runRender(const RenderJob& job) {
                    "--list-presets lists the scenes\n",
                    full.width, full.height, full.frames, full.referenceSpp,
                    durationText(estimatedHere(full)), d.name);
-    const OutputFolder folder(job.output, invocation());
-    Progress progress("render", d.frames, job.quiet);
+    // Parts lock apart: they write different frames of one folder at once.
+    const OutputFolder folder(
+        job.output, invocation(),
+        range ? fmt::format("{}.frames-{}-{}", kOutputLockFile, range->first, range->second)
+              : std::string(kOutputLockFile));
+    Progress progress("render", partFrames, job.quiet);
     render::SequenceRenderOptions o{job.output, job.layout, job.quiet, job.overwrite};
+    if (range) {
+        o.firstFrame = range->first;
+        o.endFrame = range->second;
+    }
     render::SequenceRenderReport r = render::renderSequence(
         d, o, &gInterrupted, [&](int done, int) { progress.step(done); },
         [&](const std::string& w) { fmt::print(stderr, "bmfr: warning: {}\n", w); });
@@ -139,6 +189,9 @@ int runRender(const RenderJob& job) {
             fmt::print("1-spp input {:.3f} s/frame, reference {:.2f} s/frame, {:.2f} Mrays/s\n",
                        r.inputSeconds / r.rendered, r.referenceSeconds / r.rendered,
                        seconds > 0 ? double(r.rays) / seconds * 1e-6 : 0.0);
+        if (range && !r.interrupted)
+            fmt::print("{} of {} frames of the sequence are in{}\n", r.framesIn, d.frames,
+                       r.complete ? "; sequence.json written" : "");
     }
     if (r.interrupted) {
         fmt::print(stderr,
@@ -168,6 +221,13 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                     "reference samples per pixel (default: the scene's; 4096 for the presets)")
         ->check(integerIn(0, 1 << 20));
     cmd->add_flag("--no-reference", job->noReference, "skip the reference");
+    cmd->add_option("--frame-range", job->frameRange,
+                    "A:B renders frames A to B-1 only, into the same folder as the other parts "
+                    "(which may render at once, on other machines); sequence.json is written by "
+                    "the part that completes the sequence (manifest layout)");
+    cmd->add_option("--threads", job->threads, "worker threads, 0 = all cores")
+        ->check(integerIn(0, 4096))
+        ->default_val(0);
     cmd->add_flag("--overwrite", job->overwrite,
                   "replace a folder holding another scene's sequence (or one bmfr did not "
                   "render) instead of refusing it");

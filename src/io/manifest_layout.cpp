@@ -226,22 +226,46 @@ std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory)
     return std::make_unique<ManifestReader>(directory);
 }
 
-ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo& info, bool resume)
-    : dir_(directory), info_(info) {
+ManifestWriter::ManifestWriter(const std::string& directory, const SequenceInfo& info, bool resume,
+                               bool part)
+    : dir_(directory), info_(info), part_(part) {
     fs::create_directories(directory);
     const fs::path existing = fs::path(directory) / "sequence.json";
-    if (!resume || !fs::exists(existing)) return;
-    try {
-        std::ifstream in(existing);
-        json doc = json::parse(in);
-        if (doc.value("width", 0) != info.width || doc.value("height", 0) != info.height)
-            throw Error(existing.string() + " holds a " + std::to_string(doc.value("width", 0)) +
-                        "x" + std::to_string(doc.value("height", 0)) +
-                        " sequence; refusing to mix it with " + std::to_string(info.width) + "x" +
-                        std::to_string(info.height) + " frames");
-        for (const json& f : doc.at("frames")) frameJson_.push_back(f.dump());
-    } catch (const json::exception& e) {
-        throw Error(existing.string() + ": " + jsonProblem(e));
+    if (resume && fs::exists(existing)) {
+        try {
+            std::ifstream in(existing);
+            json doc = json::parse(in);
+            if (doc.value("width", 0) != info.width || doc.value("height", 0) != info.height)
+                throw Error(
+                    existing.string() + " holds a " + std::to_string(doc.value("width", 0)) + "x" +
+                    std::to_string(doc.value("height", 0)) + " sequence; refusing to mix it with " +
+                    std::to_string(info.width) + "x" + std::to_string(info.height) + " frames");
+            for (const json& f : doc.at("frames")) frameJson_.push_back(f.dump());
+        } catch (const json::exception& e) {
+            throw Error(existing.string() + ": " + jsonProblem(e));
+        }
+    }
+    loadPartRecords();
+}
+
+void ManifestWriter::loadPartRecords() {
+    const fs::path folder = fs::path(dir_) / kFramePartsFolder;
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.size() != 9 || name.substr(4) != ".json" ||
+            name.find_first_not_of("0123456789") != 4)
+            continue; // another writer's temporary
+        const size_t index = std::stoul(name.substr(0, 4));
+        if (index < frameJson_.size() && !frameJson_[index].empty()) continue;
+        try {
+            std::ifstream in(e.path());
+            const std::string record = json::parse(in).dump();
+            if (index >= frameJson_.size()) frameJson_.resize(index + 1);
+            frameJson_[index] = record;
+        } catch (const json::exception& x) {
+            throw Error(e.path().string() + ": " + jsonProblem(x));
+        }
     }
 }
 
@@ -292,7 +316,27 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
     j["jitter"] = {f.jitter[0], f.jitter[1]};
     if (size_t(index) >= frameJson_.size()) frameJson_.resize(size_t(index) + 1);
     frameJson_[size_t(index)] = j.dump();
+    if (!part_) {
+        writeManifest();
+        return;
+    }
+    // The record last: its presence says the frame's files are all in.
+    const fs::path folder = fs::path(dir_) / kFramePartsFolder;
+    fs::create_directories(folder);
+    writeFileAtomically((folder / (std::string(stem) + ".json")).string(), j.dump() + "\n");
+}
 
+int ManifestWriter::writeManifestIfComplete() {
+    loadPartRecords();
+    int in = 0;
+    for (int i = 0; i < info_.frameCount; ++i) in += hasFrame(i) ? 1 : 0;
+    if (in == info_.frameCount && in > 0) writeManifest();
+    return in;
+}
+
+/// The frames recorded from 0 up to the first one missing: a frame's place in the list is its
+/// index.
+void ManifestWriter::writeManifest() const {
     json doc;
     doc["format"] = "bmfr-sequence";
     doc["version"] = 1;
@@ -303,8 +347,10 @@ void ManifestWriter::addFrame(int index, const FrameData& f) {
     if (info_.normalLimitSquared) doc["normal_limit_squared"] = *info_.normalLimitSquared;
     doc["extras"] = info_.extraNames;
     doc["frames"] = json::array();
-    for (const std::string& s : frameJson_)
-        if (!s.empty()) doc["frames"].push_back(json::parse(s));
+    for (const std::string& s : frameJson_) {
+        if (s.empty()) break;
+        doc["frames"].push_back(json::parse(s));
+    }
     const fs::path path = fs::path(dir_) / "sequence.json";
     writeFileAtomically(path.string(), doc.dump(1) + "\n");
 }

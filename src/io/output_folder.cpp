@@ -31,8 +31,9 @@ std::string holderOf(int fd) {
 
 } // namespace
 
-OutputFolder::OutputFolder(const std::string& directory, const std::string& command)
-    : directory_(directory), lockPath_((fs::path(directory) / kOutputLockFile).string()) {
+OutputFolder::OutputFolder(const std::string& directory, const std::string& command,
+                           const std::string& lockName)
+    : directory_(directory), lockPath_((fs::path(directory) / lockName).string()) {
     std::error_code ec;
     fs::path start = fs::absolute(directory, ec).lexically_normal();
     if (!start.has_filename()) start = start.parent_path(); // "out/"
@@ -106,7 +107,7 @@ void OutputFolder::removeMadeFolders() const {
 bool isEmptyOutputFolder(const std::string& directory) {
     std::error_code ec;
     for (const fs::directory_entry& e : fs::directory_iterator(directory, ec))
-        if (e.path().filename() != kOutputLockFile) return false;
+        if (e.path().filename().string().rfind(kOutputLockFile, 0) != 0) return false;
     return true;
 }
 

@@ -8,15 +8,19 @@
 
 namespace bmfr {
 
-/// The lock file a run keeps in its output folder (it names the run that holds it).
+/// The lock file a run keeps in its output folder (it names the run that holds it). Writers
+/// that share a folder by design (the parts of one render) each lock a file of their own whose
+/// name starts with this.
 inline constexpr const char* kOutputLockFile = ".bmfr-lock";
 
 class OutputFolder {
   public:
     /// Creates `directory` (and missing parents) and locks it for `command` (as "bmfr denoise
     /// ..."). Throws bmfr::Error when another process holds it, naming that process, or when
-    /// the folder cannot be made or locked; nothing is written then.
-    OutputFolder(const std::string& directory, const std::string& command);
+    /// the folder cannot be made or locked; nothing is written then. `lockName` (a file name
+    /// starting with kOutputLockFile) lets writers that share the folder lock apart.
+    OutputFolder(const std::string& directory, const std::string& command,
+                 const std::string& lockName = kOutputLockFile);
     /// Unlocks; removes the folders it made that are empty.
     ~OutputFolder();
     OutputFolder(const OutputFolder&) = delete;
@@ -32,7 +36,7 @@ class OutputFolder {
     int fd_ = -1;
 };
 
-/// True when `directory` holds nothing but (possibly) the lock file of an OutputFolder.
+/// True when `directory` holds nothing but (possibly) the lock files of OutputFolders.
 bool isEmptyOutputFolder(const std::string& directory);
 
 } // namespace bmfr

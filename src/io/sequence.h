@@ -121,19 +121,32 @@ std::vector<std::string> layeredBufferNames();
 std::unique_ptr<SequenceReader> openBmfrLayout(const std::string& directory);
 std::unique_ptr<SequenceReader> openManifestLayout(const std::string& directory);
 
+/// Where writers of parts of one sequence record their frames (one `NNNN.json` per frame).
+inline constexpr const char* kFramePartsFolder = ".bmfr-frames";
+
 /// Writes this project's layout: EXRs per frame plus sequence.json (rewritten per frame, so a
-/// stopped writer leaves a readable prefix).
+/// stopped writer leaves a readable prefix). A writer of a part (several may run at once, on
+/// other machines) records each frame in kFramePartsFolder instead; sequence.json is written
+/// once every frame of the sequence is recorded, by whichever writer finds them all.
 class ManifestWriter {
   public:
-    /// With `resume`, keeps the frames of an existing sequence.json of the same size.
-    ManifestWriter(const std::string& directory, const SequenceInfo& info, bool resume = true);
+    /// With `resume`, keeps the frames of an existing sequence.json of the same size. Frames
+    /// recorded by parts are kept either way (a replaced folder has had them removed).
+    ManifestWriter(const std::string& directory, const SequenceInfo& info, bool resume = true,
+                   bool part = false);
     void addFrame(int index, const FrameData& frame);
     /// True when frame `index` is recorded and all its files exist.
     bool hasFrame(int index) const;
+    /// Writes sequence.json when frames [0, info.frameCount) are all recorded (here or by other
+    /// parts); returns how many of them are.
+    int writeManifestIfComplete();
 
   private:
+    void loadPartRecords();
+    void writeManifest() const;
     std::string dir_;
     SequenceInfo info_;
+    bool part_;
     std::vector<std::string> frameJson_;
 };
 

@@ -20,13 +20,27 @@ void add(std::string& s, Vec3 v) {
     s += fmt::format("{},{},{};", v.x, v.y, v.z);
 }
 
+/// True when `dir` holds nothing but locks and other writers' half-written fingerprint files:
+/// the parts of one render, started at once, each find the folder so.
+bool onlyClaimsUnderWay(const std::string& dir) {
+    const std::string half = std::string(kRenderFingerprintFile) + ".";
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        const bool lock = name.rfind(kOutputLockFile, 0) == 0;
+        const bool claim = name.rfind(half, 0) == 0 && e.path().extension() == ".part";
+        if (!lock && !claim) return false;
+    }
+    return true;
+}
+
 /// Claims `dir` for this render, or refuses it. Returns false when the finished frames must be
 /// rendered again (a new or overwritten folder).
 bool claimFolder(const std::string& dir, const std::string& fingerprint, bool overwrite,
                  const nlohmann::json& about) {
     const fs::path marker = fs::path(dir) / kRenderFingerprintFile;
     std::error_code ec;
-    const bool empty = !fs::exists(dir, ec) || isEmptyOutputFolder(dir);
+    const bool empty = !fs::exists(dir, ec) || onlyClaimsUnderWay(dir);
     if (fs::exists(marker, ec)) {
         std::ifstream in(marker);
         std::string found;
@@ -46,6 +60,7 @@ bool claimFolder(const std::string& dir, const std::string& fingerprint, bool ov
                     "); refusing to write into it. Use another folder, or --overwrite");
     }
     fs::create_directories(dir);
+    if (!empty) fs::remove_all(fs::path(dir) / kFramePartsFolder, ec); // a replaced sequence's
     nlohmann::json record = about;
     record["fingerprint"] = fingerprint;
     writeFileAtomically(marker.string(), record.dump(1) + "\n");
@@ -183,16 +198,23 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     info.extraNames = FrameRenderer::extraNames();
     std::unique_ptr<ManifestWriter> manifest;
     std::unique_ptr<BmfrLayoutWriter> original;
+    const bool part = o.endFrame >= 0;
+    const int first = part ? o.firstFrame : 0;
+    const int end = part ? o.endFrame : d.frames;
+    if (part && (o.layout != "manifest" || first < 0 || first >= end || end > d.frames))
+        throw Error(fmt::format("a part of a sequence is frames [A, B) with 0 <= A < B <= {} in "
+                                "the manifest layout; got [{}, {}) in the {} layout",
+                                d.frames, first, end, o.layout));
     if (o.layout == "manifest")
-        manifest = std::make_unique<ManifestWriter>(o.output, info, resume);
+        manifest = std::make_unique<ManifestWriter>(o.output, info, resume, part);
     else
         original = std::make_unique<BmfrLayoutWriter>(o.output, matrices, jitters, 0.01f, 1.0f);
 
     FrameData frame;
-    for (int i = 0; i < d.frames; ++i) {
-        if (resume && (manifest ? manifest->hasFrame(i) : original->hasFrame(i))) {
+    for (int i = first; i < end; ++i) {
+        if ((resume || part) && (manifest ? manifest->hasFrame(i) : original->hasFrame(i))) {
             ++report.skipped;
-            progress(i + 1, d.frames);
+            progress(i + 1 - first, end - first);
             continue;
         }
         if (animator.animated()) {
@@ -220,14 +242,21 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
         else
             original->addFrame(i, frame);
         ++report.rendered;
-        progress(i + 1, d.frames);
+        progress(i + 1 - first, end - first);
         if (cancel && *cancel) {
-            report.interrupted = i + 1 < d.frames;
+            report.interrupted = i + 1 < end;
             break;
         }
     }
     if (original && report.rendered + report.skipped > 0)
         original->finish(); // the header last, for the frames on disk
+    if (manifest) {
+        report.framesIn = manifest->writeManifestIfComplete();
+        report.complete = report.framesIn == d.frames;
+    } else {
+        report.framesIn = report.rendered + report.skipped;
+        report.complete = report.framesIn == d.frames;
+    }
     return report;
 }
 

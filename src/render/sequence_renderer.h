@@ -21,10 +21,17 @@ struct SequenceRenderOptions {
     /// Replace a folder that holds another scene's or layout's sequence (or one bmfr did not
     /// render) instead of refusing it; finished frames are rendered again.
     bool overwrite = false;
+    /// A part of the sequence: frames [firstFrame, endFrame) only (manifest layout), recorded
+    /// so that parts rendered at once, here or on other machines, make one sequence. -1: all.
+    int firstFrame = 0, endFrame = -1;
 };
 
 struct SequenceRenderReport {
     int rendered = 0, skipped = 0;
+    /// Frames of the whole sequence on disk after this run (other parts' included), and
+    /// whether sequence.json lists them all.
+    int framesIn = 0;
+    bool complete = false;
     bool interrupted = false;
     uint64_t rays = 0;
     double inputSeconds = 0, referenceSeconds = 0, loadSeconds = 0;
@@ -35,7 +42,8 @@ struct SequenceRenderReport {
 /// Stops cleanly (no partial files) when `cancel` becomes true. A folder is resumed only when
 /// its render fingerprint (kRenderFingerprintFile: the scene and settings, written with the
 /// first frame) matches; any other non-empty folder is refused unless options.overwrite.
-/// Metadata (sequence.json, camera_matrices.h) is written after the frames it describes.
+/// Metadata (sequence.json, camera_matrices.h) is written after the frames it describes; for a
+/// part, once every frame of the sequence is in.
 SequenceRenderReport renderSequence(const SceneDescription& desc,
                                     const SequenceRenderOptions& options,
                                     const std::atomic<bool>* cancel,
