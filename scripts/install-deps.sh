@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages bmfr needs (skipping apt when all are present), then Intel Open
-# Image Denoise from PyPI into .venv/ (scripts/install-oidn.sh), the peer the demo compares with.
+# Image Denoise from PyPI into .venv/ (scripts/install-oidn.sh), the peer the demo compares with,
+# and with --tests Ray (scripts/install-ray.sh), which `bmfr batch` runs on.
 #   install-deps.sh --demo    only what `bmfr` itself needs to build (the demo's command)
 #   install-deps.sh           also the libraries and tools the tests, sanitizers and the Python
 #                             module build with (GoogleTest, Google Benchmark, clang, pybind11...)
@@ -39,3 +40,8 @@ fi
 # run OIDN fail and say how to install it.
 bash "$(dirname "$0")/install-oidn.sh" ||
     echo "install-deps.sh: warning: Intel Open Image Denoise was not installed (see above)" >&2
+# Ray, for `bmfr batch` and its cluster test: with the tests, or on its own by install-ray.sh.
+if [ "${1:-}" = --tests ]; then
+    bash "$(dirname "$0")/install-ray.sh" ||
+        echo "install-deps.sh: warning: Ray was not installed (see above)" >&2
+fi

@@ -1,0 +1,1 @@
+"""bmfr batch: render, denoise and score many sequences on a Ray cluster (docs/batch.md)."""

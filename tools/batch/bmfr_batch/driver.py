@@ -1,0 +1,218 @@
+"""Runs a plan's tasks on Ray: the tasks not already finished are submitted with their
+dependencies, each declaring its CPUs; a task whose worker dies is retried by Ray, one whose bmfr
+was killed by a signal is retried too, one whose bmfr exited with an error is not (it would fail
+again). Progress shows tasks done, running and failed, and the time left."""
+import fcntl
+import logging
+import os
+import re
+import secrets
+import sys
+import time
+
+from . import tables
+from .graph import build_tasks
+from .tasks import (StorageError, TaskFailed, TaskInterrupted, execute, is_finished,
+                    render_fingerprint, write_json_atomically)
+
+# What a killed writer leaves: bmfr's "<file>.<pid>-<n>.part" and this package's
+# "<file>.<pid>.part". Never mistaken for outputs, removed once nothing runs.
+PARTIAL = re.compile(r"\.\d+(-\d+)?\.part$")
+
+
+class BatchError(Exception):
+    """The batch cannot start or did not finish: the message says why."""
+
+
+def _connect(cluster, package_dir):
+    import ray  # here, so that plan errors are reported without Ray installed
+
+    options = {"include_dashboard": False, "logging_level": logging.WARNING,
+               "log_to_driver": False,
+               # The workers import this package from the driver's copy, on every node.
+               "runtime_env": {"py_modules": [package_dir]}}
+    if cluster == "local":
+        ray.init(address="local", **options)
+    elif cluster == "auto":
+        try:
+            ray.init(address="auto", **options)
+        except ConnectionError:
+            ray.init(address="local", **options)
+    else:
+        try:
+            ray.init(address=cluster, **options)
+        except (ConnectionError, ValueError, RuntimeError) as e:
+            raise BatchError(f"cannot join the Ray cluster at {cluster}: {e}") from None
+    return ray
+
+
+def _lock(out):
+    os.makedirs(os.path.join(out, ".batch"), exist_ok=True)
+    fd = os.open(os.path.join(out, ".batch", "lock"), os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        raise BatchError(f"another bmfr batch is running into {out}; wait for it or give "
+                         "another output folder") from None
+    return fd
+
+
+def _check_output_folder(out):
+    if os.path.exists(out) and not os.path.isdir(out):
+        raise BatchError(f"{out} exists and is not a folder")
+    if os.path.isdir(out) and os.listdir(out) and not os.path.isdir(os.path.join(out, ".batch")):
+        raise BatchError(f"{out} is not empty and holds no earlier batch (no .batch/); refusing "
+                         "to write into it. Give an empty or new folder, or an earlier "
+                         "batch's to resume it")
+
+
+def _remove_partial_files(out):
+    for root, _, files in os.walk(out):
+        for name in files:
+            if PARTIAL.search(name):
+                try:
+                    os.remove(os.path.join(root, name))
+                except OSError:
+                    pass
+
+
+class Progress:
+    """A line rewritten in place on a terminal; a line every 10 s otherwise."""
+
+    def __init__(self, total, quiet):
+        self.total, self.quiet = total, quiet
+        self.tty = sys.stderr.isatty()
+        self.last = 0.0
+        self.start = time.monotonic()
+
+    def show(self, done, skipped, running, failed, retried, cost_done, cost_left, final=False):
+        if self.quiet:
+            return
+        now = time.monotonic()
+        if not final and not self.tty and now - self.last < 10:
+            return
+        self.last = now
+        elapsed = now - self.start
+        eta = ""
+        if cost_done > 0 and cost_left > 0:
+            eta = f", about {elapsed * cost_left / cost_done:.0f} s left"
+        line = (f"bmfr batch: {done + skipped}/{self.total} tasks done ({skipped} finished "
+                f"earlier), {running} running, {failed} failed, {retried} retried{eta}")
+        if self.tty:
+            sys.stderr.write("\r" + line.ljust(100) + ("\n" if final else ""))
+        else:
+            sys.stderr.write(line + "\n")
+        sys.stderr.flush()
+
+
+def _attempts(path):
+    """Task id -> attempts started, from the attempts log the workers append to."""
+    counts = {}
+    try:
+        with open(path, encoding="utf-8") as f:
+            for line in f:
+                tid = line.split('"task": "', 1)[-1].split('"', 1)[0]
+                counts[tid] = counts.get(tid, 0) + 1
+    except OSError:
+        pass
+    return counts
+
+
+def run_batch(plan, out, bmfr, cluster="auto", retries=3, quiet=False):
+    """Runs `plan` into `out`; returns (rows of the table, summary dict). Raises BatchError."""
+    out = os.path.abspath(out)
+    _check_output_folder(out)
+    lock = _lock(out)
+    try:
+        return _run_locked(plan, out, bmfr, cluster, retries, quiet)
+    finally:
+        os.close(lock)
+
+
+def _run_locked(plan, out, bmfr, cluster, retries, quiet):
+    tasks = build_tasks(plan, bmfr, out)
+    fingerprints = {t["sequence"]: render_fingerprint(t["sequence"]) for t in tasks}
+    finished = {t["id"] for t in tasks if is_finished(t, fingerprints[t["sequence"]])}
+    # A task below one that runs again runs again too (its inputs are being remade).
+    by_id = {t["id"]: t for t in tasks}
+    for t in tasks:
+        if any(d not in finished for d in t["deps"]):
+            finished.discard(t["id"])
+    to_run = [t for t in tasks if t["id"] not in finished]
+    batch = os.path.join(out, ".batch")
+    token = secrets.token_hex(16)
+    token_path = os.path.join(batch, "storage-token")
+    write_json_atomically(os.path.join(batch, "plan.json"),
+                          {"tasks": [{k: t[k] for k in ("id", "argv", "deps")} for t in tasks]})
+    with open(token_path, "w", encoding="utf-8") as f:
+        f.write(token)
+    attempts_path = os.path.join(batch, "attempts.log")
+    open(attempts_path, "w").close()
+    start = time.monotonic()
+    summary = {"tasks": len(tasks), "run": len(to_run), "skipped": len(finished), "failed": [],
+               "retried": 0, "nodes": [], "seconds": 0.0}
+    progress = Progress(len(tasks), quiet)
+    if to_run:
+        ray = _connect(cluster, os.path.dirname(os.path.abspath(__file__)))
+        try:
+            summary.update(_submit(ray, to_run, by_id, finished, retries, plan, token_path,
+                                   token, attempts_path, progress))
+        finally:
+            ray.shutdown()
+    else:
+        progress.show(0, len(finished), 0, 0, 0, 0, 0, final=True)
+    _remove_partial_files(out)
+    summary["seconds"] = time.monotonic() - start
+    rows = tables.gather(plan, out)
+    return rows, summary
+
+
+def _submit(ray, to_run, by_id, finished, retries, plan, token_path, token, attempts_path,
+            progress):
+    @ray.remote(max_retries=retries, retry_exceptions=[TaskInterrupted])
+    def run_one(task, *deps):
+        node = ray.get_runtime_context().get_node_id()
+        return execute(task, token_path, token, attempts_path, node)
+
+    refs = {}
+    for t in to_run:  # dependencies first (build_tasks' order)
+        deps = [refs[d] for d in t["deps"] if d in refs]
+        refs[t["id"]] = run_one.options(num_cpus=plan.cpus_per_task, name=t["id"]).remote(t,
+                                                                                        *deps)
+    pending = {ref: tid for tid, ref in refs.items()}
+    done, failed, nodes = set(), [], set()
+    cost_total = sum(by_id[tid]["cost"] for tid in refs)
+    cost_done = 0
+    while pending:
+        ready, _ = ray.wait(list(pending), num_returns=1, timeout=1.0)
+        for ref in ready:
+            tid = pending.pop(ref)
+            try:
+                result = ray.get(ref)
+                done.add(tid)
+                nodes.add(result["node"])
+                cost_done += by_id[tid]["cost"]
+            except ray.exceptions.RayTaskError as e:
+                cause = e.cause if hasattr(e, "cause") else e
+                # Ray hands pending refs back in the order given (dependencies first), so a
+                # dependency not done by now has failed.
+                if any(d not in done and d in refs for d in by_id[tid]["deps"]):
+                    failed.append(f"{tid}: not run, as a task it needs failed")
+                elif isinstance(cause, (TaskFailed, TaskInterrupted, StorageError)):
+                    failed.append(f"{tid}: {cause}")
+                else:
+                    failed.append(f"{tid}: {str(e).strip().splitlines()[-1]}")
+            except ray.exceptions.RayError as e:  # the worker died on every attempt
+                if any(d not in done and d in refs for d in by_id[tid]["deps"]):
+                    failed.append(f"{tid}: not run, as a task it needs failed")
+                    continue
+                failed.append(f"{tid}: {type(e).__name__}: {str(e).strip().splitlines()[0]}")
+        attempts = _attempts(attempts_path)
+        started = {tid for tid in attempts if tid in refs}
+        running = len(started - done - {f.split(":")[0] for f in failed})
+        retried = sum(n - 1 for n in attempts.values() if n > 1)
+        progress.show(len(done), len(finished), running, len(failed), retried, cost_done,
+                      cost_total - cost_done, final=not pending)
+    attempts = _attempts(attempts_path)
+    return {"failed": failed, "retried": sum(n - 1 for n in attempts.values() if n > 1),
+            "nodes": sorted(nodes)}
