@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
     bmfr::app::addSettingsCommand(app, exitCode);
     bmfr::app::addSoakCommand(app, exitCode);
     bmfr::app::addPeerCommand(app, exitCode);
+    bmfr::app::addBatchCommand(app, exitCode);
     std::vector<std::string> commands;
     for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
     const bool known =

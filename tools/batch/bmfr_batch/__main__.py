@@ -45,7 +45,8 @@ def main(argv=None):
     for failure in summary["failed"]:
         print(f"bmfr: failed: {failure}", file=sys.stderr)
     if not args.quiet:
-        nodes = ", ".join(summary["nodes"]) or "none (all finished earlier)"
+        nodes = (f"{len(summary['nodes'])}: " + ", ".join(summary["nodes"]) if summary["nodes"]
+                 else "none (all finished earlier)")
         print(f"{summary['run']} task(s) run, {summary['skipped']} finished earlier, "
               f"{len(summary['failed'])} failed, {summary['retried']} retried, in "
               f"{summary['seconds']:.1f} s; nodes: {nodes}")

@@ -190,7 +190,7 @@ def _submit(ray, to_run, by_id, finished, retries, plan, token_path, token, atte
             try:
                 result = ray.get(ref)
                 done.add(tid)
-                nodes.add(result["node"])
+                nodes.add(f"{result['node']} ({result['ray_node'][:8]})")
                 cost_done += by_id[tid]["cost"]
             except ray.exceptions.RayTaskError as e:
                 cause = e.cause if hasattr(e, "cause") else e

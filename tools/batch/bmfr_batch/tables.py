@@ -3,12 +3,21 @@ results.csv, results.json and index.html (which links each sequence's report).""
 import csv
 import html
 import io
+import json
 import os
 
-from .tasks import read_json, write_json_atomically
+from .tasks import read_json
 
 
 def _write_text_atomically(path, text):
+    """Replaces `path` with `text` unless it holds that already (a resumed batch with nothing
+    to do rewrites nothing)."""
+    try:
+        with open(path, encoding="utf-8", newline="") as f:
+            if f.read() == text:
+                return
+    except OSError:
+        pass
     temporary = f"{path}.{os.getpid()}.part"
     with open(temporary, "w", encoding="utf-8", newline="") as f:
         f.write(text)
@@ -43,10 +52,11 @@ def gather(plan, out):
         writer.writerow({k: ("" if v is None else f"{v:.6g}" if isinstance(v, float) else v)
                          for k, v in row.items()})
     _write_text_atomically(os.path.join(out, "results.csv"), text.getvalue())
-    write_json_atomically(os.path.join(out, "results.json"),
-                          {"metrics": plan.metrics, "rows": rows,
-                           "color_space": "as bmfr eval: tone-mapped clamp(x^(1/2.2), 0, 1) "
-                                          "but relMSE (linear)"})
+    document = {"metrics": plan.metrics, "rows": rows,
+                "color_space": "as bmfr eval: tone-mapped clamp(x^(1/2.2), 0, 1) but relMSE "
+                               "(linear)"}
+    _write_text_atomically(os.path.join(out, "results.json"),
+                           json.dumps(document, indent=1, sort_keys=True) + "\n")
     _write_text_atomically(os.path.join(out, "index.html"), _html(plan, rows, columns))
     return rows
 

@@ -129,4 +129,4 @@ def execute(task, storage_token_path, storage_token, attempt_log=None, ray_node=
         "key": task["key"], "input": fingerprint, "task": task["id"], "node": node,
         "ray_node": ray_node, "seconds": round(seconds, 3),
         "command": task["argv"]})
-    return {"id": task["id"], "node": node, "seconds": seconds}
+    return {"id": task["id"], "node": node, "ray_node": ray_node, "seconds": seconds}

@@ -1,0 +1,275 @@
+"""bmfr batch on a real two-node Ray cluster on this machine.
+
+Starts a head node and a second node on loopback, runs a plan of four tiny sequences across both,
+kills the Ray worker of one render part mid-render, and checks that the batch still completes,
+that both nodes ran tasks, that a second run recomputes nothing, and that the outputs equal those
+of the same plan run on one machine. Stops the cluster (its own processes only) at the end.
+
+    python cluster_test.py BMFR WORK      (the Python that has Ray; exit 77: no Ray, skipped)
+"""
+import csv
+import filecmp
+import json
+import os
+import secrets
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+BMFR, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+RAY = os.path.join(os.path.dirname(sys.executable), "ray")
+DEADLINE = time.monotonic() + 540
+HEAVY = "lamp"  # the sequence whose render part is killed: its parts take seconds
+# Ray's token authentication, as a real cluster has it: every node and driver gets the token.
+ENV = dict(os.environ, RAY_AUTH_MODE="token", RAY_AUTH_TOKEN=secrets.token_hex(16))
+
+
+def fail(message):
+    print(f"FAIL: {message}", flush=True)
+    sys.exit(1)
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+PLAN = {
+    "sequences": [
+        {"name": "box", "scene": "cornell-moving", "width": 40, "height": 30, "frames": 4,
+         "reference_samples": 32},
+        {"name": "objects", "scene": "cornell-objects", "width": 40, "height": 30, "frames": 4,
+         "reference_samples": 32},
+        {"name": "moving", "scene": "cornell-objects-moving", "width": 40, "height": 30,
+         "frames": 4, "reference_samples": 32, "seed": 5},
+        {"name": HEAVY, "scene": "room-light", "width": 64, "height": 48, "frames": 4,
+         "reference_samples": 768},
+    ],
+    "methods": [{"name": "bmfr", "filter": "bmfr"},
+                {"name": "svgf", "filter": "svgf", "set": {"taa": False}}],
+    "metrics": ["rmse", "ssim", "temporal_error", "temporal_change_error"],
+    "chunk_frames": 2,
+}
+
+
+class Cluster:
+    """A head node and a second node, each `ray start --block` in a session of its own, so that
+    stopping them touches no other Ray on this machine."""
+
+    def __init__(self):
+        self.port = free_port()
+        self.address = f"127.0.0.1:{self.port}"
+        self.temp = os.path.join("/tmp", f"bmfr-ray-{os.getpid()}")  # short: Ray's socket paths
+        self.nodes = []
+
+    def start(self):
+        common = ["--num-cpus", "1", "--block",
+                  "--disable-usage-stats"]
+        self._node([RAY, "start", "--head", "--port", str(self.port), "--include-dashboard",
+                    "false", "--temp-dir", self.temp] + common)
+        self._wait_nodes(1)
+        self._node([RAY, "start", "--address", self.address] + common)
+        self._wait_nodes(2)
+
+    def _node(self, argv):
+        log = open(os.path.join(WORK, f"node{len(self.nodes)}.log"), "w")
+        self.nodes.append(subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT,
+                                           start_new_session=True, env=ENV))
+
+    def _wait_nodes(self, count):
+        probe = (f"import ray, time\nray.init(address='{self.address}', logging_level='ERROR')\n"
+                 f"t = time.monotonic()\n"
+                 f"while len([n for n in ray.nodes() if n['Alive']]) < {count}:\n"
+                 f"    assert time.monotonic() - t < 60, 'nodes did not join'\n"
+                 f"    time.sleep(0.5)\n")
+        for _ in range(60):
+            if any(p.poll() is not None for p in self.nodes):
+                fail(f"a Ray node exited at start: see {WORK}/node*.log")
+            try:
+                if subprocess.run([sys.executable, "-c", probe], capture_output=True,
+                                  timeout=90, env=ENV).returncode == 0:
+                    return
+            except subprocess.TimeoutExpired:
+                pass
+            time.sleep(1)
+        fail(f"the cluster did not reach {count} node(s)")
+
+    def stop(self):
+        for p in reversed(self.nodes):
+            if p.poll() is None:
+                os.killpg(p.pid, signal.SIGTERM)
+        for p in self.nodes:
+            try:
+                p.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+        # Whatever the nodes started in sessions of their own: found by the session folder.
+        for pid in os.listdir("/proc"):
+            try:
+                with open(f"/proc/{pid}/cmdline", "rb") as f:
+                    line = f.read().decode(errors="replace")
+            except OSError:
+                continue
+            if pid.isdigit() and self.temp in line and int(pid) != os.getpid():
+                try:
+                    os.kill(int(pid), signal.SIGKILL)
+                except OSError:
+                    pass
+        shutil.rmtree(self.temp, ignore_errors=True)
+
+
+def processes():
+    """pid -> (parent pid, command line) of every process."""
+    found = {}
+    for pid in os.listdir("/proc"):
+        if not pid.isdigit():
+            continue
+        try:
+            with open(f"/proc/{pid}/cmdline", "rb") as f:
+                line = f.read().replace(b"\0", b" ").decode(errors="replace")
+            with open(f"/proc/{pid}/stat") as f:
+                parent = int(f.read().rsplit(")", 1)[1].split()[1])
+        except (OSError, ValueError, IndexError):
+            continue
+        found[int(pid)] = (parent, line)
+    return found
+
+
+def run_batch(out, cluster, kill_one=False):
+    """Runs the plan; with kill_one, SIGKILLs the Ray worker running a part of HEAVY's render
+    once it is under way. Returns (stdout+stderr, the killed task's frame range or None)."""
+    argv = [BMFR, "batch", os.path.join(WORK, "plan.json"), "-o", out, "--cluster", cluster,
+            "--python", sys.executable]
+    batch = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                             env=ENV)
+    killed = None
+    target = os.path.join(out, "sequences", HEAVY)
+    seen_at = {}
+    while kill_one and killed is None and batch.poll() is None:
+        for pid, (parent, line) in processes().items():
+            if " render " in line and "--frame-range" in line and target in line:
+                seen_at.setdefault(pid, time.monotonic())
+                if time.monotonic() - seen_at[pid] > 0.7:  # mid-render, a frame or so in
+                    worker = processes().get(parent, (0, ""))[1]
+                    if "ray" not in worker.lower():
+                        fail(f"the render's parent is not a Ray worker: {worker}")
+                    killed = line.split("--frame-range ")[1].split()[0]
+                    os.kill(parent, signal.SIGKILL)
+                    print(f"killed Ray worker {parent} (running frames {killed} of {HEAVY})",
+                          flush=True)
+                    break
+        time.sleep(0.05)
+    try:
+        output, _ = batch.communicate(timeout=max(10, DEADLINE - time.monotonic()))
+    except subprocess.TimeoutExpired:
+        batch.kill()
+        fail("the batch did not finish in time")
+    if batch.returncode != 0:
+        fail(f"bmfr batch exited {batch.returncode}:\n{output}")
+    return output, killed
+
+
+def quality_rows(out):
+    with open(os.path.join(out, "results.csv"), newline="") as f:
+        return [{k: v for k, v in row.items() if k not in ("ms_per_frame", "machine")}
+                for row in csv.DictReader(f)]
+
+
+def output_files(out):
+    """Relative paths of the files that must match between runs: the sequences and the denoised
+    frames (not the lock files, the timings in reports or the batch's own records)."""
+    found = []
+    for root, _, files in os.walk(out):
+        rel = os.path.relpath(root, out)
+        if rel == "." or rel.startswith(".batch") or rel.startswith("scores"):
+            continue  # the tables hold timings: their scores are compared by quality_rows
+        for name in files:
+            if name.startswith(".bmfr-lock") or name in ("report.json", ".bmfr-render.json"):
+                continue
+            if rel.startswith("runs") and not name.endswith((".exr", ".png")):
+                continue
+            found.append(os.path.join(rel, name))
+    return sorted(found)
+
+
+def mtimes(out):
+    tables = ["results.csv", "results.json", "index.html"]
+    return {f: os.stat(os.path.join(out, f)).st_mtime_ns for f in output_files(out) + tables}
+
+
+def main():
+    try:
+        import ray  # noqa: F401
+    except ImportError:
+        if os.environ.get("CI"):
+            fail(f"Ray is not installed for {sys.executable} (scripts/install-ray.sh)")
+        print("skipped: Ray is not installed (scripts/install-ray.sh)")
+        sys.exit(77)
+    signal.signal(signal.SIGTERM, lambda *_: fail("stopped by SIGTERM"))  # stop the cluster too
+    shutil.rmtree(WORK, ignore_errors=True)
+    os.makedirs(WORK)
+    with open(os.path.join(WORK, "plan.json"), "w") as f:
+        json.dump(PLAN, f)
+    on_cluster, on_one = os.path.join(WORK, "cluster"), os.path.join(WORK, "one")
+    cluster = Cluster()
+    try:
+        t = time.monotonic()
+        cluster.start()
+        print(f"two nodes up at {cluster.address} in {time.monotonic() - t:.1f} s", flush=True)
+        t = time.monotonic()
+        output, killed = run_batch(on_cluster, cluster.address, kill_one=True)
+        print(f"plan on two nodes, one worker killed: {time.monotonic() - t:.1f} s", flush=True)
+        print(output.strip().splitlines()[-2], flush=True)
+        if killed is None:
+            fail("no render part of the heavy sequence was seen running")
+        attempts = [json.loads(line) for line in
+                    open(os.path.join(on_cluster, ".batch", "attempts.log"))]
+        first, end = (int(x) for x in killed.split(":"))
+        tid = f"render/{HEAVY}/{first:04d}-{end:04d}"
+        if sum(a["task"] == tid for a in attempts) < 2:
+            fail(f"the killed task {tid} was not run again: {attempts}")
+        records = [json.load(open(os.path.join(on_cluster, ".batch", "records", r)))
+                   for r in os.listdir(os.path.join(on_cluster, ".batch", "records"))]
+        if len(records) != 4 * (2 + 2 + 1):
+            fail(f"{len(records)} task records, expected 20")
+        ray_nodes = {r["ray_node"] for r in records}
+        if len(ray_nodes) != 2:
+            fail(f"the tasks ran on {len(ray_nodes)} node(s), expected both")
+        leftovers = [os.path.join(r, n) for r, _, ns in os.walk(on_cluster) for n in ns
+                     if n.endswith(".part")]
+        if leftovers:
+            fail(f"half-written files left behind: {leftovers}")
+
+        before = mtimes(on_cluster)
+        again, _ = run_batch(on_cluster, cluster.address)
+        if "0 task(s) run, 20 finished earlier" not in again:
+            fail(f"the second run recomputed something:\n{again}")
+        after = mtimes(on_cluster)
+        if after != before:
+            fail("the second run rewrote outputs: " +
+                 ", ".join(f for f in after if before.get(f) != after[f])[:500])
+        print("second run: nothing recomputed", flush=True)
+    finally:
+        cluster.stop()
+    t = time.monotonic()
+    run_batch(on_one, "local")
+    print(f"plan on one local node: {time.monotonic() - t:.1f} s", flush=True)
+    files = output_files(on_one)
+    if files != output_files(on_cluster):
+        fail("the two runs wrote different files")
+    _, mismatch, errors = filecmp.cmpfiles(on_one, on_cluster, files, shallow=False)
+    if mismatch or errors:
+        fail(f"files differ between the cluster's and one machine's runs: {mismatch + errors}")
+    if quality_rows(on_one) != quality_rows(on_cluster):
+        fail("the scores differ between the cluster's and one machine's runs")
+    print(f"{len(files)} files and {len(quality_rows(on_one))} score rows equal a single-machine "
+          "run's")
+    print("batch cluster test passed")
+
+
+if __name__ == "__main__":
+    main()
