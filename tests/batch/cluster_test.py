@@ -11,31 +11,23 @@ import csv
 import filecmp
 import json
 import os
-import secrets
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import time
 
 BMFR, WORK = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
-RAY = os.path.join(os.path.dirname(sys.executable), "ray")
 DEADLINE = time.monotonic() + 540
 HEAVY = "lamp"  # the sequence whose render part is killed: its parts take seconds
-# Ray's token authentication, as a real cluster has it: every node and driver gets the token.
-ENV = dict(os.environ, RAY_AUTH_MODE="token", RAY_AUTH_TOKEN=secrets.token_hex(16))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools",
+                                "batch"))
+from bmfr_batch.local_cluster import LocalCluster  # noqa: E402
 
 
 def fail(message):
     print(f"FAIL: {message}", flush=True)
     sys.exit(1)
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 PLAN = {
@@ -56,72 +48,6 @@ PLAN = {
 }
 
 
-class Cluster:
-    """A head node and a second node, each `ray start --block` in a session of its own, so that
-    stopping them touches no other Ray on this machine."""
-
-    def __init__(self):
-        self.port = free_port()
-        self.address = f"127.0.0.1:{self.port}"
-        self.temp = os.path.join("/tmp", f"bmfr-ray-{os.getpid()}")  # short: Ray's socket paths
-        self.nodes = []
-
-    def start(self):
-        common = ["--num-cpus", "1", "--block",
-                  "--disable-usage-stats"]
-        self._node([RAY, "start", "--head", "--port", str(self.port), "--include-dashboard",
-                    "false", "--temp-dir", self.temp] + common)
-        self._wait_nodes(1)
-        self._node([RAY, "start", "--address", self.address] + common)
-        self._wait_nodes(2)
-
-    def _node(self, argv):
-        log = open(os.path.join(WORK, f"node{len(self.nodes)}.log"), "w")
-        self.nodes.append(subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT,
-                                           start_new_session=True, env=ENV))
-
-    def _wait_nodes(self, count):
-        probe = (f"import ray, time\nray.init(address='{self.address}', logging_level='ERROR')\n"
-                 f"t = time.monotonic()\n"
-                 f"while len([n for n in ray.nodes() if n['Alive']]) < {count}:\n"
-                 f"    assert time.monotonic() - t < 60, 'nodes did not join'\n"
-                 f"    time.sleep(0.5)\n")
-        for _ in range(60):
-            if any(p.poll() is not None for p in self.nodes):
-                fail(f"a Ray node exited at start: see {WORK}/node*.log")
-            try:
-                if subprocess.run([sys.executable, "-c", probe], capture_output=True,
-                                  timeout=90, env=ENV).returncode == 0:
-                    return
-            except subprocess.TimeoutExpired:
-                pass
-            time.sleep(1)
-        fail(f"the cluster did not reach {count} node(s)")
-
-    def stop(self):
-        for p in reversed(self.nodes):
-            if p.poll() is None:
-                os.killpg(p.pid, signal.SIGTERM)
-        for p in self.nodes:
-            try:
-                p.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                os.killpg(p.pid, signal.SIGKILL)
-        # Whatever the nodes started in sessions of their own: found by the session folder.
-        for pid in os.listdir("/proc"):
-            try:
-                with open(f"/proc/{pid}/cmdline", "rb") as f:
-                    line = f.read().decode(errors="replace")
-            except OSError:
-                continue
-            if pid.isdigit() and self.temp in line and int(pid) != os.getpid():
-                try:
-                    os.kill(int(pid), signal.SIGKILL)
-                except OSError:
-                    pass
-        shutil.rmtree(self.temp, ignore_errors=True)
-
-
 def processes():
     """pid -> (parent pid, command line) of every process."""
     found = {}
@@ -139,13 +65,13 @@ def processes():
     return found
 
 
-def run_batch(out, cluster, kill_one=False):
+def run_batch(out, cluster, env, kill_one=False):
     """Runs the plan; with kill_one, SIGKILLs the Ray worker running a part of HEAVY's render
     once it is under way. Returns (stdout+stderr, the killed task's frame range or None)."""
     argv = [BMFR, "batch", os.path.join(WORK, "plan.json"), "-o", out, "--cluster", cluster,
             "--python", sys.executable]
     batch = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                             env=ENV)
+                             env=env)
     killed = None
     target = os.path.join(out, "sequences", HEAVY)
     seen_at = {}
@@ -215,13 +141,13 @@ def main():
     with open(os.path.join(WORK, "plan.json"), "w") as f:
         json.dump(PLAN, f)
     on_cluster, on_one = os.path.join(WORK, "cluster"), os.path.join(WORK, "one")
-    cluster = Cluster()
+    cluster = LocalCluster([1, 1], WORK)
     try:
         t = time.monotonic()
         cluster.start()
         print(f"two nodes up at {cluster.address} in {time.monotonic() - t:.1f} s", flush=True)
         t = time.monotonic()
-        output, killed = run_batch(on_cluster, cluster.address, kill_one=True)
+        output, killed = run_batch(on_cluster, cluster.address, cluster.env, kill_one=True)
         print(f"plan on two nodes, one worker killed: {time.monotonic() - t:.1f} s", flush=True)
         print(output.strip().splitlines()[-2], flush=True)
         if killed is None:
@@ -245,7 +171,7 @@ def main():
             fail(f"half-written files left behind: {leftovers}")
 
         before = mtimes(on_cluster)
-        again, _ = run_batch(on_cluster, cluster.address)
+        again, _ = run_batch(on_cluster, cluster.address, cluster.env)
         if "0 task(s) run, 20 finished earlier" not in again:
             fail(f"the second run recomputed something:\n{again}")
         after = mtimes(on_cluster)
@@ -256,7 +182,7 @@ def main():
     finally:
         cluster.stop()
     t = time.monotonic()
-    run_batch(on_one, "local")
+    run_batch(on_one, "local", cluster.env)
     print(f"plan on one local node: {time.monotonic() - t:.1f} s", flush=True)
     files = output_files(on_one)
     if files != output_files(on_cluster):
