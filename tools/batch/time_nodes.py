@@ -1,5 +1,6 @@
 """Wall time of one plan on a one-node Ray cluster against a two-node one, both on this machine,
-run alternately from scratch (docs/results/2026-12-05-batch-ray.md).
+and against its commands run one after another without Ray (each with every core), run
+alternately from scratch (docs/results/2026-12-05-batch-ray.md).
 
     .venv/bin/python tools/batch/time_nodes.py PLAN BMFR WORK [ROUNDS]
 
@@ -12,19 +13,37 @@ import subprocess
 import sys
 import time
 
+from bmfr_batch.graph import build_tasks
 from bmfr_batch.local_cluster import LocalCluster
+from bmfr_batch.plan import load_plan
+
+
+def without_ray(plan_path, bmfr, out, cores):
+    """The plan's commands in order in this process, each with every core: the baseline."""
+    plan = load_plan(plan_path)
+    plan.cpus_per_task = cores
+    for task in build_tasks(plan, bmfr, out):
+        subprocess.run(task["argv"], check=True, capture_output=True)
 
 
 def main():
     plan, bmfr, work = (os.path.abspath(a) for a in sys.argv[1:4])
     rounds = int(sys.argv[4]) if len(sys.argv) > 4 else 2
     cores = os.cpu_count()
-    layouts = {"one node": [cores], "two nodes": [cores // 2, cores - cores // 2]}
+    layouts = {"no Ray": [cores], "one node": [cores],
+               "two nodes": [cores // 2, cores - cores // 2]}
     times = {name: [] for name in layouts}
     for r in range(rounds):
         for name, cpus in layouts.items():
             out = os.path.join(work, f"{name.replace(' ', '-')}-{r}")
             shutil.rmtree(out, ignore_errors=True)
+            if name == "no Ray":
+                start = time.monotonic()
+                without_ray(plan, bmfr, out, cores)
+                times[name].append(time.monotonic() - start)
+                print(f"round {r + 1}, {name} ({cores} threads a command): "
+                      f"{times[name][-1]:.1f} s", flush=True)
+                continue
             with LocalCluster(cpus, os.path.join(work, "logs")) as cluster:
                 start = time.monotonic()
                 run = subprocess.run([bmfr, "batch", plan, "-o", out, "--cluster",

@@ -49,7 +49,8 @@ def _method_argv(bmfr, plan, method, sequence, output):
 
 
 def build_tasks(plan, bmfr, out):
-    """The tasks of `plan` in an order that runs dependencies first. Each task is a plain dict:
+    """The tasks of `plan` in an order that runs dependencies first (no score for a sequence
+    without a reference). Each task is a plain dict:
     id, kind, argv, sequence, output, record, key, deps (task ids), and for renders the frames,
     for the rest the files that say its outputs are in (expects)."""
     records = os.path.join(out, ".batch", "records")
@@ -80,6 +81,8 @@ def build_tasks(plan, bmfr, out):
                           "cost": seq.width * seq.height * seq.frames * (400 if method.peer else 8),
                           "record": os.path.join(records, tid.replace("/", "_") + ".json")})
             methods.append(tasks[-1])
+        if seq.reference_samples == 0:
+            continue  # nothing to score against
         output = os.path.join(out, "scores", seq.name)
         argv = [bmfr, "eval", "-r", folder, "-m", "noisy"]
         for method, run in zip(plan.methods, methods):
