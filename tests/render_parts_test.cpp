@@ -81,18 +81,26 @@ TEST(RenderParts, TheManifestWaitsForEveryPartAndAWholeRenderResumesThem) {
     fs::remove_all(dir);
 }
 
-TEST(RenderParts, AReplacedFolderForgetsTheOldScenesParts) {
+TEST(RenderParts, AReplacedFolderForgetsTheOldSequenceWholeAndInParts) {
     const fs::path dir = testing::freshDir("parts", "replaced");
-    renderPart(dir, 0, 2);
+    EXPECT_TRUE(renderPart(dir, 0, 5).complete); // another seed's sequence, whole
     render::SceneDescription other = smallScene();
     other.seed = 7;
     EXPECT_THROW(renderPart(dir, 2, 5, false, other), Error);
-    const render::SequenceRenderReport r = renderPart(dir, 2, 5, true, other);
-    EXPECT_EQ(r.rendered, 3);
-    EXPECT_EQ(r.framesIn, 3); // frames 0 and 1 were the other seed's
-    EXPECT_FALSE(r.complete);
-    EXPECT_THROW(renderPart(dir, 4, 9), Error); // past the end
+    const render::SequenceRenderReport late = renderPart(dir, 2, 5, true, other);
+    EXPECT_EQ(late.rendered, 3);
+    EXPECT_EQ(late.framesIn, 3); // frames 0 and 1 on disk are the other seed's
+    EXPECT_FALSE(fs::exists(dir / "sequence.json"));
+    const render::SequenceRenderReport early = renderPart(dir, 0, 2, false, other);
+    EXPECT_EQ(early.rendered, 2);
+    EXPECT_TRUE(early.complete);
+    const fs::path fresh = testing::scratchPath("parts", "fresh");
+    renderPart(fresh, 0, 5, false, other);
+    expectSameFiles(fresh, dir);
     fs::remove_all(dir);
+    EXPECT_THROW(renderPart(dir, 4, 9), Error); // past the end: refused before the folder is made
+    EXPECT_FALSE(fs::exists(dir));
+    fs::remove_all(fresh);
 }
 
 } // namespace

@@ -253,12 +253,12 @@ void ManifestWriter::loadPartRecords() {
     std::error_code ec;
     for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
         const std::string name = e.path().filename().string();
-        if (name.size() != 9 || name.substr(4) != ".json" ||
-            name.find_first_not_of("0123456789") != 4)
+        const size_t digits = name.find_first_not_of("0123456789");
+        if (digits == 0 || digits > 9 || name.substr(digits) != ".json")
             continue; // another writer's temporary
-        const size_t index = std::stoul(name.substr(0, 4));
-        if (index < frameJson_.size() && !frameJson_[index].empty()) continue;
-        try {
+        const size_t index = std::stoul(name.substr(0, digits));
+        if (int64_t(index) >= info_.frameCount) continue; // a longer run's: not this sequence's
+        try { // a part's record is newer than a manifest entry of the same frame
             std::ifstream in(e.path());
             const std::string record = json::parse(in).dump();
             if (index >= frameJson_.size()) frameJson_.resize(index + 1);
@@ -334,8 +334,8 @@ int ManifestWriter::writeManifestIfComplete() {
     return in;
 }
 
-/// The frames recorded from 0 up to the first one missing: a frame's place in the list is its
-/// index.
+/// The frames of the sequence recorded from 0 up to the first one missing: a frame's place in
+/// the list is its index.
 void ManifestWriter::writeManifest() const {
     json doc;
     doc["format"] = "bmfr-sequence";
@@ -347,9 +347,9 @@ void ManifestWriter::writeManifest() const {
     if (info_.normalLimitSquared) doc["normal_limit_squared"] = *info_.normalLimitSquared;
     doc["extras"] = info_.extraNames;
     doc["frames"] = json::array();
-    for (const std::string& s : frameJson_) {
-        if (s.empty()) break;
-        doc["frames"].push_back(json::parse(s));
+    for (size_t i = 0; i < frameJson_.size() && int64_t(i) < info_.frameCount; ++i) {
+        if (frameJson_[i].empty()) break;
+        doc["frames"].push_back(json::parse(frameJson_[i]));
     }
     const fs::path path = fs::path(dir_) / "sequence.json";
     writeFileAtomically(path.string(), doc.dump(1) + "\n");

@@ -60,7 +60,10 @@ bool claimFolder(const std::string& dir, const std::string& fingerprint, bool ov
                     "); refusing to write into it. Use another folder, or --overwrite");
     }
     fs::create_directories(dir);
-    if (!empty) fs::remove_all(fs::path(dir) / kFramePartsFolder, ec); // a replaced sequence's
+    if (!empty) { // a replaced sequence's frame list, whole and in parts
+        fs::remove_all(fs::path(dir) / kFramePartsFolder, ec);
+        fs::remove(fs::path(dir) / "sequence.json", ec);
+    }
     nlohmann::json record = about;
     record["fingerprint"] = fingerprint;
     writeFileAtomically(marker.string(), record.dump(1) + "\n");
@@ -180,6 +183,13 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     }
     if (o.layout != "manifest" && o.layout != "bmfr")
         throw Error("--layout must be manifest or bmfr, got '" + o.layout + "'");
+    const bool part = o.endFrame >= 0;
+    const int first = part ? o.firstFrame : 0;
+    const int end = part ? o.endFrame : d.frames;
+    if (part && (o.layout != "manifest" || first < 0 || first >= end || end > d.frames))
+        throw Error(fmt::format("a part of a sequence is frames [A, B) with 0 <= A < B <= {} in "
+                                "the manifest layout; got [{}, {}) in the {} layout",
+                                d.frames, first, end, o.layout));
     // What `bmfr eval` reports about the input; the fingerprint alone decides resumption.
     nlohmann::json about{{"scene", d.name},
                          {"mesh", d.mesh},
@@ -198,13 +208,6 @@ SequenceRenderReport renderSequence(const SceneDescription& d, const SequenceRen
     info.extraNames = FrameRenderer::extraNames();
     std::unique_ptr<ManifestWriter> manifest;
     std::unique_ptr<BmfrLayoutWriter> original;
-    const bool part = o.endFrame >= 0;
-    const int first = part ? o.firstFrame : 0;
-    const int end = part ? o.endFrame : d.frames;
-    if (part && (o.layout != "manifest" || first < 0 || first >= end || end > d.frames))
-        throw Error(fmt::format("a part of a sequence is frames [A, B) with 0 <= A < B <= {} in "
-                                "the manifest layout; got [{}, {}) in the {} layout",
-                                d.frames, first, end, o.layout));
     if (o.layout == "manifest")
         manifest = std::make_unique<ManifestWriter>(o.output, info, resume, part);
     else

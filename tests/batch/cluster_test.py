@@ -46,6 +46,9 @@ PLAN = {
     "metrics": ["rmse", "ssim", "temporal_error", "temporal_change_error"],
     "chunk_frames": 2,
 }
+# Per sequence: its parts, the assembly of its manifest, a denoise per method, a score.
+TASKS = sum(-(-q["frames"] // PLAN["chunk_frames"]) + 1 + len(PLAN["methods"]) + 1
+            for q in PLAN["sequences"])
 
 
 def processes():
@@ -160,8 +163,8 @@ def main():
             fail(f"the killed task {tid} was not run again: {attempts}")
         records = [json.load(open(os.path.join(on_cluster, ".batch", "records", r)))
                    for r in os.listdir(os.path.join(on_cluster, ".batch", "records"))]
-        if len(records) != 4 * (2 + 2 + 1):
-            fail(f"{len(records)} task records, expected 20")
+        if len(records) != TASKS:
+            fail(f"{len(records)} task records, expected {TASKS}")
         ray_nodes = {r["ray_node"] for r in records}
         if len(ray_nodes) != 2:
             fail(f"the tasks ran on {len(ray_nodes)} node(s), expected both")
@@ -172,7 +175,7 @@ def main():
 
         before = mtimes(on_cluster)
         again, _ = run_batch(on_cluster, cluster.address, cluster.env)
-        if "0 task(s) run, 20 finished earlier" not in again:
+        if f"0 task(s) run, {TASKS} finished earlier" not in again:
             fail(f"the second run recomputed something:\n{again}")
         after = mtimes(on_cluster)
         if after != before:

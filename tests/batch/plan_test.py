@@ -55,17 +55,21 @@ except PlanError as e:
     if "plan.json: not JSON" not in str(e):
         failures.append(f"JSON error says: {e}")
 
-# The task graph: three parts of five frames, each method after every part, one score after
-# every method; a changed method changes its key and its score's, not the renders'.
+# The task graph: three parts of five frames, their assembly, each method after it, one score
+# after every method; a changed method changes its key and its score's, not the renders'.
 plan = parse_plan(json.dumps(GOOD), WORK)
 tasks = build_tasks(plan, BMFR, os.path.join(WORK, "out"))
 ids = [t["id"] for t in tasks]
 renders = ["render/a/0000-0002", "render/a/0002-0004", "render/a/0004-0005"]
-if ids != renders + ["denoise/a/bmfr", "denoise/a/svgf-q", "denoise/a/oidn", "score/a"]:
+if ids != renders + ["assemble/a", "denoise/a/bmfr", "denoise/a/svgf-q", "denoise/a/oidn",
+                     "score/a"]:
     failures.append(f"tasks: {ids}")
 by_id = {t["id"]: t for t in tasks}
-if by_id["denoise/a/svgf-q"]["deps"] != renders:
-    failures.append("a denoise does not wait for every part")
+if by_id["assemble/a"]["deps"] != renders or \
+        by_id["assemble/a"]["argv"][by_id["assemble/a"]["argv"].index("--frame-range") + 1] != "0:5":
+    failures.append("the assembly is not the whole range after every part")
+if by_id["denoise/a/svgf-q"]["deps"] != ["assemble/a"]:
+    failures.append("a denoise does not wait for the assembly")
 if by_id["score/a"]["deps"] != ["denoise/a/bmfr", "denoise/a/svgf-q", "denoise/a/oidn"]:
     failures.append("the score does not wait for every method")
 svgf = by_id["denoise/a/svgf-q"]["argv"]
@@ -74,8 +78,19 @@ if svgf[1:3] != ["denoise", os.path.join(WORK, "out", "sequences", "a")] or \
     failures.append(f"svgf's command: {svgf}")
 if "--quality" not in by_id["denoise/a/oidn"]["argv"]:
     failures.append("a peer's setting is not its own option")
-if "--frame-range" not in by_id["render/a/0002-0004"]["argv"]:
-    failures.append("a part renders the whole sequence")
+part = by_id["render/a/0002-0004"]["argv"]
+if part[part.index("--frame-range") + 1] != "2:4":
+    failures.append(f"a part renders other frames: {part}")
+if "--yes" not in part:
+    failures.append("an estimate of over an hour would stop a part")
+if "--seed" in part or "--bounces" in part:
+    failures.append("a plan without seed or bounces overrides the scene's")
+# The keys leave out the threads and where OUT is: the same work elsewhere is not redone.
+moved = json.loads(json.dumps(GOOD))
+moved["cpus_per_task"] = 2
+elsewhere = build_tasks(parse_plan(json.dumps(moved), WORK), BMFR, os.path.join(WORK, "o2"))
+if [t["key"] for t in elsewhere] != [t["key"] for t in tasks]:
+    failures.append("other threads or another OUT path change the tasks' keys")
 changed = json.loads(json.dumps(GOOD))
 changed["methods"][0]["preset"] = "quality"
 again = {t["id"]: t for t in build_tasks(parse_plan(json.dumps(changed), WORK), BMFR,
@@ -122,6 +137,11 @@ if run.returncode != 1 or "holds no earlier batch" not in run.stderr or \
         os.listdir(theirs) != ["notes.txt"]:
     failures.append(f"someone else's folder: exit {run.returncode}, {run.stderr}, "
                     f"{os.listdir(theirs)}")
+
+run = subprocess.run([BMFR, "batch", good, "-o", os.path.join(WORK, "n"), "--cluster",
+                      "127.0.0.1:1", "--python", sys.executable], capture_output=True, text=True)
+if run.returncode != 1 or "no Ray head node answers at 127.0.0.1:1" not in run.stderr:
+    failures.append(f"an address nothing answers: exit {run.returncode}, {run.stderr}")
 
 shutil.rmtree(WORK, ignore_errors=True)
 for f in failures:

@@ -29,18 +29,23 @@ def main(argv=None):
         p.error(f"--retries {args.retries} is outside [0, 100]")
     try:
         plan = load_plan(args.plan)
+        rows, summary = run_batch(plan, args.output, os.path.abspath(args.bmfr), args.cluster,
+                                  args.retries, args.quiet)
     except PlanError as e:
         print(f"bmfr: {e}", file=sys.stderr)
         return 2
-    try:
-        rows, summary = run_batch(plan, args.output, os.path.abspath(args.bmfr), args.cluster,
-                                  args.retries, args.quiet)
     except BatchError as e:
         print(f"bmfr: {e}", file=sys.stderr)
         return 1
     except ImportError as e:
         print(f"bmfr: Ray is not installed for {sys.executable} ({e}); run "
               "scripts/install-ray.sh", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("bmfr: interrupted; run the same command to resume", file=sys.stderr)
+        return 130
+    except OSError as e:  # the output folder unwritable, a plan file unreadable
+        print(f"bmfr: {e.filename or ''}: {e.strerror or e}", file=sys.stderr)
         return 1
     for failure in summary["failed"]:
         print(f"bmfr: failed: {failure}", file=sys.stderr)

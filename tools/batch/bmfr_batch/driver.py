@@ -7,11 +7,14 @@ import logging
 import os
 import re
 import secrets
+import socket
+import subprocess
 import sys
 import time
 
 from . import tables
 from .graph import build_tasks
+from .plan import PlanError
 from .tasks import (StorageError, TaskFailed, TaskInterrupted, execute, is_finished,
                     render_fingerprint, write_json_atomically)
 
@@ -25,25 +28,57 @@ class BatchError(Exception):
 
 
 def _connect(cluster, package_dir):
-    import ray  # here, so that plan errors are reported without Ray installed
+    if cluster not in ("auto", "local"):
+        _check_reachable(cluster)
+    elif cluster == "auto" and os.environ.get("RAY_ADDRESS"):
+        _check_reachable(os.environ["RAY_ADDRESS"])
+    import ray  # here, so that plan and address errors are reported without Ray installed
 
     options = {"include_dashboard": False, "logging_level": logging.WARNING,
                "log_to_driver": False,
                # The workers import this package from the driver's copy, on every node.
                "runtime_env": {"py_modules": [package_dir]}}
-    if cluster == "local":
-        ray.init(address="local", **options)
-    elif cluster == "auto":
-        try:
-            ray.init(address="auto", **options)
-        except ConnectionError:
-            ray.init(address="local", **options)
+    if cluster == "auto":
+        # An address that is given and wrong is an error, never a study run here instead.
+        address = "auto" if os.environ.get("RAY_ADDRESS") else None
     else:
-        try:
-            ray.init(address=cluster, **options)
-        except (ConnectionError, ValueError, RuntimeError) as e:
-            raise BatchError(f"cannot join the Ray cluster at {cluster}: {e}") from None
+        address = cluster
+    try:
+        if address is None:
+            try:
+                ray.init(address="auto", **options)
+            except ConnectionError:  # no cluster on this machine: start one
+                ray.init(address="local", **options)
+        else:
+            ray.init(address=address, **options)
+    except Exception as e:  # Ray's errors for a wrong address, a token, versions, a start
+        where = {"local": "start Ray on this machine"}.get(
+            cluster, f"join the Ray cluster at {os.environ.get('RAY_ADDRESS') or cluster}")
+        detail = str(e).strip().splitlines()[-1] if str(e).strip() else type(e).__name__
+        raise BatchError(f"cannot {where}: {detail}") from None
     return ray
+
+
+def _check_reachable(address):
+    """Ray retries an address that nothing answers for minutes: say so at once."""
+    host, _, port = address.replace("ray://", "").rpartition(":")
+    if not host or not port.isdigit():
+        raise BatchError(f"--cluster {address}: not HOST:PORT (the head node's address)")
+    try:
+        socket.create_connection((host, int(port)), timeout=10).close()
+    except OSError as e:
+        raise BatchError(f"no Ray head node answers at {address} ({e.strerror or e}); start one "
+                         "with `ray start --head`, or leave --cluster out to run on this "
+                         "machine") from None
+
+
+def _check_cpus(ray, plan):
+    """A task that asks more CPUs than any node has would wait for ever."""
+    largest = max((n.get("Resources", {}).get("CPU", 0) for n in ray.nodes() if n.get("Alive")),
+                  default=0)
+    if plan.cpus_per_task > largest:
+        raise BatchError(f"the plan's cpus_per_task = {plan.cpus_per_task}, but the largest node "
+                         f"of the cluster has {largest:g} CPUs: no task could start")
 
 
 def _lock(out):
@@ -60,9 +95,10 @@ def _lock(out):
 def _check_output_folder(out):
     if os.path.exists(out) and not os.path.isdir(out):
         raise BatchError(f"{out} exists and is not a folder")
-    if os.path.isdir(out) and os.listdir(out) and not os.path.isdir(os.path.join(out, ".batch")):
-        raise BatchError(f"{out} is not empty and holds no earlier batch (no .batch/); refusing "
-                         "to write into it. Give an empty or new folder, or an earlier "
+    if os.path.isdir(out) and os.listdir(out) and not os.path.isfile(
+            os.path.join(out, ".batch", "plan.json")):
+        raise BatchError(f"{out} is not empty and holds no earlier batch (no .batch/plan.json); "
+                         "refusing to write into it. Give an empty or new folder, or an earlier "
                          "batch's to resume it")
 
 
@@ -121,12 +157,27 @@ def _attempts(path):
 def run_batch(plan, out, bmfr, cluster="auto", retries=3, quiet=False):
     """Runs `plan` into `out`; returns (rows of the table, summary dict). Raises BatchError."""
     out = os.path.abspath(out)
+    check_presets(plan, bmfr)
     _check_output_folder(out)
     lock = _lock(out)
     try:
         return _run_locked(plan, out, bmfr, cluster, retries, quiet)
     finally:
         os.close(lock)
+
+
+def check_presets(plan, bmfr):
+    """Every scene that is not a file is one of bmfr render's presets."""
+    listed = subprocess.run([bmfr, "render", "--list-presets"], capture_output=True, text=True)
+    if listed.returncode != 0:
+        raise BatchError(f"{bmfr} render --list-presets failed: {listed.stderr.strip()}")
+    presets = {parts[0] for parts in map(str.split, listed.stdout.splitlines())
+               if len(parts) > 1 and re.fullmatch(r"\d+x\d+", parts[1])}
+    for seq in plan.sequences:
+        if not seq.scene.endswith(".json") and seq.scene not in presets:
+            raise PlanError(f"sequence '{seq.name}': scene '{seq.scene}' is neither a preset "
+                            f"({', '.join(sorted(presets))}) nor a "
+                            "scene description .json")
 
 
 def _run_locked(plan, out, bmfr, cluster, retries, quiet):
@@ -155,6 +206,7 @@ def _run_locked(plan, out, bmfr, cluster, retries, quiet):
     if to_run:
         ray = _connect(cluster, os.path.dirname(os.path.abspath(__file__)))
         try:
+            _check_cpus(ray, plan)
             summary.update(_submit(ray, to_run, by_id, finished, retries, plan, token_path,
                                    token, attempts_path, progress))
         finally:

@@ -26,8 +26,8 @@ class Sequence:
     height: int
     frames: int
     reference_samples: int
-    seed: int = 1
-    bounces: int = 1
+    seed: object = None  # None: the scene's own
+    bounces: object = None
     paths: str = "bmfr"
 
 
@@ -102,8 +102,9 @@ def _sequence(entry, where, base, seen):
                     height=_integer(entry, "height", where, 1, 16384),
                     frames=_integer(entry, "frames", where, 1, 100000),
                     reference_samples=_integer(entry, "reference_samples", where, 0, 1 << 20),
-                    seed=_integer(entry, "seed", where, 0, 2**32 - 1, 1),
-                    bounces=_integer(entry, "bounces", where, 0, 64, 1),
+                    seed=(_integer(entry, "seed", where, 0, 2**32 - 1)
+                          if "seed" in entry else None),
+                    bounces=_integer(entry, "bounces", where, 0, 64) if "bounces" in entry else None,
                     paths=paths)
 
 
@@ -168,4 +169,6 @@ def load_plan(path):
             text = f.read()
     except OSError as e:
         raise PlanError(f"cannot read the plan {path}: {e.strerror}") from None
+    except UnicodeDecodeError as e:
+        raise PlanError(f"{path}: not UTF-8 text ({e.reason} at byte {e.start})") from None
     return parse_plan(text, os.path.dirname(os.path.abspath(path)), path)

@@ -39,7 +39,7 @@ def digest(*parts):
 
 def write_json_atomically(path, value):
     os.makedirs(os.path.dirname(path), exist_ok=True)
-    temporary = f"{path}.{os.getpid()}.part"
+    temporary = f"{path}.{socket.gethostname()}-{os.getpid()}.part"  # unique across nodes
     with open(temporary, "w", encoding="utf-8") as f:
         json.dump(value, f, indent=1, sort_keys=True)
         f.write("\n")
@@ -75,19 +75,27 @@ def is_finished(task, fingerprint):
         return False
     if fingerprint is None or record.get("input") != fingerprint:
         return False
-    if task["kind"] == "render":
-        return frames_in(task["output"], *task["frames"])
-    return all(os.path.isfile(os.path.join(task["output"], f)) for f in task["expects"])
+    if "frames" in task and not frames_in(task["sequence"], *task["frames"]):
+        return False
+    return all(os.path.isfile(os.path.join(task["output"], f)) for f in task.get("expects", []))
+
+
+try:  # resolved here, not after fork: the child of a threaded worker should only call it
+    _PRCTL = ctypes.CDLL(None, use_errno=True).prctl
+except (OSError, AttributeError):
+    _PRCTL = None
+PR_SET_PDEATHSIG = 1
+# bmfr's message when another process holds the lock of the folder (or the part) it writes: on
+# shared storage a crashed node's lock outlives it until the server's lease ends.
+LOCK_HELD = "another run is writing to"
+LOCK_WAIT_SECONDS = 180
 
 
 def _die_with_parent():
     # bmfr goes down with the worker that started it: a killed worker leaves no render behind
     # writing into the folder its retry writes to.
-    PR_SET_PDEATHSIG = 1
-    try:
-        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
-    except (OSError, AttributeError):
-        pass
+    if _PRCTL is not None:
+        _PRCTL(PR_SET_PDEATHSIG, signal.SIGKILL)
 
 
 def execute(task, storage_token_path, storage_token, attempt_log=None, ray_node=""):
@@ -115,8 +123,12 @@ def execute(task, storage_token_path, storage_token, attempt_log=None, ray_node=
             log.write(json.dumps({"task": task["id"], "node": node, "pid": os.getpid(),
                                   "started": time.time()}) + "\n")
     start = time.monotonic()
-    run = subprocess.run(task["argv"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                         text=True, preexec_fn=_die_with_parent, check=False)
+    while True:
+        run = subprocess.run(task["argv"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                             text=True, preexec_fn=_die_with_parent, check=False)
+        if LOCK_HELD not in run.stderr or time.monotonic() - start > LOCK_WAIT_SECONDS:
+            break
+        time.sleep(10)  # a lock left by a node that died: wait for it to expire
     seconds = time.monotonic() - start
     if run.returncode != 0:
         tail = (run.stderr.strip() or run.stdout.strip())[-2000:]
