@@ -46,6 +46,8 @@ expect_error(lambda p: p["sequences"].append(dict(p["sequences"][0])), "used twi
 expect_error(lambda p: p["sequences"][0].update(scene="missing.json"), "does not exist")
 expect_error(lambda p: p["methods"].append({"name": "x", "filter": "nlm"}), "'filter' = \"nlm\"")
 expect_error(lambda p: p["methods"].append({"name": "noisy"}), "'noisy' is the input's")
+expect_error(lambda p: p["methods"].append({"name": "x", "backend": "opencl"}),
+             "'backend' = \"opencl\" must be cpu, reference or cuda")
 expect_error(lambda p: p.update(metrics=["psnr"]), "'metrics' = [\"psnr\"]")
 expect_error(lambda p: p.update(methods=[]), "'methods' must be a list of at least one")
 try:
@@ -85,6 +87,12 @@ if "--yes" not in part:
     failures.append("an estimate of over an hour would stop a part")
 if "--seed" in part or "--bounces" in part:
     failures.append("a plan without seed or bounces overrides the scene's")
+gpu = json.loads(json.dumps(GOOD))
+gpu["methods"][0]["backend"] = "cuda"
+cuda = {t["id"]: t for t in build_tasks(parse_plan(json.dumps(gpu), WORK), BMFR, WORK)}
+if cuda["denoise/a/bmfr"].get("gpus") != 1 or "cuda" not in cuda["denoise/a/bmfr"]["argv"] or \
+        cuda["denoise/a/svgf-q"].get("gpus"):
+    failures.append("a CUDA method does not ask Ray for a GPU (or another method does)")
 # The keys leave out the threads and where OUT is: the same work elsewhere is not redone.
 moved = json.loads(json.dumps(GOOD))
 moved["cpus_per_task"] = 2

@@ -72,13 +72,17 @@ def _check_reachable(address):
                          "machine") from None
 
 
-def _check_cpus(ray, plan):
-    """A task that asks more CPUs than any node has would wait for ever."""
-    largest = max((n.get("Resources", {}).get("CPU", 0) for n in ray.nodes() if n.get("Alive")),
-                  default=0)
+def _check_resources(ray, plan, tasks):
+    """A task that asks more CPUs than any node has, or a GPU where none has one, would wait for
+    ever."""
+    nodes = [n.get("Resources", {}) for n in ray.nodes() if n.get("Alive")]
+    largest = max((n.get("CPU", 0) for n in nodes), default=0)
     if plan.cpus_per_task > largest:
         raise BatchError(f"the plan's cpus_per_task = {plan.cpus_per_task}, but the largest node "
                          f"of the cluster has {largest:g} CPUs: no task could start")
+    cuda = [t["id"] for t in tasks if t.get("gpus")]
+    if cuda and not any(n.get("GPU", 0) >= 1 for n in nodes):
+        raise BatchError(f"{cuda[0]} runs on CUDA, but no node of the cluster has a GPU")
 
 
 def _lock(out):
@@ -206,7 +210,7 @@ def _run_locked(plan, out, bmfr, cluster, retries, quiet):
     if to_run:
         ray = _connect(cluster, os.path.dirname(os.path.abspath(__file__)))
         try:
-            _check_cpus(ray, plan)
+            _check_resources(ray, plan, to_run)
             summary.update(_submit(ray, to_run, by_id, finished, retries, plan, token_path,
                                    token, attempts_path, progress))
         finally:
@@ -229,8 +233,8 @@ def _submit(ray, to_run, by_id, finished, retries, plan, token_path, token, atte
     refs = {}
     for t in to_run:  # dependencies first (build_tasks' order)
         deps = [refs[d] for d in t["deps"] if d in refs]
-        refs[t["id"]] = run_one.options(num_cpus=plan.cpus_per_task, name=t["id"]).remote(t,
-                                                                                        *deps)
+        refs[t["id"]] = run_one.options(num_cpus=plan.cpus_per_task, num_gpus=t.get("gpus", 0),
+                                        name=t["id"]).remote(t, *deps)
     pending = {ref: tid for tid, ref in refs.items()}
     done, failed, nodes = set(), [], set()
     cost_total = sum(by_id[tid]["cost"] for tid in refs)

@@ -70,6 +70,8 @@ def _method_argv(bmfr, plan, method, sequence, output):
                 "--threads", str(plan.cpus_per_task)]
         if method.preset:
             argv += ["--preset", method.preset]
+        if method.backend:
+            argv += ["--backend", method.backend]
     for key in sorted(method.settings):
         # A peer's settings are its own options (bmfr peer oidn --quality high).
         argv += ([f"--{key}", _setting(method.settings[key])] if method.peer else
@@ -115,7 +117,8 @@ def build_tasks(plan, bmfr, out):
             methods.append(task(f"denoise/{seq.name}/{method.name}", "denoise", argv, folder,
                                 output, [whole["id"]], _key(argv, out, whole["key"]),
                                 pixels * seq.frames * (400 if method.peer else 8), clear=True,
-                                expects=["report.json"]))
+                                expects=["report.json"],
+                                gpus=1 if method.backend == "cuda" else 0))
         if seq.reference_samples == 0:
             continue  # nothing to score against
         output = os.path.join(out, "scores", seq.name)

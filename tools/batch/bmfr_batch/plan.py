@@ -37,6 +37,7 @@ class Method:
     filter: str = "bmfr"  # or the peer's name, for a peer
     peer: bool = False
     preset: str = ""
+    backend: str = ""  # cpu, reference or cuda; "" = bmfr's default (cpu)
     settings: dict = field(default_factory=dict)
 
 
@@ -109,7 +110,7 @@ def _sequence(entry, where, base, seen):
 
 
 def _method(entry, where, seen):
-    _check_keys(entry, ["name", "filter", "peer", "preset", "set"], where)
+    _check_keys(entry, ["name", "filter", "peer", "preset", "backend", "set"], where)
     name = _name(entry, where, seen)
     if name == "noisy":
         raise PlanError(f"{where}: 'noisy' is the input's own row; give the method another name")
@@ -126,12 +127,17 @@ def _method(entry, where, seen):
     preset = entry.get("preset", "")
     if preset not in ("", "faithful", "quality"):
         raise PlanError(f"{where}: 'preset' = {json.dumps(preset)} must be faithful or quality")
+    backend = entry.get("backend", "")
+    if backend not in ("", "cpu", "reference", "cuda") or (backend and peer):
+        raise PlanError(f"{where}: 'backend' = {json.dumps(backend)} must be cpu, reference or "
+                        "cuda, for a filter")
     settings = entry.get("set", {})
     if not isinstance(settings, dict) or not all(
             isinstance(v, (int, float, str, bool)) for v in settings.values()):
         raise PlanError(f"{where}: 'set' must map setting keys (bmfr settings FILTER) to "
                         "numbers, strings or booleans")
-    return Method(name=name, filter=kind, peer=peer, preset=preset, settings=settings)
+    return Method(name=name, filter=kind, peer=peer, preset=preset, backend=backend,
+                  settings=settings)
 
 
 def parse_plan(text, base, source="the plan"):
