@@ -6,7 +6,7 @@ import io
 import json
 import os
 
-from .tasks import read_json
+from .tasks import read_json, write_text_atomically
 
 
 def _write_text_atomically(path, text):
@@ -18,10 +18,7 @@ def _write_text_atomically(path, text):
                 return
     except OSError:
         pass
-    temporary = f"{path}.{os.getpid()}.part"
-    with open(temporary, "w", encoding="utf-8", newline="") as f:
-        f.write(text)
-    os.replace(temporary, path)
+    write_text_atomically(path, text)
 
 
 def gather(plan, out):

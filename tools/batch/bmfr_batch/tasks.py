@@ -37,15 +37,20 @@ def digest(*parts):
     return hashlib.sha256(json.dumps(parts, sort_keys=True).encode()).hexdigest()[:20]
 
 
-def write_json_atomically(path, value):
+def write_text_atomically(path, text):
+    """Writes a temporary beside `path` (named for this node and process), syncs it and renames
+    it over `path`: a reader sees the old file or the whole new one."""
     os.makedirs(os.path.dirname(path), exist_ok=True)
     temporary = f"{path}.{socket.gethostname()}-{os.getpid()}.part"  # unique across nodes
-    with open(temporary, "w", encoding="utf-8") as f:
-        json.dump(value, f, indent=1, sort_keys=True)
-        f.write("\n")
+    with open(temporary, "w", encoding="utf-8", newline="") as f:
+        f.write(text)
         f.flush()
         os.fsync(f.fileno())
     os.replace(temporary, path)
+
+
+def write_json_atomically(path, value):
+    write_text_atomically(path, json.dumps(value, indent=1, sort_keys=True) + "\n")
 
 
 def read_json(path):
