@@ -1,6 +1,6 @@
 // Temporal weights on a static sequence: exact cumulative average first, then EMA.
 #include "test_scenes.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <string>

@@ -6,7 +6,7 @@
 #include "filters/bmfr/history_change.h"
 #include "synth/procedural_scene.h"
 #include "test_support.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <random>

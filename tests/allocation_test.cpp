@@ -4,23 +4,29 @@
 #include <bmfr/bmfr.h>
 #include <cstdlib>
 #include <gtest/gtest.h>
+#include <malloc.h>
 #include <new>
 
 namespace {
 std::atomic<long> gAllocations{0};
 std::atomic<bool> gCounting{false};
+std::atomic<long> gLiveBytes{0}; ///< bytes new gave minus bytes delete took back, while counting
 } // namespace
 
 void* operator new(std::size_t n) {
     if (gCounting) ++gAllocations;
-    if (void* p = std::malloc(n ? n : 1)) return p;
+    if (void* p = std::malloc(n ? n : 1)) {
+        if (gCounting) gLiveBytes += long(malloc_usable_size(p));
+        return p;
+    }
     throw std::bad_alloc();
 }
 void operator delete(void* p) noexcept {
+    if (gCounting && p) gLiveBytes -= long(malloc_usable_size(p));
     std::free(p);
 }
 void operator delete(void* p, std::size_t) noexcept {
-    std::free(p);
+    operator delete(p);
 }
 
 namespace bmfr {
@@ -69,6 +75,79 @@ TEST_P(AllocationOnAReservedDevice, FirstFrameAllocatesNothing) {
 
 INSTANTIATE_TEST_SUITE_P(EveryFilter, AllocationOnAReservedDevice,
                          ::testing::ValuesIn(filterNames()), [](const auto& p) { return p.param; });
+
+/// Through the C API, with half and octahedral inputs converted into buffers the commit sized:
+/// the first frame allocates nothing either.
+TEST(AllocationThroughTheCApi, ConvertedInputsOnAReservedFilterAllocateNothing) {
+    std::vector<FrameData> frames = testing::proceduralFrames(kWidth, kHeight, 2);
+    const size_t n = size_t(kWidth) * kHeight;
+    std::vector<uint16_t> color(n * 4, 0x3c00), albedo(n * 4, 0x3800);
+    std::vector<float> normal(n * 2, 0.0f), out(n * 4);
+    BMFRDevice device = bmfrNewDevice(BMFR_DEVICE_TYPE_CPU);
+    bmfrCommitDevice(device);
+    for (const std::string& name : filterNames()) {
+        BMFRFilter filter = bmfrNewFilter(device, name.c_str());
+        bmfrSetFilterImage(filter, "color", color.data(), BMFR_FORMAT_HALF4, kWidth, kHeight, 0, 0,
+                           0);
+        bmfrSetFilterImage(filter, "albedo", albedo.data(), BMFR_FORMAT_HALF4, kWidth, kHeight, 0,
+                           0, 0);
+        bmfrSetFilterImage(filter, "normal", normal.data(), BMFR_FORMAT_FLOAT2, kWidth, kHeight, 0,
+                           0, 0);
+        bmfrSetFilterImage(filter, "output", out.data(), BMFR_FORMAT_FLOAT4, kWidth, kHeight, 0, 0,
+                           0);
+        bmfrSetFilterImage(filter, "position", (void*)frames[0].position.data(), BMFR_FORMAT_FLOAT3,
+                           kWidth, kHeight, 0, 0, 0);
+        bmfrSetFilterInt(filter, "maxWidth", kWidth);
+        bmfrSetFilterInt(filter, "maxHeight", kHeight);
+        bmfrCommitFilter(filter);
+        gAllocations = 0;
+        gCounting = true;
+        for (const FrameData& f : frames) {
+            bmfrSetFilterImage(filter, "position", (void*)f.position.data(), BMFR_FORMAT_FLOAT3,
+                               kWidth, kHeight, 0, 0, 0);
+            bmfrSetFilterMatrix(filter, "viewProjection", &f.viewProjection.m[0][0]);
+            bmfrExecuteFilter(filter);
+        }
+        gCounting = false;
+        const char* message = nullptr;
+        EXPECT_EQ(bmfrGetDeviceError(device, &message), BMFR_ERROR_NONE) << message;
+        EXPECT_EQ(gAllocations.load(), 0) << name;
+        bmfrReleaseFilter(filter);
+    }
+    bmfrReleaseDevice(device);
+}
+
+/// bmfrGetFilterMemoryBytes (glibc's heap statistics around a probe) against the bytes this
+/// program's operator new handed out for the same filter, counted one allocation at a time.
+TEST(AllocationThroughTheCApi, MemoryQueryMatchesTheBytesNewHandsOut) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer's allocator keeps no glibc heap statistics";
+#endif
+    BMFRDevice device = bmfrNewDevice(BMFR_DEVICE_TYPE_CPU);
+    bmfrSetDeviceInt(device, "threads", 2);
+    bmfrCommitDevice(device);
+    for (const std::string& name : filterNames()) {
+        for (const char* preset : {"faithful", "quality"}) {
+            BMFRFilter filter = bmfrNewFilter(device, name.c_str());
+            bmfrSetFilterString(filter, "preset", preset);
+            bmfrCommitFilter(filter);
+            const size_t queried = bmfrGetFilterMemoryBytes(filter, 640, 360);
+            Device cpp(Backend::Cpu, 2);
+            cpp.reserve(640, 360);
+            gLiveBytes = 0;
+            gCounting = true;
+            std::unique_ptr<Filter> made = cpp.makeFilter(name, presetSettings(name, preset));
+            gCounting = false;
+            const double counted = double(gLiveBytes.load());
+            EXPECT_GT(counted, 640.0 * 360 * 12) << name << " " << preset;
+            EXPECT_NEAR(double(queried), counted, 0.01 * counted + 65536) << name << " " << preset;
+            bmfrReleaseFilter(filter);
+        }
+    }
+    const char* message = nullptr;
+    EXPECT_EQ(bmfrGetDeviceError(device, &message), BMFR_ERROR_NONE) << message;
+    bmfrReleaseDevice(device);
+}
 
 } // namespace
 } // namespace bmfr

@@ -3,7 +3,7 @@
 // giving the packed result. Reported skipped, with the reason, where there is no GPU.
 #include "backend/cuda/cuda_device.h"
 #include "synth/procedural_scene.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cstring>
 #include <gtest/gtest.h>
 #include <memory>

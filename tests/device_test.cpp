@@ -1,6 +1,6 @@
 // bmfr::Device: filters made from one device share its threads and nothing else.
 #include "test_support.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cstring>
 #include <gtest/gtest.h>
 

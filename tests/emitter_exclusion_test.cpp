@@ -7,7 +7,7 @@
 #include "filters/bmfr/householder_qr.h"
 #include "synth/procedural_scene.h"
 #include <algorithm>
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <bmfr/features.h>
 #include <cmath>
 #include <cstring>

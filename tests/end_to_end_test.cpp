@@ -3,7 +3,7 @@
 #include "core/image.h"
 #include "metrics/basic_metrics.h"
 #include "synth/procedural_scene.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <bmfr/error.h>
 #include <cmath>
 #include <cstring>

@@ -5,7 +5,7 @@
 #include "io/sequence.h"
 #include "render/sequence_renderer.h"
 #include "test_support.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include "metrics/basic_metrics.h"
 #include "path_traced_box.h"
 #include "synth/procedural_scene.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstring>

@@ -11,7 +11,7 @@
 #include "synth/procedural_scene.h"
 #include "test_support.h"
 #include <array>
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>

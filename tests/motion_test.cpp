@@ -4,7 +4,7 @@
 #include "synth/procedural_scene.h"
 #include "temporal/reprojection.h"
 #include "test_support.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <cstring>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Reprojection against hand-computed pinhole projection; disocclusion rejection.
 #include "temporal/reprojection.h"
 #include "test_scenes.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include "filters/bmfr/second_grid.h"
 #include "io/sequence.h"
 #include "synth/procedural_scene.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <vector>

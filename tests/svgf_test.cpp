@@ -6,7 +6,7 @@
 #include "metrics/basic_metrics.h"
 #include "synth/procedural_scene.h"
 #include "test_scenes.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <bmfr/error.h>
 #include <cmath>
 #include <cstring>

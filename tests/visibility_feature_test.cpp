@@ -6,7 +6,7 @@
 #include "render/sequence_renderer.h"
 #include "test_scenes.h"
 #include "test_support.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>

@@ -12,7 +12,7 @@
 #include "test_scenes.h"
 #include "test_support.h"
 #include <Eigen/Dense>
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <bmfr/error.h>
 #include <cmath>
 #include <gtest/gtest.h>

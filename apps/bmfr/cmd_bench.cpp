@@ -8,7 +8,7 @@
 #include "synth/procedural_scene.h"
 #include "usage.h"
 #include <algorithm>
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <fmt/core.h>
 #include <fmt/format.h>
 #include <functional>

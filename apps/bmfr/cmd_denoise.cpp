@@ -20,7 +20,7 @@
 #include "stage_log.h"
 #include "usage.h"
 #include <algorithm>
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <filesystem>
 #include <fmt/core.h>
 #include <fmt/format.h>

@@ -4,7 +4,7 @@
 #include "progress.h"
 #include "synth/procedural_scene.h"
 #include "usage.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <cstdio>
 #include <fcntl.h>

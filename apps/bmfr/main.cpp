@@ -9,7 +9,7 @@
 #include "io/shell_quote.h"
 #include "usage.h"
 #include <algorithm>
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cstdio>
 #include <fmt/format.h>
 

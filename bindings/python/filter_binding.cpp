@@ -4,7 +4,7 @@
 #include "filters/filter_inputs.h"
 #include "temporal/frame_buffers.h"
 #include <algorithm>
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <mutex>
 #include <pybind11/stl.h>
 #include <set>

@@ -7,7 +7,7 @@
 #include "io/exr.h"
 #include "metrics/flip.h"
 #include "sequence_binding.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 

@@ -1,6 +1,6 @@
 // The smallest use of the library: only include/ and the bmfr library target (no renderer, no
 // image I/O). Denoises a synthetic 64x32 frame of a flat wall and checks the result is finite.
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <cstdio>
 #include <vector>

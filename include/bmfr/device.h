@@ -30,7 +30,8 @@ class BMFR_API Device {
     /// Filters made from now on size their buffers for maxWidth x maxHeight frames when made, so
     /// that on the host backends their first frame of that size, with packed RGB buffers, allocates
     /// nothing (RGBA or padded rows are copied into buffers made on first use; the cuda backend
-    /// may allocate again). Throws bmfr::Error for a size below 1.
+    /// may allocate again). reserve(0, 0) drops the reservation. Throws bmfr::Error for a size
+    /// below 1 otherwise.
     void reserve(int maxWidth, int maxHeight);
     /// The reserved size, 0 x 0 when none.
     int reservedWidth() const;

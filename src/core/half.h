@@ -5,7 +5,7 @@
 #include "core/vec.h"
 #if defined(__CUDACC__)
 #include <cuda_fp16.h>
-#elif !defined(__FLT16_MAX__)
+#else
 #include <bit>
 #include <cstdint>
 #endif
@@ -46,5 +46,30 @@ BMFR_HD float roundToHalf(float x) {
 BMFR_HD Vec3 roundToHalf(Vec3 v) {
     return {roundToHalf(v.x), roundToHalf(v.y), roundToHalf(v.z)};
 }
+
+#if !defined(__CUDACC__)
+/// The value of an IEEE half given by its bits (host code: images handed over as half).
+inline float halfBitsToFloat(uint16_t bits) {
+    const uint32_t sign = uint32_t(bits & 0x8000u) << 16;
+    const uint32_t exponent = (bits >> 10) & 0x1fu;
+    const uint32_t mantissa = bits & 0x3ffu;
+    if (exponent == 0) { // zero or subnormal: mantissa * 2^-24, exact in float
+        const float v = float(mantissa) * 0x1p-24f;
+        return sign ? -v : v;
+    }
+    if (exponent == 31) return std::bit_cast<float>(sign | 0x7f800000u | (mantissa << 13));
+    return std::bit_cast<float>(sign | ((exponent + 112u) << 23) | (mantissa << 13));
+}
+
+/// The bits of roundToHalf(x) (saturated, ties to even): what a half image written with x holds.
+inline uint16_t floatToHalfBits(float x) {
+    const uint32_t u = std::bit_cast<uint32_t>(roundToHalf(x));
+    const uint16_t sign = uint16_t((u >> 16) & 0x8000u);
+    const float magnitude = std::bit_cast<float>(u & 0x7fffffffu);
+    if (magnitude < 0x1p-14f) return uint16_t(sign | uint16_t(magnitude * 0x1p24f)); // subnormal
+    const uint32_t exponent = ((u >> 23) & 0xffu) - 112u;
+    return uint16_t(sign | (exponent << 10) | ((u >> 13) & 0x3ffu));
+}
+#endif
 
 } // namespace bmfr

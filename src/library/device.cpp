@@ -23,9 +23,13 @@ int Device::threadCount() const {
     return state_->pool->threadCount();
 }
 void Device::reserve(int maxWidth, int maxHeight) {
+    if (maxWidth == 0 && maxHeight == 0) { // drops the reservation
+        state_->reservedWidth = state_->reservedHeight = 0;
+        return;
+    }
     if (maxWidth < 1 || maxHeight < 1)
         throw Error("reserve(" + std::to_string(maxWidth) + ", " + std::to_string(maxHeight) +
-                    "): the size must be at least 1x1");
+                    "): the size must be at least 1x1 (or 0x0, for none)");
     state_->reservedWidth = maxWidth;
     state_->reservedHeight = maxHeight;
 }

@@ -9,7 +9,7 @@
 #include "backend/cuda/cuda_device.h"
 #include "core/image.h"
 #include "synth/procedural_scene.h"
-#include <bmfr/bmfr.h>
+#include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <cstring>
 #include <functional>

@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# Checks that a shared libbmfr exports the public API only: namespace bmfr (with its typeinfo
-# and vtables) and none of the internals. Runs PROGRAM (linked against it) when given.
-#   check_exports.sh LIBRARY.so [PROGRAM]
+# Checks that a shared libbmfr exports the public API only: the C API (bmfr.h), namespace bmfr
+# (with its typeinfo and vtables) and none of the internals, and lists the C API's symbols. Runs
+# each PROGRAM (linked against it) when given.
+#   check_exports.sh LIBRARY.so [PROGRAM ...]
 set -euo pipefail
 so=$1
 [ -f "$so" ] || { echo "no shared library at '$so'" >&2; exit 1; }
-if [ $# -ge 2 ]; then "$2"; fi
+shift
+for program in "$@"; do "$program"; done
 exports=$(nm -D --defined-only -C "$so" | awk '{ $1 = ""; $2 = ""; print }' | sed 's/^ *//')
 echo "exported symbols: $(echo "$exports" | grep -c .)"
-public='^(bmfr::|typeinfo (name )?for bmfr::|vtable for bmfr::)'
+public='^(bmfr[A-Z][A-Za-z]*$|bmfr::|typeinfo (name )?for bmfr::|vtable for bmfr::)'
 if echo "$exports" | grep -v -E "$public" | grep -q .; then
     echo "symbols outside namespace bmfr are exported:" >&2
     echo "$exports" | grep -v -E "$public" | head -20 >&2
@@ -24,4 +26,13 @@ for api in 'bmfr::makeFilter' 'bmfr::TemporalFilter::denoise' 'bmfr::BmfrDenoise
            'typeinfo for bmfr::TemporalFilter'; do
     echo "$exports" | grep -q -F "$api" || { echo "$api is not exported" >&2; exit 1; }
 done
+# The C API: every function bmfr.h declares, and nothing else named bmfr[A-Z]*.
+declared=$(grep -o 'bmfr[A-Z][A-Za-z]*(' "$(dirname "$0")/../../include/bmfr/bmfr.h" | tr -d '(' | sort -u)
+exportedC=$(echo "$exports" | grep -E '^bmfr[A-Z][A-Za-z]*$' | sort -u)
+if [ "$declared" != "$exportedC" ]; then
+    echo "the C API's exports differ from bmfr.h's functions:" >&2
+    diff <(echo "$declared") <(echo "$exportedC") >&2 || true
+    exit 1
+fi
+echo "C API: $(echo "$exportedC" | wc -l) functions: $(echo $exportedC)"
 echo "exports: public API only"

@@ -1,0 +1,194 @@
+// The C API's devices and error slots.
+#include "capi/api_objects.h"
+#include <bmfr/bmfr.hpp>
+#include <cstring>
+
+namespace bmfr::capi {
+
+namespace {
+
+/// The error slot of calls made without a device (a null handle, a failed bmfrNewDevice).
+struct ThreadSlot {
+    BMFRError error = BMFR_ERROR_NONE;
+    std::string message, returned;
+};
+thread_local ThreadSlot tSlot;
+
+BMFRDeviceImpl* requireDevice(BMFRDevice device) {
+    if (!device) throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "the device handle is NULL"};
+    return device;
+}
+
+void requireName(const char* name) {
+    if (!name) throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "the parameter name is NULL"};
+}
+
+} // namespace
+
+void reportError(BMFRDeviceImpl* device, BMFRError code, const std::string& message) {
+    if (!device) {
+        if (tSlot.error == BMFR_ERROR_NONE) {
+            tSlot.error = code;
+            tSlot.message = message;
+        }
+        return;
+    }
+    device->report(code, message);
+}
+
+} // namespace bmfr::capi
+
+using namespace bmfr::capi;
+
+void BMFRDeviceImpl::report(BMFRError code, const std::string& what) {
+    BMFRErrorFunction function;
+    void* user;
+    {
+        std::lock_guard<std::mutex> lock(errorMutex);
+        if (error == BMFR_ERROR_NONE) {
+            error = code;
+            message = what;
+        }
+        function = errorFunction;
+        user = errorUserPtr;
+    }
+    if (function) function(user, code, what.c_str());
+}
+
+extern "C" {
+
+BMFRDevice bmfrNewDevice(BMFRDeviceType type) {
+    return guard<BMFRDevice>(nullptr, nullptr, [&] {
+        auto device = std::make_unique<BMFRDeviceImpl>();
+        switch (type) {
+        case BMFR_DEVICE_TYPE_DEFAULT:
+        case BMFR_DEVICE_TYPE_CPU:
+            device->backend = bmfr::Backend::Cpu;
+            break;
+        case BMFR_DEVICE_TYPE_REFERENCE:
+            device->backend = bmfr::Backend::Reference;
+            break;
+        case BMFR_DEVICE_TYPE_CUDA:
+            device->backend = bmfr::Backend::Cuda;
+            break;
+        default:
+            throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
+                               "unknown device type " + std::to_string(int(type)) +
+                                   " (expected a BMFR_DEVICE_TYPE_ value)"};
+        }
+        return device.release();
+    });
+}
+
+void bmfrRetainDevice(BMFRDevice device) {
+    guard(nullptr, 0, [&] {
+        requireDevice(device)->references.fetch_add(1);
+        return 0;
+    });
+}
+
+void bmfrReleaseDevice(BMFRDevice device) {
+    guard(nullptr, 0, [&] {
+        if (requireDevice(device)->references.fetch_sub(1) == 1) delete device;
+        return 0;
+    });
+}
+
+void bmfrSetDeviceInt(BMFRDevice device, const char* name, int value) {
+    guard(device, 0, [&] {
+        requireDevice(device);
+        requireName(name);
+        if (std::strcmp(name, "threads") != 0)
+            throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
+                               std::string("unknown device setting '") + name +
+                                   "' (the device takes 'threads')"};
+        if (device->device)
+            throw BMFRApiError{BMFR_ERROR_INVALID_OPERATION,
+                               "'threads' is set before bmfrCommitDevice, not after"};
+        if (value < 0 || value > 1024)
+            throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
+                               "threads " + std::to_string(value) + " is outside [0, 1024]"};
+        device->threads = value;
+        return 0;
+    });
+}
+
+int bmfrGetDeviceInt(BMFRDevice device, const char* name) {
+    return guard(device, 0, [&] {
+        requireDevice(device);
+        requireName(name);
+        const std::string key = name;
+        if (key == "type") {
+            switch (device->backend) {
+            case bmfr::Backend::Reference:
+                return int(BMFR_DEVICE_TYPE_REFERENCE);
+            case bmfr::Backend::Cuda:
+                return int(BMFR_DEVICE_TYPE_CUDA);
+            default:
+                return int(BMFR_DEVICE_TYPE_CPU);
+            }
+        }
+        if (key == "threads")
+            return device->device ? device->device->threadCount() : device->threads;
+        if (key == "versionMajor") return BMFR_VERSION_MAJOR;
+        if (key == "versionMinor") return BMFR_VERSION_MINOR;
+        if (key == "versionPatch") return BMFR_VERSION_PATCH;
+        throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
+                           "unknown device parameter '" + key +
+                               "' (expected type, threads, versionMajor, versionMinor or "
+                               "versionPatch)"};
+    });
+}
+
+void bmfrSetDeviceErrorFunction(BMFRDevice device, BMFRErrorFunction function, void* userPtr) {
+    guard(device, 0, [&] {
+        std::lock_guard<std::mutex> lock(requireDevice(device)->errorMutex);
+        device->errorFunction = function;
+        device->errorUserPtr = userPtr;
+        return 0;
+    });
+}
+
+BMFRError bmfrGetDeviceError(BMFRDevice device, const char** outMessage) {
+    BMFRError code;
+    const char* text = nullptr;
+    if (!device) {
+        code = tSlot.error;
+        tSlot.returned = tSlot.message;
+        tSlot.error = BMFR_ERROR_NONE;
+        tSlot.message.clear();
+        if (code != BMFR_ERROR_NONE) text = tSlot.returned.c_str();
+    } else {
+        std::lock_guard<std::mutex> lock(device->errorMutex);
+        code = device->error;
+        device->returnedMessage = device->message;
+        device->error = BMFR_ERROR_NONE;
+        device->message.clear();
+        if (code != BMFR_ERROR_NONE) text = device->returnedMessage.c_str();
+    }
+    if (outMessage) *outMessage = text;
+    return code;
+}
+
+void bmfrCommitDevice(BMFRDevice device) {
+    guard(device, 0, [&] {
+        requireDevice(device);
+        if (device->device) return 0; // committed already: nothing changed since
+        try {
+            device->device.emplace(device->backend, device->threads);
+        } catch (const bmfr::Error& e) {
+            throw BMFRApiError{BMFR_ERROR_UNSUPPORTED_HARDWARE, e.what()};
+        }
+        return 0;
+    });
+}
+
+void bmfrSyncDevice(BMFRDevice device) {
+    // Every execute has finished when it returns: the images are in host memory (c-api.md).
+    guard(device, 0, [&] {
+        requireDevice(device);
+        return 0;
+    });
+}
+
+} // extern "C"
