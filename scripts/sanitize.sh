@@ -15,7 +15,8 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DBMFR_PYTHON=OFF \
     -DBMFR_CUDA=OFF > /dev/null
 cmake --build build-asan -j "$(nproc)" \
-    --target bmfr bmfr_tests bmfr_allocation_test bmfr_minimal_example > /dev/null
+    --target bmfr bmfr_tests bmfr_allocation_test bmfr_minimal_example bmfr_c_api_program \
+    bmfr_denoise_frame > /dev/null
 cd build-asan
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --output-on-failure -j "$(nproc)" -L "$labels"

@@ -70,6 +70,11 @@ ImageF motionXY(const FrameData& f) {
     return m;
 }
 
+/// Shares a packed 64x48 image.
+void setImage(BMFRFilter filter, const char* name, const void* data, BMFRFormat format) {
+    bmfrSetFilterImage(filter, name, const_cast<void*>(data), format, 64, 48, 0, 0, 0);
+}
+
 BMFRFilter newFilter(BMFRDevice device, const char* type) {
     BMFRFilter filter = bmfrNewFilter(device, type);
     bmfrSetFilterInt(filter, "maxWidth", 64);
@@ -136,17 +141,12 @@ TEST_F(CApi, EngineShapedFramesGiveTheFloatResultWithinTolerance) {
             std::vector<float> want(expected.data, expected.data + 64 * 48 * 3);
 
             const EngineFrame e = engineFrame(f, previousJitter);
-            bmfrSetFilterImage(filter, "color", (void*)e.color.data(), BMFR_FORMAT_HALF4, 64, 48, 0,
-                               0, 0);
-            bmfrSetFilterImage(filter, "albedo", (void*)e.albedo.data(), BMFR_FORMAT_HALF4, 64, 48,
-                               0, 0, 0);
-            bmfrSetFilterImage(filter, "normal", (void*)e.normal.data(), BMFR_FORMAT_FLOAT2, 64, 48,
-                               0, 0, 0);
-            bmfrSetFilterImage(filter, "depth", (void*)e.depth.data(), BMFR_FORMAT_FLOAT, 64, 48, 0,
-                               0, 0);
-            bmfrSetFilterImage(filter, "motion", (void*)e.motion.data(), BMFR_FORMAT_HALF2, 64, 48,
-                               0, 0, 0);
-            bmfrSetFilterImage(filter, "output", out.data(), BMFR_FORMAT_HALF4, 64, 48, 0, 0, 0);
+            setImage(filter, "color", e.color.data(), BMFR_FORMAT_HALF4);
+            setImage(filter, "albedo", e.albedo.data(), BMFR_FORMAT_HALF4);
+            setImage(filter, "normal", e.normal.data(), BMFR_FORMAT_FLOAT2);
+            setImage(filter, "depth", e.depth.data(), BMFR_FORMAT_FLOAT);
+            setImage(filter, "motion", e.motion.data(), BMFR_FORMAT_HALF2);
+            setImage(filter, "output", out.data(), BMFR_FORMAT_HALF4);
             bmfrSetFilterMatrix(filter, "viewProjection", &f.viewProjection.m[0][0]);
             bmfrSetFilterFloat(filter, "jitterX", f.jitter[0]);
             bmfrSetFilterFloat(filter, "jitterY", f.jitter[1]);
@@ -197,8 +197,7 @@ TEST_F(CApi, ExactConversionsGiveTheSameBits) {
                         h16[k][4 * p + c] = floatToHalfBits(v);
                         rows[k][size_t(p / 64) * rowFloats + 4 * size_t(p % 64) + c] = v;
                     }
-                bmfrSetFilterImage(half, names[k], h16[k].data(), BMFR_FORMAT_HALF4, 64, 48, 0, 0,
-                                   0);
+                setImage(half, names[k], h16[k].data(), BMFR_FORMAT_HALF4);
                 bmfrSetFilterImage(padded, names[k], rows[k].data(), BMFR_FORMAT_FLOAT3, 64, 48, 0,
                                    16, rowFloats * 4);
             }
@@ -212,10 +211,8 @@ TEST_F(CApi, ExactConversionsGiveTheSameBits) {
             BMFRFilter both[2] = {half, padded};
             for (int k = 0; k < 2; ++k) {
                 outs[k].assign(64 * 48 * 3, 0.0f);
-                bmfrSetFilterImage(both[k], "position", f.position.data(), BMFR_FORMAT_FLOAT3, 64,
-                                   48, 0, 0, 0);
-                bmfrSetFilterImage(both[k], "output", outs[k].data(), BMFR_FORMAT_FLOAT3, 64, 48, 0,
-                                   0, 0);
+                setImage(both[k], "position", f.position.data(), BMFR_FORMAT_FLOAT3);
+                setImage(both[k], "output", outs[k].data(), BMFR_FORMAT_FLOAT3);
                 bmfrSetFilterMatrix(both[k], "viewProjection", &f.viewProjection.m[0][0]);
                 bmfrSetFilterFloat(both[k], "jitterX", f.jitter[0]);
                 bmfrSetFilterFloat(both[k], "jitterY", f.jitter[1]);
@@ -300,15 +297,11 @@ TEST_F(CApi, RestartsAndSkippedFramesDropTheHistoryAsAResetDoes) {
         in.emission = {}, in.motion = {};
         in.reset = i == 2 || i == 3; // a restart at 12, the skip at 14
         const ImageView expected = reference->denoise(in);
-        bmfrSetFilterImage(filter, "color", (void*)f.color.data(), BMFR_FORMAT_FLOAT3, 64, 48, 0, 0,
-                           0);
-        bmfrSetFilterImage(filter, "albedo", (void*)f.albedo.data(), BMFR_FORMAT_FLOAT3, 64, 48, 0,
-                           0, 0);
-        bmfrSetFilterImage(filter, "normal", (void*)f.normal.data(), BMFR_FORMAT_FLOAT3, 64, 48, 0,
-                           0, 0);
-        bmfrSetFilterImage(filter, "position", (void*)f.position.data(), BMFR_FORMAT_FLOAT3, 64, 48,
-                           0, 0, 0);
-        bmfrSetFilterImage(filter, "output", out.data(), BMFR_FORMAT_FLOAT3, 64, 48, 0, 0, 0);
+        setImage(filter, "color", f.color.data(), BMFR_FORMAT_FLOAT3);
+        setImage(filter, "albedo", f.albedo.data(), BMFR_FORMAT_FLOAT3);
+        setImage(filter, "normal", f.normal.data(), BMFR_FORMAT_FLOAT3);
+        setImage(filter, "position", f.position.data(), BMFR_FORMAT_FLOAT3);
+        setImage(filter, "output", out.data(), BMFR_FORMAT_FLOAT3);
         bmfrSetFilterMatrix(filter, "viewProjection", &f.viewProjection.m[0][0]);
         bmfrSetFilterFloat(filter, "jitterX", f.jitter[0]);
         bmfrSetFilterFloat(filter, "jitterY", f.jitter[1]);
@@ -356,23 +349,20 @@ TEST_F(CApi, ErrorsHaveCodesAndTheCppMessages) {
     // A frame with a mismatched albedo: the C++ frame checks' message, and nothing written.
     const FrameData& f = boxFrames()[0];
     std::vector<float> small(32 * 48 * 3, 0.5f), out(64 * 48 * 3, -7.0f);
-    bmfrSetFilterImage(filter, "color", (void*)f.color.data(), BMFR_FORMAT_FLOAT3, 64, 48, 0, 0, 0);
+    setImage(filter, "color", f.color.data(), BMFR_FORMAT_FLOAT3);
     bmfrSetFilterImage(filter, "albedo", small.data(), BMFR_FORMAT_FLOAT3, 32, 48, 0, 0, 0);
-    bmfrSetFilterImage(filter, "normal", (void*)f.normal.data(), BMFR_FORMAT_FLOAT3, 64, 48, 0, 0,
-                       0);
-    bmfrSetFilterImage(filter, "depth", (void*)f.position.data(), BMFR_FORMAT_HALF2, 64, 48, 0, 0,
-                       0);
+    setImage(filter, "normal", f.normal.data(), BMFR_FORMAT_FLOAT3);
+    setImage(filter, "depth", f.position.data(), BMFR_FORMAT_HALF2);
     EXPECT_EQ(bmfrGetDeviceError(device, &message), BMFR_ERROR_NONE); // checked at execute
-    bmfrSetFilterImage(filter, "output", out.data(), BMFR_FORMAT_FLOAT3, 64, 48, 0, 0, 0);
+    setImage(filter, "output", out.data(), BMFR_FORMAT_FLOAT3);
     bmfrSetFilterMatrix(filter, "viewProjection", &f.viewProjection.m[0][0]);
     bmfrExecuteFilter(filter);
     EXPECT_EQ(bmfrGetDeviceError(device, &message), BMFR_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(message).find("'depth' is BMFR_FORMAT_HALF2 (2 channels)"),
               std::string::npos)
         << message;
-    bmfrSetFilterImage(filter, "depth", nullptr, BMFR_FORMAT_UNDEFINED, 0, 0, 0, 0, 0);
-    bmfrSetFilterImage(filter, "position", (void*)f.position.data(), BMFR_FORMAT_FLOAT3, 64, 48, 0,
-                       0, 0);
+    bmfrUnsetFilterImage(filter, "depth");
+    setImage(filter, "position", f.position.data(), BMFR_FORMAT_FLOAT3);
     bmfrExecuteFilter(filter);
     EXPECT_EQ(bmfrGetDeviceError(device, &message), BMFR_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(message).find("albedo"), std::string::npos) << message;
