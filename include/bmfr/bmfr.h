@@ -51,7 +51,7 @@ typedef enum BMFRFormat {
 typedef enum BMFRAccumulationMode {
     BMFR_ACCUMULATION_MODE_CONTINUE = 0,         /* use the history */
     BMFR_ACCUMULATION_MODE_RESTART = 1,          /* drop it: a camera cut */
-    BMFR_ACCUMULATION_MODE_CLEAR_AND_RESTART = 2 /* drop it and zero the history buffers */
+    BMFR_ACCUMULATION_MODE_CLEAR_AND_RESTART = 2 /* as RESTART: no history is read after one */
 } BMFRAccumulationMode;
 
 typedef struct BMFRDeviceImpl* BMFRDevice;
