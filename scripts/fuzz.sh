@@ -49,14 +49,29 @@ for h in exr camera_header layouts scene cli_parsers; do
 done
 
 mkdir -p build-fuzz/findings
+# The harnesses run side by side, one per core (each is single-threaded).
+run_harness() {
+    local h=$1
+    if ./build-fuzz/fuzz_$h "$corpus/$h" -max_total_time="$seconds" -timeout=10 \
+        -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 -seed="${FUZZ_SEED:-0}" \
+        -artifact_prefix=build-fuzz/findings/"$h"- > "build-fuzz/fuzz_$h.log" 2>&1; then
+        echo pass > "build-fuzz/fuzz_$h.status"
+    else
+        echo finding > "build-fuzz/fuzz_$h.status"
+    fi
+}
+for h in "${harnesses[@]}"; do
+    rm -f "build-fuzz/fuzz_$h.status"
+    run_harness "$h" &
+    while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n || true; done
+done
+wait
 status=0
 passed=0
 failed=0
 for h in "${harnesses[@]}"; do
     log=build-fuzz/fuzz_$h.log
-    if ./build-fuzz/fuzz_$h "$corpus/$h" -max_total_time="$seconds" -timeout=10 \
-        -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 -seed="${FUZZ_SEED:-0}" \
-        -artifact_prefix=build-fuzz/findings/"$h"- > "$log" 2>&1; then
+    if [ "$(cat "build-fuzz/fuzz_$h.status" 2>/dev/null)" = pass ]; then
         runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
         echo "fuzz_$h: no findings in ${seconds} s, $runs executions ($((runs / seconds))/s)"
         passed=$((passed + 1))

@@ -9,7 +9,7 @@ labels=${1:-'^(unit|conformance|integration)$'}
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 # -O1: the sanitizers need no more, and it halves the build on two cores; the tests' and the
 # command's own code, which run no hot loop, -O0 (half again).
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" \
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
     -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DBMFR_TESTS_OPTIMIZATION=-O0 \
     -DBMFR_CLI_OPTIMIZATION=-O0 \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DBMFR_PYTHON=OFF \

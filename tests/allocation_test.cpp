@@ -76,36 +76,49 @@ TEST_P(AllocationOnAReservedDevice, FirstFrameAllocatesNothing) {
 INSTANTIATE_TEST_SUITE_P(EveryFilter, AllocationOnAReservedDevice,
                          ::testing::ValuesIn(filterNames()), [](const auto& p) { return p.param; });
 
-/// Through the C API, with half and octahedral inputs converted into buffers the commit sized:
-/// the first frame allocates nothing either.
+/// Through the C API as an engine calls it: committed with a reservation, then every frame sets
+/// its images again (half, octahedral, padded and UV-motion ones among them, long names too)
+/// and executes. After the first setting of each image nothing allocates, the first execute
+/// included.
 TEST(AllocationThroughTheCApi, ConvertedInputsOnAReservedFilterAllocateNothing) {
-    std::vector<FrameData> frames = testing::proceduralFrames(kWidth, kHeight, 2);
+    std::vector<FrameData> frames = testing::proceduralFrames(kWidth, kHeight, 3);
     const size_t n = size_t(kWidth) * kHeight;
     std::vector<uint16_t> color(n * 4, 0x3c00), albedo(n * 4, 0x3800);
-    std::vector<float> normal(n * 2, 0.0f), out(n * 4);
+    std::vector<float> normal(n * 2, 0.0f), out(n * 4), previous(n * 4), motion(n * 2, 0.5f);
     BMFRDevice device = bmfrNewDevice(BMFR_DEVICE_TYPE_CPU);
     bmfrCommitDevice(device);
     for (const std::string& name : filterNames()) {
         BMFRFilter filter = bmfrNewFilter(device, name.c_str());
-        bmfrSetFilterImage(filter, "color", color.data(), BMFR_FORMAT_HALF4, kWidth, kHeight, 0, 0,
-                           0);
-        bmfrSetFilterImage(filter, "albedo", albedo.data(), BMFR_FORMAT_HALF4, kWidth, kHeight, 0,
-                           0, 0);
-        bmfrSetFilterImage(filter, "normal", normal.data(), BMFR_FORMAT_FLOAT2, kWidth, kHeight, 0,
-                           0, 0);
-        bmfrSetFilterImage(filter, "output", out.data(), BMFR_FORMAT_FLOAT4, kWidth, kHeight, 0, 0,
-                           0);
-        bmfrSetFilterImage(filter, "position", (void*)frames[0].position.data(), BMFR_FORMAT_FLOAT3,
-                           kWidth, kHeight, 0, 0, 0);
         bmfrSetFilterInt(filter, "maxWidth", kWidth);
         bmfrSetFilterInt(filter, "maxHeight", kHeight);
         bmfrCommitFilter(filter);
-        gAllocations = 0;
-        gCounting = true;
-        for (const FrameData& f : frames) {
+        const auto setImages = [&](const FrameData& f) {
+            bmfrSetFilterImage(filter, "color", color.data(), BMFR_FORMAT_HALF4, kWidth, kHeight, 0,
+                               0, 0);
+            bmfrSetFilterImage(filter, "albedo", albedo.data(), BMFR_FORMAT_HALF4, kWidth, kHeight,
+                               0, 0, 0);
+            bmfrSetFilterImage(filter, "normal", normal.data(), BMFR_FORMAT_FLOAT2, kWidth, kHeight,
+                               0, 0, 0);
             bmfrSetFilterImage(filter, "position", (void*)f.position.data(), BMFR_FORMAT_FLOAT3,
                                kWidth, kHeight, 0, 0, 0);
+            bmfrSetFilterImage(filter, "previousPosition", previous.data(), BMFR_FORMAT_FLOAT4,
+                               kWidth, kHeight, 0, 0, 0);
+            bmfrSetFilterImage(filter, "motion", motion.data(), BMFR_FORMAT_FLOAT2, kWidth, kHeight,
+                               0, 0, 0);
+            bmfrSetFilterImage(filter, "output", out.data(), BMFR_FORMAT_FLOAT4, kWidth, kHeight, 0,
+                               0, 0);
+        };
+        setImages(frames[0]); // the first setting of each image sizes its buffer
+        gAllocations = 0;
+        gCounting = true;
+        for (size_t i = 0; i < frames.size(); ++i) {
+            const FrameData& f = frames[i];
+            setImages(f);
             bmfrSetFilterMatrix(filter, "viewProjection", &f.viewProjection.m[0][0]);
+            bmfrSetFilterFloat(filter, "motionScaleX", float(kWidth));
+            bmfrSetFilterBool(filter, "motionIncludesJitter", false);
+            bmfrSetFilterInt(filter, "accumulationMode", BMFR_ACCUMULATION_MODE_CONTINUE);
+            bmfrSetFilterInt(filter, "frameIndex", int(i));
             bmfrExecuteFilter(filter);
         }
         gCounting = false;

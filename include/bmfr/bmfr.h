@@ -10,7 +10,10 @@
 #include <stddef.h>
 
 #ifdef __cplusplus
+#define BMFR_NOEXCEPT noexcept
 extern "C" {
+#else
+#define BMFR_NOEXCEPT
 #endif
 
 /* Where filters run (as bmfr::Backend); DEFAULT is CPU. */
@@ -61,36 +64,39 @@ typedef struct BMFRFilterImpl* BMFRFilter;
  * cores, [0, 1024], default 0). Read-only ints: "type", "threads", "versionMajor",
  * "versionMinor", "versionPatch". A NULL device in any call is an error reported to the thread's
  * own slot, which bmfrGetDeviceError(NULL, ...) reads. */
-BMFR_API BMFRDevice bmfrNewDevice(BMFRDeviceType type);
-BMFR_API void bmfrRetainDevice(BMFRDevice device);
-BMFR_API void bmfrReleaseDevice(BMFRDevice device);
-BMFR_API void bmfrSetDeviceInt(BMFRDevice device, const char* name, int value);
-BMFR_API int bmfrGetDeviceInt(BMFRDevice device, const char* name);
-BMFR_API void bmfrSetDeviceErrorFunction(BMFRDevice device, BMFRErrorFunction func, void* userPtr);
+BMFR_API BMFRDevice bmfrNewDevice(BMFRDeviceType type) BMFR_NOEXCEPT;
+BMFR_API void bmfrRetainDevice(BMFRDevice device) BMFR_NOEXCEPT;
+BMFR_API void bmfrReleaseDevice(BMFRDevice device) BMFR_NOEXCEPT;
+BMFR_API void bmfrSetDeviceInt(BMFRDevice device, const char* name, int value) BMFR_NOEXCEPT;
+BMFR_API int bmfrGetDeviceInt(BMFRDevice device, const char* name) BMFR_NOEXCEPT;
+BMFR_API void bmfrSetDeviceErrorFunction(BMFRDevice device, BMFRErrorFunction func,
+                                         void* userPtr) BMFR_NOEXCEPT;
 /* Returns the first error since the last call and clears it; *outMessage (when not NULL) points
  * to its message, valid until the next call on this device, or to NULL without an error. */
-BMFR_API BMFRError bmfrGetDeviceError(BMFRDevice device, const char** outMessage);
-BMFR_API void bmfrCommitDevice(BMFRDevice device);
+BMFR_API BMFRError bmfrGetDeviceError(BMFRDevice device, const char** outMessage) BMFR_NOEXCEPT;
+BMFR_API void bmfrCommitDevice(BMFRDevice device) BMFR_NOEXCEPT;
 /* Waits for the device's queued work (bmfrExecuteFilterAsync). */
-BMFR_API void bmfrSyncDevice(BMFRDevice device);
+BMFR_API void bmfrSyncDevice(BMFRDevice device) BMFR_NOEXCEPT;
 
 /* Filters: "bmfr", "svgf", "walr" or "mara2017". A filter keeps its history between executes,
  * so one filter serves one view. */
-BMFR_API BMFRFilter bmfrNewFilter(BMFRDevice device, const char* type);
-BMFR_API void bmfrRetainFilter(BMFRFilter filter);
-BMFR_API void bmfrReleaseFilter(BMFRFilter filter);
+BMFR_API BMFRFilter bmfrNewFilter(BMFRDevice device, const char* type) BMFR_NOEXCEPT;
+BMFR_API void bmfrRetainFilter(BMFRFilter filter) BMFR_NOEXCEPT;
+BMFR_API void bmfrReleaseFilter(BMFRFilter filter) BMFR_NOEXCEPT;
 
-/* Shares an image in host memory (not copied; it must stay valid until the next execute).
+/* Shares an image in host memory: not copied, but read (or, for "output", written) at every
+ * execute until it is unset or set again, so it must stay valid that long.
  * Inputs: "color", "albedo", "normal", "position", "depth", "motion", "emission", and every
  * other buffer of docs/c-api.md's table; the output: "output". byteOffset is added to ptr;
  * bytePixelStride 0 = packed, byteRowStride 0 = packed rows. A NULL ptr unsets the image. */
 BMFR_API void bmfrSetFilterImage(BMFRFilter filter, const char* name, void* ptr, BMFRFormat format,
                                  size_t width, size_t height, size_t byteOffset,
-                                 size_t bytePixelStride, size_t byteRowStride);
-BMFR_API void bmfrUnsetFilterImage(BMFRFilter filter, const char* name);
+                                 size_t bytePixelStride, size_t byteRowStride) BMFR_NOEXCEPT;
+BMFR_API void bmfrUnsetFilterImage(BMFRFilter filter, const char* name) BMFR_NOEXCEPT;
 /* A 4x4 matrix, 16 floats, row-major, acting on column vectors: "viewProjection" (this frame's
  * world-to-clip, as bmfr::FrameInput's). */
-BMFR_API void bmfrSetFilterMatrix(BMFRFilter filter, const char* name, const float* rowMajor4x4);
+BMFR_API void bmfrSetFilterMatrix(BMFRFilter filter, const char* name,
+                                  const float* rowMajor4x4) BMFR_NOEXCEPT;
 
 /* Settings by key: every key of `bmfr settings FILTER` (the filter's own and the shared ones),
  * "preset" (string: "faithful" or "quality", applied before the other keys), and the per-frame
@@ -98,24 +104,26 @@ BMFR_API void bmfrSetFilterMatrix(BMFRFilter filter, const char* name, const flo
  * "motionScaleX", "motionScaleY", "motionYUp", "motionIncludesJitter", "normalOctUnorm"). A
  * setting of the filter's table takes effect at the next bmfrCommitFilter, which starts a new
  * history; the per-frame ones at the next execute. */
-BMFR_API void bmfrSetFilterBool(BMFRFilter filter, const char* name, bool value);
-BMFR_API void bmfrSetFilterInt(BMFRFilter filter, const char* name, int value);
-BMFR_API void bmfrSetFilterFloat(BMFRFilter filter, const char* name, float value);
-BMFR_API void bmfrSetFilterString(BMFRFilter filter, const char* name, const char* value);
-BMFR_API bool bmfrGetFilterBool(BMFRFilter filter, const char* name);
-BMFR_API int bmfrGetFilterInt(BMFRFilter filter, const char* name);
-BMFR_API float bmfrGetFilterFloat(BMFRFilter filter, const char* name);
+BMFR_API void bmfrSetFilterBool(BMFRFilter filter, const char* name, bool value) BMFR_NOEXCEPT;
+BMFR_API void bmfrSetFilterInt(BMFRFilter filter, const char* name, int value) BMFR_NOEXCEPT;
+BMFR_API void bmfrSetFilterFloat(BMFRFilter filter, const char* name, float value) BMFR_NOEXCEPT;
+BMFR_API void bmfrSetFilterString(BMFRFilter filter, const char* name,
+                                  const char* value) BMFR_NOEXCEPT;
+BMFR_API bool bmfrGetFilterBool(BMFRFilter filter, const char* name) BMFR_NOEXCEPT;
+BMFR_API int bmfrGetFilterInt(BMFRFilter filter, const char* name) BMFR_NOEXCEPT;
+BMFR_API float bmfrGetFilterFloat(BMFRFilter filter, const char* name) BMFR_NOEXCEPT;
 
 /* Makes the filter with its settings. With "maxWidth" and "maxHeight" set, sizes every buffer
- * for frames that large, so that no frame up to that size allocates. */
-BMFR_API void bmfrCommitFilter(BMFRFilter filter);
+ * for frames that large (and each image's conversion buffer when the image is first set), so
+ * that no execute up to that size allocates (docs/c-api.md says the one exception). */
+BMFR_API void bmfrCommitFilter(BMFRFilter filter) BMFR_NOEXCEPT;
 /* Denoises the frame set on the filter into "output". */
-BMFR_API void bmfrExecuteFilter(BMFRFilter filter);
+BMFR_API void bmfrExecuteFilter(BMFRFilter filter) BMFR_NOEXCEPT;
 /* The same, queued on the device: host devices finish before returning; see docs/c-api.md. */
-BMFR_API void bmfrExecuteFilterAsync(BMFRFilter filter);
-/* Bytes the filter's buffers take for frames of width x height with its committed settings:
- * its own buffers and the input conversions the C API makes (docs/c-api.md). */
-BMFR_API size_t bmfrGetFilterMemoryBytes(BMFRFilter filter, int width, int height);
+BMFR_API void bmfrExecuteFilterAsync(BMFRFilter filter) BMFR_NOEXCEPT;
+/* Host bytes the filter's buffers take for frames of width x height with its committed
+ * settings: its own buffers and the input conversions the C API makes (docs/c-api.md). */
+BMFR_API size_t bmfrGetFilterMemoryBytes(BMFRFilter filter, int width, int height) BMFR_NOEXCEPT;
 
 #ifdef __cplusplus
 } /* extern "C" */

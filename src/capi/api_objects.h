@@ -12,6 +12,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <string_view>
 
 /// A failure the C layer itself detects, with its code (the C++ API's bmfr::Error is
 /// BMFR_ERROR_INVALID_ARGUMENT).
@@ -34,7 +35,7 @@ struct BMFRDeviceImpl {
     std::string returnedMessage; ///< what the last bmfrGetDeviceError pointed to
 
     /// Keeps the first error and calls the error function.
-    void report(BMFRError code, const std::string& what);
+    void report(BMFRError code, const char* what);
 };
 
 /// The per-frame conventions of docs/c-api.md, read at each execute.
@@ -54,46 +55,46 @@ struct BMFRFilterImpl {
     std::string type;
 
     std::string preset = "faithful";
-    bmfr::SettingValues values; ///< the filter table's keys as set, one entry per key
+    bmfr::SettingValues values;          ///< the filter table's keys as set, one entry per key
+    bmfr::SettingValues committedValues; ///< the preset's and these, as the last commit made it
     int maxWidth = 0, maxHeight = 0;
     bool changed = true; ///< settings changed since the last commit
     std::unique_ptr<bmfr::Filter> filter;
 
-    std::map<std::string, bmfr::capi::SharedImage> images;
+    std::map<std::string, bmfr::capi::SharedImage, std::less<>> images;
     FrameConventions frame;
     /// The previous execute's jitter and frame index (for motion without jitter and restarts).
     float previousJitter[2] = {0.0f, 0.0f};
     long previousFrameIndex = -1;
 
     /// Buffers of the converted inputs, by image name; kept between frames.
-    std::map<std::string, std::vector<float>> converted;
+    std::map<std::string, std::vector<float>, std::less<>> converted;
+    /// The frame handed to the C++ filter, kept so that its extras keep their capacity.
+    bmfr::FrameInput frameInput;
+
+    BMFRFilterImpl() { frameInput.extras.reserve(16); }
 };
 
 namespace bmfr::capi {
 
 /// Keeps the error on `device`, or on the calling thread's slot when null.
-void reportError(BMFRDeviceImpl* device, BMFRError code, const std::string& message);
+void reportError(BMFRDeviceImpl* device, BMFRError code, const char* message);
+
+/// Reports the exception being handled (in a catch block) on `device`, mapped to its code.
+void reportCurrentException(BMFRDeviceImpl* device) noexcept;
 
 /// Runs `body`, turning every exception into an error on `device`; returns `fallback` after one.
-template <class T, class F> T guard(BMFRDeviceImpl* device, T fallback, F&& body) {
+template <class T, class F> T guard(BMFRDeviceImpl* device, T fallback, F&& body) noexcept {
     try {
         return body();
-    } catch (const BMFRApiError& e) {
-        reportError(device, e.code, e.message);
-    } catch (const std::bad_alloc&) {
-        reportError(device, BMFR_ERROR_OUT_OF_MEMORY, "out of memory");
-    } catch (const bmfr::Error& e) {
-        reportError(device, BMFR_ERROR_INVALID_ARGUMENT, e.what());
-    } catch (const std::exception& e) {
-        reportError(device, BMFR_ERROR_UNKNOWN, e.what());
     } catch (...) {
-        reportError(device, BMFR_ERROR_UNKNOWN, "unknown error");
+        reportCurrentException(device);
     }
     return fallback;
 }
 
 /// The settings every execute reads rather than the filter's table (docs/c-api.md).
-bool isFrameConvention(const std::string& key);
+bool isFrameConvention(std::string_view key);
 
 /// The filter's commit and execute (c_filter.cpp).
 void commitFilter(BMFRFilterImpl& f);

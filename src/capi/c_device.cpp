@@ -25,7 +25,7 @@ void requireName(const char* name) {
 
 } // namespace
 
-void reportError(BMFRDeviceImpl* device, BMFRError code, const std::string& message) {
+void reportError(BMFRDeviceImpl* device, BMFRError code, const char* message) {
     if (!device) {
         if (tSlot.error == BMFR_ERROR_NONE) {
             tSlot.error = code;
@@ -36,11 +36,36 @@ void reportError(BMFRDeviceImpl* device, BMFRError code, const std::string& mess
     device->report(code, message);
 }
 
+void reportCurrentException(BMFRDeviceImpl* device) noexcept {
+    try {
+        try {
+            throw;
+        } catch (const BMFRApiError& e) {
+            reportError(device, e.code, e.message.c_str());
+        } catch (const std::bad_alloc&) {
+            reportError(device, BMFR_ERROR_OUT_OF_MEMORY, "out of memory");
+        } catch (const bmfr::Error& e) {
+            reportError(device, BMFR_ERROR_INVALID_ARGUMENT, e.what());
+        } catch (const std::exception& e) {
+            reportError(device, BMFR_ERROR_UNKNOWN, e.what());
+        } catch (...) {
+            reportError(device, BMFR_ERROR_UNKNOWN, "unknown error");
+        }
+    } catch (...) {
+        // No memory left for the message: the code alone (the slot's message stays empty).
+        if (!device) {
+            if (tSlot.error == BMFR_ERROR_NONE) tSlot.error = BMFR_ERROR_OUT_OF_MEMORY;
+        } else if (device->error == BMFR_ERROR_NONE) {
+            device->error = BMFR_ERROR_OUT_OF_MEMORY;
+        }
+    }
+}
+
 } // namespace bmfr::capi
 
 using namespace bmfr::capi;
 
-void BMFRDeviceImpl::report(BMFRError code, const std::string& what) {
+void BMFRDeviceImpl::report(BMFRError code, const char* what) {
     BMFRErrorFunction function;
     void* user;
     {
@@ -52,12 +77,17 @@ void BMFRDeviceImpl::report(BMFRError code, const std::string& what) {
         function = errorFunction;
         user = errorUserPtr;
     }
-    if (function) function(user, code, what.c_str());
+    if (!function) return;
+    try {
+        function(user, code, what);
+    } catch (...) {
+        // An error function of C++ that throws: nothing may cross back into a C caller.
+    }
 }
 
 extern "C" {
 
-BMFRDevice bmfrNewDevice(BMFRDeviceType type) {
+BMFRDevice bmfrNewDevice(BMFRDeviceType type) noexcept {
     return guard<BMFRDevice>(nullptr, nullptr, [&] {
         auto device = std::make_unique<BMFRDeviceImpl>();
         switch (type) {
@@ -80,21 +110,21 @@ BMFRDevice bmfrNewDevice(BMFRDeviceType type) {
     });
 }
 
-void bmfrRetainDevice(BMFRDevice device) {
+void bmfrRetainDevice(BMFRDevice device) noexcept {
     guard(nullptr, 0, [&] {
         requireDevice(device)->references.fetch_add(1);
         return 0;
     });
 }
 
-void bmfrReleaseDevice(BMFRDevice device) {
+void bmfrReleaseDevice(BMFRDevice device) noexcept {
     guard(nullptr, 0, [&] {
         if (requireDevice(device)->references.fetch_sub(1) == 1) delete device;
         return 0;
     });
 }
 
-void bmfrSetDeviceInt(BMFRDevice device, const char* name, int value) {
+void bmfrSetDeviceInt(BMFRDevice device, const char* name, int value) noexcept {
     guard(device, 0, [&] {
         requireDevice(device);
         requireName(name);
@@ -113,7 +143,7 @@ void bmfrSetDeviceInt(BMFRDevice device, const char* name, int value) {
     });
 }
 
-int bmfrGetDeviceInt(BMFRDevice device, const char* name) {
+int bmfrGetDeviceInt(BMFRDevice device, const char* name) noexcept {
     return guard(device, 0, [&] {
         requireDevice(device);
         requireName(name);
@@ -140,7 +170,8 @@ int bmfrGetDeviceInt(BMFRDevice device, const char* name) {
     });
 }
 
-void bmfrSetDeviceErrorFunction(BMFRDevice device, BMFRErrorFunction function, void* userPtr) {
+void bmfrSetDeviceErrorFunction(BMFRDevice device, BMFRErrorFunction function,
+                                void* userPtr) noexcept {
     guard(device, 0, [&] {
         std::lock_guard<std::mutex> lock(requireDevice(device)->errorMutex);
         device->errorFunction = function;
@@ -149,19 +180,19 @@ void bmfrSetDeviceErrorFunction(BMFRDevice device, BMFRErrorFunction function, v
     });
 }
 
-BMFRError bmfrGetDeviceError(BMFRDevice device, const char** outMessage) {
+BMFRError bmfrGetDeviceError(BMFRDevice device, const char** outMessage) noexcept {
     BMFRError code;
     const char* text = nullptr;
     if (!device) {
         code = tSlot.error;
-        tSlot.returned = tSlot.message;
+        tSlot.returned.swap(tSlot.message); // no allocation: nothing here can throw
         tSlot.error = BMFR_ERROR_NONE;
         tSlot.message.clear();
         if (code != BMFR_ERROR_NONE) text = tSlot.returned.c_str();
     } else {
         std::lock_guard<std::mutex> lock(device->errorMutex);
         code = device->error;
-        device->returnedMessage = device->message;
+        device->returnedMessage.swap(device->message);
         device->error = BMFR_ERROR_NONE;
         device->message.clear();
         if (code != BMFR_ERROR_NONE) text = device->returnedMessage.c_str();
@@ -170,7 +201,7 @@ BMFRError bmfrGetDeviceError(BMFRDevice device, const char** outMessage) {
     return code;
 }
 
-void bmfrCommitDevice(BMFRDevice device) {
+void bmfrCommitDevice(BMFRDevice device) noexcept {
     guard(device, 0, [&] {
         requireDevice(device);
         if (device->device) return 0; // committed already: nothing changed since
@@ -183,7 +214,7 @@ void bmfrCommitDevice(BMFRDevice device) {
     });
 }
 
-void bmfrSyncDevice(BMFRDevice device) {
+void bmfrSyncDevice(BMFRDevice device) noexcept {
     // Every execute has finished when it returns: the images are in host memory (c-api.md).
     guard(device, 0, [&] {
         requireDevice(device);

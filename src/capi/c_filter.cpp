@@ -26,7 +26,7 @@ BMFRDeviceImpl* deviceOf(BMFRFilter filter) {
     return filter ? filter->device : nullptr;
 }
 
-std::string requireName(const char* name, const char* what) {
+std::string_view requireName(const char* name, const char* what) {
     if (!name) throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL"};
     return name;
 }
@@ -42,12 +42,12 @@ std::vector<std::string> filterKeys(const BMFRFilterImpl& f) {
     return keys;
 }
 
-bool isTableKey(const BMFRFilterImpl& f, const std::string& key) {
+bool isTableKey(const BMFRFilterImpl& f, std::string_view key) {
     for (const SettingDoc& d : filterSettings(f.type))
         if (d.key == key) {
             if (key == "backend" || key == "threads")
                 throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                                   "'" + key +
+                                   "'" + std::string(key) +
                                        "' is the device's: make a device of the type "
                                        "and threads you want (bmfrNewDevice)"};
             return true;
@@ -55,13 +55,14 @@ bool isTableKey(const BMFRFilterImpl& f, const std::string& key) {
     return false;
 }
 
-[[noreturn]] void unknownKey(const BMFRFilterImpl& f, const std::string& key) {
-    throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "unknown setting '" + key + "' for filter " +
-                                                        f.type + didYouMean(key, filterKeys(f))};
+[[noreturn]] void unknownKey(const BMFRFilterImpl& f, std::string_view key) {
+    const std::string name(key);
+    throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "unknown setting '" + name + "' for filter " +
+                                                        f.type + didYouMean(name, filterKeys(f))};
 }
 
 /// A setting of the filter's table, as text; the next commit applies it.
-void setTableValue(BMFRFilterImpl& f, const std::string& key, const std::string& text) {
+void setTableValue(BMFRFilterImpl& f, std::string_view key, const std::string& text) {
     if (!isTableKey(f, key)) unknownKey(f, key);
     for (auto& kv : f.values)
         if (kv.first == key) {
@@ -69,12 +70,12 @@ void setTableValue(BMFRFilterImpl& f, const std::string& key, const std::string&
             f.changed = true;
             return;
         }
-    f.values.emplace_back(key, text);
+    f.values.emplace_back(std::string(key), text);
     f.changed = true;
 }
 
 /// The value of a table key as text: as set, else as the preset gives it, else the default.
-std::string tableValue(const BMFRFilterImpl& f, const std::string& key) {
+std::string tableValue(const BMFRFilterImpl& f, std::string_view key) {
     for (const auto& kv : f.values)
         if (kv.first == key) return kv.second;
     for (const auto& kv : presetSettings(f.type, f.preset))
@@ -84,33 +85,33 @@ std::string tableValue(const BMFRFilterImpl& f, const std::string& key) {
     unknownKey(f, key);
 }
 
-[[noreturn]] void wrongType(const std::string& key, const char* type, const std::string& text) {
-    throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                       "setting '" + key + "' is not " + type + " (its value is '" + text + "')"};
+[[noreturn]] void wrongType(std::string_view key, const char* type, const std::string& text) {
+    throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "setting '" + std::string(key) + "' is not " +
+                                                        type + " (its value is '" + text + "')"};
 }
 
-float& conventionFloat(BMFRFilterImpl& f, const std::string& key) {
+float& conventionFloat(BMFRFilterImpl& f, std::string_view key) {
     if (key == "jitterX") return f.frame.jitter[0];
     if (key == "jitterY") return f.frame.jitter[1];
     if (key == "motionScaleX") return f.frame.motion.scale[0];
     return f.frame.motion.scale[1];
 }
 
-bool& conventionBool(BMFRFilterImpl& f, const std::string& key) {
+bool& conventionBool(BMFRFilterImpl& f, std::string_view key) {
     if (key == "motionYUp") return f.frame.motion.yUp;
     if (key == "motionIncludesJitter") return f.frame.motion.includesJitter;
     return f.frame.normalOctUnorm;
 }
 
-bool isFloatConvention(const std::string& key) {
+bool isFloatConvention(std::string_view key) {
     return key == "jitterX" || key == "jitterY" || key == "motionScaleX" || key == "motionScaleY";
 }
 
-bool isBoolConvention(const std::string& key) {
+bool isBoolConvention(std::string_view key) {
     return key == "motionYUp" || key == "motionIncludesJitter" || key == "normalOctUnorm";
 }
 
-void setInt(BMFRFilterImpl& f, const std::string& key, long value) {
+void setInt(BMFRFilterImpl& f, std::string_view key, long value) {
     if (key == "accumulationMode") {
         if (value < BMFR_ACCUMULATION_MODE_CONTINUE ||
             value > BMFR_ACCUMULATION_MODE_CLEAR_AND_RESTART)
@@ -125,8 +126,9 @@ void setInt(BMFRFilterImpl& f, const std::string& key, long value) {
         f.frame.frameIndex = value;
     } else if (key == "maxWidth" || key == "maxHeight") {
         if (value < 0 || value > 65536)
-            throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                               key + " " + std::to_string(value) + " is outside [0, 65536]"};
+            throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, std::string(key) + " " +
+                                                                std::to_string(value) +
+                                                                " is outside [0, 65536]"};
         (key == "maxWidth" ? f.maxWidth : f.maxHeight) = int(value);
         f.changed = true;
     } else if (isFloatConvention(key)) {
@@ -138,41 +140,56 @@ void setInt(BMFRFilterImpl& f, const std::string& key, long value) {
     }
 }
 
+/// With a reservation committed, sizes the buffer that `image` is converted into for the largest
+/// frame (motion for three channels, whatever its conventions become).
+void reserveConversion(BMFRFilterImpl& f, std::string_view name, const SharedImage& image) {
+    if (f.maxWidth == 0 || name == "output") return;
+    const ImagePlan plan = planImage(name, image, f.frame);
+    const int channels = name == "motion" ? 3 : plan.channels;
+    if (channels == 0) return;
+    auto buffer = f.converted.find(name);
+    if (buffer == f.converted.end()) buffer = f.converted.emplace(std::string(name), 0).first;
+    buffer->second.reserve(size_t(f.maxWidth) * size_t(f.maxHeight) * size_t(channels));
+}
+
 /// Bytes the process has taken from malloc: what a filter's buffers are made with.
 size_t heapBytes() {
-#if defined(__GLIBC__)
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 33))
     const struct mallinfo2 m = mallinfo2();
     return m.uordblks + m.hblkhd;
 #else
     throw BMFRApiError{BMFR_ERROR_INVALID_OPERATION,
-                       "bmfrGetFilterMemoryBytes needs glibc's mallinfo2 on this platform"};
+                       "bmfrGetFilterMemoryBytes needs glibc 2.33's mallinfo2, which this "
+                       "platform lacks"};
 #endif
 }
 
-SharedImage sharedImage(const std::string& name, void* ptr, BMFRFormat format, size_t width,
+SharedImage sharedImage(std::string_view key, void* ptr, BMFRFormat format, size_t width,
                         size_t height, size_t byteOffset, size_t pixelStride, size_t rowStride) {
+    const auto name = [key] { return std::string(key); };
     SharedImage image;
     image.format = int(format);
     const int channels = image.channels();
     if (channels == 0)
-        throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "image '" + name + "': unknown format " +
+        throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "image '" + name() + "': unknown format " +
                                                             std::to_string(int(format)) +
                                                             " (expected a BMFR_FORMAT_ value)"};
     if (width == 0 || height == 0 || width > INT_MAX || height > INT_MAX)
         throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                           "image '" + name + "' is " + std::to_string(width) + "x" +
+                           "image '" + name() + "' is " + std::to_string(width) + "x" +
                                std::to_string(height) + ": each side must be 1 or more"};
     const size_t pixelBytes = size_t(channels) * formatChannelBytes(int(format));
     if (pixelStride == 0) pixelStride = pixelBytes;
     if (pixelStride < pixelBytes)
-        throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                           "image '" + name + "': bytePixelStride " + std::to_string(pixelStride) +
-                               " is less than a " + formatName(int(format)) + " pixel (" +
-                               std::to_string(pixelBytes) + " bytes)"};
+        throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "image '" + name() + "': bytePixelStride " +
+                                                            std::to_string(pixelStride) +
+                                                            " is less than a " +
+                                                            formatName(int(format)) + " pixel (" +
+                                                            std::to_string(pixelBytes) + " bytes)"};
     if (rowStride == 0) rowStride = width * pixelStride;
     if (rowStride < width * pixelStride)
         throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                           "image '" + name + "': byteRowStride " + std::to_string(rowStride) +
+                           "image '" + name() + "': byteRowStride " + std::to_string(rowStride) +
                                " is less than a row (" + std::to_string(width * pixelStride) +
                                " bytes)"};
     image.data = static_cast<unsigned char*>(ptr) + byteOffset;
@@ -185,7 +202,7 @@ SharedImage sharedImage(const std::string& name, void* ptr, BMFRFormat format, s
 
 } // namespace
 
-bool isFrameConvention(const std::string& key) {
+bool isFrameConvention(std::string_view key) {
     for (const char* c : kConventions)
         if (key == c) return true;
     return false;
@@ -200,6 +217,7 @@ void commitFilter(BMFRFilterImpl& f) {
                            "set both maxWidth and maxHeight, or neither (they are " +
                                std::to_string(f.maxWidth) + " and " + std::to_string(f.maxHeight) +
                                ")"};
+    for (const auto& [name, image] : f.images) reserveConversion(f, name, image);
     SettingValues values = presetSettings(f.type, f.preset);
     values.insert(values.end(), f.values.begin(), f.values.end());
     Device& device = *f.device->device;
@@ -214,17 +232,9 @@ void commitFilter(BMFRFilterImpl& f) {
     }
     device.reserve(keptWidth, keptHeight);
     f.filter = std::move(made);
+    f.committedValues = std::move(values);
     f.changed = false;
     f.previousFrameIndex = -1;
-    // Conversion buffers of the images set now, sized for the largest frame.
-    if (f.maxWidth > 0)
-        for (const auto& [name, image] : f.images) {
-            if (name == "output") continue;
-            const ImagePlan plan = planImage(name, image, f.frame);
-            if (plan.channels > 0)
-                f.converted[name].reserve(size_t(f.maxWidth) * size_t(f.maxHeight) *
-                                          size_t(plan.channels));
-        }
 }
 
 void executeFilter(BMFRFilterImpl& f) {
@@ -246,7 +256,7 @@ void executeFilter(BMFRFilterImpl& f) {
                     std::to_string(out.height) + ", 'color' is " +
                     std::to_string(color->second.width) + "x" +
                     std::to_string(color->second.height));
-    const FrameInput in = assembleFrame(f);
+    const FrameInput& in = assembleFrame(f);
     if (readsInPlace(out)) {
         const ImageView v = inPlaceView(out);
         f.filter->denoise(in, MutableImageView{const_cast<float*>(v.data), v.width, v.height,
@@ -272,8 +282,6 @@ size_t filterMemoryBytes(BMFRFilterImpl& f, int width, int height) {
         throw BMFRApiError{BMFR_ERROR_INVALID_OPERATION,
                            "bmfrGetFilterMemoryBytes counts host memory; the cuda device's "
                            "buffers are in device memory, which it does not measure yet"};
-    SettingValues values = presetSettings(f.type, f.preset);
-    values.insert(values.end(), f.values.begin(), f.values.end());
     // A probe: the same filter on a device of the same threads, sized for the frame. Its heap
     // growth is its buffers (and its few bookkeeping bytes).
     Device probe(f.device->backend, f.device->device->threadCount());
@@ -281,7 +289,7 @@ size_t filterMemoryBytes(BMFRFilterImpl& f, int width, int height) {
     const size_t before = heapBytes();
     size_t bytes;
     {
-        const std::unique_ptr<Filter> sized = probe.makeFilter(f.type, values);
+        const std::unique_ptr<Filter> sized = probe.makeFilter(f.type, f.committedValues);
         const size_t after = heapBytes();
         if (after <= before)
             throw BMFRApiError{BMFR_ERROR_INVALID_OPERATION,
@@ -304,10 +312,10 @@ using namespace bmfr::capi;
 
 extern "C" {
 
-BMFRFilter bmfrNewFilter(BMFRDevice device, const char* type) {
+BMFRFilter bmfrNewFilter(BMFRDevice device, const char* type) noexcept {
     return guard<BMFRFilter>(device, nullptr, [&]() -> BMFRFilter {
         if (!device) throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT, "the device handle is NULL"};
-        const std::string name = requireName(type, "the filter type");
+        const std::string name(requireName(type, "the filter type"));
         if (!device->device)
             throw BMFRApiError{BMFR_ERROR_INVALID_OPERATION,
                                "the device is not committed: call bmfrCommitDevice first"};
@@ -320,14 +328,14 @@ BMFRFilter bmfrNewFilter(BMFRDevice device, const char* type) {
     });
 }
 
-void bmfrRetainFilter(BMFRFilter filter) {
+void bmfrRetainFilter(BMFRFilter filter) noexcept {
     guard(deviceOf(filter), 0, [&] {
         requireFilter(filter).references.fetch_add(1);
         return 0;
     });
 }
 
-void bmfrReleaseFilter(BMFRFilter filter) {
+void bmfrReleaseFilter(BMFRFilter filter) noexcept {
     guard(deviceOf(filter), 0, [&] {
         if (requireFilter(filter).references.fetch_sub(1) == 1) {
             BMFRDeviceImpl* device = filter->device;
@@ -340,34 +348,45 @@ void bmfrReleaseFilter(BMFRFilter filter) {
 
 void bmfrSetFilterImage(BMFRFilter filter, const char* name, void* ptr, BMFRFormat format,
                         size_t width, size_t height, size_t byteOffset, size_t bytePixelStride,
-                        size_t byteRowStride) {
+                        size_t byteRowStride) noexcept {
     guard(deviceOf(filter), 0, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
-        const std::string key = requireName(name, "the image name");
-        if (!isImageName(key))
+        const std::string_view key = requireName(name, "the image name");
+        if (!isImageName(key)) {
+            const std::string given(key);
             throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                               "unknown image '" + key + "'" + bmfr::didYouMean(key, imageNames())};
+                               "unknown image '" + given + "'" +
+                                   bmfr::didYouMean(given, imageNames())};
+        }
+        const auto found = f.images.find(key);
         if (!ptr) {
-            f.images.erase(key);
+            if (found != f.images.end()) f.images.erase(found);
             return 0;
         }
-        f.images[key] = sharedImage(key, ptr, format, width, height, byteOffset, bytePixelStride,
-                                    byteRowStride);
+        const SharedImage image = sharedImage(key, ptr, format, width, height, byteOffset,
+                                              bytePixelStride, byteRowStride);
+        // Names are looked up as given: re-setting an image each frame allocates nothing.
+        if (found != f.images.end())
+            found->second = image;
+        else
+            f.images.emplace(std::string(key), image);
+        reserveConversion(f, key, image);
         return 0;
     });
 }
 
-void bmfrUnsetFilterImage(BMFRFilter filter, const char* name) {
+void bmfrUnsetFilterImage(BMFRFilter filter, const char* name) noexcept {
     bmfrSetFilterImage(filter, name, nullptr, BMFR_FORMAT_UNDEFINED, 0, 0, 0, 0, 0);
 }
 
-void bmfrSetFilterMatrix(BMFRFilter filter, const char* name, const float* m) {
+void bmfrSetFilterMatrix(BMFRFilter filter, const char* name, const float* m) noexcept {
     guard(deviceOf(filter), 0, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
-        const std::string key = requireName(name, "the matrix name");
+        const std::string_view key = requireName(name, "the matrix name");
         if (key != "viewProjection")
             throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                               "unknown matrix '" + key + "' (the filter takes viewProjection)"};
+                               "unknown matrix '" + std::string(key) +
+                                   "' (the filter takes viewProjection)"};
         if (!m) {
             f.frame.hasViewProjection = false;
             return 0;
@@ -379,10 +398,10 @@ void bmfrSetFilterMatrix(BMFRFilter filter, const char* name, const float* m) {
     });
 }
 
-void bmfrSetFilterBool(BMFRFilter filter, const char* name, bool value) {
+void bmfrSetFilterBool(BMFRFilter filter, const char* name, bool value) noexcept {
     guard(deviceOf(filter), 0, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
-        const std::string key = requireName(name, "the setting name");
+        const std::string_view key = requireName(name, "the setting name");
         if (isBoolConvention(key))
             conventionBool(f, key) = value;
         else if (isFrameConvention(key) || key == "preset" || key == "maxWidth" ||
@@ -394,7 +413,7 @@ void bmfrSetFilterBool(BMFRFilter filter, const char* name, bool value) {
     });
 }
 
-void bmfrSetFilterInt(BMFRFilter filter, const char* name, int value) {
+void bmfrSetFilterInt(BMFRFilter filter, const char* name, int value) noexcept {
     guard(deviceOf(filter), 0, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
         setInt(f, requireName(name, "the setting name"), value);
@@ -402,13 +421,15 @@ void bmfrSetFilterInt(BMFRFilter filter, const char* name, int value) {
     });
 }
 
-void bmfrSetFilterFloat(BMFRFilter filter, const char* name, float value) {
+void bmfrSetFilterFloat(BMFRFilter filter, const char* name, float value) noexcept {
     guard(deviceOf(filter), 0, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
-        const std::string key = requireName(name, "the setting name");
+        const std::string_view key = requireName(name, "the setting name");
         if (isFloatConvention(key)) {
             conventionFloat(f, key) = value;
         } else if (isFrameConvention(key) || key == "maxWidth" || key == "maxHeight") {
+            if (!(value >= -1e9f && value <= 1e9f) || value != float(long(value)))
+                wrongType(key, "a whole number", std::to_string(value));
             setInt(f, key, long(value));
         } else {
             char text[32];
@@ -419,11 +440,11 @@ void bmfrSetFilterFloat(BMFRFilter filter, const char* name, float value) {
     });
 }
 
-void bmfrSetFilterString(BMFRFilter filter, const char* name, const char* value) {
+void bmfrSetFilterString(BMFRFilter filter, const char* name, const char* value) noexcept {
     guard(deviceOf(filter), 0, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
-        const std::string key = requireName(name, "the setting name");
-        const std::string text = requireName(value, "the value");
+        const std::string_view key = requireName(name, "the setting name");
+        const std::string text(requireName(value, "the value"));
         if (key == "preset") {
             bmfr::presetSettings(f.type, text); // an unknown preset is an error now
             f.preset = text;
@@ -437,10 +458,10 @@ void bmfrSetFilterString(BMFRFilter filter, const char* name, const char* value)
     });
 }
 
-bool bmfrGetFilterBool(BMFRFilter filter, const char* name) {
+bool bmfrGetFilterBool(BMFRFilter filter, const char* name) noexcept {
     return guard(deviceOf(filter), false, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
-        const std::string key = requireName(name, "the setting name");
+        const std::string_view key = requireName(name, "the setting name");
         if (isBoolConvention(key)) return conventionBool(f, key);
         const std::string text = tableValue(f, key);
         if (text != "true" && text != "false") wrongType(key, "a bool", text);
@@ -448,10 +469,10 @@ bool bmfrGetFilterBool(BMFRFilter filter, const char* name) {
     });
 }
 
-int bmfrGetFilterInt(BMFRFilter filter, const char* name) {
+int bmfrGetFilterInt(BMFRFilter filter, const char* name) noexcept {
     return guard(deviceOf(filter), 0, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
-        const std::string key = requireName(name, "the setting name");
+        const std::string_view key = requireName(name, "the setting name");
         if (key == "accumulationMode") return f.frame.accumulationMode;
         if (key == "frameIndex") return int(f.frame.frameIndex);
         if (key == "maxWidth") return f.maxWidth;
@@ -465,10 +486,10 @@ int bmfrGetFilterInt(BMFRFilter filter, const char* name) {
     });
 }
 
-float bmfrGetFilterFloat(BMFRFilter filter, const char* name) {
+float bmfrGetFilterFloat(BMFRFilter filter, const char* name) noexcept {
     return guard(deviceOf(filter), 0.0f, [&] {
         BMFRFilterImpl& f = requireFilter(filter);
-        const std::string key = requireName(name, "the setting name");
+        const std::string_view key = requireName(name, "the setting name");
         if (isFloatConvention(key)) return conventionFloat(f, key);
         const std::string text = tableValue(f, key);
         char* end = nullptr;
@@ -478,26 +499,26 @@ float bmfrGetFilterFloat(BMFRFilter filter, const char* name) {
     });
 }
 
-void bmfrCommitFilter(BMFRFilter filter) {
+void bmfrCommitFilter(BMFRFilter filter) noexcept {
     guard(deviceOf(filter), 0, [&] {
         commitFilter(requireFilter(filter));
         return 0;
     });
 }
 
-void bmfrExecuteFilter(BMFRFilter filter) {
+void bmfrExecuteFilter(BMFRFilter filter) noexcept {
     guard(deviceOf(filter), 0, [&] {
         executeFilter(requireFilter(filter));
         return 0;
     });
 }
 
-void bmfrExecuteFilterAsync(BMFRFilter filter) {
+void bmfrExecuteFilterAsync(BMFRFilter filter) noexcept {
     // The images are host memory on every device, so the frame is done when this returns.
     bmfrExecuteFilter(filter);
 }
 
-size_t bmfrGetFilterMemoryBytes(BMFRFilter filter, int width, int height) {
+size_t bmfrGetFilterMemoryBytes(BMFRFilter filter, int width, int height) noexcept {
     return guard(deviceOf(filter), size_t(0),
                  [&] { return filterMemoryBytes(requireFilter(filter), width, height); });
 }

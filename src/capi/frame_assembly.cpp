@@ -9,7 +9,7 @@ namespace {
 constexpr int kMaxExtraImages = 16;
 
 /// "extraK" as K, or -1.
-int extraIndex(const std::string& name) {
+int extraIndex(std::string_view name) {
     if (name.rfind("extra", 0) != 0 || name.size() < 6 || name.size() > 7) return -1;
     int k = 0;
     for (size_t i = 5; i < name.size(); ++i) {
@@ -20,15 +20,15 @@ int extraIndex(const std::string& name) {
     return k < kMaxExtraImages ? k : -1;
 }
 
-const FrameBuffer* frameBuffer(const std::string& name) {
+const FrameBuffer* frameBuffer(std::string_view name) {
     for (const FrameBuffer& b : kFrameBuffers)
         if (name == b.member) return &b;
     return nullptr;
 }
 
-std::string channelError(const std::string& name, const SharedImage& image,
+std::string channelError(std::string_view name, const SharedImage& image,
                          const std::string& takes) {
-    return "image '" + name + "' is " + formatName(image.format) + " (" +
+    return "image '" + std::string(name) + "' is " + formatName(image.format) + " (" +
            std::to_string(image.channels()) + " channels); it takes " + takes;
 }
 
@@ -37,9 +37,18 @@ std::string rangeText(ChannelRange r) {
     return std::to_string(r.lo) + " to " + std::to_string(r.hi);
 }
 
+/// True when the C++ API reads the image without a copy of its own: packed floats of exactly
+/// the channels it stages (any other layout it would copy into a buffer made on first use).
+bool packedAsStaged(const SharedImage& image, int staged) {
+    return readsInPlace(image) && image.channels() == staged &&
+           image.rowStride == size_t(image.width) * image.pixelStride;
+}
+
 ImageView convert(BMFRFilterImpl& f, const std::string& name, const SharedImage& image,
                   const ImagePlan& plan) {
-    std::vector<float>& buffer = f.converted[name];
+    auto found = f.converted.find(name);
+    if (found == f.converted.end()) found = f.converted.emplace(name, 0).first;
+    std::vector<float>& buffer = found->second;
     switch (plan.kind) {
     case ImagePlan::Octahedral:
         return decodeOctahedralNormals(image, f.frame.normalOctUnorm, buffer);
@@ -48,7 +57,7 @@ ImageView convert(BMFRFilterImpl& f, const std::string& name, const SharedImage&
     case ImagePlan::Motion:
         return convertMotion(image, f.frame.motion, f.frame.jitter, f.previousJitter, buffer);
     default:
-        return asFloatView(image, plan.channels ? plan.channels : image.channels(), buffer);
+        return copyToFloats(image, plan.channels, buffer);
     }
 }
 
@@ -63,11 +72,11 @@ std::vector<std::string> imageNames() {
     return names;
 }
 
-bool isImageName(const std::string& name) {
+bool isImageName(std::string_view name) {
     return frameBuffer(name) || extraIndex(name) >= 0 || name == "depth" || name == "output";
 }
 
-ImagePlan planImage(const std::string& name, const SharedImage& image,
+ImagePlan planImage(std::string_view name, const SharedImage& image,
                     const FrameConventions& frame) {
     const int c = image.channels();
     if (name == "output") {
@@ -80,7 +89,7 @@ ImagePlan planImage(const std::string& name, const SharedImage& image,
     }
     if (extraIndex(name) >= 0) {
         if (c != 1) throw Error(channelError(name, image, "1"));
-        return readsInPlace(image) ? ImagePlan{} : ImagePlan{ImagePlan::Copy, 1};
+        return packedAsStaged(image, 1) ? ImagePlan{} : ImagePlan{ImagePlan::Copy, 1};
     }
     const FrameBuffer& b = *frameBuffer(name);
     if (name == "normal" && c == 2) return {ImagePlan::Octahedral, 3};
@@ -90,19 +99,22 @@ ImagePlan planImage(const std::string& name, const SharedImage& image,
         throw Error(channelError(name, image, takes));
     }
     if (name == "motion") {
-        if (!frame.motion.isIdentity() || !readsInPlace(image))
-            return {ImagePlan::Motion, c >= 3 ? 3 : 2};
-        return {};
+        // With a depth offset (3 channels) the C++ staging splits it in any case.
+        if (frame.motion.isIdentity() && (packedAsStaged(image, 2) || packedAsStaged(image, 3)))
+            return {};
+        return {ImagePlan::Motion, c >= 3 ? 3 : 2};
     }
-    return readsInPlace(image) ? ImagePlan{} : ImagePlan{ImagePlan::Copy, b.staged};
+    return packedAsStaged(image, b.staged) ? ImagePlan{} : ImagePlan{ImagePlan::Copy, b.staged};
 }
 
-FrameInput assembleFrame(BMFRFilterImpl& f) {
+const FrameInput& assembleFrame(BMFRFilterImpl& f) {
     if (!f.frame.hasViewProjection)
         throw Error("matrix 'viewProjection' is not set (bmfrSetFilterMatrix)");
     if (f.images.count("position") && f.images.count("depth"))
         throw Error("images 'position' and 'depth' are both set: give one (unset the other)");
-    FrameInput in;
+    FrameInput& in = f.frameInput;
+    for (const FrameBuffer& b : kFrameBuffers) in.*(b.view) = ImageView{};
+    in.extras.clear(); // keeps its capacity
     in.viewProjection = f.frame.viewProjection;
     in.jitter[0] = f.frame.jitter[0];
     in.jitter[1] = f.frame.jitter[1];
@@ -114,7 +126,7 @@ FrameInput assembleFrame(BMFRFilterImpl& f) {
             plan.kind == ImagePlan::InPlace ? inPlaceView(image) : convert(f, name, image, plan);
         const int k = extraIndex(name);
         if (k >= 0) {
-            if (int(in.extras.size()) <= k) in.extras.resize(size_t(k) + 1);
+            if (int(in.extras.size()) <= k) in.extras.resize(size_t(k) + 1); // within capacity
             in.extras[size_t(k)] = view;
             ++extras;
         } else if (name == "depth") {

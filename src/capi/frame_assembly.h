@@ -8,7 +8,7 @@ namespace bmfr::capi {
 
 /// The names bmfrSetFilterImage takes: every FrameInput buffer, "depth", "extra0" to "extra15"
 /// and "output".
-bool isImageName(const std::string& name);
+bool isImageName(std::string_view name);
 std::vector<std::string> imageNames();
 
 /// How an input image reaches the filter.
@@ -18,11 +18,10 @@ struct ImagePlan {
 };
 
 /// Throws bmfr::Error when image `name` has a channel count the filter does not take.
-ImagePlan planImage(const std::string& name, const SharedImage& image,
-                    const FrameConventions& frame);
+ImagePlan planImage(std::string_view name, const SharedImage& image, const FrameConventions& frame);
 
-/// The frame to denoise, its buffers in `f.converted` where converted. Throws bmfr::Error (or
-/// BMFRApiError) naming the image or matrix at fault.
-FrameInput assembleFrame(BMFRFilterImpl& f);
+/// The frame to denoise (f.frameInput), its buffers in `f.converted` where converted. Throws
+/// bmfr::Error naming the image or matrix at fault.
+const FrameInput& assembleFrame(BMFRFilterImpl& f);
 
 } // namespace bmfr::capi

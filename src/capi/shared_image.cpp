@@ -60,8 +60,7 @@ ImageView inPlaceView(const SharedImage& image) {
                      image.channels(), long(image.rowStride / sizeof(float))};
 }
 
-ImageView asFloatView(const SharedImage& image, int channels, std::vector<float>& buffer) {
-    if (readsInPlace(image)) return inPlaceView(image);
+ImageView copyToFloats(const SharedImage& image, int channels, std::vector<float>& buffer) {
     buffer.resize(size_t(image.width) * size_t(image.height) * size_t(channels));
     float* out = buffer.data();
     for (int y = 0; y < image.height; ++y)
@@ -115,16 +114,18 @@ void encodeOctahedral(const float n[3], float out[2]) {
 
 ImageView positionsFromDepth(const SharedImage& depth, const Mat4& viewProjection,
                              const float jitter[2], std::vector<float>& buffer) {
-    Mat4 inverse;
-    if (!invert(viewProjection, inverse))
+    double m[4][4];
+    if (!invert(viewProjection, m))
         throw Error("image 'depth': the viewProjection matrix has no inverse, so positions "
                     "cannot be reconstructed from depth");
-    const auto& m = inverse.m;
     // A point at clip (ndc.x w, ndc.y w, z, w) is inverse * clip; z is the value that makes the
     // result's fourth component 1. Without a third column in that component (an orthographic
     // projection), clip w is not the view depth.
     const double c3 = m[3][2];
-    if (std::fabs(c3) < 1e-30)
+    double scale = 0;
+    for (const auto& row : m)
+        for (double v : row) scale = std::fmax(scale, std::fabs(v));
+    if (std::fabs(c3) <= 1e-9 * scale)
         throw Error("image 'depth' needs a perspective viewProjection (clip w = view depth); "
                     "this one is orthographic: give 'position' instead");
     buffer.resize(size_t(depth.width) * size_t(depth.height) * 3);

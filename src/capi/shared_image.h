@@ -31,13 +31,11 @@ const char* formatName(int format);
 /// strides of whole floats: what the C++ API reads without a copy.
 bool readsInPlace(const SharedImage& image);
 
+/// The first `channels` channels of the image as packed floats in `buffer` (always a copy).
+ImageView copyToFloats(const SharedImage& image, int channels, std::vector<float>& buffer);
+
 /// The image as a float view, read in place (readsInPlace must hold).
 ImageView inPlaceView(const SharedImage& image);
-
-/// The image as a float view with its own channel count as the pixel step, without a copy when
-/// readsInPlace; else its first
-/// `channels` channels copied into `buffer`, packed.
-ImageView asFloatView(const SharedImage& image, int channels, std::vector<float>& buffer);
 
 /// Unit normals from a two-channel octahedral encoding (Cigolle et al. 2014) in [-1, 1], or in
 /// [0, 1] when `unorm` (as NRD packs them), into `buffer` (3 channels, packed).

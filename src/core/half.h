@@ -65,6 +65,7 @@ inline float halfBitsToFloat(uint16_t bits) {
 inline uint16_t floatToHalfBits(float x) {
     const uint32_t u = std::bit_cast<uint32_t>(roundToHalf(x));
     const uint16_t sign = uint16_t((u >> 16) & 0x8000u);
+    if (((u >> 23) & 0xffu) == 0xffu) return uint16_t(sign | 0x7e00u); // NaN stays NaN
     const float magnitude = std::bit_cast<float>(u & 0x7fffffffu);
     if (magnitude < 0x1p-14f) return uint16_t(sign | uint16_t(magnitude * 0x1p24f)); // subnormal
     const uint32_t exponent = ((u >> 23) & 0xffu) - 112u;

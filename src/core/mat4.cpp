@@ -21,7 +21,7 @@ Mat4 transpose(const Mat4& a) {
     return r;
 }
 
-bool invert(const Mat4& a, Mat4& out) {
+bool invert(const Mat4& a, double out[4][4]) {
     double m[4][8];
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) {
@@ -48,7 +48,15 @@ bool invert(const Mat4& a, Mat4& out) {
         }
     }
     for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) out.m[i][j] = float(m[i][j + 4]);
+        for (int j = 0; j < 4; ++j) out[i][j] = m[i][j + 4];
+    return true;
+}
+
+bool invert(const Mat4& a, Mat4& out) {
+    double inverse[4][4];
+    if (!invert(a, inverse)) return false;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) out.m[i][j] = float(inverse[i][j]);
     return true;
 }
 

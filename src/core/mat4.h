@@ -30,6 +30,8 @@ Mat4 multiply(const Mat4& a, const Mat4& b);
 Mat4 transpose(const Mat4& a);
 /// Inverse in double precision; returns false when the matrix is singular or not finite.
 bool invert(const Mat4& a, Mat4& out);
+/// The same, kept in double (positions reconstructed far from the origin need its digits).
+bool invert(const Mat4& a, double out[4][4]);
 /// True when every entry is finite and the matrix is invertible (a usable camera).
 bool isUsableCameraMatrix(const Mat4& a);
 

@@ -4,6 +4,7 @@
 #include <bmfr/error.h>
 #include <cmath>
 #include <string>
+#include <string_view>
 
 namespace bmfr {
 
@@ -13,28 +14,30 @@ const char* memoryName(Memory m) {
     return m == Memory::Cuda ? "CUDA device memory" : "host memory";
 }
 
-void checkImage(const ImageView& v, const std::string& name, ChannelRange channels, int w, int h,
+void checkImage(const ImageView& v, std::string_view view, ChannelRange channels, int w, int h,
                 Memory memory) {
-    if (!v.data) throw Error("input buffer '" + name + "' is missing");
+    // Named as a string only when something is wrong: a frame that passes allocates nothing.
+    const auto name = [view] { return std::string(view); };
+    if (!v.data) throw Error("input buffer '" + name() + "' is missing");
     if (v.memory != memory)
-        throw Error("input buffer '" + name + "' is in " + memoryName(v.memory) + ", colour in " +
+        throw Error("input buffer '" + name() + "' is in " + memoryName(v.memory) + ", colour in " +
                     memoryName(memory) + ": a frame's buffers must all be in one");
     if (v.width <= 0 || v.height <= 0)
-        throw Error("input buffer '" + name + "' has zero size (" + std::to_string(v.width) + "x" +
-                    std::to_string(v.height) + ")");
+        throw Error("input buffer '" + name() + "' has zero size (" + std::to_string(v.width) +
+                    "x" + std::to_string(v.height) + ")");
     if (v.channels < channels.lo || v.channels > channels.hi)
-        throw Error("input buffer '" + name + "' has " + std::to_string(v.channels) +
+        throw Error("input buffer '" + name() + "' has " + std::to_string(v.channels) +
                     " channels, expected " +
                     (channels.lo == channels.hi ? std::to_string(channels.lo)
                      : channels.hi == channels.lo + 1
                          ? std::to_string(channels.lo) + " or " + std::to_string(channels.hi)
                          : std::to_string(channels.lo) + " to " + std::to_string(channels.hi)));
     if (v.width != w || v.height != h)
-        throw Error("input buffer '" + name + "' is " + std::to_string(v.width) + "x" +
+        throw Error("input buffer '" + name() + "' is " + std::to_string(v.width) + "x" +
                     std::to_string(v.height) + ", colour is " + std::to_string(w) + "x" +
                     std::to_string(h));
     if (v.rowStride != 0 && v.rowStride < long(v.width) * v.channels)
-        throw Error("input buffer '" + name + "' has a row stride of " +
+        throw Error("input buffer '" + name() + "' has a row stride of " +
                     std::to_string(v.rowStride) + " floats, less than a row (" +
                     std::to_string(long(v.width) * v.channels) + ")");
 }
@@ -52,7 +55,7 @@ void checkFrameInput(const FrameInput& f, int extrasNeeded, const char* backend,
     if (m == Memory::Cuda && !readsDeviceMemory)
         throw Error(std::string("the frame's buffers are in CUDA device memory, which the ") +
                     backend + " backend cannot read: use backend cuda");
-    const auto check = [m](const ImageView& v, const std::string& name, ChannelRange c, int width,
+    const auto check = [m](const ImageView& v, std::string_view name, ChannelRange c, int width,
                            int height) { checkImage(v, name, c, width, height, m); };
     for (const FrameBuffer& b : kFrameBuffers)
         if (b.required || (f.*b.view).data) check(f.*b.view, b.member, b.channels, w, h);

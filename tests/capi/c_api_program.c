@@ -54,7 +54,14 @@ int main(void) {
         bmfrSetFilterFloat(filter, "motionScaleY", (float)H);
         bmfrSetFilterBool(filter, "motionYUp", true);
         bmfrCommitFilter(filter);
-        check(bmfrGetFilterMemoryBytes(filter, W, H) > (size_t)W * H * 12, "a footprint");
+        const size_t bytes = bmfrGetFilterMemoryBytes(filter, W, H);
+        if (bytes == 0) { /* another allocator (a sanitizer's): the query says so, not a number */
+            check(lastCode == BMFR_ERROR_INVALID_OPERATION, "the footprint query's error");
+            bmfrGetDeviceError(device, NULL);
+            errorsSeen = 0;
+        } else {
+            check(bytes > (size_t)W * H * 12, "a footprint");
+        }
         for (int frame = 0; frame < FRAMES; ++frame) {
             for (int i = 0; i < W * H; ++i) {
                 const float noise = (float)((i * 7919 + frame * 104729) % 17) / 17.0f;
