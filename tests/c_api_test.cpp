@@ -75,6 +75,13 @@ void setImage(BMFRFilter filter, const char* name, const void* data, BMFRFormat 
     bmfrSetFilterImage(filter, name, const_cast<void*>(data), format, 64, 48, 0, 0, 0);
 }
 
+/// The frame's camera: its view-projection and jitter.
+void setCamera(BMFRFilter filter, const FrameData& f) {
+    bmfrSetFilterMatrix(filter, "viewProjection", &f.viewProjection.m[0][0]);
+    bmfrSetFilterFloat(filter, "jitterX", f.jitter[0]);
+    bmfrSetFilterFloat(filter, "jitterY", f.jitter[1]);
+}
+
 BMFRFilter newFilter(BMFRDevice device, const char* type) {
     BMFRFilter filter = bmfrNewFilter(device, type);
     bmfrSetFilterInt(filter, "maxWidth", 64);
@@ -147,9 +154,7 @@ TEST_F(CApi, EngineShapedFramesGiveTheFloatResultWithinTolerance) {
             setImage(filter, "depth", e.depth.data(), BMFR_FORMAT_FLOAT);
             setImage(filter, "motion", e.motion.data(), BMFR_FORMAT_HALF2);
             setImage(filter, "output", out.data(), BMFR_FORMAT_HALF4);
-            bmfrSetFilterMatrix(filter, "viewProjection", &f.viewProjection.m[0][0]);
-            bmfrSetFilterFloat(filter, "jitterX", f.jitter[0]);
-            bmfrSetFilterFloat(filter, "jitterY", f.jitter[1]);
+            setCamera(filter, f);
             bmfrExecuteFilter(filter);
             ASSERT_TRUE(reported.errors.empty()) << reported.errors[0].second;
             previousJitter[0] = f.jitter[0], previousJitter[1] = f.jitter[1];
@@ -213,9 +218,7 @@ TEST_F(CApi, ExactConversionsGiveTheSameBits) {
                 outs[k].assign(64 * 48 * 3, 0.0f);
                 setImage(both[k], "position", f.position.data(), BMFR_FORMAT_FLOAT3);
                 setImage(both[k], "output", outs[k].data(), BMFR_FORMAT_FLOAT3);
-                bmfrSetFilterMatrix(both[k], "viewProjection", &f.viewProjection.m[0][0]);
-                bmfrSetFilterFloat(both[k], "jitterX", f.jitter[0]);
-                bmfrSetFilterFloat(both[k], "jitterY", f.jitter[1]);
+                setCamera(both[k], f);
                 bmfrExecuteFilter(both[k]);
                 ASSERT_TRUE(reported.errors.empty()) << reported.errors[0].second;
                 EXPECT_EQ(std::memcmp(outs[k].data(), expected.data, outs[k].size() * 4), 0)
@@ -302,9 +305,7 @@ TEST_F(CApi, RestartsAndSkippedFramesDropTheHistoryAsAResetDoes) {
         setImage(filter, "normal", f.normal.data(), BMFR_FORMAT_FLOAT3);
         setImage(filter, "position", f.position.data(), BMFR_FORMAT_FLOAT3);
         setImage(filter, "output", out.data(), BMFR_FORMAT_FLOAT3);
-        bmfrSetFilterMatrix(filter, "viewProjection", &f.viewProjection.m[0][0]);
-        bmfrSetFilterFloat(filter, "jitterX", f.jitter[0]);
-        bmfrSetFilterFloat(filter, "jitterY", f.jitter[1]);
+        setCamera(filter, f);
         bmfrSetFilterInt(filter, "frameIndex", int(indices[i]));
         if (i == 2) bmfrSetFilterInt(filter, "accumulationMode", BMFR_ACCUMULATION_MODE_RESTART);
         bmfrExecuteFilter(filter);
