@@ -6,6 +6,7 @@
 #include "core/half.h"
 #include "core/image.h"
 #include "core/mat4.h"
+#include "core/octahedral.h"
 #include "path_traced_box.h"
 #include "test_support.h"
 #include <algorithm>
@@ -17,8 +18,6 @@
 
 namespace bmfr {
 namespace {
-
-using capi::encodeOctahedral;
 
 /// Errors a device reported through its callback, in order.
 struct Reported {
@@ -50,7 +49,9 @@ EngineFrame engineFrame(const FrameData& f, const float previousJitter[2]) {
             e.albedo[4 * i + c] = floatToHalfBits(f.albedo.data()[3 * i + c]);
         }
         e.color[4 * i + 3] = e.albedo[4 * i + 3] = floatToHalfBits(1.0f);
-        encodeOctahedral(&f.normal.data()[3 * i], &e.normal[2 * i]);
+        const float* n = &f.normal.data()[3 * i];
+        const Vec2 o = octahedralEncode({n[0], n[1], n[2]});
+        e.normal[2 * i] = o.x, e.normal[2 * i + 1] = o.y;
         const float* p = &f.position.data()[3 * i];
         e.depth[i] = transformPoint(f.viewProjection, {p[0], p[1], p[2]}).w;
         const float* m = &f.motion.data()[f.motion.channels * i];
@@ -259,10 +260,9 @@ TEST(CApiDecoders, OctahedralNormalsAndMotionByHand) {
         {-1, 0, 0}};
     std::vector<float> enc, unorm, buffer;
     for (const auto& n : normals) {
-        float e[2];
-        encodeOctahedral(n, e);
-        enc.insert(enc.end(), e, e + 2);
-        unorm.push_back(0.5f * e[0] + 0.5f), unorm.push_back(0.5f * e[1] + 0.5f);
+        const Vec2 e = octahedralEncode({n[0], n[1], n[2]});
+        enc.push_back(e.x), enc.push_back(e.y);
+        unorm.push_back(0.5f * e.x + 0.5f), unorm.push_back(0.5f * e.y + 0.5f);
     }
     for (int variant = 0; variant < 2; ++variant) {
         std::vector<float>& data = variant ? unorm : enc;

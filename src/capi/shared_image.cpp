@@ -1,6 +1,7 @@
 #include "capi/shared_image.h"
 #include "core/half.h"
 #include "core/mat4.h"
+#include "core/octahedral.h"
 #include <bmfr/bmfr.h>
 #include <bmfr/error.h>
 #include <cmath>
@@ -69,47 +70,20 @@ ImageView copyToFloats(const SharedImage& image, int channels, std::vector<float
     return ImageView{buffer.data(), image.width, image.height, channels, 0};
 }
 
-namespace {
-
-float signNotZero(float v) {
-    return v >= 0.0f ? 1.0f : -1.0f;
-}
-
-} // namespace
-
 ImageView decodeOctahedralNormals(const SharedImage& image, bool unorm,
                                   std::vector<float>& buffer) {
     buffer.resize(size_t(image.width) * size_t(image.height) * 3);
     float* out = buffer.data();
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
-            float u = image.at(x, y, 0);
-            float v = image.at(x, y, 1);
-            if (unorm) {
-                u = 2.0f * u - 1.0f;
-                v = 2.0f * v - 1.0f;
-            }
-            float n[3] = {u, v, 1.0f - std::fabs(u) - std::fabs(v)};
-            const float t = std::fmax(-n[2], 0.0f);
-            n[0] -= signNotZero(n[0]) * t;
-            n[1] -= signNotZero(n[1]) * t;
-            const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (int c = 0; c < 3; ++c) *out++ = n[c] / length;
+            Vec2 o{image.at(x, y, 0), image.at(x, y, 1)};
+            if (unorm) o = Vec2{2.0f * o.x - 1.0f, 2.0f * o.y - 1.0f};
+            const Vec3 n = octahedralDecode(o);
+            *out++ = n.x;
+            *out++ = n.y;
+            *out++ = n.z;
         }
     return ImageView{buffer.data(), image.width, image.height, 3, 0};
-}
-
-void encodeOctahedral(const float n[3], float out[2]) {
-    const float sum = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
-    float u = n[0] / sum;
-    float v = n[1] / sum;
-    if (n[2] < 0.0f) {
-        const float folded = (1.0f - std::fabs(v)) * signNotZero(u);
-        v = (1.0f - std::fabs(u)) * signNotZero(v);
-        u = folded;
-    }
-    out[0] = u;
-    out[1] = v;
 }
 
 ImageView positionsFromDepth(const SharedImage& depth, const Mat4& viewProjection,

@@ -40,9 +40,6 @@ ImageView inPlaceView(const SharedImage& image);
 /// Unit normals from a two-channel octahedral encoding (Cigolle et al. 2014) in [-1, 1], or in
 /// [0, 1] when `unorm` (as NRD packs them), into `buffer` (3 channels, packed).
 ImageView decodeOctahedralNormals(const SharedImage& image, bool unorm, std::vector<float>& buffer);
-/// The octahedral encoding of a unit normal, in [-1, 1] (the inverse, for tests and examples).
-void encodeOctahedral(const float normal[3], float out[2]);
-
 /// World positions from view depth (the clip-space w of the point: its distance along the
 /// camera's forward axis, scene units, > 0) at each pixel's sample position (its centre plus
 /// the jitter), through the inverse of `viewProjection`, into `buffer` (3 channels, packed).
