@@ -18,5 +18,8 @@ cmake --build build-asan -j "$(nproc)" \
     --target bmfr bmfr_tests bmfr_allocation_test bmfr_minimal_example bmfr_c_api_program \
     bmfr_denoise_frame > /dev/null
 cd build-asan
+# The conformance suite on the best CPU path only: the others are the same source, compiled
+# for other instruction sets (tests/conformance/conformance_test.cpp).
+BMFR_CONFORMANCE_BEST_ISA_ONLY=1 \
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --output-on-failure -j "$(nproc)" -L "$labels"

@@ -104,10 +104,13 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
     auto row = [&](long y) { return ring + size_t(y % 3) * ResolvedRows::rowFloats(w); };
     auto rows = [&] [[gnu::always_inline]] (const auto& pl) {
         const uint8_t* accept = a.filter.on() ? pl.resolvedAccept : pl.accept;
-        if (taa && y0 > 0) phase3Row(a, pl, y0 - 1, false, row(y0 - 1));
-        phase3Row(a, pl, y0, true, row(y0));
+        // Phase III runs a row ahead of the TAA (and a halo row each side of [y0, y1) under
+        // TAA), from one call site: each inlined copy of it is a large share of this file's
+        // compile.
+        long next = taa && y0 > 0 ? y0 - 1 : y0;
         for (long y = y0; y < y1; ++y) {
-            if (y + 1 < h && (taa || y + 1 < y1)) phase3Row(a, pl, y + 1, y + 1 < y1, row(y + 1));
+            const long last = y + 1 < h && (taa || y + 1 < y1) ? y + 1 : y;
+            for (; next <= last; ++next) phase3Row(a, pl, next, next >= y0 && next < y1, row(next));
             const float* mid = row(y);
             const float* up = y > 0 ? row(y - 1) : mid;
             const float* down = y + 1 < h ? row(y + 1) : mid;
