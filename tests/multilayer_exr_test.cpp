@@ -179,6 +179,83 @@ TEST(MultilayerExr, SequencesUseTheDefaultPassesAndChannelOverrides) {
     fs::remove_all(dir);
 }
 
+// Cycles' Vector pass (X, Y: the previous frame's screen position minus this one's, pixels, y
+// up, through this frame's projection, so without the lens-shift jitter) read under
+// "motion_convention": "cycles" becomes bmfr's motion, (X, -Y) + jitter - previous jitter, by
+// hand here; without the convention it is an error, as is a --channel for a buffer the frames
+// do not name (it used to be ignored).
+TEST(MultilayerExr, CyclesVectorPassBecomesMotionWithTheJitter) {
+    const fs::path dir = testing::freshDir("ml", "cycles_vector");
+    std::vector<std::string> channels = kCyclesChannels;
+    for (const char* c : {"X", "Y", "Z", "W"})
+        channels.push_back(std::string("ViewLayer.Vector.") + c);
+    writeLayered(dir / "frame_0000.exr", channels);
+    writeLayered(dir / "frame_0001.exr", channels);
+    const std::string frame = R"("color": "F", "albedo": "F", "normal": "F", "position": "F",
+        "motion": "F", "view_projection": [[1,0,0,0],[0,1,0,0],[0,0,-1,-0.2],[0,0,-1,0]])";
+    auto entry = [&](const char* file, const char* jitter) {
+        std::string e = frame;
+        for (size_t p; (p = e.find("\"F\"")) != std::string::npos;)
+            e.replace(p, 3, std::string("\"") + file + "\"");
+        return "{" + e + ", \"jitter\": " + jitter + "}";
+    };
+    auto write = [&](const std::string& convention) {
+        std::ofstream(dir / "sequence.json")
+            << R"({"format": "bmfr-sequence", "version": 1, "width": 6, "height": 4, )" +
+                   convention + R"("frames": [)" + entry("frame_0000.exr", "[0.25, -0.125]") +
+                   ", " + entry("frame_0001.exr", "[-0.375, 0.0625]") + "]}";
+    };
+    write(R"("motion_convention": "cycles", )");
+    auto reader = SequenceReader::open(dir.string());
+    FrameData f;
+    reader->load(1, f);
+    ASSERT_EQ(f.motion.channels, 2);
+    const float dx = -0.375f - 0.25f, dy = 0.0625f - -0.125f;
+    for (int i = 0; i < kLayerW * kLayerH; ++i) {
+        EXPECT_EQ(f.motion.data()[2 * i], valueOf("ViewLayer.Vector.X", i) + dx);
+        EXPECT_EQ(f.motion.data()[2 * i + 1], -valueOf("ViewLayer.Vector.Y", i) + dy);
+    }
+    write("");
+    const std::string e = errorOf([&] { SequenceReader::open(dir.string())->load(1, f); });
+    EXPECT_NE(e.find("motion_convention"), std::string::npos) << e;
+    write(R"("motion_convention": "blender", )");
+    EXPECT_NE(errorOf([&] { SequenceReader::open(dir.string()); }).find("\"blender\""),
+              std::string::npos);
+    // A layer for a buffer the frames do not name is an error, not ignored.
+    std::ofstream(dir / "sequence.json")
+        << R"({"format": "bmfr-sequence", "version": 1, "width": 6, "height": 4, "frames": [{)"
+        << R"("color": "frame_0000.exr", "albedo": "frame_0000.exr", "normal": "frame_0000.exr",
+        "position": "frame_0000.exr",
+        "view_projection": [[1,0,0,0],[0,1,0,0],[0,0,-1,-0.2],[0,0,-1,0]]}]})";
+    const auto r = testing::runCli("denoise " + dir.string() + " -o " + (dir / "out").string() +
+                                   " -q --no-png --channel motion=ViewLayer.Vector");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("names no motion file"), std::string::npos) << r.output;
+    fs::remove_all(dir);
+}
+
+// `bmfr tonemap` and imageLayer (bmfr.read_exr's default): a multilayer render gives its
+// Combined pass, --layer another; a file with neither plain channels nor Combined names its
+// layers.
+TEST(MultilayerExr, TonemapReadsTheCombinedPassOrTheLayerNamed) {
+    const fs::path dir = testing::freshDir("ml", "tonemap");
+    writeLayered(dir / "render.exr", kCyclesChannels);
+    EXPECT_EQ(imageLayer((dir / "render.exr").string()), "ViewLayer.Combined");
+    auto run = [&](const std::string& args) {
+        return testing::runCli("tonemap " + (dir / "render.exr").string() + " -o " +
+                               (dir / "out.png").string() + args);
+    };
+    EXPECT_EQ(run("").code, 0);
+    EXPECT_EQ(run(" --layer ViewLayer.Emit").code, 0);
+    const auto bad = run(" --layer ViewLayer.Nope");
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.output.find("in layer 'ViewLayer.Nope'"), std::string::npos) << bad.output;
+    writeLayered(dir / "passes.exr", {"ViewLayer.Emit.R", "ViewLayer.Emit.G", "ViewLayer.Emit.B"});
+    const std::string e = errorOf([&] { imageLayer((dir / "passes.exr").string()); });
+    EXPECT_NE(e.find("no Combined pass; name a layer (ViewLayer.Emit)"), std::string::npos) << e;
+    fs::remove_all(dir);
+}
+
 // A Cycles render with its own denoiser on (tests/data/make_cycles_denoiser_on.py) holds both
 // Combined, the denoised result, and Noisy Image: the noisy one is read, and the run says so.
 TEST(MultilayerExr, CyclesOwnDenoiserIsNoticedAndItsNoisyImageRead) {

@@ -10,7 +10,7 @@ namespace bmfr::app {
 
 void addTonemapCommand(CLI::App& app, int& exitCode) {
     struct Job {
-        std::string input, output;
+        std::string input, output, layer;
         float exposure = 1.0f;
         bool quiet = false;
     };
@@ -20,6 +20,9 @@ void addTonemapCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("input", job->input, "EXR file")->required();
     cmd->add_option("-o,--output", job->output, "PNG file")->required();
     cmd->add_option("--exposure", job->exposure, "linear scale applied first")->default_val(1.0);
+    cmd->add_option("--layer", job->layer,
+                    "layer of a multilayer EXR, as \"ViewLayer.Noisy Image\" (default: the plain "
+                    "channels, else the Combined pass)");
     cmd->add_flag("-q,--quiet", job->quiet, "accepted on every command; tonemap prints nothing");
     cmd->callback([job, &exitCode] {
         std::error_code ec;
@@ -28,7 +31,8 @@ void addTonemapCommand(CLI::App& app, int& exitCode) {
                              " is the input; refusing to overwrite it");
         if (!(std::isfinite(job->exposure) && job->exposure > 0.0f))
             throw UsageError("tonemap: --exposure must be a positive number");
-        writePngToneMapped(job->output, readExr(job->input, 3), job->exposure);
+        const std::string layer = job->layer.empty() ? imageLayer(job->input) : job->layer;
+        writePngToneMapped(job->output, readExr(job->input, 3, layer), job->exposure);
         exitCode = 0;
     });
 }

@@ -42,13 +42,14 @@ PYBIND11_MODULE(bmfr, m) {
             ImageF image;
             {
                 py::gil_scoped_release unlocked;
-                image = readExr(path, channels, layer);
+                image = readExr(path, channels, layer.empty() ? imageLayer(path) : layer);
             }
             return toArray(view(image));
         },
         py::arg("path"), py::arg("channels") = 3, py::arg("layer") = "",
         "An EXR file as a float32 (height, width, channels) array. layer names a layer of a "
-        "multilayer file, as \"ViewLayer.Noisy Image\" (bmfr.exr_channels lists them).");
+        "multilayer file, as \"ViewLayer.Noisy Image\" (bmfr.exr_channels lists them); by "
+        "default a multilayer file gives its Combined pass.");
     m.def(
         "write_exr",
         [](const std::string& path, const py::handle& image) {

@@ -103,6 +103,12 @@ std::vector<std::string> exrChannelNames(const std::string& path) {
     }
 }
 
+bool isLayerOfPass(const std::string& layer, const std::string& pass) {
+    return layer == pass ||
+           (layer.size() > pass.size() &&
+            layer.compare(layer.size() - pass.size() - 1, std::string::npos, "." + pass) == 0);
+}
+
 std::string findExrLayer(const std::vector<std::string>& channelNames, const std::string& pass,
                          const std::string& path) {
     std::vector<std::string> layers;
@@ -110,10 +116,8 @@ std::string findExrLayer(const std::vector<std::string>& channelNames, const std
         const size_t dot = n.rfind('.');
         if (dot == std::string::npos) continue;
         const std::string layer = n.substr(0, dot);
-        const bool match = layer == pass || (layer.size() > pass.size() &&
-                                             layer.compare(layer.size() - pass.size() - 1,
-                                                           std::string::npos, "." + pass) == 0);
-        if (match && std::find(layers.begin(), layers.end(), layer) == layers.end())
+        if (isLayerOfPass(layer, pass) &&
+            std::find(layers.begin(), layers.end(), layer) == layers.end())
             layers.push_back(layer);
     }
     if (layers.size() > 1)
@@ -124,6 +128,23 @@ std::string findExrLayer(const std::vector<std::string>& channelNames, const std
 
 std::string findExrLayer(const std::string& path, const std::string& pass) {
     return findExrLayer(exrChannelNames(path), pass, path);
+}
+
+std::string imageLayer(const std::string& path) {
+    const std::vector<std::string> names = exrChannelNames(path);
+    if (std::any_of(names.begin(), names.end(),
+                    [](const std::string& n) { return n.find('.') == std::string::npos; }))
+        return {};
+    if (std::string layer = findExrLayer(names, "Combined", path); !layer.empty()) return layer;
+    std::vector<std::string> layers;
+    for (const std::string& n : names)
+        if (std::string l = n.substr(0, n.rfind('.'));
+            std::find(layers.begin(), layers.end(), l) == layers.end())
+            layers.push_back(l);
+    std::string list;
+    for (size_t k = 0; k < layers.size() && k < 12; ++k) list += (k ? ", " : "") + layers[k];
+    throw Error(path + ": no plain channels and no Combined pass; name a layer (" + list +
+                (layers.size() > 12 ? ", ..." : "") + ")");
 }
 
 void readExrLayers(const std::string& path, const std::vector<ExrLayerRead>& reads,

@@ -47,6 +47,14 @@ std::string findExrLayer(const std::vector<std::string>& channelNames, const std
 /// several view layers hold it (say which with a layer name).
 std::string findExrLayer(const std::string& path, const std::string& pass);
 
+/// Whether `layer` is the pass `pass` ("Vector") itself or under a view layer ("ViewLayer.Vector").
+bool isLayerOfPass(const std::string& layer, const std::string& pass);
+
+/// The layer an image viewer shows of `path`: "" when it has plain channels, else the layer of
+/// its Combined pass (a Blender multilayer render). Throws bmfr::Error listing the layers when
+/// it has neither.
+std::string imageLayer(const std::string& path);
+
 /// Writes 1, 2 or 3-channel float images (Y / R,G / R,G,B) atomically (temp file + rename).
 void writeExr(const std::string& path, const ImageF& image);
 

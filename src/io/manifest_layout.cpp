@@ -33,7 +33,7 @@ class ManifestReader : public SequenceReader {
             requireKnownKeys(manifest_,
                              {"format", "version", "width", "height", "color_is_demodulated",
                               "position_limit_squared", "normal_limit_squared", "extras", "layers",
-                              "frames", "generator"},
+                              "motion_convention", "frames", "generator"},
                              mp.string());
             std::vector<std::string> frameKeys = layeredBufferNames();
             for (const char* key : {"reset", "extras", "aovs", "view_projection", "jitter"})
@@ -49,6 +49,12 @@ class ManifestReader : public SequenceReader {
                 throw Error(mp.string() + ": zero-size frames (" + std::to_string(info_.width) +
                             "x" + std::to_string(info_.height) + ")");
             info_.colorIsDemodulated = manifest_.value("color_is_demodulated", false);
+            const std::string convention = manifest_.value("motion_convention", "bmfr");
+            if (convention != "bmfr" && convention != "cycles")
+                throw Error(mp.string() + ": \"motion_convention\" is \"" + convention +
+                            "\"; use \"bmfr\" (include/bmfr/frame.h) or \"cycles\" (Cycles' "
+                            "Vector pass)");
+            cyclesMotion_ = convention == "cycles";
             if (manifest_.contains("position_limit_squared"))
                 info_.positionLimitSquared = floatValue(manifest_["position_limit_squared"],
                                                         mp.string() + ": position_limit_squared");
@@ -95,7 +101,8 @@ class ManifestReader : public SequenceReader {
             });
             f.reference = ImageF();
             if (info_.hasReference) buffers.push_back({"reference", &f.reference, 3});
-            readBuffers(j, buffers, where, content);
+            std::string motionLayer;
+            readBuffers(j, buffers, where, content, motionLayer);
             f.reset = j.value("reset", false);
             f.extras.clear();
             if (j.contains("extras")) {
@@ -135,14 +142,60 @@ class ManifestReader : public SequenceReader {
                 f.jitter[0] = floatValue(j["jitter"].at(0), where + ": jitter");
                 f.jitter[1] = floatValue(j["jitter"].at(1), where + ": jitter");
             }
+            if (f.motion.width) {
+                const bool vectorPass = isLayerOfPass(motionLayer, "Vector");
+                if (vectorPass && !cyclesMotion_)
+                    throw Error(where + ": motion is read from '" + motionLayer +
+                                "', Cycles' Vector pass (y up, without the jitter); set "
+                                "\"motion_convention\": \"cycles\" in sequence.json so that it "
+                                "is converted (docs/blender.md)");
+                if (cyclesMotion_ && content == ExrContent::Pixels)
+                    fromCyclesMotion(f, index, where);
+            }
         } catch (const json::exception& e) {
             throw Error(where + ": " + jsonProblem(e));
         }
         checkFrame(index, f);
     }
 
+    void setLayerOverrides(const std::map<std::string, std::string>& layers) override {
+        SequenceReader::setLayerOverrides(layers);
+        // A layer for a buffer the frames do not name would be ignored: say so instead.
+        for (const auto& [buffer, layer] : layers)
+            if (!manifest_["frames"][0].contains(buffer))
+                throw Error("--channel " + buffer + "=" + layer + ": " + info_.directory +
+                            "/sequence.json names no " + buffer +
+                            " file in its frames, so there is no file to read the layer from; "
+                            "name one in each frame (\"" +
+                            buffer + "\": \"frame_0001.exr\")");
+    }
+
   private:
     json manifest_;
+    bool cyclesMotion_ = false; ///< "motion_convention": "cycles"
+
+    /// Cycles' Vector pass to FrameInput::motion: its X, Y are the previous frame's screen
+    /// position minus this one's, pixels, y up, both through this frame's projection (so without
+    /// the jitter, which render_sequence.py makes with the lens shift); bmfr's is y down with
+    /// the jitter of both frames: (X, -Y) + jitter - previous jitter.
+    void fromCyclesMotion(FrameData& f, int index, const std::string& where) const {
+        float previous[2] = {f.jitter[0], f.jitter[1]};
+        if (index > 0) {
+            const json& p = manifest_["frames"][size_t(index - 1)];
+            previous[0] = previous[1] = 0.0f;
+            if (p.contains("jitter")) {
+                previous[0] = floatValue(p["jitter"].at(0), where + ": previous frame's jitter");
+                previous[1] = floatValue(p["jitter"].at(1), where + ": previous frame's jitter");
+            }
+        }
+        const float dx = f.jitter[0] - previous[0], dy = f.jitter[1] - previous[1];
+        ImageF& m = f.motion;
+        for (size_t p = 0; p < size_t(m.width) * size_t(m.height); ++p) {
+            float* v = m.data() + p * size_t(m.channels);
+            v[0] = v[0] + dx;
+            v[1] = -v[1] + dy;
+        }
+    }
     std::map<std::string, std::string> layers_; ///< the sequence's own "layers"
 
     struct Buffer {
@@ -155,7 +208,7 @@ class ManifestReader : public SequenceReader {
     /// comes from --channel, then the entry, then the sequence's "layers", then kDefaultPasses
     /// when the file has only layered channels. Buffers in one file are read in one pass.
     void readBuffers(const json& frame, const std::vector<Buffer>& buffers,
-                     const std::string& where, ExrContent content) const {
+                     const std::string& where, ExrContent content, std::string& motionLayer) const {
         std::map<std::string, std::vector<std::pair<const char*, ExrLayerRead>>> byFile;
         std::vector<std::string> order; // files in first-use order, for stable error messages
         for (const auto& [key, out, channels] : buffers) {
@@ -183,6 +236,7 @@ class ManifestReader : public SequenceReader {
                 if (read.layer.empty() || read.channels == 0)
                     if (names.empty()) names = exrChannelNames(path);
                 if (read.layer.empty()) read.layer = defaultLayer(names, key, path);
+                if (std::string(key) == "motion") motionLayer = read.layer;
                 if (read.channels == 0) {
                     const std::string b = read.layer.empty() ? "B" : read.layer + ".B";
                     read.channels = std::find(names.begin(), names.end(), b) != names.end() ? 3 : 2;

@@ -33,8 +33,9 @@ const std::vector<DefaultPass> kDefaultPasses = {
     {"position", {"Position"}},
     {"emission", {"Emit"}},
     {"reference", {"Combined"}},
-    // Cycles has no pass of the other buffers' conventions (its Vector pass points the other
-    // way, y up).
+    // Cycles' Vector pass, read only under "motion_convention": "cycles" (converted then).
+    {"motion", {"Vector"}},
+    // Cycles has no pass of the other buffers' conventions.
 };
 
 std::vector<std::string> layeredBufferNames() {
