@@ -1,0 +1,344 @@
+"""Renders a Blender scene's animation with Cycles into a bmfr sequence folder.
+
+Per frame one multilayer EXR at `spp` samples per pixel with the passes bmfr reads (Combined,
+Denoising Albedo, Normal, Position, Emit; Cycles' names) and, when anything in the scene moves,
+Cycles' Vector pass (motion) and each pixel's previous world position (an AOV), optionally a
+reference of more samples, and OUT/sequence.json with the camera's view-projection in bmfr's
+convention and the frame's sub-pixel jitter. Files are named by Blender frame number.
+
+Conventions (those of bmfr's FrameInput, include/bmfr/frame.h):
+- view_projection is row-major and acts on column vectors; NDC y grows downwards, so Blender's
+  OpenGL projection gets its second row negated.
+- The primary ray of pixel (x, y) goes through the screen point (x + 0.5 + jx, y + 0.5 + jy),
+  pixels, y down. Cycles' pixel filter is shrunk to 0.01 px so that every ray of a frame goes
+  through that one point, and the jitter (Halton 2, 3, as bmfr render) is made with the camera's
+  lens shift. The jitter written is the one realised, read back from the two projections.
+- Motion is Cycles' Vector pass as it is ("motion_convention": "cycles": bmfr flips its y and
+  adds the jitter of both frames, which Cycles leaves out). The previous position is the
+  pixel's world position moved by its object's motion from this frame to the previous one
+  (exact for rigid motion; deforming meshes and instances get their object's transform only).
+- References are rendered at the pixel centres, as bmfr render's are.
+"""
+import json
+import os
+
+import bpy
+
+PASS_NOTE = "Combined, Denoising Albedo, Normal, Position, Emit (Cycles pass names)"
+PREVIOUS_AOV = "bmfr_previous_position"
+ROW_PROPERTY = "bmfr_previous_row"  # + 0, 1, 2: this frame's world -> the previous frame's
+
+
+class SequenceError(Exception):
+    """A scene or setting render_sequence cannot render faithfully; the message says why."""
+
+
+class Options:
+    def __init__(self, spp=1, reference_spp=0, frames=None, width=None, height=None, jitter=True,
+                 seed=1, device="CPU", motion="auto", denoiser=False):
+        self.spp = spp                      # samples per pixel of the noisy frames, >= 1
+        self.reference_spp = reference_spp  # 0: no reference
+        self.frames = frames                # (first, last): Blender frames first..last-1
+        self.width, self.height = width, height
+        self.jitter = jitter
+        self.seed = seed
+        self.device = device                # CPU or GPU (the GPU Cycles finds)
+        self.motion = motion                # auto (when anything moves), on or off
+        self.denoiser = denoiser            # Cycles' own OIDN per frame, beside the noisy image
+
+
+def halton(index, base):
+    f, r = 1.0, 0.0
+    while index > 0:
+        f /= base
+        r += f * (index % base)
+        index //= base
+    return r
+
+
+def projection(camera, depsgraph, render):
+    return camera.calc_matrix_camera(depsgraph, x=render.resolution_x, y=render.resolution_y,
+                                     scale_x=render.pixel_aspect_x, scale_y=render.pixel_aspect_y)
+
+
+def view_projection(camera, depsgraph, render):
+    """World to clip in bmfr's convention (NDC y down)."""
+    m = projection(camera, depsgraph, render) @ camera.matrix_world.inverted()
+    rows = [list(m[r]) for r in range(4)]
+    rows[1] = [-v for v in rows[1]]
+    return rows
+
+
+def write_json_atomically(path, doc):
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+    os.replace(tmp, path)
+
+
+def check_scene(scene, opts):
+    """What would make the passes wrong, as one SequenceError listing every problem."""
+    problems = []
+    if scene.camera is None:
+        problems.append("the scene has no active camera")
+    elif scene.camera.type != "CAMERA":
+        problems.append(f"the active camera '{scene.camera.name}' is not a camera")
+    else:
+        cam = scene.camera.data
+        if cam.type != "PERSP":
+            problems.append(f"the camera is {cam.type.lower()}: bmfr needs a perspective camera")
+        if cam.dof.use_dof:
+            problems.append("depth of field is on (Camera > Depth of Field): the features are "
+                            "sharp where the image is blurred; turn it off")
+    if scene.render.use_motion_blur:
+        problems.append("motion blur is on (Render > Motion Blur): Cycles then writes no Vector "
+                        "pass and the image is blurred where the features are not; turn it off")
+    if scene.render.film_transparent:
+        problems.append("the film is transparent (Render > Film > Transparent): the background "
+                        "has no colour to denoise; turn it off")
+    if opts.spp < 1:
+        problems.append(f"{opts.spp} samples per pixel: at least 1")
+    if opts.reference_spp < 0:
+        problems.append(f"{opts.reference_spp} reference samples per pixel: 0 (none) or more")
+    if opts.device not in ("CPU", "GPU"):
+        problems.append(f"device {opts.device}: CPU or GPU")
+    if opts.motion not in ("auto", "on", "off"):
+        problems.append(f"motion {opts.motion}: auto, on or off")
+    if problems:
+        raise SequenceError("; ".join(problems))
+
+
+def frame_range(scene, opts):
+    first, last = scene.frame_start, scene.frame_end + 1
+    if opts.frames:
+        first, last = opts.frames
+    if last <= first:
+        raise SequenceError(f"empty frame range {first}:{last}")
+    return first, last
+
+
+def use_gpu(scene):
+    """Cycles on the first GPU backend that finds a device, or a SequenceError."""
+    prefs = bpy.context.preferences.addons["cycles"].preferences
+    for backend in ("OPTIX", "CUDA", "HIP", "ONEAPI", "METAL"):
+        try:
+            prefs.compute_device_type = backend
+        except TypeError:  # not in this build of Blender
+            continue
+        prefs.get_devices()
+        devices = [d for d in prefs.devices if d.type == backend]
+        if devices:
+            for d in prefs.devices:
+                d.use = d.type == backend
+            scene.cycles.device = "GPU"
+            return f"{backend}: " + ", ".join(d.name for d in devices)
+    raise SequenceError("--device GPU: Cycles finds no GPU (tried OptiX, CUDA, HIP, oneAPI, "
+                        "Metal); use --device CPU")
+
+
+def moving_objects(scene, first, last):
+    """Names of the objects other than the camera whose world matrix changes over the frames,
+    and of those that deform (armature, shape keys, animated modifiers: counted as moving)."""
+    objs = [o for o in scene.objects if o != scene.camera and o.type != "CAMERA"]
+    start = {}
+    moving = set()
+    for frame in range(first, last):
+        scene.frame_set(frame)
+        for o in objs:
+            m = [list(r) for r in o.matrix_world]
+            if o.name not in start:
+                start[o.name] = m
+            elif any(abs(a - b) > 1e-7 for ra, rb in zip(m, start[o.name]) for a, b in zip(ra, rb)):
+                moving.add(o.name)
+    for o in objs:
+        keys = getattr(o.data, "shape_keys", None)
+        if any(m.type in ("ARMATURE", "CLOTH", "SOFT_BODY", "WAVE") for m in o.modifiers) or (
+                keys and keys.animation_data):
+            moving.add(o.name)
+    return sorted(moving)
+
+
+def add_previous_position_aov(scene, layer):
+    """Every node material writes PREVIOUS_AOV: its object's row properties (this frame's world
+    to the previous frame's) applied to the shading position. Returns the objects whose
+    materials cannot (no node material): their pixels get no previous position."""
+    if PREVIOUS_AOV not in [a.name for a in layer.aovs]:
+        aov = layer.aovs.add()
+        aov.name = PREVIOUS_AOV
+        aov.type = "COLOR"
+    done = set()
+    without = []
+    for o in scene.objects:
+        if o.type not in ("MESH", "CURVE", "SURFACE", "META", "FONT"):
+            continue
+        mats = [s.material for s in o.material_slots if s.material]
+        if not mats or any(not m.use_nodes for m in mats):
+            without.append(o.name)
+        for m in mats:
+            if m.use_nodes and m.name not in done:
+                done.add(m.name)
+                wire_aov(m.node_tree)
+    return without
+
+
+def wire_aov(tree):
+    if any(n.bl_idname == "ShaderNodeOutputAOV" and n.name == PREVIOUS_AOV for n in tree.nodes):
+        return
+    nodes, links = tree.nodes, tree.links
+    geometry = nodes.new("ShaderNodeNewGeometry")
+    combine = nodes.new("ShaderNodeCombineXYZ")
+    for r, axis in enumerate("XYZ"):
+        attr = nodes.new("ShaderNodeAttribute")
+        attr.attribute_type = "OBJECT"
+        attr.attribute_name = f"{ROW_PROPERTY}{r}"
+        dot = nodes.new("ShaderNodeVectorMath")
+        dot.operation = "DOT_PRODUCT"
+        links.new(attr.outputs["Vector"], dot.inputs[0])
+        links.new(geometry.outputs["Position"], dot.inputs[1])
+        add = nodes.new("ShaderNodeMath")
+        add.operation = "ADD"
+        links.new(dot.outputs["Value"], add.inputs[0])
+        links.new(attr.outputs["Alpha"], add.inputs[1])
+        links.new(add.outputs["Value"], combine.inputs[axis])
+    out = nodes.new("ShaderNodeOutputAOV")
+    out.name = PREVIOUS_AOV
+    if hasattr(out, "aov_name"):
+        out.aov_name = PREVIOUS_AOV
+    else:
+        out.name = PREVIOUS_AOV
+    links.new(combine.outputs["Vector"], out.inputs["Color"])
+
+
+def set_previous_rows(scene, frame, objects):
+    """Each object's ROW_PROPERTY0..2 at `frame`: the rows of M(frame - 1) M(frame)^-1."""
+    scene.frame_set(frame - 1)
+    before = {o.name: o.matrix_world.copy() for o in objects}
+    scene.frame_set(frame)
+    for o in objects:
+        delta = before[o.name] @ o.matrix_world.inverted_safe()
+        for r in range(3):
+            o[f"{ROW_PROPERTY}{r}"] = [delta[r][0], delta[r][1], delta[r][2], delta[r][3]]
+
+
+def configure(scene, opts):
+    render = scene.render
+    if opts.width:
+        render.resolution_x = opts.width
+    if opts.height:
+        render.resolution_y = opts.height
+    render.resolution_percentage = 100
+    if render.resolution_x <= 0 or render.resolution_y <= 0:
+        raise SequenceError("zero image size")
+    render.engine = "CYCLES"
+    cycles = scene.cycles
+    device = "CPU"
+    cycles.device = "CPU"
+    if opts.device == "GPU":
+        device = use_gpu(scene)
+    cycles.use_adaptive_sampling = False
+    cycles.use_denoising = opts.denoiser
+    if opts.denoiser:
+        cycles.denoiser = "OPENIMAGEDENOISE"
+    cycles.filter_width = 0.01
+    # Persistent data keeps the objects' properties of the first frame rendered, so the
+    # previous-position AOV would go stale (Blender 3.4): on only where nothing moves.
+    render.use_persistent_data = True
+    settings = render.image_settings
+    settings.file_format = "OPEN_EXR_MULTILAYER"
+    settings.color_depth = "32"
+    settings.exr_codec = "ZIP"
+    render.use_file_extension = False
+    layer = bpy.context.view_layer
+    layer.use_pass_combined = True
+    layer.use_pass_normal = True
+    layer.use_pass_position = True
+    layer.use_pass_emit = True
+    layer.cycles.denoising_store_passes = True
+    if opts.denoiser:
+        layer.cycles.use_denoising = True
+    return layer, device
+
+
+def render_to(scene, path):
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    if not os.path.exists(path):
+        raise SequenceError(f"Cycles did not write {path}")
+
+
+def render_sequence(scene, out, opts, progress=None):
+    """Renders scene's frames into the folder `out`. progress(done, total, text) is called after
+    each frame. Returns a summary dict. Raises SequenceError for a scene it cannot render."""
+    check_scene(scene, opts)
+    first, last = frame_range(scene, opts)
+    layer, device = configure(scene, opts)
+    render = scene.render
+    moving = moving_objects(scene, first, last)
+    motion = opts.motion == "on" or (opts.motion == "auto" and bool(moving))
+    layer.use_pass_vector = motion
+    render.use_persistent_data = not motion
+    without_previous = []
+    movers = []
+    if motion:
+        without_previous = add_previous_position_aov(scene, layer)
+        movers = [o for o in scene.objects if o.type in ("MESH", "CURVE", "SURFACE", "META", "FONT")]
+    out = os.path.abspath(out)
+    os.makedirs(out, exist_ok=True)
+    cam = scene.camera
+    w, h = render.resolution_x, render.resolution_y
+    frames = []
+    doc = {"format": "bmfr-sequence", "version": 1, "width": w, "height": h,
+           "color_is_demodulated": False,
+           "generator": f"Blender {bpy.app.version_string} Cycles ({device}, {opts.spp} spp) via "
+                        f"tools/blender/render_sequence.py; passes {PASS_NOTE}",
+           "frames": frames}
+    if motion:
+        doc["motion_convention"] = "cycles"
+    total = last - first
+    for n, frame in enumerate(range(first, last)):
+        if motion:
+            set_previous_rows(scene, frame, movers)
+        scene.frame_set(frame)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        shift = (cam.data.shift_x, cam.data.shift_y)
+        vp = view_projection(cam, depsgraph, render)
+        p0 = projection(cam, depsgraph, render)
+        jitter = (halton(n + 1, 2) - 0.5, halton(n + 1, 3) - 0.5) if opts.jitter else (0.0, 0.0)
+        # Lens shift is in units of the larger image side; +x moves the view right and +y up.
+        side = max(w, h)
+        cam.data.shift_x = shift[0] + jitter[0] / side
+        cam.data.shift_y = shift[1] - jitter[1] / side
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        p1 = projection(cam, depsgraph, render)
+        realised = ((p1[0][2] - p0[0][2]) * w / 2, -(p1[1][2] - p0[1][2]) * h / 2)
+        scene.cycles.samples = opts.spp
+        scene.cycles.seed = opts.seed * 7919 + frame
+        name = f"frame_{frame:04d}.exr"
+        try:
+            render_to(scene, os.path.join(out, name))
+        finally:
+            cam.data.shift_x, cam.data.shift_y = shift
+        entry = {"color": name, "albedo": name, "normal": name, "position": name,
+                 "emission": name, "view_projection": vp, "jitter": list(realised)}
+        if motion:
+            entry["motion"] = name
+            entry["previous_position"] = {"file": name, "layer": f"{layer.name}.{PREVIOUS_AOV}"}
+        if opts.reference_spp > 0:
+            use_denoising = scene.cycles.use_denoising
+            scene.cycles.use_denoising = False
+            scene.cycles.samples = opts.reference_spp
+            scene.cycles.seed = opts.seed * 7919 + frame + 1000003
+            ref = f"reference_{frame:04d}.exr"
+            try:
+                render_to(scene, os.path.join(out, ref))
+            finally:
+                scene.cycles.use_denoising = use_denoising
+            entry["reference"] = {"file": ref, "layer": f"{layer.name}.Combined"}
+        frames.append(entry)
+        write_json_atomically(os.path.join(out, "sequence.json"), doc)
+        if progress:
+            progress(n + 1, total, f"frame {n + 1}/{total} (Blender frame {frame})")
+    return {"output": out, "frames": total, "first": first, "width": w, "height": h,
+            "device": device, "motion": motion, "moving": moving,
+            "without_previous_position": without_previous}
