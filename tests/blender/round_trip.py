@@ -3,30 +3,24 @@ tools/blender/render_sequence.py, denoise the folder with `bmfr denoise`, and sc
 
 Checks: the multilayer EXRs are read through the default pass mapping; every frame's
 view-projection maps each pixel's world position to its pixel centre plus the recorded jitter;
-BMFR and SVGF both beat the noisy input against the Cycles reference. Exit 77 (skipped) when
-Blender is not installed."""
+the moving sphere's motion vectors and previous positions are those of its known path
+(motion_check.py); BMFR and SVGF both beat the noisy input against the Cycles reference. Exit 77
+(skipped) when Blender is not installed (blender_run.py: Debian's blender, or PyPI's bpy)."""
 import json
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 
 import numpy as np
 
 import bmfr
+import motion_check
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../tools/blender"))
+import blender_run  # noqa: E402
+
 CLI = os.environ["BMFR_CLI"]
-BLENDER = os.environ.get("BLENDER") or shutil.which("blender")
-
-
-def run(*cmd):
-    r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"failed ({r.returncode}): {' '.join(map(str, cmd))}\n{r.stdout[-3000:]}\n"
-                 f"{r.stderr[-3000:]}")
-    return r.stdout
 
 
 def projection_error(frame):
@@ -42,15 +36,16 @@ def projection_error(frame):
 
 
 def main():
-    if not BLENDER:
+    if not blender_run.blender_command():
         print("blender is not installed: skipped")
         return 77
     work = tempfile.mkdtemp(prefix="bmfr_blender_")
     blend, seq = os.path.join(work, "room.blend"), os.path.join(work, "seq")
-    run(BLENDER, "-b", "--factory-startup", "--python",
-        os.path.join(ROOT, "tools/blender/make_test_scene.py"), "--", blend)
-    run(BLENDER, "-b", blend, "--python", os.path.join(ROOT, "tools/blender/render_sequence.py"),
-        "--", seq, "--width", 32, "--height", 18, "--reference-spp", 64, "-q")
+    print(f"Blender {blender_run.version()}")
+    blender_run.make_scene(blend, 4, "32x18")
+    blender_run.render(blend, seq, "--reference-spp", 64)
+    # The sphere moves: Cycles' vectors and the previous positions against its known path.
+    motion_check.check(seq, blend + ".json")
 
     frames = list(bmfr.read_sequence(seq))
     assert len(frames) == 4, len(frames)
@@ -67,10 +62,10 @@ def main():
     scores = {}
     for name in ("bmfr", "svgf"):
         out = os.path.join(work, name)
-        run(CLI, "denoise", seq, "-o", out, "--filter", name, "--no-png", "-q")
+        blender_run.run(CLI, "denoise", seq, "-o", out, "--filter", name, "--no-png", "-q")
         report = json.load(open(os.path.join(out, "report.json")))
         scores[name] = report["scores"]
-    table = json.loads(run(CLI, "eval", "-r", seq, "-m", "noisy", "-m",
+    table = json.loads(blender_run.run(CLI, "eval", "-r", seq, "-m", "noisy", "-m",
                            f"bmfr={os.path.join(work, 'bmfr')}", "-m",
                            f"svgf={os.path.join(work, 'svgf')}", "-o", os.path.join(work, "eval"),
                            "--json", "-q"))
