@@ -1,6 +1,7 @@
 """The Blender add-on, headless: the zip of tools/blender/bmfr_addon is installed and enabled,
 and its operator renders the test scene's passes, denoises them with bmfr and writes the
-evaluation report; with motion blur on it refuses, saying why. Exit 77 (skipped) without
+evaluation report, leaving the user's scene (render settings, passes, materials, objects, current
+frame) as it was; with motion blur on it refuses, saying why. Exit 77 (skipped) without
 Blender."""
 import json
 import os
@@ -36,6 +37,7 @@ def main():
     log = blender_run.run_script(driver, zip_path, blend, out, CLI, env=env)
     assert "operator result: ['FINISHED']" in log, log[-3000:]
     assert "frames denoised with svgf (quality)" in log, log[-3000:]
+    assert "scene as it was: True" in log, log[-3000:]
     denoised = sorted(f for f in os.listdir(os.path.join(out, "denoised")) if f.endswith(".exr"))
     assert denoised == [f"denoised_{k:04d}.exr" for k in range(3)], denoised
     assert os.path.exists(os.path.join(out, "report", "report.html"))
@@ -52,6 +54,7 @@ def main():
     out2 = os.path.join(work, "blurred")
     log = blender_run.run_script(driver, zip_path, blend, out2, CLI, "--motion-blur", env=env)
     assert "operator result: ['CANCELLED']" in log and "motion blur is on" in log, log[-3000:]
+    assert "scene as it was: True" in log, log[-3000:]
     assert not os.path.exists(os.path.join(out2, "denoised"))
     print("blender add-on test passed")
     return 0

@@ -159,14 +159,16 @@ def moving_objects(scene, first, last):
     return sorted(moving)
 
 
-def add_previous_position_aov(scene, layer):
+def add_previous_position_aov(scene, layer, state):
     """Every node material writes PREVIOUS_AOV: its object's row properties (this frame's world
     to the previous frame's) applied to the shading position. Returns the objects whose
-    materials cannot (no node material): their pixels get no previous position."""
+    materials cannot (no node material): their pixels get no previous position. `state`
+    (SceneState) takes the AOV and the nodes back out afterwards."""
     if PREVIOUS_AOV not in [a.name for a in layer.aovs]:
         aov = layer.aovs.add()
         aov.name = PREVIOUS_AOV
         aov.type = "COLOR"
+        state.undo.append(lambda: remove_aov(layer))
     done = set()
     without = []
     for o in scene.objects:
@@ -178,13 +180,27 @@ def add_previous_position_aov(scene, layer):
         for m in mats:
             if m.use_nodes and m.name not in done:
                 done.add(m.name)
-                wire_aov(m.node_tree)
+                added = wire_aov(m.node_tree)
+                state.undo.append(lambda t=m.node_tree, names=added: remove_nodes(t, names))
     return without
 
 
+def remove_aov(layer):
+    """The AOV collection has no remove(): the view layer's operator removes the active one."""
+    layer.active_aov_index = [a.name for a in layer.aovs].index(PREVIOUS_AOV)
+    bpy.ops.scene.view_layer_remove_aov()
+
+
+def remove_nodes(tree, names):
+    for node in [n for n in tree.nodes if n.name in names]:
+        tree.nodes.remove(node)
+
+
 def wire_aov(tree):
+    """Adds the AOV's nodes to a material; returns their names."""
     if any(n.bl_idname == "ShaderNodeOutputAOV" and n.name == PREVIOUS_AOV for n in tree.nodes):
-        return
+        return []
+    before = {n.name for n in tree.nodes}
     nodes, links = tree.nodes, tree.links
     geometry = nodes.new("ShaderNodeNewGeometry")
     combine = nodes.new("ShaderNodeCombineXYZ")
@@ -208,6 +224,7 @@ def wire_aov(tree):
     else:
         out.name = PREVIOUS_AOV
     links.new(combine.outputs["Vector"], out.inputs["Color"])
+    return [n.name for n in tree.nodes if n.name not in before]
 
 
 def set_previous_rows(scene, frame, objects):
@@ -219,6 +236,45 @@ def set_previous_rows(scene, frame, objects):
         delta = before[o.name] @ o.matrix_world.inverted_safe()
         for r in range(3):
             o[f"{ROW_PROPERTY}{r}"] = [delta[r][0], delta[r][1], delta[r][2], delta[r][3]]
+
+
+class SceneState:
+    """What rendering changes in the user's scene (render settings, passes, the AOV and its
+    nodes, objects' properties, the current frame), put back by restore()."""
+
+    def __init__(self, scene, layer):
+        self.saved = []
+        self.undo = []
+        r, c = scene.render, scene.cycles
+        for owner, names in (
+                (scene, ["frame_current"]),
+                (r, ["engine", "resolution_x", "resolution_y", "resolution_percentage",
+                     "use_persistent_data", "use_file_extension", "filepath"]),
+                (r.image_settings, ["file_format", "color_depth", "exr_codec"]),
+                (c, ["device", "samples", "seed", "use_adaptive_sampling", "use_denoising",
+                     "denoiser", "filter_width"]),
+                (layer, ["use_pass_combined", "use_pass_normal", "use_pass_position",
+                         "use_pass_emit", "use_pass_vector"]),
+                (layer.cycles, ["denoising_store_passes", "use_denoising"])):
+            for name in names:
+                if hasattr(owner, name):
+                    self.saved.append((owner, name, getattr(owner, name)))
+
+    def restore(self):
+        for f in reversed(self.undo):
+            f()
+        for owner, name, value in self.saved:
+            try:
+                setattr(owner, name, value)
+            except (AttributeError, TypeError):
+                pass
+
+
+def remove_row_properties(objects):
+    for o in objects:
+        for r in range(3):
+            if f"{ROW_PROPERTY}{r}" in o:
+                del o[f"{ROW_PROPERTY}{r}"]
 
 
 def configure(scene, opts):
@@ -269,9 +325,19 @@ def render_to(scene, path):
 
 def render_sequence(scene, out, opts, progress=None):
     """Renders scene's frames into the folder `out`. progress(done, total, text) is called after
-    each frame. Returns a summary dict. Raises SequenceError for a scene it cannot render."""
+    each frame. Returns a summary dict. Raises SequenceError for a scene it cannot render. The
+    scene's own settings, materials and current frame are as they were afterwards."""
     check_scene(scene, opts)
     first, last = frame_range(scene, opts)
+    state = SceneState(scene, bpy.context.view_layer)
+    try:
+        return render_frames(scene, out, opts, first, last, state, progress)
+    finally:
+        state.restore()
+        scene.frame_set(scene.frame_current)
+
+
+def render_frames(scene, out, opts, first, last, state, progress):
     layer, device = configure(scene, opts)
     render = scene.render
     moving = moving_objects(scene, first, last)
@@ -281,8 +347,9 @@ def render_sequence(scene, out, opts, progress=None):
     without_previous = []
     movers = []
     if motion:
-        without_previous = add_previous_position_aov(scene, layer)
+        without_previous = add_previous_position_aov(scene, layer, state)
         movers = [o for o in scene.objects if o.type in ("MESH", "CURVE", "SURFACE", "META", "FONT")]
+        state.undo.append(lambda: remove_row_properties(movers))
     out = os.path.abspath(out)
     os.makedirs(out, exist_ok=True)
     cam = scene.camera
