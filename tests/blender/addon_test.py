@@ -1,7 +1,8 @@
 """The Blender add-on, headless: the zip of tools/blender/bmfr_addon is installed and enabled,
 and its operator renders the test scene's passes, denoises them with bmfr and writes the
 evaluation report, leaving the user's scene (render settings, passes, materials, objects, current
-frame) as it was; with motion blur on it refuses, saying why. Exit 77 (skipped) without
+frame) as it was; with motion blur on it refuses, saying why. The scene checks refuse depth of
+field, a transparent film and a camera that is not perspective too (checks_driver.py). Exit 77 (skipped) without
 Blender."""
 import json
 import os
@@ -56,6 +57,10 @@ def main():
     assert "operator result: ['CANCELLED']" in log and "motion blur is on" in log, log[-3000:]
     assert "scene as it was: True" in log, log[-3000:]
     assert not os.path.exists(os.path.join(out2, "denoised"))
+    # The scene checks, one by one, and motion detection.
+    log = blender_run.run_script(os.path.join(HERE, "checks_driver.py"),
+                                 os.path.dirname(addon), blend)
+    assert "scene checks passed" in log, log[-3000:]
     print("blender add-on test passed")
     return 0
 
