@@ -11,7 +11,6 @@
 #include "synth/procedural_scene.h"
 #include <bmfr/bmfr.hpp>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <gtest/gtest.h>
@@ -205,12 +204,6 @@ struct Conformance : ::testing::TestWithParam<std::tuple<std::string, std::strin
         if (int(isa) > int(cpu::bestIsa()))
             GTEST_SKIP() << "this processor lacks the " << cpu::isaName(isa)
                          << " path (best: " << cpu::isaName(cpu::bestIsa()) << ")";
-        // The paths are one source compiled for each ISA (BMFR_SIMD_DISPATCH), so they index
-        // memory alike: the sanitizer run (scripts/sanitize.sh) checks the best one only.
-        const char* bestOnly = std::getenv("BMFR_CONFORMANCE_BEST_ISA_ONLY");
-        if (bestOnly && std::string(bestOnly) == "1" && isa != cpu::bestIsa())
-            GTEST_SKIP() << "BMFR_CONFORMANCE_BEST_ISA_ONLY=1: the " << cpu::isaName(cpu::bestIsa())
-                         << " path only";
         cpu::setActiveIsa(isa);
     }
     void TearDown() override { cpu::setActiveIsa(cpu::bestIsa()); }

@@ -8,7 +8,9 @@ namespace bmfr::cpu {
 namespace {
 
 Isa detect() {
-#if defined(__x86_64__) && defined(__GNUC__)
+#if BMFR_SIMD_SINGLE_PATH
+    return Isa::Baseline; // the other paths are not compiled (simd.h)
+#elif defined(__x86_64__) && defined(__GNUC__)
     __builtin_cpu_init();
     if (__builtin_cpu_supports("x86-64-v4")) return Isa::Avx512;
     if (__builtin_cpu_supports("x86-64-v3")) return Isa::Avx2;

@@ -31,6 +31,17 @@ typedef int32_t i8 __attribute__((vector_size(32)));
 #define BMFR_SIMD_TARGET_AVX2
 #define BMFR_SIMD_F16C 0
 #endif
+#if BMFR_SIMD_SINGLE_PATH
+// One path, the baseline, for builds that check the source rather than its speed (the
+// sanitizers: every path is this one source, so it indexes memory alike on each); isa.cpp
+// then reports the baseline as the best path.
+#define BMFR_SIMD_DISPATCH_WITH(Attr, BodyInline, Ret, name, Params, Args)                         \
+    template <::bmfr::cpu::Isa kIsa> BodyInline Ret name##Body Params;                             \
+    [[gnu::noinline]] Attr Ret name Params {                                                       \
+        return name##Body<::bmfr::cpu::Isa::Baseline> Args;                                        \
+    }                                                                                              \
+    template <::bmfr::cpu::Isa kIsa> BodyInline Ret name##Body Params
+#else
 #define BMFR_SIMD_DISPATCH_WITH(Attr, BodyInline, Ret, name, Params, Args)                         \
     template <::bmfr::cpu::Isa kIsa> BodyInline Ret name##Body Params;                             \
     BMFR_SIMD_TARGET_AVX512 [[gnu::noinline]] Attr Ret name##Avx512 Params {                       \
@@ -53,6 +64,7 @@ typedef int32_t i8 __attribute__((vector_size(32)));
         }                                                                                          \
     }                                                                                              \
     template <::bmfr::cpu::Isa kIsa> BodyInline Ret name##Body Params
+#endif
 #define BMFR_SIMD_DISPATCH(Ret, name, Params, Args)                                                \
     BMFR_SIMD_DISPATCH_WITH(, BMFR_SIMD_INLINE, Ret, name, Params, Args)
 // The same with every call in the body inlined too (GCC's flatten), so that header functions it
