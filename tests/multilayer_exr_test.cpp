@@ -181,9 +181,9 @@ TEST(MultilayerExr, SequencesUseTheDefaultPassesAndChannelOverrides) {
 
 // Cycles' Vector pass (X, Y: the previous frame's screen position minus this one's, pixels, y
 // up, through this frame's projection, so without the lens-shift jitter) read under
-// "motion_convention": "cycles" becomes bmfr's motion, (X, -Y) + jitter - previous jitter, by
-// hand here; without the convention it is an error, as is a --channel for a buffer the frames
-// do not name (it used to be ignored).
+// "motion_convention": "cycles" becomes bmfr's motion, (X, -Y) + jitter - previous jitter, and
+// the previous position is an offset from the position, by hand here; without the convention it is
+// an error, as is a --channel for a buffer the frames do not name (it used to be ignored).
 TEST(MultilayerExr, CyclesVectorPassBecomesMotionWithTheJitter) {
     const fs::path dir = testing::freshDir("ml", "cycles_vector");
     std::vector<std::string> channels = kCyclesChannels;
@@ -192,7 +192,8 @@ TEST(MultilayerExr, CyclesVectorPassBecomesMotionWithTheJitter) {
     writeLayered(dir / "frame_0000.exr", channels);
     writeLayered(dir / "frame_0001.exr", channels);
     const std::string frame = R"("color": "F", "albedo": "F", "normal": "F", "position": "F",
-        "motion": "F", "view_projection": [[1,0,0,0],[0,1,0,0],[0,0,-1,-0.2],[0,0,-1,0]])";
+        "motion": "F", "previous_position": {"file": "F", "layer": "ViewLayer.Emit"},
+        "view_projection": [[1,0,0,0],[0,1,0,0],[0,0,-1,-0.2],[0,0,-1,0]])";
     auto entry = [&](const char* file, const char* jitter) {
         std::string e = frame;
         for (size_t p; (p = e.find("\"F\"")) != std::string::npos;)
@@ -214,6 +215,12 @@ TEST(MultilayerExr, CyclesVectorPassBecomesMotionWithTheJitter) {
     for (int i = 0; i < kLayerW * kLayerH; ++i) {
         EXPECT_EQ(f.motion.data()[2 * i], valueOf("ViewLayer.Vector.X", i) + dx);
         EXPECT_EQ(f.motion.data()[2 * i + 1], -valueOf("ViewLayer.Vector.Y", i) + dy);
+        // The previous position is an offset from the position under this convention.
+        const char *rgb[] = {"R", "G", "B"}, *xyz[] = {"X", "Y", "Z"};
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(f.previousPosition.data()[3 * i + c],
+                      valueOf(std::string("ViewLayer.Emit.") + rgb[c], i) +
+                          valueOf(std::string("ViewLayer.Position.") + xyz[c], i));
     }
     write("");
     const std::string e = errorOf([&] { SequenceReader::open(dir.string())->load(1, f); });

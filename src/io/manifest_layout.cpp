@@ -152,6 +152,8 @@ class ManifestReader : public SequenceReader {
                 if (cyclesMotion_ && content == ExrContent::Pixels)
                     fromCyclesMotion(f, index, where);
             }
+            if (cyclesMotion_ && content == ExrContent::Pixels && f.previousPosition.width)
+                addPosition(f);
         } catch (const json::exception& e) {
             throw Error(where + ": " + jsonProblem(e));
         }
@@ -171,6 +173,16 @@ class ManifestReader : public SequenceReader {
     }
 
   private:
+    /// Under "motion_convention": "cycles" the previous position is written as an offset from
+    /// the position (render_sequence.py's AOV: a pixel no material writes, 0, is static).
+    static void addPosition(FrameData& f) {
+        ImageF& p = f.previousPosition;
+        for (size_t i = 0; i < size_t(p.width) * size_t(p.height); ++i)
+            for (int c = 0; c < 3; ++c)
+                p.data()[i * size_t(p.channels) + size_t(c)] +=
+                    f.position.data()[i * size_t(f.position.channels) + size_t(c)];
+    }
+
     json manifest_;
     bool cyclesMotion_ = false; ///< "motion_convention": "cycles"
 

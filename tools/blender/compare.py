@@ -66,6 +66,8 @@ def main(argv=None):
     p.add_argument("--video", action="store_true")
     p.add_argument("--no-jitter", action="store_true")
     p.add_argument("--no-flip", action="store_true", help="skip FLIP (the slowest metric)")
+    p.add_argument("--reuse", action="store_true",
+                   help="score an earlier run's render in OUTPUT again (new filters, settings)")
     p.add_argument("--oidn-peer", action="store_true",
                    help="where Blender has no OIDN: score OIDN as `bmfr eval --oidn` runs it "
                         "(scripts/install-oidn.sh installs it)")
@@ -80,12 +82,15 @@ def main(argv=None):
     version = blender_run.version()
     oidn = blender_run.has_oidn()
     print(f"compare: Blender {version} (Cycles' own OIDN: {'yes' if oidn else 'no'})", flush=True)
-    blender_run.make_scene(blend, a.frames, a.size)
+    if a.reuse and os.path.exists(os.path.join(seq, "sequence.json")):
+        print(f"compare: reusing the render in {seq}", flush=True)
+    else:
+        blender_run.make_scene(blend, a.frames, a.size)
+        print(f"compare: rendering {a.frames} frames at {a.size}, reference {a.reference_spp} "
+              "spp", flush=True)
+        options = ["--reference-spp", a.reference_spp] + (["--denoiser"] if oidn else [])
+        blender_run.render(blend, seq, *(options + (["--no-jitter"] if a.no_jitter else [])))
     path = json.load(open(blend + ".json"))["sphere"]
-    print(f"compare: rendering {a.frames} frames at {a.size}, reference {a.reference_spp} spp",
-          flush=True)
-    options = ["--reference-spp", a.reference_spp] + (["--denoiser"] if oidn else [])
-    blender_run.render(blend, seq, *(options + (["--no-jitter"] if a.no_jitter else [])))
 
     methods = {}  # name -> denoise output folder (or sequence whose colour is the method)
     for spec in a.filters.split(","):

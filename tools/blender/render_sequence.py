@@ -52,6 +52,8 @@ def main():
     frames = None
     if args.frames:
         a, sep, b = args.frames.partition(":")
+        if not sep:
+            sys.exit(f"render_sequence.py: --frames {args.frames}: expected A:B (A: or :B)")
         try:
             frames = (int(a) if a else None, int(b) if b else None)
         except ValueError:
@@ -77,7 +79,7 @@ def main():
     if s["without_previous_position"]:
         print("render_sequence.py: warning: no previous position for "
               + ", ".join(s["without_previous_position"])
-              + " (no node material): their history is tested with the current position",
+              + " (no node material): their pixels read as static",
               file=sys.stderr)
     if not args.quiet:
         moving = ", ".join(s["moving"]) or "nothing"

@@ -95,6 +95,10 @@ class BMFR_OT_render_denoise(bpy.types.Operator):
             self.report({"ERROR"}, "bmfr: the bmfr command is not found: install it or name it "
                                    "in the add-on's preferences")
             return {"CANCELLED"}
+        if s.output.startswith("//") and not bpy.data.filepath:
+            self.report({"ERROR"}, "bmfr: the output folder is relative to the .blend file, "
+                                   "which is not saved yet: save it or choose a folder")
+            return {"CANCELLED"}
         out = os.path.abspath(bpy.path.abspath(s.output))
         passes, denoised, report = (os.path.join(out, n) for n in ("passes", "denoised", "report"))
         if os.path.isdir(report) and not os.path.exists(os.path.join(report, "table.json")):
@@ -105,6 +109,13 @@ class BMFR_OT_render_denoise(bpy.types.Operator):
         wm = context.window_manager
         total = scene.frame_end - scene.frame_start + 1
         wm.progress_begin(0, total + 2)
+        try:
+            return self.run(scene, s, exe, passes, denoised, report, opts, total)
+        finally:
+            wm.progress_end()
+
+    def run(self, scene, s, exe, passes, denoised, report, opts, total):
+        wm = bpy.context.window_manager
 
         def progress(done, total, text):
             wm.progress_update(done)
@@ -113,29 +124,27 @@ class BMFR_OT_render_denoise(bpy.types.Operator):
         try:
             summary = sequence.render_sequence(scene, passes, opts, progress)
         except sequence.SequenceError as e:
-            wm.progress_end()
             self.report({"ERROR"}, f"bmfr: cannot render this scene for bmfr: {e}")
             return {"CANCELLED"}
         ok, text = run_bmfr(exe, ["denoise", passes, "-o", denoised, "--filter", s.filter,
                                   "--preset", s.preset, "--overwrite", "-q"])
         wm.progress_update(total + 1)
         if not ok:
-            wm.progress_end()
             self.report({"ERROR"}, f"bmfr denoise failed: {text}")
             return {"CANCELLED"}
+        last = summary["first"] + summary["frames"] - 1
         message = (f"bmfr: {summary['frames']} frames denoised with {s.filter} ({s.preset}) "
-                   f"into {denoised}")
+                   f"into {denoised} (denoised_0000 is Blender frame {summary['first']}, "
+                   f"the last frame {last})")
         if s.reference_samples > 0:
             if os.path.isdir(report):
                 shutil.rmtree(report)
             ok, text = run_bmfr(exe, ["eval", "-r", passes, "-m", "noisy", "-m",
                                       f"{s.filter}={denoised}", "-o", report, "-q"])
             if not ok:
-                wm.progress_end()
                 self.report({"ERROR"}, f"bmfr eval failed: {text}")
                 return {"CANCELLED"}
             message += f"; report: {os.path.join(report, 'report.html')}"
-        wm.progress_end()
         if summary["without_previous_position"]:
             self.report({"WARNING"}, "bmfr: no previous position for "
                         + ", ".join(summary["without_previous_position"])

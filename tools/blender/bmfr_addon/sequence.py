@@ -15,8 +15,10 @@ Conventions (those of bmfr's FrameInput, include/bmfr/frame.h):
   lens shift. The jitter written is the one realised, read back from the two projections.
 - Motion is Cycles' Vector pass as it is ("motion_convention": "cycles": bmfr flips its y and
   adds the jitter of both frames, which Cycles leaves out). The previous position is the
-  pixel's world position moved by its object's motion from this frame to the previous one
-  (exact for rigid motion; deforming meshes and instances get their object's transform only).
+  pixel's world position moved by its object's motion from this frame to the previous one,
+  written as an offset from the position, which bmfr adds back (exact for rigid motion;
+  deforming meshes and instances get their object's transform only; a pixel no material writes
+  reads as static).
 - References are rendered at the pixel centres, as bmfr render's are.
 """
 import json
@@ -27,6 +29,13 @@ import bpy
 PASS_NOTE = "Combined, Denoising Albedo, Normal, Position, Emit (Cycles pass names)"
 PREVIOUS_AOV = "bmfr_previous_position"
 ROW_PROPERTY = "bmfr_previous_row"  # + 0, 1, 2: this frame's world -> the previous frame's
+
+
+# Modifiers that may move the surface from frame to frame (counted as moving, not checked).
+DEFORMING = {"ARMATURE", "CLOTH", "SOFT_BODY", "WAVE", "NODES", "MESH_CACHE",
+             "MESH_SEQUENCE_CACHE", "HOOK", "OCEAN", "DYNAMIC_PAINT", "EXPLODE", "FLUID",
+             "PARTICLE_SYSTEM", "SHRINKWRAP", "SURFACE_DEFORM", "MESH_DEFORM", "LATTICE",
+             "CURVE", "SIMPLE_DEFORM", "DISPLACE", "WARP", "CAST", "SMOOTH", "LAPLACIANDEFORM"}
 
 
 class SequenceError(Exception):
@@ -118,9 +127,19 @@ def frame_range(scene, opts):
     return first, last
 
 
-def use_gpu(scene):
-    """Cycles on the first GPU backend that finds a device, or a SequenceError."""
+def use_gpu(scene, state):
+    """Cycles on the first GPU backend that finds a device, or a SequenceError. The user's
+    device preferences are put back afterwards (state)."""
     prefs = bpy.context.preferences.addons["cycles"].preferences
+    backend_before = prefs.compute_device_type
+    use_before = [(d, d.use) for d in prefs.devices]
+
+    def put_back():
+        prefs.compute_device_type = backend_before
+        for d, use in use_before:
+            d.use = use
+
+    state.undo.append(put_back)
     for backend in ("OPTIX", "CUDA", "HIP", "ONEAPI", "METAL"):
         try:
             prefs.compute_device_type = backend
@@ -153,17 +172,17 @@ def moving_objects(scene, first, last):
                 moving.add(o.name)
     for o in objs:
         keys = getattr(o.data, "shape_keys", None)
-        if any(m.type in ("ARMATURE", "CLOTH", "SOFT_BODY", "WAVE") for m in o.modifiers) or (
-                keys and keys.animation_data):
+        if any(m.type in DEFORMING for m in o.modifiers) or (keys and keys.animation_data) or (
+                getattr(o.data, "animation_data", None)):
             moving.add(o.name)
     return sorted(moving)
 
 
 def add_previous_position_aov(scene, layer, state):
     """Every node material writes PREVIOUS_AOV: its object's row properties (this frame's world
-    to the previous frame's) applied to the shading position. Returns the objects whose
-    materials cannot (no node material): their pixels get no previous position. `state`
-    (SceneState) takes the AOV and the nodes back out afterwards."""
+    to the previous frame's) applied to the shading position, less that position (an offset, so
+    that a pixel no material writes, 0, reads as static). Returns the objects whose materials
+    cannot (no node material). `state` (SceneState) takes the AOV and the nodes back out."""
     if PREVIOUS_AOV not in [a.name for a in layer.aovs]:
         aov = layer.aovs.add()
         aov.name = PREVIOUS_AOV
@@ -217,13 +236,17 @@ def wire_aov(tree):
         links.new(dot.outputs["Value"], add.inputs[0])
         links.new(attr.outputs["Alpha"], add.inputs[1])
         links.new(add.outputs["Value"], combine.inputs[axis])
+    offset = nodes.new("ShaderNodeVectorMath")
+    offset.operation = "SUBTRACT"
+    links.new(combine.outputs["Vector"], offset.inputs[0])
+    links.new(geometry.outputs["Position"], offset.inputs[1])
     out = nodes.new("ShaderNodeOutputAOV")
     out.name = PREVIOUS_AOV
     if hasattr(out, "aov_name"):
         out.aov_name = PREVIOUS_AOV
     else:
         out.name = PREVIOUS_AOV
-    links.new(combine.outputs["Vector"], out.inputs["Color"])
+    links.new(offset.outputs["Vector"], out.inputs["Color"])
     return [n.name for n in tree.nodes if n.name not in before]
 
 
@@ -261,8 +284,12 @@ class SceneState:
                     self.saved.append((owner, name, getattr(owner, name)))
 
     def restore(self):
+        """Every step is tried, one failing does not stop the others."""
         for f in reversed(self.undo):
-            f()
+            try:
+                f()
+            except Exception as e:  # noqa: BLE001 (report, and go on putting things back)
+                print(f"bmfr: could not undo a render setting: {e}")
         for owner, name, value in self.saved:
             try:
                 setattr(owner, name, value)
@@ -277,7 +304,7 @@ def remove_row_properties(objects):
                 del o[f"{ROW_PROPERTY}{r}"]
 
 
-def configure(scene, opts):
+def configure(scene, opts, state):
     render = scene.render
     if opts.width:
         render.resolution_x = opts.width
@@ -291,7 +318,7 @@ def configure(scene, opts):
     device = "CPU"
     cycles.device = "CPU"
     if opts.device == "GPU":
-        device = use_gpu(scene)
+        device = use_gpu(scene, state)
     cycles.use_adaptive_sampling = False
     cycles.use_denoising = opts.denoiser
     if opts.denoiser:
@@ -313,14 +340,23 @@ def configure(scene, opts):
     layer.cycles.denoising_store_passes = True
     if opts.denoiser:
         layer.cycles.use_denoising = True
+    # The other view layers are not rendered: each would put its own copy of every pass in the
+    # files, and bmfr could not tell which to read.
+    for other in scene.view_layers:
+        if other != layer and other.use:
+            other.use = False
+            state.undo.append(lambda v=other: setattr(v, "use", True))
     return layer, device
 
 
 def render_to(scene, path):
+    """Renders into `path`, never leaving an earlier run's file there in its place."""
+    if os.path.exists(path):
+        os.remove(path)
     scene.render.filepath = path
-    bpy.ops.render.render(write_still=True)
-    if not os.path.exists(path):
-        raise SequenceError(f"Cycles did not write {path}")
+    result = bpy.ops.render.render(write_still=True)
+    if "FINISHED" not in result or not os.path.exists(path):
+        raise SequenceError(f"Cycles did not write {path} ({', '.join(sorted(result))})")
 
 
 def render_sequence(scene, out, opts, progress=None):
@@ -338,7 +374,7 @@ def render_sequence(scene, out, opts, progress=None):
 
 
 def render_frames(scene, out, opts, first, last, state, progress):
-    layer, device = configure(scene, opts)
+    layer, device = configure(scene, opts, state)
     render = scene.render
     moving = moving_objects(scene, first, last)
     motion = opts.motion == "on" or (opts.motion == "auto" and bool(moving))
@@ -352,7 +388,6 @@ def render_frames(scene, out, opts, first, last, state, progress):
         state.undo.append(lambda: remove_row_properties(movers))
     out = os.path.abspath(out)
     os.makedirs(out, exist_ok=True)
-    cam = scene.camera
     w, h = render.resolution_x, render.resolution_y
     frames = []
     doc = {"format": "bmfr-sequence", "version": 1, "width": w, "height": h,
@@ -363,10 +398,12 @@ def render_frames(scene, out, opts, first, last, state, progress):
     if motion:
         doc["motion_convention"] = "cycles"
     total = last - first
+    previous_camera = None
     for n, frame in enumerate(range(first, last)):
         if motion:
             set_previous_rows(scene, frame, movers)
         scene.frame_set(frame)
+        cam = scene.camera  # markers may switch cameras: a cut
         depsgraph = bpy.context.evaluated_depsgraph_get()
         shift = (cam.data.shift_x, cam.data.shift_y)
         vp = view_projection(cam, depsgraph, render)
@@ -388,6 +425,9 @@ def render_frames(scene, out, opts, first, last, state, progress):
             cam.data.shift_x, cam.data.shift_y = shift
         entry = {"color": name, "albedo": name, "normal": name, "position": name,
                  "emission": name, "view_projection": vp, "jitter": list(realised)}
+        if previous_camera is not None and cam != previous_camera:
+            entry["reset"] = True
+        previous_camera = cam
         if motion:
             entry["motion"] = name
             entry["previous_position"] = {"file": name, "layer": f"{layer.name}.{PREVIOUS_AOV}"}
