@@ -17,6 +17,7 @@ import json
 import os
 import shutil
 import sys
+import warnings
 
 import numpy as np
 
@@ -74,6 +75,8 @@ def main(argv=None):
     p.add_argument("--filters", default=",".join(f"{f}:{s}" for f, s in FILTERS),
                    help="FILTER:PRESET,... (default: %(default)s)")
     a = p.parse_args(argv)
+    # The render has Cycles' denoiser on by design: the reader's note about it is expected.
+    warnings.filterwarnings("ignore", message="Cycles' own denoiser was on")
     if not blender_run.blender_command():
         sys.exit("compare.py: no Blender (install Debian's blender, or set BLENDER_PYTHON)")
     out = os.path.abspath(a.output)
