@@ -10,8 +10,7 @@ labels=${1:-'^(unit|conformance|integration)$'}
 # simd.h): the others are the same source, so they index memory alike, and compiling three
 # copies of each pass under the sanitizers costs more than any other part of the build.
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-# -march=native: that one path on this machine's vectors (the build runs where it is built).
-flags="$flags -DBMFR_SIMD_SINGLE_PATH=1 -march=native"
+flags="$flags -DBMFR_SIMD_SINGLE_PATH=1"
 # -O1: the sanitizers need no more, and it halves the build on two cores; the tests' and the
 # command's own code, which run no hot loop, -O0 (half again).
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
