@@ -103,6 +103,11 @@ std::vector<std::string> exrChannelNames(const std::string& path) {
     }
 }
 
+bool hasPlainChannels(const std::vector<std::string>& channelNames) {
+    return std::any_of(channelNames.begin(), channelNames.end(),
+                       [](const std::string& n) { return n.find('.') == std::string::npos; });
+}
+
 bool isLayerOfPass(const std::string& layer, const std::string& pass) {
     return layer == pass ||
            (layer.size() > pass.size() &&
@@ -132,9 +137,7 @@ std::string findExrLayer(const std::string& path, const std::string& pass) {
 
 std::string imageLayer(const std::string& path) {
     const std::vector<std::string> names = exrChannelNames(path);
-    if (std::any_of(names.begin(), names.end(),
-                    [](const std::string& n) { return n.find('.') == std::string::npos; }))
-        return {};
+    if (hasPlainChannels(names)) return {};
     if (std::string layer = findExrLayer(names, "Combined", path); !layer.empty()) return layer;
     std::vector<std::string> layers;
     for (const std::string& n : names)

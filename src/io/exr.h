@@ -47,6 +47,9 @@ std::string findExrLayer(const std::vector<std::string>& channelNames, const std
 /// several view layers hold it (say which with a layer name).
 std::string findExrLayer(const std::string& path, const std::string& pass);
 
+/// Whether a file has channels outside any layer (no '.' in the name), as a plain RGB EXR.
+bool hasPlainChannels(const std::vector<std::string>& channelNames);
+
 /// Whether `layer` is the pass `pass` ("Vector") itself or under a view layer ("ViewLayer.Vector").
 bool isLayerOfPass(const std::string& layer, const std::string& pass);
 

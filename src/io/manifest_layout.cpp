@@ -137,11 +137,7 @@ class ManifestReader : public SequenceReader {
             }
             if (!isUsableCameraMatrix(f.viewProjection))
                 throw Error(where + ": view_projection is not finite or not invertible");
-            f.jitter[0] = f.jitter[1] = 0.0f;
-            if (j.contains("jitter")) {
-                f.jitter[0] = floatValue(j["jitter"].at(0), where + ": jitter");
-                f.jitter[1] = floatValue(j["jitter"].at(1), where + ": jitter");
-            }
+            readJitter(j, where + ": jitter", f.jitter);
             if (f.motion.width) {
                 const bool vectorPass = isLayerOfPass(motionLayer, "Vector");
                 if (vectorPass && !cyclesMotion_)
@@ -183,23 +179,15 @@ class ManifestReader : public SequenceReader {
                     f.position.data()[i * size_t(f.position.channels) + size_t(c)];
     }
 
-    json manifest_;
-    bool cyclesMotion_ = false; ///< "motion_convention": "cycles"
-
     /// Cycles' Vector pass to FrameInput::motion: its X, Y are the previous frame's screen
     /// position minus this one's, pixels, y up, both through this frame's projection (so without
     /// the jitter, which render_sequence.py makes with the lens shift); bmfr's is y down with
     /// the jitter of both frames: (X, -Y) + jitter - previous jitter.
     void fromCyclesMotion(FrameData& f, int index, const std::string& where) const {
         float previous[2] = {f.jitter[0], f.jitter[1]};
-        if (index > 0) {
-            const json& p = manifest_["frames"][size_t(index - 1)];
-            previous[0] = previous[1] = 0.0f;
-            if (p.contains("jitter")) {
-                previous[0] = floatValue(p["jitter"].at(0), where + ": previous frame's jitter");
-                previous[1] = floatValue(p["jitter"].at(1), where + ": previous frame's jitter");
-            }
-        }
+        if (index > 0)
+            readJitter(manifest_["frames"][size_t(index - 1)], where + ": previous frame's jitter",
+                       previous);
         const float dx = f.jitter[0] - previous[0], dy = f.jitter[1] - previous[1];
         ImageF& m = f.motion;
         for (size_t p = 0; p < size_t(m.width) * size_t(m.height); ++p) {
@@ -208,6 +196,16 @@ class ManifestReader : public SequenceReader {
             v[1] = -v[1] + dy;
         }
     }
+    /// A frame's "jitter" (0, 0 when it has none).
+    static void readJitter(const json& frame, const std::string& where, float out[2]) {
+        out[0] = out[1] = 0.0f;
+        if (!frame.contains("jitter")) return;
+        out[0] = floatValue(frame["jitter"].at(0), where);
+        out[1] = floatValue(frame["jitter"].at(1), where);
+    }
+
+    json manifest_;
+    bool cyclesMotion_ = false;                 ///< "motion_convention": "cycles"
     std::map<std::string, std::string> layers_; ///< the sequence's own "layers"
 
     struct Buffer {
@@ -262,10 +260,7 @@ class ManifestReader : public SequenceReader {
     /// "" when the file has plain channels, else the first of the buffer's default passes.
     std::string defaultLayer(const std::vector<std::string>& names, const char* key,
                              const std::string& path) const {
-        const bool plain = std::any_of(names.begin(), names.end(), [](const std::string& n) {
-            return n.find('.') == std::string::npos;
-        });
-        if (plain) return {};
+        if (hasPlainChannels(names)) return {};
         for (const DefaultPass& d : kDefaultPasses)
             if (d.buffer == std::string(key))
                 for (const char* pass : d.passes)

@@ -12,11 +12,15 @@ plus its jitter); the previous_position buffer must be that point.
     motion_check.py SEQUENCE SCENE_JSON  -> prints the largest errors, exits 1 beyond the bounds
 """
 import json
+import os
 import sys
 
 import numpy as np
 
 import bmfr
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../tools/blender"))
+import sphere_path  # noqa: E402
 
 MOTION_BOUND_PX = 0.02
 POSITION_BOUND = 1e-3  # scene units (the room is 2 units wide)
@@ -32,7 +36,7 @@ def project(vp, p, w, h, jitter):
 
 def check(seq, scene_json):
     path = json.load(open(scene_json))["sphere"]
-    start, vel = np.array(path["start"]), np.array(path["velocity_per_frame"])
+    vel = sphere_path.velocity(path)
     frames = list(bmfr.read_sequence(seq))
     doc = json.load(open(f"{seq}/sequence.json"))
     assert doc.get("motion_convention") == "cycles", "no motion written"
@@ -40,13 +44,9 @@ def check(seq, scene_json):
     sphere_pixels = 0
     for k in range(1, len(frames)):
         f, prev = frames[k], frames[k - 1]
-        blender_frame = int(doc["frames"][k]["color"][6:10])
-        centre = start + vel * (blender_frame - path["first_frame"])
         p = f["position"].astype(np.float64)
         h, w, _ = p.shape
-        # A UV sphere is faceted: its points lie between the faces' planes and the radius.
-        d = np.linalg.norm(p - centre, axis=-1)
-        on = (d > 0.98 * path["radius"]) & (d < path["radius"] + 1e-5)
+        on = sphere_path.on_sphere(p, path, sphere_path.blender_frame(doc["frames"][k]))
         sphere_pixels += int(on.sum())
         expected = p - np.where(on[..., None], vel, 0.0)
         u, v = project(prev["view_projection"], expected, w, h, prev["jitter"])

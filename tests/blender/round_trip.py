@@ -24,15 +24,13 @@ CLI = os.environ["BMFR_CLI"]
 
 
 def projection_error(frame):
-    """Largest distance, pixels, between where position projects and pixel centre + jitter."""
-    p = frame["position"]
-    h, w, _ = p.shape
-    clip = np.concatenate([p, np.ones((h, w, 1), np.float32)], -1) @ frame["view_projection"].T
-    u = (clip[..., 0] / clip[..., 3] * 0.5 + 0.5) * w
-    v = (clip[..., 1] / clip[..., 3] * 0.5 + 0.5) * h
+    """Largest distance, pixels, between where position projects and the pixel's own sample
+    position (its centre plus the jitter)."""
+    h, w, _ = frame["position"].shape
+    u, v = motion_check.project(frame["view_projection"], frame["position"].astype(np.float64),
+                                w, h, frame["jitter"])
     ys, xs = np.mgrid[0:h, 0:w]
-    jx, jy = frame["jitter"]
-    return float(max(np.abs(u - (xs + 0.5 + jx)).max(), np.abs(v - (ys + 0.5 + jy)).max()))
+    return float(max(np.abs(u - xs).max(), np.abs(v - ys).max()))
 
 
 def main():
@@ -41,7 +39,7 @@ def main():
         return 77
     work = tempfile.mkdtemp(prefix="bmfr_blender_")
     blend, seq = os.path.join(work, "room.blend"), os.path.join(work, "seq")
-    print(f"Blender {blender_run.version()}")
+    print(f"Blender {blender_run.info()[0]}")
     blender_run.make_scene(blend, 4, "32x18")
     blender_run.render(blend, seq, "--reference-spp", 64)
     # The sphere moves: Cycles' vectors and the previous positions against its known path.

@@ -41,12 +41,9 @@ def render(blend, seq, *options):
                       blend, "-q", *options)
 
 
-def version():
-    return run_script(os.path.join(ROOT, "tools/blender/print_version.py")).split(
-        "blender version ")[1].split()[0]
-
-
-def has_oidn():
-    """Whether this Blender's Cycles has its own denoiser (PyPI's bpy does; Debian's 3.4 not)."""
-    return run_script(os.path.join(ROOT, "tools/blender/print_version.py")).split(
-        " oidn ")[1].split()[0] == "True"
+def info():
+    """(version, whether its Cycles has its own denoiser): PyPI's bpy has OIDN, Debian's 3.4
+    not."""
+    words = run_script(os.path.join(ROOT, "tools/blender/print_version.py")).split()
+    at = words.index("version")
+    return words[at + 1], words[words.index("oidn", at) + 1] == "True"

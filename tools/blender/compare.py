@@ -23,22 +23,21 @@ import numpy as np
 
 import bmfr
 import blender_run
+import sphere_path
 
 FILTERS = [("bmfr", "faithful"), ("bmfr", "quality"), ("svgf", "faithful"), ("walr", "faithful")]
 FIRST_SCORED = 4  # the trail is scored from here: the first frames have no history to ghost
 
 
-def sphere_masks(seq, path):
-    """Per frame, the pixels on the sphere (its known path; a UV sphere lies between its faces'
-    planes and its radius)."""
-    doc = json.load(open(os.path.join(seq, "sequence.json")))
-    start, vel = np.array(path["start"]), np.array(path["velocity_per_frame"])
-    masks = []
-    for k, f in enumerate(bmfr.read_sequence(seq)):
-        frame = int(doc["frames"][k]["color"][6:10])
-        d = np.linalg.norm(f["position"] - (start + vel * (frame - path["first_frame"])), axis=-1)
-        masks.append((d > 0.98 * path["radius"]) & (d < path["radius"] + 1e-5))
-    return masks
+def read_passes(seq, path):
+    """The noisy frames, the references and, per frame, the pixels on the sphere: one read."""
+    entries = json.load(open(os.path.join(seq, "sequence.json")))["frames"]
+    noisy, refs, masks = [], [], []
+    for e, f in zip(entries, bmfr.read_sequence(seq)):
+        noisy.append(f["color"])
+        refs.append(f["reference"])
+        masks.append(sphere_path.on_sphere(f["position"], path, sphere_path.blender_frame(e)))
+    return noisy, refs, masks
 
 
 def tonemap(x):
@@ -82,8 +81,7 @@ def main(argv=None):
     out = os.path.abspath(a.output)
     os.makedirs(out, exist_ok=True)
     blend, seq = os.path.join(out, "scene.blend"), os.path.join(out, "passes")
-    version = blender_run.version()
-    oidn = blender_run.has_oidn()
+    version, oidn = blender_run.info()
     print(f"compare: Blender {version} (Cycles' own OIDN: {'yes' if oidn else 'no'})", flush=True)
     if a.reuse and os.path.exists(os.path.join(seq, "sequence.json")):
         print(f"compare: reusing the render in {seq}", flush=True)
@@ -133,21 +131,15 @@ def main(argv=None):
         "-o", report, "--json", "-q", *eval_args, *(["--video"] if a.video else []),
         *(["--no-flip"] if a.no_flip else [])))
 
-    masks = sphere_masks(seq, path)
-    refs = [f["reference"] for f in bmfr.read_sequence(seq)]
-    trail = {}
+    noisy, refs, masks = read_passes(seq, path)
+    trail = {"noisy": trail_rmse(noisy, refs, masks)}
     for name, dest in methods.items():
-        if name == "cycles-oidn":
-            frames = [bmfr.read_exr(os.path.join(seq, e["color"][len("../passes/"):]
-                                                 if e["color"].startswith("../") else e["color"]),
-                                    3, "ViewLayer.Combined")
-                      for e in json.load(open(os.path.join(cyc, "sequence.json")))["frames"]]
+        if name == "cycles-oidn":  # a sequence whose colour is Cycles' result
+            frames = [f["color"] for f in bmfr.read_sequence(dest)]
         else:
             frames = [bmfr.read_exr(os.path.join(dest, f"denoised_{k:04d}.exr"))
                       for k in range(len(refs))]
         trail[name] = trail_rmse(frames, refs, masks)
-    noisy = [f["color"] for f in bmfr.read_sequence(seq)]
-    trail["noisy"] = trail_rmse(noisy, refs, masks)
 
     rows = []
     noisy_rmse = table["methods"]["noisy"]["mean"]["rmse"]
@@ -163,9 +155,7 @@ def main(argv=None):
         flip = f"{mean['flip']:.4f}" if mean.get("flip") is not None else "-"
         print(f"| {name} | {mean['rmse']:.4f} | {mean['rmse'] / noisy_rmse:.3f} | {flip} | "
               f"{mean['temporal_error'] or 0:.4f} | {mean['temporal_change_error'] or 0:.4f} | "
-              f"{t:.4f} |" if t is not None else
-              f"| {name} | {mean['rmse']:.4f} | {mean['rmse'] / noisy_rmse:.3f} | {flip} | "
-              f"{mean['temporal_error'] or 0:.4f} | {mean['temporal_change_error'] or 0:.4f} | - |")
+              f"{'-' if t is None else f'{t:.4f}'} |")
     ratios = {}
     for name in methods:
         if name.endswith("-camera"):

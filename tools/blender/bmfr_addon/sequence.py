@@ -31,6 +31,8 @@ PREVIOUS_AOV = "bmfr_previous_position"
 ROW_PROPERTY = "bmfr_previous_row"  # + 0, 1, 2: this frame's world -> the previous frame's
 
 
+# Object types that render surfaces (and so get the previous-position AOV).
+GEOMETRY = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
 # Modifiers that may move the surface from frame to frame (counted as moving, not checked).
 DEFORMING = {"ARMATURE", "CLOTH", "SOFT_BODY", "WAVE", "NODES", "MESH_CACHE",
              "MESH_SEQUENCE_CACHE", "HOOK", "OCEAN", "DYNAMIC_PAINT", "EXPLODE", "FLUID",
@@ -191,7 +193,7 @@ def add_previous_position_aov(scene, layer, state):
     done = set()
     without = []
     for o in scene.objects:
-        if o.type not in ("MESH", "CURVE", "SURFACE", "META", "FONT"):
+        if o.type not in GEOMETRY:
             continue
         mats = [s.material for s in o.material_slots if s.material]
         if not mats or any(not m.use_nodes for m in mats):
@@ -384,7 +386,7 @@ def render_frames(scene, out, opts, first, last, state, progress):
     movers = []
     if motion:
         without_previous = add_previous_position_aov(scene, layer, state)
-        movers = [o for o in scene.objects if o.type in ("MESH", "CURVE", "SURFACE", "META", "FONT")]
+        movers = [o for o in scene.objects if o.type in GEOMETRY]
         state.undo.append(lambda: remove_row_properties(movers))
     out = os.path.abspath(out)
     os.makedirs(out, exist_ok=True)
@@ -401,8 +403,9 @@ def render_frames(scene, out, opts, first, last, state, progress):
     previous_camera = None
     for n, frame in enumerate(range(first, last)):
         if motion:
-            set_previous_rows(scene, frame, movers)
-        scene.frame_set(frame)
+            set_previous_rows(scene, frame, movers)  # leaves the scene at `frame`
+        else:
+            scene.frame_set(frame)
         cam = scene.camera  # markers may switch cameras: a cut
         depsgraph = bpy.context.evaluated_depsgraph_get()
         shift = (cam.data.shift_x, cam.data.shift_y)
