@@ -82,6 +82,25 @@ TEST(CliConventions, CpuPathIsNamedAndChosenByTheEnvironment) {
         << r.output;
 }
 
+TEST(CliConventions, BenchTimesEveryFilterInOneTable) {
+    auto r = runCli("bench --filters all --sizes 48x32 --frames 2 --warmup 1 --json -q", true);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(r.output)["48x32"];
+    for (const char* f : {"bmfr", "svgf", "walr", "mara2017"}) {
+        ASSERT_TRUE(j["filters"].contains(f)) << r.output;
+        EXPECT_GT(j["filters"][f]["total_ms"].get<double>(), 0.0) << f;
+        EXPECT_GT(j["filters"][f]["x_floor"].get<double>(), 0.0) << f;
+    }
+    EXPECT_DOUBLE_EQ(j["filters"]["bmfr"]["x_bmfr"].get<double>(), 1.0);
+    EXPECT_GT(j["single_pass_floor_ms"].get<double>(), 0.0);
+    r = runCli("bench --filters bmfr,walr --sizes 48x32 --frames 1 --warmup 0 -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("x bmfr"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\n  walr "), std::string::npos) << r.output;
+    EXPECT_EQ(runCli("bench --filters all --filter bmfr").code, 2);
+    EXPECT_EQ(runCli("bench --filters bmfr,oidn").code, 2);
+}
+
 TEST(CliConventions, EveryCommandTakesQuietAndWritesWithDashO) {
     for (const char* c : kCommands) {
         const auto help = runCli(std::string(c) + " --help");

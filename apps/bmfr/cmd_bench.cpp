@@ -1,5 +1,6 @@
 #include "backend/cpu/isa.h"
 #include "backend/cuda/cuda_device.h"
+#include "bench_inputs.h"
 #include "commands.h"
 #include "core/vec.h"
 #include "progress.h"
@@ -20,66 +21,6 @@
 namespace bmfr::app {
 
 namespace {
-
-/// makeFilter for settings that all came from this command line: their errors are usage errors.
-std::unique_ptr<Filter> makeFromCommandLine(const std::string& name, const SettingValues& values) {
-    try {
-        return makeFilter(name, values);
-    } catch (const SettingError& e) {
-        throw UsageError(describeForCli(e, name));
-    }
-}
-
-struct BenchJob {
-    std::vector<std::string> sizes{"1280x720", "1920x1080", "3840x2160"};
-    int warmup = 5, frames = 30, threads = 0;
-    bool json = false, baseline = true, quiet = false;
-    /// Moving objects with motion vectors; the baseline is then the same backend reprojecting
-    /// by the camera alone, so the ratio is the cost of the motion-vector path.
-    bool motion = false;
-    /// The measured filter reads its input from CUDA device buffers (copied there once), as an
-    /// engine hands them over: no upload, and the output stays on the device.
-    bool deviceBuffers = false;
-    std::string filter = "bmfr", backend = "cpu", baselineBackend = "reference";
-    /// Another filter as the baseline (on baselineBackend), as WALR beside BMFR; "" = the same.
-    std::string baselineFilter;
-    std::vector<std::string> sets;         ///< "key=value" settings of the measured filter
-    std::vector<std::string> baselineSets; ///< "key=value" settings of the baseline
-    std::string preset = "faithful", baselinePreset = "faithful"; ///< presetSettings()
-    const std::string& referenceFilter() const {
-        return baselineFilter.empty() ? filter : baselineFilter;
-    }
-};
-
-/// Distinct input frames cycled through: up to 8, fewer for large images (memory).
-int distinctFrames(int w, int h) {
-    const double pixels = double(w) * h;
-    return std::clamp(int(24e6 / pixels), 2, 8);
-}
-
-/// Mara et al.'s factorisation on a synthetic frame: the colour split into direct, matte and
-/// glossy light, dielectric F0 and a mid roughness, so that every Mara stage runs.
-void addFactorisation(FrameData& f) {
-    const int w = f.color.width, h = f.color.height;
-    for (ImageF* img : {&f.matteIndirect, &f.glossyIndirect, &f.directLight, &f.specularF0})
-        img->resize(w, h, 3);
-    f.roughness.resize(w, h, 1), f.glossyHitDistance.resize(w, h, 1);
-    for (long i = 0; i < long(w) * h; ++i) {
-        const Vec3 c = load3(f.color.data(), i);
-        store3(f.directLight.data(), i, 0.5f * c);
-        store3(f.matteIndirect.data(), i, 0.4f * c);
-        store3(f.glossyIndirect.data(), i, 0.1f * c);
-        store3(f.specularF0.data(), i, {0.04f, 0.04f, 0.04f});
-        f.roughness.data()[i] = 0.3f, f.glossyHitDistance.data()[i] = 1.0f;
-    }
-}
-
-/// The input without the factorisation (what the other filters are timed on).
-FrameInput withoutFactorisation(FrameInput in) {
-    in.matteIndirect = in.glossyIndirect = in.directLight = in.specularF0 = {};
-    in.roughness = in.glossyHitDistance = {};
-    return in;
-}
 
 /// A CUDA frame's time on the device: every stage but the host uploads and downloads (an
 /// engine that hands over device buffers has neither).
@@ -165,10 +106,8 @@ nlohmann::json benchOne(const BenchJob& job, int w, int h, const std::function<v
     StageLog log, refLog;
     std::vector<double> deviceMs; // GPU frame time without the host transfers
     for (int i = 0; i < job.warmup + job.frames; ++i) {
-        // Cycle forwards then backwards so the camera motion stays continuous.
-        int period = 2 * distinct - 2, k = period > 0 ? i % period : 0;
-        const bool back = k >= distinct || (k == 0 && i > 0); // frame 0 comes after frame 1
-        if (k >= distinct) k = period - k;
+        bool back = false;
+        const int k = cycledFrame(i, distinct, back);
         const FrameData& frame = (back && job.motion ? backwards : frames)[size_t(k)];
         const FrameInput in = frame.input();
         if (job.deviceBuffers)
@@ -235,9 +174,17 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--backend", job->backend, "the backend measured: reference, cpu or cuda")
         ->check(oneOf(backendNames()))
         ->default_val("cpu");
-    cmd->add_option("--filter", job->filter, "the filter measured")
-        ->check(oneOf(filterNames()))
-        ->default_val("bmfr");
+    CLI::Option* one = cmd->add_option("--filter", job->filter, "the filter measured")
+                           ->check(oneOf(filterNames()))
+                           ->default_val("bmfr");
+    std::vector<std::string> choices = filterNames();
+    choices.push_back("all");
+    cmd->add_option("--filters", job->filters,
+                    "several filters on --backend, interleaved frame by frame, as one table "
+                    "beside BMFR and the single-pass floor: a comma list, or all")
+        ->delimiter(',')
+        ->check(oneOf(choices))
+        ->excludes(one);
     cmd->add_option("--baseline-filter", job->baselineFilter,
                     "another filter as the baseline, on --baseline-backend (walr beside bmfr: "
                     "--filter walr --baseline-filter bmfr --baseline-backend cpu)")
@@ -269,12 +216,26 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         Progress progress("bench", int(job->sizes.size()) * (job->warmup + job->frames),
                           job->quiet);
         int done = 0;
+        if (std::find(job->filters.begin(), job->filters.end(), "all") != job->filters.end())
+            job->filters = filterNames();
+        const bool table = !job->filters.empty();
+        if (table && (job->motion || job->deviceBuffers))
+            throw UsageError("--filters times the filters on plain frames: drop --motion and "
+                             "--device-buffers, or time one --filter");
         for (const std::string& size : job->sizes) {
             int w = 0, h = 0;
             char x = 0;
             std::istringstream in(size);
             if (!(in >> w >> x >> h) || x != 'x' || w <= 0 || h <= 0)
                 throw UsageError("--sizes: '" + size + "' is not WxH");
+            if (table) {
+                nlohmann::json r = benchFilters(*job, w, h, [&] { progress.step(++done); });
+                progress.pause();
+                if (!job->json) printFilterTable(*job, size, r);
+                for (auto& [name, f] : r["filters"].items()) f.erase("line");
+                all[size] = r;
+                continue;
+            }
             nlohmann::json r = benchOne(*job, w, h, [&] { progress.step(++done); });
             if (!job->json) {
                 progress.pause();
