@@ -161,3 +161,32 @@ TEST(Simd, MaskBucketsAreTheScalarOnes) {
                 << "luminance " << v[i + size_t(l)];
     }
 }
+
+TEST(Simd, ExpWithinTwoUlpOfTheLibrary) {
+    // Eight points every 0.0137 over the range expf covers and past both ends.
+    double worst = 0;
+    for (float x = -90.0f; x < 90.0f; x += 0.0137f) {
+        f8 v;
+        for (int l = 0; l < 8; ++l) v[l] = x + 0.001f * float(l);
+        const f8 e = exp8(v);
+        for (int l = 0; l < 8; ++l) {
+            const double ref = std::exp(double(v[l]));
+            if (v[l] < -87.33654f) {
+                EXPECT_EQ(e[l], 0.0f) << v[l];
+            } else if (v[l] > 88.37626f) {
+                EXPECT_TRUE(std::isinf(e[l])) << v[l];
+            } else {
+                const double ulp = std::nextafter(float(ref), INFINITY) - float(ref);
+                worst = std::max(worst, std::fabs(double(e[l]) - ref) / ulp);
+            }
+        }
+    }
+    EXPECT_LE(worst, 2.0);
+    f8 odd{};
+    odd[0] = NAN, odd[1] = 0.0f, odd[2] = -0.0f, odd[3] = 1.0f;
+    const f8 e = exp8(odd);
+    EXPECT_TRUE(std::isnan(e[0]));
+    EXPECT_EQ(e[1], 1.0f);
+    EXPECT_EQ(e[2], 1.0f);
+    EXPECT_NEAR(e[3], 2.7182817f, 1e-6f);
+}

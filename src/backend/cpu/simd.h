@@ -338,6 +338,31 @@ BMFR_SIMD_INLINE f8 min8(f8 a, f8 b) {
 BMFR_SIMD_INLINE f8 max8(f8 a, f8 b) {
     return a < b ? b : a;
 }
+/// e^x per lane within 2 ulp of std::exp (Cephes' expf: x = n ln 2 + r, a degree-6 polynomial
+/// in r, then n added to the exponent). 0 below -87.33, where expf turns subnormal, and +inf
+/// above 88.38 (Cephes' bound); NaN stays NaN.
+BMFR_SIMD_INLINE f8 exp8(f8 x) {
+    const f8 lo = splat8(-87.33654f), hi = splat8(88.37626f);
+    const f8 xc = min8(max8(x, lo), hi);
+    const f8 fx = xc * 1.44269504088896341f + 0.5f;
+    f8 n = __builtin_convertvector(__builtin_convertvector(fx, i8), f8);
+    n = n > fx ? n - 1.0f : n; // floor
+    const f8 r = (xc - n * 0.693359375f) - n * -2.12194440e-4f;
+    f8 p = 1.9875691500e-4f * r + 1.3981999507e-3f;
+    p = p * r + 8.3334519073e-3f;
+    p = p * r + 4.1665795894e-2f;
+    p = p * r + 1.6666665459e-1f;
+    p = p * r + 5.0000001201e-1f;
+    const f8 y = (p * (r * r) + r) + 1.0f;
+    const i8 bits = (__builtin_convertvector(n, i8) + 127) << 23;
+    f8 scale;
+    std::memcpy(&scale, &bits, sizeof scale);
+    f8 e = y * scale;
+    e = x < lo ? f8{} : e;
+    e = x > hi ? splat8(__builtin_inff()) : e;
+    return x == x ? e : x;
+}
+
 /// Sum of the eight lanes, as a fixed tree (repeatable).
 BMFR_SIMD_INLINE float hsum8(f8 v) {
     return ((v[0] + v[4]) + (v[1] + v[5])) + ((v[2] + v[6]) + (v[3] + v[7]));

@@ -1,7 +1,8 @@
-// The CPU backend's SVGF: the reference's scalar stages up to TAA (they are branchy per-tap
-// loops that gain little from eight-wide code yet), then the eight-wide TAA shared with BMFR.
+// The CPU backend's SVGF: the reference's accumulation, variance and re-modulation, with
+// eight-wide a-trous levels (cpu_svgf_atrous.h) and the eight-wide TAA shared with BMFR.
 #include "backend/backend_registry.h"
 #include "backend/cpu/cpu_taa.h"
+#include "backend/cpu/svgf/cpu_svgf_atrous.h"
 #include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/stopwatch.h"
 
@@ -14,11 +15,22 @@ class CpuSvgfPasses final : public HostSvgfPasses {
     void allocate(int w, int h, const SvgfSettings& s, int threads) override {
         HostSvgfPasses::allocate(w, h, s, threads);
         taaScratch_.assign(taaScratchFloats(w, h), 0.0f);
+        atrous_.reserve(w, h, s);
     }
     PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
-        const PassCounters counters = reference::svgfStagesBeforeTaa(ctx, buffers, times);
+        const PassCounters counters = reference::svgfAccumulateAndVariance(ctx, buffers, times);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
+        if (cpuAtrousSupports(ctx.settings)) {
+            float* const filtered[2] = {buffers.filtered[0].data(), buffers.filtered[1].data()};
+            buffers.outputLevel =
+                atrous_.run(ctx.pool, ctx.settings, reference::atrousGuides(ctx, buffers), filtered,
+                            buffers.color[h.cur].data());
+        } else {
+            reference::svgfAtrousLevels(ctx, buffers);
+        }
+        reference::svgfRemodulate(ctx, buffers);
+        times.add("atrous", clock.lap());
         temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
                              buffers.previousPixel.data(), taaScratch_.data(),
                              buffers.output[h.cur].data(), h.width, h.height,
@@ -31,6 +43,7 @@ class CpuSvgfPasses final : public HostSvgfPasses {
 
   private:
     std::vector<float> taaScratch_;
+    CpuAtrous atrous_;
 };
 
 } // namespace

@@ -8,10 +8,11 @@
 
 namespace bmfr::reference {
 
-PassCounters svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times) {
+PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
+                                       StageTimes& times) {
     const SvgfSettings& s = ctx.settings;
     const TemporalHistory& h = ctx.history;
-    const int w = h.width, cur = h.cur;
+    const int w = h.width;
     const SvgfFrame f = b.frame(ctx);
     Stopwatch clock;
     std::atomic<int64_t> nonFinite{0};
@@ -28,28 +29,56 @@ PassCounters svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, Sta
         svgfVariancePixel(f, s, x, y, b.filtered[0].data(), b.variance.data());
     });
     times.add("variance", clock.lap());
-    AtrousLevel level{nullptr, nullptr, f.normal, f.depth, f.depthGradient, f.length, w, h.height};
-    const int src = runAtrousLevels(
+    return {nonFinite.load(), discarded};
+}
+
+AtrousLevel atrousGuides(const SvgfPassContext& ctx, SvgfBuffers& b) {
+    const int cur = ctx.history.cur;
+    return {nullptr,
+            nullptr,
+            b.normal[cur].data(),
+            b.depth.data(),
+            b.depthGradient.data(),
+            b.historyLength[cur].data(),
+            ctx.history.width,
+            ctx.history.height};
+}
+
+void svgfAtrousLevels(const SvgfPassContext& ctx, SvgfBuffers& b) {
+    const SvgfSettings& s = ctx.settings;
+    const int w = ctx.history.width, h = ctx.history.height, cur = ctx.history.cur;
+    AtrousLevel level = atrousGuides(ctx, b);
+    b.outputLevel = runAtrousLevels(
         s,
         [&](int from, int to, int step) {
             level.in = b.filtered[from].data(), level.out = b.filtered[to].data();
             level.step = step;
-            ctx.pool.forEachPixel(w, h.height, 4,
-                                  [&](int x, int y) { svgfAtrousPixel(level, s, x, y); });
+            ctx.pool.forEachPixel(w, h, 4, [&](int x, int y) { svgfAtrousPixel(level, s, x, y); });
         },
         [&](int k) {
             for (long i = 0; i < b.integrated.pixelCount(); ++i)
                 store3(b.color[cur].data(), i, load3Stride4(b.filtered[k].data(), i));
         });
-    b.outputLevel = src;
-    const float* last = b.filtered[src].data();
-    ctx.pool.parallelFor(h.height, 8, [&](long y0, long y1) {
+}
+
+void svgfRemodulate(const SvgfPassContext& ctx, SvgfBuffers& b) {
+    const int w = ctx.history.width;
+    const float* last = b.filtered[b.outputLevel].data();
+    ctx.pool.parallelFor(ctx.history.height, 8, [&](long y0, long y1) {
         for (long i = y0 * w; i < y1 * w; ++i)
             store3(b.remodulated.data(), i,
-                   remodulatePixel(load3Stride4(last, i), ctx.input, i, true, s.albedoEpsilon));
+                   remodulatePixel(load3Stride4(last, i), ctx.input, i, true,
+                                   ctx.settings.albedoEpsilon));
     });
+}
+
+PassCounters svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times) {
+    const PassCounters counters = svgfAccumulateAndVariance(ctx, b, times);
+    Stopwatch clock;
+    svgfAtrousLevels(ctx, b);
+    svgfRemodulate(ctx, b);
     times.add("atrous", clock.lap());
-    return {nonFinite.load(), discarded};
+    return counters;
 }
 
 namespace {

@@ -1,12 +1,23 @@
 // The reference backend's SVGF stages up to TAA, each a plain loop over the filter's kernels
-// (filters/svgf/svgf_kernels.h). The CPU backend runs these too and brings its own TAA.
+// (filters/svgf/svgf_kernels.h). The CPU backend runs these too, but for the a-trous levels
+// and TAA, which it brings eight wide.
 #pragma once
 #include "filters/svgf/svgf_passes.h"
 
 namespace bmfr::reference {
 
-/// Accumulation, depth gradient, variance, the a-trous levels (the step-1 level fed back as
-/// the colour history) and re-modulation into b.remodulated. Returns the non-finite count.
+/// Accumulation and depth gradient ("accumulate"), then the variance estimate ("variance") into
+/// b.filtered[0]. Returns the non-finite and discarded counts.
+PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
+                                       StageTimes& times);
+/// The a-trous levels' guides (normal, depth, its gradient, history length) for this frame.
+AtrousLevel atrousGuides(const SvgfPassContext& ctx, SvgfBuffers& b);
+/// The a-trous levels from b.filtered[0]: the step-1 level fed back as the colour history, the
+/// last one's index in b.outputLevel.
+void svgfAtrousLevels(const SvgfPassContext& ctx, SvgfBuffers& b);
+/// The last level re-modulated into b.remodulated.
+void svgfRemodulate(const SvgfPassContext& ctx, SvgfBuffers& b);
+/// All of the above, the a-trous levels and re-modulation timed as "atrous".
 PassCounters svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times);
 
 } // namespace bmfr::reference

@@ -1,0 +1,36 @@
+// The CPU backend's SVGF a-trous levels: eight pixels of a row at a time over planar copies of
+// the colour, variance and guides, each row padded by an apron whose mask is zero, so that a tap
+// past the row's ends needs no bounds test. Same taps, order and feedback as the reference
+// (filters/svgf/svgf_kernels.h); the exponential is exp8 (within 2 ulp).
+#pragma once
+#include "core/parallel.h"
+#include "filters/svgf/svgf_passes.h"
+#include <vector>
+
+namespace bmfr::cpu {
+
+/// Whether the eight-wide levels run these settings: an integer normal exponent (repeated
+/// squaring, as the reference's normalWeight); others take the reference's levels.
+bool cpuAtrousSupports(const SvgfSettings& s);
+
+class CpuAtrous {
+  public:
+    /// Sizes the planes for a w x h frame with these settings (run does it when they change).
+    void reserve(int w, int h, const SvgfSettings& s);
+    /// The levels from `first` (RGB + variance, 4 floats per pixel) with `guides`' normal,
+    /// depth, gradient and history length. Writes the step-1 level's RGB to `colorHistory`
+    /// (3 floats per pixel) and the last level to filtered[returned index], as the reference's
+    /// runAtrousLevels does with filtered[0] = first.
+    int run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& guides,
+            float* const filtered[2], float* colorHistory);
+
+  private:
+    enum Plane { Nx, Ny, Nz, Depth, GradX, GradY, Mask, Colour, Count = Colour + 8 };
+    int width_ = 0, height_ = 0, apron_ = 0;
+    long pitch_ = 0, planeFloats_ = 0;
+    std::vector<float> planes_;
+
+    float* plane(int k) { return planes_.data() + long(k) * planeFloats_ + apron_; }
+};
+
+} // namespace bmfr::cpu
