@@ -332,6 +332,10 @@ BMFR_SIMD_INLINE f8 splat8(float a) {
     for (int l = 0; l < 8; ++l) v[l] = a;
     return v;
 }
+/// |v| per lane (the sign bit cleared).
+BMFR_SIMD_INLINE f8 abs8(f8 v) {
+    return f8(i8(v) & 0x7fffffff);
+}
 BMFR_SIMD_INLINE f8 min8(f8 a, f8 b) {
     return b < a ? b : a;
 }

@@ -55,9 +55,9 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                 for (int dx = -1; dx <= 1; ++dx) {
                     const long q = c + dy * a.pitch + dx;
                     const float k = (dx == 0 ? 0.5f : 0.25f) * (dy == 0 ? 0.5f : 0.25f);
-                    const i8 valid = load8(a.mask + q) > zero;
-                    gv += valid ? k * load8(a.in[3] + q) : zero;
-                    gw += valid ? splat8(k) : zero;
+                    const f8 km = k * load8(a.mask + q); // k, or 0 without a sample
+                    gv += km * load8(a.in[3] + q);
+                    gw += km;
                 }
             }
             const f8 variance = gw > zero ? gv / gw : zero;
@@ -80,12 +80,13 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                     const f8 rq = load8(a.in[0] + q), gq = load8(a.in[1] + q);
                     const f8 bq = load8(a.in[2] + q);
                     const f8 slope = gx0 * float(kx * step) + gy0 * float(ky * step);
-                    const f8 depthArg = (z0 - load8(a.depth + q)) / (max8(slope, -slope) + 1e-6f);
-                    const f8 lumDiff = l0 - luminanceOf(rq, gq, bq);
-                    const f8 arg = max8(depthArg, -depthArg) + max8(lumDiff, -lumDiff) * inverseLum;
+                    const f8 depthArg = abs8(z0 - load8(a.depth + q)) / (abs8(slope) + 1e-6f);
+                    const f8 arg = depthArg + abs8(l0 - luminanceOf(rq, gq, bq)) * inverseLum;
                     const float tap = atrousTap(r, kx) * atrousTap(r, ky) / centre;
-                    f8 wgt = tap * wn * exp8(-arg);
-                    wgt = (load8(a.mask + q) > zero) & (wn > zero) ? wgt : zero;
+                    // Every factor is finite (exp8 of -arg <= 0 is at most 1), so a tap without
+                    // a sample (mask 0), or with wn = 0, adds exactly nothing, as the
+                    // reference's skip.
+                    const f8 wgt = tap * load8(a.mask + q) * wn * exp8(-arg);
                     sumR += wgt * rq, sumG += wgt * gq, sumB += wgt * bq;
                     sumV += wgt * wgt * load8(a.in[3] + q);
                     sumW += wgt;
