@@ -342,16 +342,16 @@ BMFR_SIMD_INLINE f8 min8(f8 a, f8 b) {
 BMFR_SIMD_INLINE f8 max8(f8 a, f8 b) {
     return a < b ? b : a;
 }
-/// e^x per lane within 2 ulp of std::exp (Cephes' expf: x = n ln 2 + r, a degree-6 polynomial
-/// in r, then n added to the exponent). 0 below -87.33, where expf turns subnormal, and +inf
-/// above 88.38 (Cephes' bound); NaN stays NaN.
-BMFR_SIMD_INLINE f8 exp8(f8 x) {
-    const f8 lo = splat8(-87.33654f), hi = splat8(88.37626f);
-    const f8 xc = min8(max8(x, lo), hi);
-    const f8 fx = xc * 1.44269504088896341f + 0.5f;
+/// The bounds of exp8 below: expf turns subnormal under the first; the second is Cephes'.
+constexpr float kExpLow = -87.33654f, kExpHigh = 88.37626f;
+
+/// e^x for kExpLow <= x <= kExpHigh (Cephes' expf: x = n ln 2 + r, a degree-6 polynomial in r,
+/// then n added to the exponent); exp8 and expNonPositive8 handle the rest.
+BMFR_SIMD_INLINE f8 expInRange8(f8 x) {
+    const f8 fx = x * 1.44269504088896341f + 0.5f;
     f8 n = __builtin_convertvector(__builtin_convertvector(fx, i8), f8);
     n = n > fx ? n - 1.0f : n; // floor
-    const f8 r = (xc - n * 0.693359375f) - n * -2.12194440e-4f;
+    const f8 r = (x - n * 0.693359375f) - n * -2.12194440e-4f;
     f8 p = 1.9875691500e-4f * r + 1.3981999507e-3f;
     p = p * r + 8.3334519073e-3f;
     p = p * r + 4.1665795894e-2f;
@@ -361,10 +361,22 @@ BMFR_SIMD_INLINE f8 exp8(f8 x) {
     const i8 bits = (__builtin_convertvector(n, i8) + 127) << 23;
     f8 scale;
     std::memcpy(&scale, &bits, sizeof scale);
-    f8 e = y * scale;
+    return y * scale;
+}
+/// e^x per lane within 2 ulp of std::exp: 0 below kExpLow, +inf above kExpHigh, NaN stays NaN.
+BMFR_SIMD_INLINE f8 exp8(f8 x) {
+    const f8 lo = splat8(kExpLow), hi = splat8(kExpHigh);
+    f8 e = expInRange8(min8(max8(x, lo), hi));
     e = x < lo ? f8{} : e;
     e = x > hi ? splat8(__builtin_inff()) : e;
     return x == x ? e : x;
+}
+/// exp8 of lanes known to be <= 0 and not NaN (edge-stopping weights), without the checks
+/// those lanes never need.
+BMFR_SIMD_INLINE f8 expNonPositive8(f8 x) {
+    const f8 lo = splat8(kExpLow);
+    const f8 e = expInRange8(max8(x, lo));
+    return x < lo ? f8{} : e;
 }
 
 /// Sum of the eight lanes, as a fixed tree (repeatable).

@@ -25,7 +25,8 @@ class CpuAtrous {
             float* const filtered[2], float* colorHistory);
 
   private:
-    enum Plane { Nx, Ny, Nz, Depth, GradX, GradY, Mask, Colour, Count = Colour + 8 };
+    /// Colour + 5 s + k: ping-pong set s's R, G, B, variance and luminance (k = 0 .. 4).
+    enum Plane { Nx, Ny, Nz, Depth, GradX, GradY, Mask, Colour, Count = Colour + 10 };
     int width_ = 0, height_ = 0, apron_ = 0;
     long pitch_ = 0, planeFloats_ = 0;
     std::vector<float> planes_;
