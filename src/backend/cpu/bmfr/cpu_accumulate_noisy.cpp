@@ -1,4 +1,5 @@
 #include "backend/cpu/bmfr/cpu_bmfr_buffers.h"
+#include "backend/cpu/pixel_input8.h"
 #include "backend/cpu/reproject8.h"
 #include "backend/cpu/simd.h"
 #include "filters/bmfr/emitter_exclusion.h"
@@ -10,60 +11,6 @@ namespace bmfr::cpu {
 using namespace simd;
 
 namespace {
-
-/// The eight pixels' inputs as readPixel (temporal/pixel_input.h) reads them.
-struct Inputs8 {
-    f8 position[3], normal[3], color[3];
-};
-
-BMFR_SIMD_INLINE Inputs8 readInputs(const FrameArgs& a, long i, int n, int64_t& bad) {
-    const InputPlanes& in = a.in;
-    const BmfrSettings& s = a.s;
-    Inputs8 px;
-    f8 albedo[3], e[3] = {};
-    loadXyz8(in.normal + 3 * i, n, px.normal);
-    loadXyz8(in.position + 3 * i, n, px.position);
-    loadXyz8(in.albedo + 3 * i, n, albedo);
-    loadXyz8(in.color + 3 * i, n, px.color);
-    if (in.emission) loadXyz8(in.emission + 3 * i, n, e);
-    // One test for all channels, on their sum: a NaN or an infinity in any makes the sum
-    // non-finite. So can an overflow of finite values, which only sends the group through the
-    // exact per-channel test.
-    f8 sum = (e[0] + e[1]) + e[2];
-    for (int c = 0; c < 3; ++c) sum += (px.normal[c] + px.position[c]) + (albedo[c] + px.color[c]);
-    if (__builtin_expect(!allLanes(finite8(sum)), 0)) {
-        finiteOrZero8(px.normal, bad), finiteOrZero8(px.position, bad);
-        finiteOrZero8(albedo, bad), finiteOrZero8(px.color, bad), finiteOrZero8(e, bad);
-    }
-    const f8 eps = splat8(s.albedoEpsilon);
-    f8 g[3];
-    for (int c = 0; c < 3; ++c) g[c] = albedo[c] > eps ? albedo[c] : eps;
-    if (in.emission) {
-        for (int c = 0; c < 3; ++c) {
-            if (s.colorIsDemodulated) e[c] = e[c] / g[c];
-            px.color[c] = max8(px.color[c] - e[c], f8{});
-        }
-    }
-    for (int k = 0; k < in.extraCount; ++k) {
-        const f8 v = loadFirst(in.extras[k] + i, n);
-        bad += countLanes(~finite8(v));
-    }
-    if (s.stages.demodulate && !s.colorIsDemodulated)
-        for (int c = 0; c < 3; ++c) px.color[c] = px.color[c] / g[c];
-    return px;
-}
-
-/// firstBlendWeight and nextHistoryLength (temporal/blend_weights.h) for eight lanes.
-BMFR_SIMD_INLINE f8 firstBlendWeight8(f8 samples, float minAlpha) {
-    const f8 w = 1.0f / (samples + 1.0f);
-    return w > minAlpha ? w : splat8(minAlpha);
-}
-BMFR_SIMD_INLINE f8 nextHistoryLength8(f8 samples) {
-    // Round half to even through the 1.5 * 2^23 trick (exact for 0 <= v < 2^22, and larger
-    // values saturate below), as lrintf in the default rounding mode.
-    const f8 rounded = (samples + 12582912.0f) - 12582912.0f;
-    return samples > 254.0f ? splat8(255.0f) : rounded + 1.0f;
-}
 
 /// recordHistoryChange (filters/bmfr/history_change.h) for eight pixels.
 template <class T>
@@ -95,7 +42,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const FrameArgs& a, const FramePlanes<T>& 
     const long i = long(y) * a.t.width + x;
     const BmfrSettings& s = a.s;
     const TemporalHistory& t = a.t;
-    const Inputs8 px = readInputs(a, i, n, bad);
+    const InputModes modes{s.colorIsDemodulated, s.stages.demodulate, s.albedoEpsilon};
+    const Inputs8 px = readInputs8(a.in, modes, i, n, bad);
     for (int c = 0; c < 3; ++c) {
         storeFirst(pl.position[c] + i, px.position[c], n);
         storeFirst(pl.normal[c] + i, px.normal[c], n);

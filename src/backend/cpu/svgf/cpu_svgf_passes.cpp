@@ -1,7 +1,9 @@
-// The CPU backend's SVGF: the reference's accumulation, variance and re-modulation, with
-// eight-wide a-trous levels (cpu_svgf_atrous.h) and the eight-wide TAA shared with BMFR.
+// The CPU backend's SVGF: the reference's variance and re-modulation, with eight-wide
+// accumulation (cpu_svgf_accumulate.h), a-trous levels (cpu_svgf_atrous.h) and the TAA shared
+// with BMFR.
 #include "backend/backend_registry.h"
 #include "backend/cpu/cpu_taa.h"
+#include "backend/cpu/svgf/cpu_svgf_accumulate.h"
 #include "backend/cpu/svgf/cpu_svgf_atrous.h"
 #include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/stopwatch.h"
@@ -18,7 +20,8 @@ class CpuSvgfPasses final : public HostSvgfPasses {
         atrous_.reserve(w, h, s);
     }
     PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
-        const PassCounters counters = reference::svgfAccumulateAndVariance(ctx, buffers, times);
+        const PassCounters counters =
+            reference::svgfAccumulateAndVariance(ctx, buffers, times, svgfAccumulateRows);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
         if (cpuAtrousSupports(ctx.settings)) {

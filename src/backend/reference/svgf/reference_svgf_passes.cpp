@@ -8,19 +8,21 @@
 
 namespace bmfr::reference {
 
+int64_t svgfAccumulatePixels(const SvgfFrame& f, long y0, long y1) {
+    int64_t bad = 0;
+    for (long i = y0 * f.width; i < y1 * f.width; ++i) svgfAccumulatePixel(f, i, bad);
+    return bad;
+}
+
 PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
-                                       StageTimes& times) {
+                                       StageTimes& times, SvgfAccumulateRows rows) {
     const SvgfSettings& s = ctx.settings;
     const TemporalHistory& h = ctx.history;
     const int w = h.width;
     const SvgfFrame f = b.frame(ctx);
     Stopwatch clock;
     std::atomic<int64_t> nonFinite{0};
-    ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {
-        int64_t bad = 0;
-        for (long i = y0 * w; i < y1 * w; ++i) svgfAccumulatePixel(f, i, bad);
-        nonFinite += bad;
-    });
+    ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) { nonFinite += rows(f, y0, y1); });
     ctx.pool.forEachPixel(w, h.height, 4, [&](int x, int y) { svgfDepthGradientPixel(f, x, y); });
     const int64_t discarded =
         countDiscarded(ctx.pool, f.accept, b.accept.pixelCount(), h.hasHistory());

@@ -1,15 +1,20 @@
 // The reference backend's SVGF stages up to TAA, each a plain loop over the filter's kernels
-// (filters/svgf/svgf_kernels.h). The CPU backend runs these too, but for the a-trous levels
-// and TAA, which it brings eight wide.
+// (filters/svgf/svgf_kernels.h). The CPU backend runs these too, with its own accumulation
+// rows, a-trous levels and TAA, eight wide.
 #pragma once
 #include "filters/svgf/svgf_passes.h"
 
 namespace bmfr::reference {
 
-/// Accumulation and depth gradient ("accumulate"), then the variance estimate ("variance") into
-/// b.filtered[0]. Returns the non-finite and discarded counts.
+/// svgfAccumulatePixel over the rows [y0, y1); returns the non-finite values it counted.
+int64_t svgfAccumulatePixels(const SvgfFrame& f, long y0, long y1);
+using SvgfAccumulateRows = int64_t (*)(const SvgfFrame& f, long y0, long y1);
+
+/// Accumulation (`rows` over every row) and depth gradient ("accumulate"), then the variance
+/// estimate ("variance") into b.filtered[0]. Returns the non-finite and discarded counts.
 PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
-                                       StageTimes& times);
+                                       StageTimes& times,
+                                       SvgfAccumulateRows rows = svgfAccumulatePixels);
 /// The a-trous levels' guides (normal, depth, its gradient, history length) for this frame.
 AtrousLevel atrousGuides(const SvgfPassContext& ctx, SvgfBuffers& b);
 /// The a-trous levels from b.filtered[0]: the step-1 level fed back as the colour history, the
