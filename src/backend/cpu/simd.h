@@ -363,7 +363,8 @@ BMFR_SIMD_INLINE f8 expInRange8(f8 x) {
     std::memcpy(&scale, &bits, sizeof scale);
     return y * scale;
 }
-/// e^x per lane within 2 ulp of std::exp: 0 below kExpLow, +inf above kExpHigh, NaN stays NaN.
+/// e^x per lane, within 2 ulp of std::exp from kExpLow to kExpHigh; 0 below, +inf above (where
+/// expf is subnormal, or finite up to 88.72), NaN stays NaN.
 BMFR_SIMD_INLINE f8 exp8(f8 x) {
     const f8 lo = splat8(kExpLow), hi = splat8(kExpHigh);
     f8 e = expInRange8(min8(max8(x, lo), hi));

@@ -1,7 +1,9 @@
 // The CPU backend's SVGF a-trous levels: eight pixels of a row at a time over planar copies of
-// the colour, variance and guides, each row padded by an apron whose mask is zero, so that a tap
-// past the row's ends needs no bounds test. Same taps, order and feedback as the reference
-// (filters/svgf/svgf_kernels.h); the exponential is exp8 (within 2 ulp).
+// the colour, variance, luminance and guides, each row padded by an apron whose mask is zero,
+// so that a tap past the row's ends needs no bounds test. Same taps, order and feedback as the
+// reference (filters/svgf/svgf_kernels.h); rounded differently, within the conformance
+// tolerance: exp8, fused multiply-adds, phiDepth folded into the gradient and the luminance
+// term multiplied by a reciprocal.
 #pragma once
 #include "core/parallel.h"
 #include "filters/svgf/svgf_passes.h"
