@@ -10,6 +10,13 @@ using namespace simd;
 
 namespace {
 
+/// Stores the first n (1 to 8) lanes of x and y as packed xy records.
+BMFR_SIMD_INLINE void storeXy8(float* p, int n, f8 x, f8 y) {
+    float xy[16];
+    for (int l = 0; l < 8; ++l) xy[2 * l] = x[l], xy[2 * l + 1] = y[l];
+    std::memcpy(p, xy, sizeof(float) * 2 * size_t(n));
+}
+
 /// The n <= 8 pixels from column x of row y.
 BMFR_SIMD_INLINE void accumulateGroup(const SvgfFrame& f, int x, int y, int n, int64_t& bad) {
     const long i = long(y) * f.width + x;
@@ -58,9 +65,7 @@ BMFR_SIMD_INLINE void accumulateGroup(const SvgfFrame& f, int x, int y, int n, i
             },
             old);
     }
-    float pp[16];
-    for (int l = 0; l < 8; ++l) pp[2 * l] = was.px[l], pp[2 * l + 1] = was.py[l];
-    std::memcpy(f.previousPixel + 2 * i, pp, sizeof(float) * 2 * size_t(n));
+    storeXy8(f.previousPixel + 2 * i, n, was.px, was.py);
     storeBytes(f.accept + i, accept, n);
     const i8 history = total > 0.0f;
     const f8 safe = history ? total : splat8(1.0f);
@@ -77,11 +82,10 @@ BMFR_SIMD_INLINE void accumulateGroup(const SvgfFrame& f, int x, int y, int n, i
     length = present ? (history ? nextHistoryLength8(samples) : splat8(1.0f))
                      : (history ? roundHalfEven8(samples) : f8{});
     storeXyz8(f.integrated + 3 * i, n, color);
-    storeXyz8(f.color + 3 * i, n, color); // replaced by the feedback level later
-    float mm[16];
-    for (int lane = 0; lane < 8; ++lane) mm[2 * lane] = m1[lane], mm[2 * lane + 1] = m2[lane];
-    std::memcpy(f.integratedMoments + 2 * i, mm, sizeof(float) * 2 * size_t(n));
-    std::memcpy(f.moments + 2 * i, mm, sizeof(float) * 2 * size_t(n));
+    // f.color, which the reference also fills here, is left to the step-1 level's feedback:
+    // every run of levels has one (runAtrousLevels), so the store would always be overwritten.
+    storeXy8(f.integratedMoments + 2 * i, n, m1, m2);
+    storeXy8(f.moments + 2 * i, n, m1, m2);
     storeBytes(f.length + i, __builtin_convertvector(length, i8), n);
 }
 
