@@ -267,23 +267,40 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     a.f.preGauss = gauss.data();
     a.radius = randomValues(a.radius.size(), -2, 12, 11);
     a.f.frame = 5;
-    // A third of the pixels at the radii stage 7's tables hold (as the stage computes them).
+    // A third of the pixels at the radii stage 7's tables hold (as the stage computes them), and
+    // runs of eight sharing one of them or a radius of their own.
     cpu::MaraTapTables tables;
-    tables.build(a.f);
+    tables.buildFinal(a.f);
     for (size_t k = 0; k < a.radius.size(); k += 3) a.radius[k] = tables.radius[k % 4];
+    for (size_t k = 16; k + 8 < a.radius.size(); k += 40)
+        for (size_t l = 0; l < 8; ++l) a.radius[k + l] = k % 80 == 16 ? tables.radius[1] : 2.5f;
+    // Each pixel its own rotation: the reference's bits. Runs of eight: the taps that land on
+    // one pixel are merged, so the sums round differently.
+    for (const int across : {1, 8}) {
+        a.f.rotationWidth = across;
+        MaraPlane b = a;
+        a.each([&](int x, int y) { maraPreBilateralPixel(a.f, x, y); });
+        a.each([&](int x, int y) { maraFinalBilateralPixel(a.f, a.glossy.data(), x, y); });
+        b.wire();
+        tables.buildPre(b.f);
+        tables.buildFinal(b.f);
+        cpu::maraSparseTile(b.f, b.temporal.data(), false, 0, 48, 0, h, tables);
+        cpu::maraSparseTile(b.f, b.temporal.data(), false, 48, w, 0, h, tables);
+        cpu::maraSparseTile(b.f, b.glossy.data(), true, 0, w, 0, 9, tables);
+        cpu::maraSparseTile(b.f, b.glossy.data(), true, 0, w, 9, h, tables);
+        if (across == 1) {
+            EXPECT_EQ(a.history, b.history);
+            EXPECT_EQ(a.matteOut, b.matteOut);
+            continue;
+        }
+        for (size_t k = 0; k < a.history.size(); ++k) {
+            ASSERT_NEAR(b.history[k], a.history[k], 2e-6f * (1 + std::fabs(a.history[k]))) << k;
+            ASSERT_NEAR(b.matteOut[k], a.matteOut[k], 2e-6f * (1 + std::fabs(a.matteOut[k]))) << k;
+        }
+        EXPECT_NE(a.matteOut, b.matteOut) << "the merged taps are not exercised";
+    }
     MaraPlane b = a;
-    a.each([&](int x, int y) { maraPreBilateralPixel(a.f, x, y); });
-    a.each([&](int x, int y) { maraFinalBilateralPixel(a.f, a.glossy.data(), x, y); });
     b.wire();
-    std::vector<float> taps(size_t(cpu::kMaraTapRecord * w * h));
-    cpu::maraPackTaps(b.f, b.temporal.data(), true, taps.data(), 0, h);
-    cpu::maraSparseTile(b.f, taps.data(), false, 0, 48, 0, h);
-    cpu::maraSparseTile(b.f, taps.data(), false, 48, w, 0, h);
-    cpu::maraPackTaps(b.f, b.glossy.data(), false, taps.data(), 0, h);
-    cpu::maraSparseTile(b.f, taps.data(), true, 0, w, 0, 9, &tables);
-    cpu::maraSparseTile(b.f, taps.data(), true, 0, w, 9, h, &tables);
-    EXPECT_EQ(a.history, b.history);
-    EXPECT_EQ(a.matteOut, b.matteOut);
     a.each([&](int x, int y) { maraMedianPixel(a.f, x, y); });
     a.each([&](int x, int y) {
         maraGlossyPassPixel(a.f, a.glossy.data(), a.glossyRow.data(), x, y, 1, 0);
@@ -354,24 +371,49 @@ TEST(Mara2017, M7SparseTapsStayInTheDiskAndTurnEveryFrame) {
         ASSERT_LE(std::hypot(float(dx), float(dy)), f.preRadius + 0.7072f);
     }
     EXPECT_NE(maraFrameRotation(0, 0, 4), maraFrameRotation(1, 0, 4));
-    int differ = 0;
-    for (int x = 0; x < 64; ++x)
-        differ += maraPixelRotation(x, 0, 0, 0, 4) != maraPixelRotation(x + 1, 0, 0, 0, 4);
-    EXPECT_GT(differ, 48);
-    // Over many frames the taps cover the whole disk: the time average is a dense filter.
-    std::set<std::pair<int, int>> hit;
-    for (uint32_t frame = 0; frame < 64; ++frame) {
-        maraSpiralTable(f.preTaps, maraFrameRotation(frame, 0, 4), spiral);
-        for (size_t k = 0; k < spiral.size(); k += 2)
-            hit.insert(
-                {maraTapOffset(spiral[k], f.preRadius), maraTapOffset(spiral[k + 1], f.preRadius)});
+    // Each pixel its own rotation (rotationWidth 1), or runs of eight sharing one (the default):
+    // neighbouring runs differ, the 16 rotations are used alike, and a pixel's changes with the
+    // frame.
+    for (const int across : {1, 8}) {
+        int differ = 0, sameInRun = 0, changes = 0;
+        for (int x = 0; x < 64 * across; x += across)
+            differ += maraPixelRotation(x, 0, across, 0, 0, 4) !=
+                      maraPixelRotation(x + across, 0, across, 0, 0, 4);
+        for (int x = 0; x < 64; ++x)
+            sameInRun += maraPixelRotation(x, 3, across, 0, 0, 4) ==
+                         maraPixelRotation(x / across * across, 3, across, 0, 0, 4);
+        for (uint32_t frame = 0; frame < 64; ++frame)
+            changes += maraPixelRotation(13, 7, across, frame, 0, 4) !=
+                       maraPixelRotation(13, 7, across, frame + 1, 0, 4);
+        EXPECT_GT(differ, 48) << across;
+        EXPECT_EQ(sameInRun, 64) << across;
+        EXPECT_GT(changes, 48) << across;
+        int histogram[kMaraSpiralRotations] = {};
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x)
+                ++histogram[maraPixelRotation(x * across, y, across, 0, 0, 4)];
+        for (int r = 0; r < kMaraSpiralRotations; ++r) {
+            EXPECT_GT(histogram[r], 256 * 7 / 10) << across << ", rotation " << r;
+            EXPECT_LT(histogram[r], 256 * 13 / 10) << across << ", rotation " << r;
+        }
+        // Over many frames one pixel's own taps (its rotation each frame) cover the whole disk:
+        // the time average is a dense filter.
+        std::set<std::pair<int, int>> hit;
+        for (uint32_t frame = 0; frame < 64; ++frame) {
+            maraSpiralTable(f.preTaps, maraFrameRotation(frame, 0, 4), spiral);
+            const int r = maraPixelRotation(13, 7, across, frame, 0, 4);
+            for (int k = 0; k < f.preTaps; ++k)
+                hit.insert(
+                    {maraTapOffset(spiral[size_t(2 * (r * f.preTaps + k))], f.preRadius),
+                     maraTapOffset(spiral[size_t(2 * (r * f.preTaps + k) + 1)], f.preRadius)});
+        }
+        int inside = 0, missed = 0;
+        for (int dy = -6; dy <= 6; ++dy)
+            for (int dx = -6; dx <= 6; ++dx)
+                if (std::hypot(float(dx), float(dy)) <= f.preRadius - 0.5f && (dx || dy))
+                    ++inside, missed += !hit.count({dx, dy});
+        EXPECT_EQ(missed, 0) << "of " << inside << ", rotation width " << across;
     }
-    int inside = 0, missed = 0;
-    for (int dy = -6; dy <= 6; ++dy)
-        for (int dx = -6; dx <= 6; ++dx)
-            if (std::hypot(float(dx), float(dy)) <= f.preRadius - 0.5f && (dx || dy))
-                ++inside, missed += !hit.count({dx, dy});
-    EXPECT_EQ(missed, 0) << "of " << inside;
 }
 
 TEST(Mara2017, M8GlossySigmaLimitsAndSeparability) {

@@ -51,6 +51,8 @@ const FilterCase kFilters[] = {
      {{"the paper's first frames (no cumulative start)", {{"cumulativeStart", "false"}}},
       {"c / h in stage 5, fewer taps",
        {{"normaliseConfidence", "true"}, {"preTaps", "8"}, {"finalTaps", "12"}}},
+      {"each pixel its own spiral rotation", {{"rotationWidth", "1"}}},
+      {"runs of three sharing a rotation", {{"rotationWidth", "3"}}},
       {"TAA on", {{"taa", "true"}}},
       {"TAA on, from the same surface", {{"taa", "true"}, {"taaSameSurface", "true"}}}}},
 };

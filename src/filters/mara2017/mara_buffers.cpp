@@ -53,7 +53,7 @@ MaraFrame maraFrameSettings(const Mara2017Settings& s, int width) {
     f.clampHistory = s.clampHistory, f.virtualReprojection = s.virtualReprojection;
     f.normaliseConfidence = s.normaliseConfidence;
     f.edges = {s.normalWeight, s.planeWeight, s.planeNear * s.planeNear};
-    f.preTaps = s.preTaps, f.finalTaps = s.finalTaps;
+    f.preTaps = s.preTaps, f.finalTaps = s.finalTaps, f.rotationWidth = s.rotationWidth;
     f.preRadius = 0.5f * s.preDiameter * float(width);
     f.preSigma = s.preSigma * f.preRadius;
     f.maxRadius = int(std::lround(s.maxRadius * float(width)));

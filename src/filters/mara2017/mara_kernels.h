@@ -68,9 +68,11 @@ BMFR_HD float maraFrameRotation(uint32_t frame, uint32_t seed, uint32_t stage) {
     return 6.28318531f * unitFloat(hashKeys(frame, seed, stage, 0x6d617261u));
 }
 
-/// Which of the kMaraSpiralRotations a pixel uses this frame.
-BMFR_HD int maraPixelRotation(int x, int y, uint32_t frame, uint32_t seed, uint32_t stage) {
-    return int(hashKeys(uint32_t(x), uint32_t(y), frame, seed * 4u + stage) %
+/// Which of the kMaraSpiralRotations a pixel uses this frame: hashed from the pixel's run of
+/// `across` pixels on its row (1: its own), its row and the frame.
+BMFR_HD int maraPixelRotation(int x, int y, int across, uint32_t frame, uint32_t seed,
+                              uint32_t stage) {
+    return int(hashKeys(uint32_t(x / across), uint32_t(y), frame, seed * 4u + stage) %
                uint32_t(kMaraSpiralRotations));
 }
 

@@ -60,6 +60,12 @@ SettingsTable<S> ownSettings() {
         {"finalTaps", "mara-final-taps", "taps", {1, 256},
          "stage 7 taps besides the centre (the paper does not say; stage 4's 50)",
          BMFR_FIELD(S, finalTaps)},
+        {"rotationWidth", "mara-rotation-width", "pixels", {1, 64},
+         "stages 4 and 7: runs of this many pixels along a row share one of the spiral's 16 "
+         "rotations, hashed per run, row and frame; 1 = each pixel its own. 8 lets the CPU read "
+         "eight neighbours' taps as one vector, with RMSE and temporal error within 0.3% of 1's "
+         "(the quality rule's tests)",
+         BMFR_FIELD(S, rotationWidth)},
         {"finalSigma", "mara-final-sigma", "x radius", {0, 10, true},
          "stage 7 Gaussian sigma (the paper does not say)", BMFR_FIELD(S, finalSigma)},
         {"virtualReprojection", "mara-virtual-reprojection", "", {},

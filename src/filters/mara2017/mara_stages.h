@@ -24,6 +24,7 @@ struct MaraFrame {
     int clampRadius = 1; ///< the clamp's box is (2 clampRadius + 1)^2
     MaraEdgeWeights edges;
     int preTaps = 50, finalTaps = 50;
+    int rotationWidth = 8;                ///< pixels along a row that share a spiral rotation
     float preRadius = 1, preSigma = 0.5f; ///< pixels
     int maxRadius = 16;                   ///< R, pixels
     float lowConfidence = 0.5f, radiusBoost = 6, finalSigma = 0.5f;
@@ -180,7 +181,7 @@ BMFR_HD Vec3 maraSparseBilateral(const MaraFrame& f, const float* src, int x, in
 /// Stage 4 at (x, y): the sparse pre-bilateral of T, stored as the matte history only (new
 /// samples on screen are never blurred by it).
 BMFR_HD void maraPreBilateralPixel(const MaraFrame& f, int x, int y) {
-    const int r = maraPixelRotation(x, y, f.frame, f.seed, 4);
+    const int r = maraPixelRotation(x, y, f.rotationWidth, f.frame, f.seed, 4);
     const long i = long(y) * f.width + x;
     store3(f.matteHistory, i,
            maraSparseBilateral(f, f.temporal, x, y, f.preSpiral + 2 * f.preTaps * r,
@@ -242,7 +243,7 @@ BMFR_HD void maraMedianPixel(const MaraFrame& f, int x, int y) {
 BMFR_HD void maraFinalBilateralPixel(const MaraFrame& f, const float* src, int x, int y) {
     const long i = long(y) * f.width + x;
     const float r = f.radius[i];
-    const int rot = maraPixelRotation(x, y, f.frame, f.seed, 7);
+    const int rot = maraPixelRotation(x, y, f.rotationWidth, f.frame, f.seed, 7);
     store3(f.matteOut, i,
            maraSparseBilateral(f, src, x, y, f.finalSpiral + 2 * f.finalTaps * rot, nullptr,
                                nullptr, f.finalTaps, r, f.finalSigma * r));

@@ -21,12 +21,7 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         stage5_.reserve(n);
         scratch_.reserve(2 * size_t(longestRun(w, h, maraFrameSettings(s, w).maxRadius)) *
                          size_t(threads));
-        records_.assign(size_t(kMaraTapRecord) * n + kMaraTapRecord, 0);
-        guidePacked_ = false;
-        for (int t = 0; t < MaraTapTables::kRadii; ++t) {
-            tables_.offsets[t].reserve(size_t(2 * s.finalTaps * kMaraSpiralRotations));
-            tables_.gauss[t].reserve(size_t(s.finalTaps * kMaraSpiralRotations));
-        }
+        tables_.reserve(std::max(s.preTaps, s.finalTaps));
     }
 
   protected:
@@ -79,38 +74,26 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     /// The running minimum's longest line with its padding, for radius r.
     static int longestRun(int w, int h, int r) { return std::max(w, h) + 4 * r + 2; }
 
-    /// Stage 4 or 7 from tap records: a tap reads one cache line, not three.
+    /// Stage 4 or 7 in tiles, not rows: a 64-pixel radius reaches 129 rows, and a tile's taps
+    /// stay in cache.
     void sparse(const MaraPassContext& ctx, const MaraFrame& f, const float* src, bool final) {
-        const size_t floats = size_t(kMaraTapRecord) * size_t(f.width) * size_t(f.height);
-        if (records_.size() != floats + kMaraTapRecord) {
-            records_.assign(floats + kMaraTapRecord, 0);
-            guidePacked_ = false;
-        }
-        float* taps = records_.data();
-        taps += (kMaraTapRecord -
-                 (reinterpret_cast<uintptr_t>(taps) / sizeof(float)) % kMaraTapRecord) %
-                kMaraTapRecord; // 64-byte aligned
-        // Stage 7 reuses stage 4's positions and normals, packed this frame.
-        const bool guide = !(final && guidePacked_);
-        guidePacked_ = !final;
-        ctx.pool.parallelFor(f.height, 8,
-                             [&](long y0, long y1) { maraPackTaps(f, src, guide, taps, y0, y1); });
-        if (final) tables_.build(f);
-        // Tiles, not rows: a 64-pixel radius reaches 129 rows, and a tile's taps stay in cache.
+        if (final)
+            tables_.buildFinal(f);
+        else
+            tables_.buildPre(f);
         const int tile = 64, across = (f.width + tile - 1) / tile;
         const long tiles = long(across) * ((f.height + tile - 1) / tile);
         ctx.pool.parallelFor(tiles, 1, [&](long t0, long t1) {
             for (long t = t0; t < t1; ++t) {
                 const int x0 = int(t % across) * tile, y0 = int(t / across) * tile;
-                maraSparseTile(f, taps, final, x0, std::min(f.width, x0 + tile), y0,
-                               std::min(f.height, y0 + tile), &tables_);
+                maraSparseTile(f, src, final, x0, std::min(f.width, x0 + tile), y0,
+                               std::min(f.height, y0 + tile), tables_);
             }
         });
     }
 
-    std::vector<float> stage5_, scratch_, records_;
+    std::vector<float> stage5_, scratch_;
     MaraTapTables tables_;
-    bool guidePacked_ = false; ///< stage 4 packed this frame's guide into records_
 };
 
 } // namespace

@@ -1,6 +1,7 @@
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/simd.h"
 #include "filters/mara2017/mara_passes.h"
+#include <algorithm>
 #include <cstring>
 
 namespace bmfr::cpu {
@@ -47,12 +48,14 @@ BMFR_SIMD_INLINE f8 edgeWeight8(const f8 nc[3], const f8 pc[3], const f8 nq[3], 
     return d2 >= k.planeNearSquared ? w * (wp * wp) : w;
 }
 
-/// Lane l's quantity q (0 position, 1 normal, 2 colour) of the tap records index[l]: eight
-/// 16-byte loads and a transpose.
-BMFR_SIMD_INLINE void loadTaps(const float* taps, i8 index, int q, f8 out[3]) {
+/// Lane l's record index[l] of a packed xyz buffer, as x, y and z lanes: eight 12-byte loads
+/// and a transpose.
+BMFR_SIMD_INLINE void gatherXyz8(const float* p, i8 index, f8 out[3]) {
     f4 r[8];
-    for (int l = 0; l < 8; ++l)
-        std::memcpy(&r[l], taps + kMaraTapRecord * long(index[l]) + 4 * q, sizeof(f4));
+    for (int l = 0; l < 8; ++l) {
+        const float* q = p + 3 * long(index[l]);
+        r[l] = f4{q[0], q[1], q[2], 0.0f};
+    }
     const f8 a0 = __builtin_shufflevector(r[0], r[4], 0, 1, 2, 3, 4, 5, 6, 7),
              a1 = __builtin_shufflevector(r[1], r[5], 0, 1, 2, 3, 4, 5, 6, 7),
              a2 = __builtin_shufflevector(r[2], r[6], 0, 1, 2, 3, 4, 5, 6, 7),
@@ -66,114 +69,173 @@ BMFR_SIMD_INLINE void loadTaps(const float* taps, i8 index, int q, f8 out[3]) {
     out[2] = __builtin_shuffle(t2, t3, i8{0, 1, 8, 9, 4, 5, 12, 13});
 }
 
-BMFR_SIMD_DISPATCH(void, packRow,
-                   (const MaraFrame& f, const float* src, bool guide, float* taps, int y),
-                   (f, src, guide, taps, y)) {
-    for (long i = long(y) * f.width, end = i + f.width; i < end; ++i) {
-        float* r = taps + kMaraTapRecord * i;
-        const float* from[3] = {f.position + 3 * i, f.normal + 3 * i, src + 3 * i};
-        for (int q = guide ? 0 : 2; q < 3; ++q)
-            r[4 * q] = from[q][0], r[4 * q + 1] = from[q][1], r[4 * q + 2] = from[q][2],
-                  r[4 * q + 3] = 0.0f;
+/// One sparse tap for eight centres: position, normal and colour read at `index` (or, with
+/// `run`, eight neighbours from index[0]), weighted by g and the edges, added where `inside`.
+struct SparseSum {
+    f8 pc[3], nc[3], sum[3];
+    f8 total = f8{} + 1.0f;
+
+    BMFR_SIMD_INLINE void add(const MaraFrame& f, const float* src, i8 index, bool run, f8 g,
+                              i8 inside) {
+        f8 pq[3], nq[3], s[3];
+        if (run) {
+            const long j = index[0];
+            deinterleave3(f.position + 3 * j, pq[0], pq[1], pq[2]);
+            deinterleave3(f.normal + 3 * j, nq[0], nq[1], nq[2]);
+            deinterleave3(src + 3 * j, s[0], s[1], s[2]);
+        } else {
+            gatherXyz8(f.position, index, pq);
+            gatherXyz8(f.normal, index, nq);
+            gatherXyz8(src, index, s);
+        }
+        f8 wt = g * edgeWeight8(nc, pc, nq, pq, f.edges);
+        wt = inside & (wt > 0.0f) ? wt : 0.0f;
+        for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
+        total = total + wt;
     }
-}
+};
 
 /// The most taps of a sparse stage (the settings' range).
 constexpr int kMaxTaps = 256;
 
-BMFR_SIMD_DISPATCH(void, sparseRow,
-                   (const MaraFrame& f, const float* tapRecords, bool final, int y, int x0, int x1,
-                    const MaraTapTables* tables),
-                   (f, tapRecords, final, y, x0, x1, tables)) {
+/// Eight centres sharing one rotation and one radius: tap by tap, the eight neighbours at one
+/// offset are one run of the packed buffers. `runs` holds the merged taps, or, where null, the
+/// `taps` unit offsets of `spiral` are scaled by `radius` here.
+BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, int y, i8 live,
+                                 const MaraTapRuns* runs, int rotation, const float* spiral,
+                                 int taps, float radius, float sigma, SparseSum& acc) {
+    int dxs[kMaxTaps], dys[kMaxTaps];
+    float gs[kMaxTaps];
+    const int *dx = dxs, *dy = dys;
+    const float* g = gs;
+    int count = taps;
+    if (runs) {
+        const int b = runs->begin[size_t(rotation)];
+        dx = runs->dx.data() + b, dy = runs->dy.data() + b, g = runs->g.data() + b;
+        count = runs->begin[size_t(rotation) + 1] - b;
+    } else {
+        // Below 4 pixels the taps land on at most 81 pixels: merged as MaraTapRuns merges them
+        // (confident pixels whose history is not perfect sit just above (1 - h) R).
+        int slot[81];
+        const bool merge = radius < 4.0f;
+        if (merge) std::fill(slot, slot + 81, -1);
+        count = 0;
+        for (int k = 0; k < taps; ++k) {
+            const int ox = maraTapOffset(spiral[2 * k], radius),
+                      oy = maraTapOffset(spiral[2 * k + 1], radius);
+            const float gk = maraGaussian(float(ox * ox + oy * oy), sigma);
+            int* t = merge ? &slot[9 * (oy + 4) + ox + 4] : nullptr;
+            if (t && *t >= 0) {
+                gs[*t] += gk;
+                continue;
+            }
+            if (t) *t = count;
+            dxs[count] = ox, dys[count] = oy, gs[count] = gk;
+            ++count;
+        }
+    }
+    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    const int w = f.width;
+    for (int t = 0; t < count; ++t) {
+        const int qy = y + dy[t], qx = x + dx[t];
+        if (qy < 0 || qy >= f.height) continue;
+        const long j = long(qy) * w + qx;
+        if (qx >= 0 && qx + 8 <= w) {
+            acc.add(f, src, i8{} + int(j), true, f8{} + g[t], live);
+            continue;
+        }
+        const i8 lx = qx + lane, inside = live & (lx >= 0) & (lx < w);
+        if (!anyLane(inside)) continue;
+        acc.add(f, src, inside ? int(j) + lane : i8{} + int(long(y) * w + x), false, f8{} + g[t],
+                inside);
+    }
+}
+
+/// Eight centres with their own rotations or radii: each lane's taps, gathered.
+BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final, int x, int y,
+                               int n, i8 live, f8 radius, const MaraTapTables& tables,
+                               SparseSum& acc) {
     const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
-    const long row = long(y) * w;
+    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    // Every lane's taps, tap-major, so that the tap loop reads them as vectors.
+    alignas(32) int ox[kMaxTaps * 8], oy[kMaxTaps * 8];
+    alignas(32) float og[kMaxTaps * 8];
+    for (int l = 0; l < 8; ++l) {
+        const int r = maraPixelRotation(x + (l < n ? l : 0), y, f.rotationWidth, f.frame, f.seed,
+                                        final ? 7 : 4);
+        int t = -1;
+        for (int k = 0; final && k < MaraTapTables::kRadii; ++k)
+            if (radius[l] == tables.radius[k]) t = k;
+        if (final && t < 0) { // as maraSparseBilateral computes them
+            const float* spiral = f.finalSpiral + 2 * taps * r;
+            const float sigma = f.finalSigma * radius[l];
+            for (int k = 0; k < taps; ++k) {
+                const int dx = maraTapOffset(spiral[2 * k], radius[l]),
+                          dy = maraTapOffset(spiral[2 * k + 1], radius[l]);
+                ox[8 * k + l] = dx, oy[8 * k + l] = dy;
+                og[8 * k + l] = maraGaussian(float(dx * dx + dy * dy), sigma);
+            }
+            continue;
+        }
+        const int* offsets = final ? tables.offsets[t].data() : f.preOffsets;
+        const float* gauss = final ? tables.gauss[t].data() : f.preGauss;
+        for (int k = 0; k < taps; ++k)
+            ox[8 * k + l] = offsets[2 * (taps * r + k)],
+                       oy[8 * k + l] = offsets[2 * (taps * r + k) + 1],
+                       og[8 * k + l] = gauss[taps * r + k];
+    }
+    const long i = long(y) * w + x;
+    for (int k = 0; k < taps; ++k) {
+        i8 dx, dy;
+        std::memcpy(&dx, ox + 8 * k, sizeof dx), std::memcpy(&dy, oy + 8 * k, sizeof dy);
+        const i8 qx = x + lane + dx, qy = y + dy;
+        const i8 inside = live & (qx >= 0) & (qy >= 0) & (qx < w) & (qy < f.height);
+        if (!anyLane(inside)) continue;
+        acc.add(f, src, inside ? qy * w + qx : i8{} + int(i), false, load8(og + 8 * k), inside);
+    }
+}
+
+BMFR_SIMD_DISPATCH(void, sparseRow,
+                   (const MaraFrame& f, const float* src, bool final, int y, int x0, int x1,
+                    const MaraTapTables& tables),
+                   (f, src, final, y, x0, x1, tables)) {
+    const long row = long(y) * f.width;
     float* dst = final ? f.matteOut : f.matteHistory;
     const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
     for (int x = x0; x < x1; x += 8) {
         const int n = x1 - x < 8 ? x1 - x : 8;
         const long i = row + x;
-        f8 pc[3], nc[3], sum[3];
-        const i8 centre = i8{} + int(i) + (lane < n ? lane : 0);
-        loadTaps(tapRecords, centre, 0, pc);
-        loadTaps(tapRecords, centre, 1, nc);
-        loadTaps(tapRecords, centre, 2, sum);
-        // Every lane's taps, tap-major, so that the tap loop reads them as vectors.
-        alignas(32) int ox[kMaxTaps * 8], oy[kMaxTaps * 8];
-        alignas(32) float og[kMaxTaps * 8], ux[kMaxTaps * 8], uy[kMaxTaps * 8];
-        f8 radius, sigma;
-        int rotation[8], table[8];
-        bool computed = false; // some lane's stage 7 taps are not in the tables
-        for (int l = 0; l < 8; ++l) {
-            rotation[l] = maraPixelRotation(x + (l < n ? l : 0), y, f.frame, f.seed, final ? 7 : 4);
-            radius[l] = l >= n ? 0.0f : final ? f.radius[i + l] : f.preRadius;
-            sigma[l] = final ? f.finalSigma * radius[l] : f.preSigma;
-            table[l] = -1;
-            for (int k = 0; final && tables && k < MaraTapTables::kRadii; ++k)
-                if (radius[l] == tables->radius[k]) table[l] = k;
-            computed |= final && table[l] < 0;
-        }
-        for (int l = 0; l < 8; ++l) {
-            const int r = rotation[l], t = table[l];
-            if (computed) { // then every lane computes its taps, from the spiral's units
-                const float* spiral = f.finalSpiral + 2 * taps * r;
-                for (int k = 0; k < taps; ++k)
-                    ux[8 * k + l] = spiral[2 * k], uy[8 * k + l] = spiral[2 * k + 1];
-            } else if (final) {
-                const int* offsets = tables->offsets[t].data() + 2 * taps * r;
-                const float* gauss = tables->gauss[t].data() + taps * r;
-                for (int k = 0; k < taps; ++k)
-                    ox[8 * k + l] = offsets[2 * k], oy[8 * k + l] = offsets[2 * k + 1],
-                               og[8 * k + l] = gauss[k];
-            } else {
-                const int* offsets = f.preOffsets + 2 * taps * r;
-                for (int k = 0; k < taps; ++k)
-                    ox[8 * k + l] = offsets[2 * k], oy[8 * k + l] = offsets[2 * k + 1];
-                if (f.preGauss)
-                    for (int k = 0; k < taps; ++k) og[8 * k + l] = f.preGauss[taps * r + k];
-            }
-        }
+        SparseSum acc;
+        loadXyz8(f.position + 3 * i, n, acc.pc);
+        loadXyz8(f.normal + 3 * i, n, acc.nc);
+        loadXyz8(src + 3 * i, n, acc.sum);
+        f8 radius = f8{} + f.preRadius;
+        if (final)
+            for (int l = 0; l < 8; ++l) radius[l] = l < n ? f.radius[i + l] : 0.0f;
         const i8 live = (radius >= 0.5f) & (lane < n);
         if (!anyLane(live)) {
-            storeXyz8(dst + 3 * i, n, sum);
+            storeXyz8(dst + 3 * i, n, acc.sum);
             continue;
         }
-        if (computed || (!final && !f.preGauss))
-            for (int k = 0; k < taps; ++k) {
-                i8 dx, dy;
-                if (final) {
-                    // maraTapOffset: unit x radius rounded half to even, as nearbyint, by adding
-                    // and taking away 1.5 x 2^23 (exact below 2^22 pixels).
-                    const f8 magic = f8{} + 12582912.0f;
-                    dx = __builtin_convertvector((load8(ux + 8 * k) * radius + magic) - magic, i8);
-                    dy = __builtin_convertvector((load8(uy + 8 * k) * radius + magic) - magic, i8);
-                    std::memcpy(ox + 8 * k, &dx, sizeof dx),
-                        std::memcpy(oy + 8 * k, &dy, sizeof dy);
-                } else {
-                    std::memcpy(&dx, ox + 8 * k, sizeof dx),
-                        std::memcpy(&dy, oy + 8 * k, sizeof dy);
-                }
-                const f8 d2 = __builtin_convertvector(dx * dx + dy * dy, f8);
-                for (int l = 0; l < 8; ++l) og[8 * k + l] = maraGaussian(d2[l], sigma[l]);
-            }
-        f8 total = f8{} + 1.0f;
-        for (int k = 0; k < taps; ++k) {
-            i8 dx, dy;
-            std::memcpy(&dx, ox + 8 * k, sizeof dx), std::memcpy(&dy, oy + 8 * k, sizeof dy);
-            const f8 g = load8(og + 8 * k);
-            const i8 qx = x + lane + dx, qy = y + dy;
-            const i8 inside = live & (qx >= 0) & (qy >= 0) & (qx < w) & (qy < f.height);
-            if (!anyLane(inside)) continue;
-            const i8 j = inside ? qy * w + qx : i8{} + int(i);
-            f8 pq[3], nq[3], s[3];
-            loadTaps(tapRecords, j, 0, pq);
-            loadTaps(tapRecords, j, 1, nq);
-            loadTaps(tapRecords, j, 2, s);
-            f8 wt = g * edgeWeight8(nc, pc, nq, pq, f.edges);
-            wt = inside & (wt > 0.0f) ? wt : 0.0f;
-            for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
-            total = total + wt;
+        // One rotation for the eight when runs of rotationWidth cover them; one radius when
+        // every live lane has the same.
+        float shared = -1.0f;
+        bool one = f.rotationWidth % 8 == 0;
+        for (int l = 0; one && l < 8; ++l)
+            if (live[l]) one = shared < 0.0f || radius[l] == shared, shared = radius[l];
+        if (one) {
+            const int rotation =
+                maraPixelRotation(x, y, f.rotationWidth, f.frame, f.seed, final ? 7 : 4);
+            const MaraTapRuns* runs = final ? nullptr : &tables.pre;
+            for (int k = 0; final && k < MaraTapTables::kRadii; ++k)
+                if (shared == tables.radius[k]) runs = &tables.runs[k];
+            sharedTaps(f, src, x, y, live, runs, rotation,
+                       f.finalSpiral + 2 * f.finalTaps * rotation, f.finalTaps, shared,
+                       f.finalSigma * shared, acc);
+        } else {
+            laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
         }
-        const f8 out[3] = {sum[0] / total, sum[1] / total, sum[2] / total};
+        const f8 out[3] = {acc.sum[0] / acc.total, acc.sum[1] / acc.total, acc.sum[2] / acc.total};
         storeXyz8(dst + 3 * i, n, out);
     }
 }
@@ -254,16 +316,45 @@ BMFR_SIMD_DISPATCH(void, glossyRow,
 
 } // namespace
 
-void maraPackTaps(const MaraFrame& f, const float* src, bool guide, float* taps, long y0, long y1) {
-    for (long y = y0; y < y1; ++y) packRow(f, src, guide, taps, int(y));
+void maraSparseTile(const MaraFrame& f, const float* src, bool final, int x0, int x1, long y0,
+                    long y1, const MaraTapTables& tables) {
+    for (long y = y0; y < y1; ++y) sparseRow(f, src, final, int(y), x0, x1, tables);
 }
 
-void maraSparseTile(const MaraFrame& f, const float* taps, bool final, int x0, int x1, long y0,
-                    long y1, const MaraTapTables* tables) {
-    for (long y = y0; y < y1; ++y) sparseRow(f, taps, final, int(y), x0, x1, tables);
+void MaraTapRuns::build(const int* offsets, const float* gauss, int taps) {
+    begin.assign(1, 0);
+    dx.clear(), dy.clear(), g.clear();
+    for (int r = 0; r < kMaraSpiralRotations; ++r) {
+        const size_t first = dx.size();
+        for (int k = r * taps; k < (r + 1) * taps; ++k) {
+            const int ox = offsets[2 * k], oy = offsets[2 * k + 1];
+            size_t t = first;
+            while (t < dx.size() && (dx[t] != ox || dy[t] != oy)) ++t;
+            if (t == dx.size()) dx.push_back(ox), dy.push_back(oy), g.push_back(0.0f);
+            g[t] += gauss[k];
+        }
+        begin.push_back(int(dx.size()));
+    }
 }
 
-void MaraTapTables::build(const MaraFrame& f) {
+void MaraTapTables::reserve(int taps) {
+    for (MaraTapRuns* t : {&pre, &runs[0], &runs[1], &runs[2], &runs[3]}) {
+        t->begin.reserve(kMaraSpiralRotations + 1);
+        t->dx.reserve(size_t(taps * kMaraSpiralRotations));
+        t->dy.reserve(size_t(taps * kMaraSpiralRotations));
+        t->g.reserve(size_t(taps * kMaraSpiralRotations));
+    }
+    for (int t = 0; t < kRadii; ++t) {
+        offsets[t].reserve(size_t(2 * taps * kMaraSpiralRotations));
+        gauss[t].reserve(size_t(taps * kMaraSpiralRotations));
+    }
+}
+
+void MaraTapTables::buildPre(const MaraFrame& f) {
+    pre.build(f.preOffsets, f.preGauss, f.preTaps);
+}
+
+void MaraTapTables::buildFinal(const MaraFrame& f) {
     // As maraDisocclusionRadius gives them for a box min of h (or 1, normalised) and of 0.
     const float confident = f.normaliseConfidence ? 0.0f : (1.0f - f.h) * float(f.maxRadius);
     const float candidates[kRadii] = {confident, float(f.maxRadius), confident * f.radiusBoost,
@@ -272,6 +363,7 @@ void MaraTapTables::build(const MaraFrame& f) {
         radius[t] = candidates[t];
         maraTapTable(f.finalSpiral, f.finalTaps * kMaraSpiralRotations, radius[t],
                      f.finalSigma * radius[t], offsets[t], gauss[t]);
+        runs[t].build(offsets[t].data(), gauss[t].data(), f.finalTaps);
     }
 }
 

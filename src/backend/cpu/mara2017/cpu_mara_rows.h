@@ -1,7 +1,8 @@
-// The CPU backend's eight-wide Mara 2017 stages over rows: the sparse bilaterals (each pixel
-// its own taps, gathered), the firefly median and the glossy passes (eight neighbouring pixels
-// per tap). They give the reference stages' bits: the same operations in the same order, no
-// fused multiply-adds.
+// The CPU backend's eight-wide Mara 2017 stages over rows: the sparse bilaterals, the firefly
+// median and the glossy passes. They give the reference stages' bits (the same operations in
+// the same order, no fused multiply-adds), except where eight pixels share a sparse stage's
+// rotation and radius: there the taps that land on one pixel are merged into one, so the sums
+// round differently (held to the reference by the conformance suite's tolerance).
 #pragma once
 #include "filters/mara2017/mara_stages.h"
 #include <vector>
@@ -11,32 +12,38 @@ namespace bmfr::cpu {
 /// Stage 6 on rows [y0, y1) into f.median.
 void maraMedianRows(const MaraFrame& f, long y0, long y1);
 
-/// Floats per pixel of the sparse stages' tap records: position, normal and the filtered
-/// colour, four floats each (the fourth 0), one 64-byte cache line with the padding.
-inline constexpr int kMaraTapRecord = 16;
+/// The taps a run of eight pixels shares when they share a rotation and a radius: per rotation,
+/// each distinct whole-pixel offset once, first come first, with the Gaussian weights of the
+/// taps that land on it summed (a radius of 1.28 pixels puts 50 taps on 9 pixels).
+struct MaraTapRuns {
+    std::vector<int> begin; ///< kMaraSpiralRotations + 1: where each rotation's taps start
+    std::vector<int> dx, dy;
+    std::vector<float> g;
+    /// From kMaraSpiralRotations x taps offsets (x, y) and Gaussian weights.
+    void build(const int* offsets, const float* gauss, int taps);
+};
 
-/// The tap records of rows [y0, y1): f.position, f.normal (with `guide`; without, they are
-/// already there) and src into `taps` (kMaraTapRecord floats per pixel, 64-byte aligned for one
-/// line a tap).
-void maraPackTaps(const MaraFrame& f, const float* src, bool guide, float* taps, long y0, long y1);
-
-/// Stage 7's taps for the radii most pixels share: (1 - h) R where the history is confident,
-/// R beside a disocclusion, and both boosted. Per rotation, the whole-pixel offsets and
-/// Gaussian weights, as the stage computes them.
+/// Stage 4's taps, and stage 7's for the radii most pixels share: (1 - h) R where the history
+/// is confident, R beside a disocclusion, and both boosted. Per rotation, the whole-pixel
+/// offsets and Gaussian weights as the stage computes them, and merged into runs.
 struct MaraTapTables {
     static constexpr int kRadii = 4;
     float radius[kRadii] = {};
     std::vector<int> offsets[kRadii]; ///< rotations x taps x 2
     std::vector<float> gauss[kRadii]; ///< rotations x taps
-    void build(const MaraFrame& f);
+    MaraTapRuns runs[kRadii];
+    MaraTapRuns pre; ///< stage 4's, from f.preOffsets and f.preGauss
+    void reserve(int taps);
+    void buildPre(const MaraFrame& f);
+    void buildFinal(const MaraFrame& f);
 };
 
 /// Stage 4 (`final` false: into f.matteHistory) or stage 7 (`final` true: into f.matteOut) of
-/// the colour packed in `taps` on the pixels [x0, x1) x [y0, y1) (x0 a multiple of 8), eight at
-/// a time, each with its own taps; stage 7 looks its taps up in `tables` (may be null) where a
-/// pixel's radius is one of theirs.
-void maraSparseTile(const MaraFrame& f, const float* taps, bool final, int x0, int x1, long y0,
-                    long y1, const MaraTapTables* tables = nullptr);
+/// src on the pixels [x0, x1) x [y0, y1) (x0 a multiple of 8), eight at a time. Eight pixels
+/// that share a rotation (rotationWidth a multiple of 8) and a radius read each tap's eight
+/// neighbours as one run; others gather each pixel's own taps.
+void maraSparseTile(const MaraFrame& f, const float* src, bool final, int x0, int x1, long y0,
+                    long y1, const MaraTapTables& tables);
 
 /// One glossy pass (stage 9 with (dx, dy) = (1, 0), stage 10 with (0, 1)) of src into dst on
 /// rows [y0, y1). Eight pixels sharing one roughness run together; the others one by one.
