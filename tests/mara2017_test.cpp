@@ -5,6 +5,7 @@
 #include "backend/cpu/mara2017/cpu_running_min.h"
 #include "filters/mara2017/mara_passes.h"
 #include "metrics/basic_metrics.h"
+#include "path_traced_box.h"
 #include "render/frame_renderer.h"
 #include "render/lights.h"
 #include "render/ray_accel.h"
@@ -15,6 +16,7 @@
 #include <bmfr/bmfr.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <gtest/gtest.h>
 #include <random>
 #include <set>
@@ -353,6 +355,29 @@ TEST(Mara2017, M6FireflyIsNotShownButEntersTheHistory) {
             EXPECT_NEAR(out.data[3 * p], 0.5f, 1e-4f) << "the firefly is shown";
             EXPECT_GT(t.data[3 * p], 10.0f) << "the firefly left the loop";
         }
+    }
+}
+
+TEST(Mara2017, CpuBackendGivesTheReferenceBitsWithEachPixelItsOwnRotation) {
+    // Every CPU stage but the merged taps of shared rotations keeps the reference's bits: the
+    // whole filter, factored paths and glossy included, on an odd width (tails of 8 pixels).
+    const std::vector<FrameData> frames = test::pathTracedBox(83, 61, 5, 3, 0.04f, 0, 2);
+    ASSERT_FALSE(frames[0].matteIndirect.pixels.empty());
+    auto cpu = makeFilter("mara2017", {{"backend", "cpu"}, {"rotationWidth", "1"}});
+    auto ref = makeFilter("mara2017", {{"backend", "reference"}, {"rotationWidth", "1"}});
+    cpu->setDebugOutputs(true);
+    ref->setDebugOutputs(true);
+    for (size_t k = 0; k < frames.size(); ++k) {
+        const ImageView a = cpu->denoise(frames[k].input()), b = ref->denoise(frames[k].input());
+        const size_t n = size_t(3 * a.width * a.height);
+        ASSERT_EQ(0, std::memcmp(a.data, b.data, n * sizeof(float))) << "frame " << k;
+        const DebugBuffers da = cpu->debug(), db = ref->debug();
+        ASSERT_EQ(
+            0, std::memcmp(da.accumulatedNoisy.data, db.accumulatedNoisy.data, n * sizeof(float)))
+            << "stage 3's T, frame " << k;
+        ASSERT_EQ(0, std::memcmp(da.historyLength.data, db.historyLength.data,
+                                 size_t(a.width * a.height) * sizeof(float)))
+            << "frame " << k;
     }
 }
 

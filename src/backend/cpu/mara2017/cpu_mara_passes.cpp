@@ -1,12 +1,15 @@
-// The CPU backend's Mara 2017: the reference stages, except stage 5, whose two 1D min passes
+// The CPU backend's Mara 2017: the reference stages, except the input pass and stage 3, eight
+// pixels at a time (cpu_mara_temporal.h), and stage 5, whose two 1D min passes
 // over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
 // comparisons per pixel whatever R, with the same minima bit for bit; and stages 4, 6, 7, 9 and
 // 10, eight pixels at a time (cpu_mara_rows.h).
 #include "backend/backend_registry.h"
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
+#include "backend/cpu/mara2017/cpu_mara_temporal.h"
 #include "backend/cpu/mara2017/cpu_running_min.h"
 #include "backend/reference/mara2017/reference_mara_stages.h"
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace bmfr::cpu {
@@ -25,6 +28,15 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     }
 
   protected:
+    int64_t matteTemporal(const MaraPassContext& ctx, const MaraFrame& f) override {
+        std::atomic<int64_t> nonFinite{0};
+        ctx.pool.parallelFor(f.height, 4,
+                             [&](long y0, long y1) { nonFinite += maraInputRows(f, y0, y1); });
+        ctx.pool.parallelFor(f.height, 4,
+                             [&](long y0, long y1) { maraMatteTemporalRows(f, y0, y1); });
+        return nonFinite.load();
+    }
+
     void disocclusion(const MaraPassContext& ctx, const MaraFrame& f) override {
         const int r = f.maxRadius, w = f.width, hgt = f.height;
         const long n = long(w) * hgt;

@@ -1,0 +1,178 @@
+#include "backend/cpu/mara2017/cpu_mara_temporal.h"
+#include "backend/cpu/pixel_input8.h"
+#include "backend/cpu/reproject8.h"
+#include <algorithm>
+#include <cstring>
+
+namespace bmfr::cpu {
+
+using namespace simd;
+
+namespace {
+
+/// Stores the first n (1 to 8) lanes of x and y as packed xy records.
+BMFR_SIMD_INLINE void storeXy8(float* p, int n, f8 x, f8 y) {
+    float xy[16];
+    for (int l = 0; l < 8; ++l) xy[2 * l] = x[l], xy[2 * l + 1] = y[l];
+    std::memcpy(p, xy, sizeof(float) * 2 * size_t(n));
+}
+
+/// Counts the non-finite lanes of the first n values of a plane, as finiteOrZero does.
+BMFR_SIMD_INLINE void countNonFinite(const float* plane, long i, int n, int64_t& bad) {
+    if (plane) bad += countLanes(~finite8(loadFirst(plane + i, n)));
+}
+
+BMFR_SIMD_INLINE void inputGroup(const MaraFrame& f, int x, int y, int n, int64_t& bad) {
+    const long i = long(y) * f.width + x;
+    const Inputs8 px = readInputs8(f.in, f.modes, i, n, bad);
+    f8 m[3] = {px.color[0], px.color[1], px.color[2]};
+    if (f.in.matteIndirect) {
+        loadXyz8(f.in.matteIndirect + 3 * i, n, m);
+        finiteOrZero8(m, bad);
+    }
+    for (f8& v : m) v = max8(v, f8{});
+    storeXyz8(f.matte + 3 * i, n, m);
+    if (f.glossy) {
+        f8 g[3];
+        loadXyz8(f.in.glossyIndirect + 3 * i, n, g);
+        finiteOrZero8(g, bad);
+        for (f8& v : g) v = max8(v, f8{});
+        storeXyz8(f.glossySignal + 3 * i, n, g);
+    }
+    storeXyz8(f.position + 3 * i, n, px.position);
+    storeXyz8(f.normal + 3 * i, n, px.normal);
+    // The buffers read later are counted here, once.
+    f8 unused[3];
+    for (const float* p : {f.in.directLight, f.in.specularF0}) {
+        if (!p) continue;
+        loadXyz8(p + 3 * i, n, unused);
+        finiteOrZero8(unused, bad);
+    }
+    countNonFinite(f.in.roughness, i, n, bad);
+    countNonFinite(f.in.glossyHitDistance, i, n, bad);
+    Surface8 was;
+    previousSurface8(f.in, f.previous, i, x, y, n, px.position, px.normal, bad, was);
+    storeXyz8(f.expected + 3 * i, n, was.position);
+    storeXy8(f.previousPixel + 2 * i, n, was.px, was.py);
+}
+
+/// maraConfidence for eight distances.
+BMFR_SIMD_INLINE f8 confidence8(f8 distance, float h, float d0, float d1) {
+    f8 t = (distance - d0) / (d1 - d0);
+    t = t < 0.0f ? f8{} : (t > 1.0f ? splat8(1.0f) : t);
+    const f8 s = t * t * (3.0f - 2.0f * t);
+    const f8 c = h * (1.0f - s);
+    return distance >= 0.0f ? c : f8{}; // NaN: no history
+}
+
+/// maraBox of the eight pixels from column x of row y (all inside the image with their boxes'
+/// columns), per channel.
+BMFR_SIMD_INLINE void box8(const MaraFrame& f, int x, int y, f8 lo[3], f8 hi[3]) {
+    const int r = f.clampRadius;
+    for (int c = 0; c < 3; ++c) lo[c] = splat8(INFINITY), hi[c] = splat8(-INFINITY);
+    for (int qy = std::max(0, y - r); qy <= std::min(f.height - 1, y + r); ++qy)
+        for (int dx = -r; dx <= r; ++dx) {
+            f8 q[3];
+            deinterleave3(f.matte + 3 * (long(qy) * f.width + x + dx), q[0], q[1], q[2]);
+            for (int c = 0; c < 3; ++c) lo[c] = min8(lo[c], q[c]), hi[c] = max8(hi[c], q[c]);
+        }
+}
+
+BMFR_SIMD_INLINE void temporalGroup(const MaraFrame& f, int x, int y, int n) {
+    const long i = long(y) * f.width + x;
+    f8 m[3], px, py;
+    loadXyz8(f.matte + 3 * i, n, m);
+    loadXy8(f.previousPixel + 2 * i, n, px, py);
+    const i8 valid = (px > -1e5f) & firstLanes(n);
+    f8 t[3] = {m[0], m[1], m[2]}, c{}, samples = splat8(1.0f);
+    i8 accept{};
+    if (anyLane(valid)) {
+        const Footprint8 fp = footprint8(px, py);
+        const Taps8 taps = taps8(fp, f.width, f.height, valid);
+        f8 expected[3];
+        loadXyz8(f.expected + 3 * i, n, expected);
+        i8 ok[4], count[4];
+        f8 weight[4];
+        forTaps(taps, [&] [[gnu::always_inline]] () {
+            for (int k = 0; k < 4; ++k) {
+                f8 q[3];
+                tapXyz(taps, f.prevPosition, k, q);
+                for (int ch = 0; ch < 3; ++ch) q[ch] = q[ch] - expected[ch];
+                f8 distance = (q[0] * q[0] + q[1] * q[1]) + q[2] * q[2];
+                for (int l = 0; l < 8; ++l) distance[l] = __builtin_sqrtf(distance[l]);
+                const f8 ck = confidence8(distance, f.h, f.d0, f.d1);
+                count[k] = tapBytes(taps, f.prevCount, k);
+                ok[k] = valid & taps.inside[k] & (count[k] != 0) & (ck > 0.0f);
+                weight[k] = fp.weight[k] * ck;
+                accept |= ok[k] & (1 << k);
+            }
+        });
+        f8 sum[3];
+        c = weightedTaps<3>(
+            taps, weight, ok, [&](int k, f8* v) { tapXyz(taps, f.prevMatte, k, v); }, sum);
+        // The nearest tap: the first of the largest weights.
+        f8 best{}, nearest{};
+        for (int k = 0; k < 4; ++k) {
+            const i8 more = ok[k] & (weight[k] > best);
+            best = more ? weight[k] : best;
+            nearest = more ? __builtin_convertvector(count[k], f8) : nearest;
+        }
+        const i8 history = c > 0.0f;
+        if (anyLane(history)) {
+            const f8 safe = history ? c : splat8(1.0f);
+            f8 hist[3];
+            for (int ch = 0; ch < 3; ++ch) hist[ch] = sum[ch] / safe;
+            if (f.clampHistory) {
+                f8 lo[3], hi[3];
+                if (x - f.clampRadius >= 0 && x + 8 + f.clampRadius <= f.width) {
+                    box8(f, x, y, lo, hi);
+                } else {
+                    for (int l = 0; l < n; ++l) {
+                        Vec3 a, b;
+                        maraBox(f.matte, f.width, f.height, x + l, y, f.clampRadius, a, b);
+                        lo[0][l] = a.x, lo[1][l] = a.y, lo[2][l] = a.z;
+                        hi[0][l] = b.x, hi[1][l] = b.y, hi[2][l] = b.z;
+                    }
+                }
+                for (int ch = 0; ch < 3; ++ch) hist[ch] = min8(max8(hist[ch], lo[ch]), hi[ch]);
+            }
+            f8 w = c;
+            if (f.cumulativeStart) {
+                const f8 mean = nearest / (nearest + 1.0f);
+                w = c < mean ? c : mean;
+            }
+            for (int ch = 0; ch < 3; ++ch) t[ch] = history ? lerp8(m[ch], hist[ch], w) : m[ch];
+            samples = history ? min8(nearest + 1.0f, splat8(255.0f)) : samples;
+        }
+    }
+    storeXyz8(f.temporal + 3 * i, n, t);
+    storeFirst(f.confidence + i, c, n);
+    storeBytes(f.accept + i, accept, n);
+    storeBytes(f.count + i, __builtin_convertvector(samples, i8), n);
+}
+
+BMFR_SIMD_DISPATCH(void, inputRows, (const MaraFrame& f, long y0, long y1, int64_t& bad),
+                   (f, y0, y1, bad)) {
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < f.width; x += 8)
+            inputGroup(f, x, int(y), std::min(8, f.width - x), bad);
+}
+
+BMFR_SIMD_DISPATCH(void, temporalRows, (const MaraFrame& f, long y0, long y1), (f, y0, y1)) {
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < f.width; x += 8) temporalGroup(f, x, int(y), std::min(8, f.width - x));
+}
+
+} // namespace
+
+int64_t maraInputRows(const MaraFrame& f, long y0, long y1) {
+    int64_t bad = 0;
+    inputRows(f, y0, y1, bad);
+    return bad;
+}
+
+void maraMatteTemporalRows(const MaraFrame& f, long y0, long y1) {
+    temporalRows(f, y0, y1);
+}
+
+} // namespace bmfr::cpu
