@@ -1,5 +1,5 @@
-// The CPU backend's Mara 2017: the reference stages, except the input pass and stage 3, eight
-// pixels at a time (cpu_mara_temporal.h), and stage 5, whose two 1D min passes
+// The CPU backend's Mara 2017: the reference stages, except the input pass and stages 3 and 8,
+// eight pixels at a time (cpu_mara_temporal.h), and stage 5, whose two 1D min passes
 // over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
 // comparisons per pixel whatever R, with the same minima bit for bit; and stages 4, 6, 7, 9 and
 // 10, eight pixels at a time (cpu_mara_rows.h).
@@ -35,6 +35,11 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         ctx.pool.parallelFor(f.height, 4,
                              [&](long y0, long y1) { maraMatteTemporalRows(f, y0, y1); });
         return nonFinite.load();
+    }
+
+    void glossyTemporal(const MaraPassContext& ctx, const MaraFrame& f) override {
+        ctx.pool.parallelFor(f.height, 4,
+                             [&](long y0, long y1) { maraGlossyTemporalRows(f, y0, y1); });
     }
 
     void disocclusion(const MaraPassContext& ctx, const MaraFrame& f) override {

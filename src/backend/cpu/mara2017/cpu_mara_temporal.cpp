@@ -65,17 +65,36 @@ BMFR_SIMD_INLINE f8 confidence8(f8 distance, float h, float d0, float d1) {
     return distance >= 0.0f ? c : f8{}; // NaN: no history
 }
 
-/// maraBox of the eight pixels from column x of row y (all inside the image with their boxes'
-/// columns), per channel.
-BMFR_SIMD_INLINE void box8(const MaraFrame& f, int x, int y, f8 lo[3], f8 hi[3]) {
+/// v clamped per channel to maraBox of `signal` around each of the n pixels from column x of
+/// row y: eight at once where the boxes' columns are inside the image.
+BMFR_SIMD_INLINE void clampToBox8(const MaraFrame& f, const float* signal, int x, int y, int n,
+                                  f8 v[3]) {
     const int r = f.clampRadius;
-    for (int c = 0; c < 3; ++c) lo[c] = splat8(INFINITY), hi[c] = splat8(-INFINITY);
-    for (int qy = std::max(0, y - r); qy <= std::min(f.height - 1, y + r); ++qy)
-        for (int dx = -r; dx <= r; ++dx) {
-            f8 q[3];
-            deinterleave3(f.matte + 3 * (long(qy) * f.width + x + dx), q[0], q[1], q[2]);
-            for (int c = 0; c < 3; ++c) lo[c] = min8(lo[c], q[c]), hi[c] = max8(hi[c], q[c]);
+    f8 lo[3], hi[3];
+    if (x - r >= 0 && x + 8 + r <= f.width) {
+        for (int c = 0; c < 3; ++c) lo[c] = splat8(INFINITY), hi[c] = splat8(-INFINITY);
+        for (int qy = std::max(0, y - r); qy <= std::min(f.height - 1, y + r); ++qy)
+            for (int dx = -r; dx <= r; ++dx) {
+                f8 q[3];
+                deinterleave3(signal + 3 * (long(qy) * f.width + x + dx), q[0], q[1], q[2]);
+                for (int c = 0; c < 3; ++c) lo[c] = min8(lo[c], q[c]), hi[c] = max8(hi[c], q[c]);
+            }
+    } else {
+        for (int l = 0; l < n; ++l) {
+            Vec3 a, b;
+            maraBox(signal, f.width, f.height, x + l, y, r, a, b);
+            lo[0][l] = a.x, lo[1][l] = a.y, lo[2][l] = a.z;
+            hi[0][l] = b.x, hi[1][l] = b.y, hi[2][l] = b.z;
         }
+    }
+    for (int c = 0; c < 3; ++c) v[c] = min8(max8(v[c], lo[c]), hi[c]);
+}
+
+/// maraHistoryWeight for eight lanes: c, or at most n / (n + 1) with the cumulative start.
+BMFR_SIMD_INLINE f8 historyWeight8(const MaraFrame& f, f8 c, f8 n) {
+    if (!f.cumulativeStart) return c;
+    const f8 mean = n / (n + 1.0f);
+    return c < mean ? c : mean;
 }
 
 BMFR_SIMD_INLINE void temporalGroup(const MaraFrame& f, int x, int y, int n) {
@@ -122,25 +141,8 @@ BMFR_SIMD_INLINE void temporalGroup(const MaraFrame& f, int x, int y, int n) {
             const f8 safe = history ? c : splat8(1.0f);
             f8 hist[3];
             for (int ch = 0; ch < 3; ++ch) hist[ch] = sum[ch] / safe;
-            if (f.clampHistory) {
-                f8 lo[3], hi[3];
-                if (x - f.clampRadius >= 0 && x + 8 + f.clampRadius <= f.width) {
-                    box8(f, x, y, lo, hi);
-                } else {
-                    for (int l = 0; l < n; ++l) {
-                        Vec3 a, b;
-                        maraBox(f.matte, f.width, f.height, x + l, y, f.clampRadius, a, b);
-                        lo[0][l] = a.x, lo[1][l] = a.y, lo[2][l] = a.z;
-                        hi[0][l] = b.x, hi[1][l] = b.y, hi[2][l] = b.z;
-                    }
-                }
-                for (int ch = 0; ch < 3; ++ch) hist[ch] = min8(max8(hist[ch], lo[ch]), hi[ch]);
-            }
-            f8 w = c;
-            if (f.cumulativeStart) {
-                const f8 mean = nearest / (nearest + 1.0f);
-                w = c < mean ? c : mean;
-            }
+            if (f.clampHistory) clampToBox8(f, f.matte, x, y, n, hist);
+            const f8 w = historyWeight8(f, c, nearest);
             for (int ch = 0; ch < 3; ++ch) t[ch] = history ? lerp8(m[ch], hist[ch], w) : m[ch];
             samples = history ? min8(nearest + 1.0f, splat8(255.0f)) : samples;
         }
@@ -149,6 +151,63 @@ BMFR_SIMD_INLINE void temporalGroup(const MaraFrame& f, int x, int y, int n) {
     storeFirst(f.confidence + i, c, n);
     storeBytes(f.accept + i, accept, n);
     storeBytes(f.count + i, __builtin_convertvector(samples, i8), n);
+}
+
+/// Stage 8 for the n <= 8 pixels from column x of row y.
+BMFR_SIMD_INLINE void glossyGroup(const MaraFrame& f, int x, int y, int n) {
+    const long i = long(y) * f.width + x;
+    f8 g[3];
+    const f8 c = loadFirst(f.confidence + i, n);
+    loadXyz8(f.glossySignal + 3 * i, n, g);
+    f8 t[3] = {g[0], g[1], g[2]};
+    const i8 active = (c > 0.0f) & firstLanes(n);
+    if (anyLane(active)) {
+        f8 px, py;
+        loadXy8(f.previousPixel + 2 * i, n, px, py);
+        if (f.virtualReprojection && f.in.glossyHitDistance) {
+            // maraVirtualPreviousPixel: the virtual position X + d (X - eye) / |X - eye|.
+            const f8 d = loadFirst(f.in.glossyHitDistance + i, n);
+            f8 p[3], v[3];
+            loadXyz8(f.position + 3 * i, n, p);
+            const float eye[3] = {f.eye.x, f.eye.y, f.eye.z};
+            for (int ch = 0; ch < 3; ++ch) v[ch] = p[ch] - eye[ch];
+            f8 len = (v[0] * v[0] + v[1] * v[1]) + v[2] * v[2];
+            for (int l = 0; l < 8; ++l) len[l] = __builtin_sqrtf(len[l]);
+            const f8 s = d / len;
+            f8 q[3];
+            for (int ch = 0; ch < 3; ++ch) q[ch] = p[ch] + s * v[ch];
+            f8 vx, vy;
+            const i8 projected = project8(q, f.previous.viewProjection, f.previous.jitter, f.width,
+                                          f.height, vx, vy);
+            const i8 ok = finite8(d) & (d >= 0.0f) & (len > 0.0f) & projected;
+            px = ok ? vx : px, py = ok ? vy : py;
+        }
+        // maraBilinear: the taps inside the image with a positive weight, renormalised.
+        const Footprint8 fp = footprint8(px, py);
+        const Taps8 taps = taps8(fp, f.width, f.height, active);
+        i8 use[4];
+        for (int k = 0; k < 4; ++k) use[k] = active & taps.inside[k] & (fp.weight[k] > 0.0f);
+        f8 sum[3];
+        const f8 total = weightedTaps<3>(
+            taps, fp.weight, use, [&](int k, f8* v) { tapXyz(taps, f.prevGlossy, k, v); }, sum);
+        const i8 history = active & (total > 0.0f);
+        if (anyLane(history)) {
+            const f8 safe = history ? total : splat8(1.0f);
+            f8 hist[3];
+            for (int ch = 0; ch < 3; ++ch) hist[ch] = sum[ch] / safe;
+            if (f.clampHistory) clampToBox8(f, f.glossySignal, x, y, n, hist);
+            const f8 count = __builtin_convertvector(loadBytes(f.count + i, n), f8);
+            const f8 w = historyWeight8(f, c, count - 1.0f);
+            for (int ch = 0; ch < 3; ++ch) t[ch] = history ? lerp8(g[ch], hist[ch], w) : g[ch];
+        }
+    }
+    storeXyz8(f.glossyTemporal + 3 * i, n, t);
+    storeXyz8(f.glossyHistory + 3 * i, n, t);
+}
+
+BMFR_SIMD_DISPATCH(void, glossyRows, (const MaraFrame& f, long y0, long y1), (f, y0, y1)) {
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < f.width; x += 8) glossyGroup(f, x, int(y), std::min(8, f.width - x));
 }
 
 BMFR_SIMD_DISPATCH(void, inputRows, (const MaraFrame& f, long y0, long y1, int64_t& bad),
@@ -173,6 +232,10 @@ int64_t maraInputRows(const MaraFrame& f, long y0, long y1) {
 
 void maraMatteTemporalRows(const MaraFrame& f, long y0, long y1) {
     temporalRows(f, y0, y1);
+}
+
+void maraGlossyTemporalRows(const MaraFrame& f, long y0, long y1) {
+    glossyRows(f, y0, y1);
 }
 
 } // namespace bmfr::cpu

@@ -1,5 +1,6 @@
-// The CPU backend's Mara 2017 input pass and stage 3 (matte temporal), eight pixels at a time,
-// with the reference stages' bits: the same operations in the same order, the same counts.
+// The CPU backend's Mara 2017 input pass, stage 3 (matte temporal) and stage 8 (glossy
+// temporal), eight pixels at a time, with the reference stages' bits: the same operations in the
+// same order, the same counts.
 #pragma once
 #include "filters/mara2017/mara_stages.h"
 
@@ -11,5 +12,8 @@ int64_t maraInputRows(const MaraFrame& f, long y0, long y1);
 /// maraMatteTemporalPixel over rows [y0, y1) (the input pass done for the whole frame: the
 /// clamp box reads the neighbouring rows' matte).
 void maraMatteTemporalRows(const MaraFrame& f, long y0, long y1);
+
+/// maraGlossyTemporalPixel over rows [y0, y1).
+void maraGlossyTemporalRows(const MaraFrame& f, long y0, long y1);
 
 } // namespace bmfr::cpu

@@ -40,6 +40,11 @@ void HostMaraPipeline::matteBilateral(const MaraPassContext& ctx, const MaraFram
                           [&](int x, int y) { maraFinalBilateralPixel(f, src, x, y); });
 }
 
+void HostMaraPipeline::glossyTemporal(const MaraPassContext& ctx, const MaraFrame& f) {
+    ctx.pool.forEachPixel(f.width, f.height, 4,
+                          [&](int x, int y) { maraGlossyTemporalPixel(f, x, y); });
+}
+
 void HostMaraPipeline::glossyBilateral(const MaraPassContext& ctx, const MaraFrame& f) {
     ctx.pool.forEachPixel(f.width, f.height, 4, [&](int x, int y) {
         maraGlossyPassPixel(f, f.glossyTemporal, f.glossyRow, x, y, 1, 0);
@@ -70,8 +75,7 @@ PassCounters HostMaraPipeline::run(const MaraPassContext& ctx, StageTimes& times
     matteBilateral(ctx, f, s.median ? f.median : f.temporal);
     times.add("matte bilateral", clock.lap());
     if (f.glossy) {
-        ctx.pool.forEachPixel(f.width, f.height, 4,
-                              [&](int x, int y) { maraGlossyTemporalPixel(f, x, y); });
+        glossyTemporal(ctx, f);
         times.add("glossy temporal", clock.lap());
         glossyBilateral(ctx, f);
         times.add("glossy bilateral", clock.lap());

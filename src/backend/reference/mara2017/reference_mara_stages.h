@@ -24,6 +24,8 @@ class HostMaraPipeline : public HostPasses<Mara2017Settings, MaraBuffers> {
     virtual void median(const MaraPassContext& ctx, const MaraFrame& f);
     /// Stage 7 of `src` into f.matteOut.
     virtual void matteBilateral(const MaraPassContext& ctx, const MaraFrame& f, const float* src);
+    /// Stage 8 into f.glossyTemporal and f.glossyHistory.
+    virtual void glossyTemporal(const MaraPassContext& ctx, const MaraFrame& f);
     /// Stages 9 and 10 from f.glossyTemporal into f.glossyOut.
     virtual void glossyBilateral(const MaraPassContext& ctx, const MaraFrame& f);
 };
