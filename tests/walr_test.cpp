@@ -15,6 +15,7 @@
 #include <bmfr/bmfr.hpp>
 #include <bmfr/error.h>
 #include <cmath>
+#include <cstring>
 #include <gtest/gtest.h>
 
 namespace bmfr {
@@ -497,6 +498,47 @@ TEST(Walr, DiffuseIndirectSignalAddsTheRestBackUnfiltered) {
     for (long k = 0; k < 3L * w * h; ++k) ASSERT_TRUE(std::isfinite(poisoned.data[k])) << k;
     s.colorIsDemodulated = true;
     EXPECT_NE(errorOf([&] { WalrDenoiser bad(s); }).find("colorIsDemodulated"), std::string::npos);
+}
+
+TEST(Walr, CpuBackendGivesTheReferenceBits) {
+    // The CPU's eight-wide preprocess, spatial filter and postprocess keep the reference's bits:
+    // moving objects with motion vectors, an odd width (tails of 8 pixels), a non-finite input,
+    // the diffuse-indirect signal and the world-space history test.
+    ProceduralSceneOptions o;
+    o.width = 83, o.height = 61, o.frames = 5, o.cameraSpeed = 1.0f, o.jitter = true;
+    o.objectSpeed = 2.0f, o.motionVectors = true;
+    ProceduralScene scene(o);
+    std::vector<FrameData> frames(5);
+    for (int i = 0; i < 5; ++i) {
+        scene.render(i, frames[size_t(i)]);
+        FrameData& f = frames[size_t(i)];
+        f.diffuseIndirect = f.color;
+        for (float& v : f.diffuseIndirect.pixels) v *= 0.5f;
+    }
+    frames[2].color.pixels[333] = NAN;
+    for (const SettingValues& extra : std::vector<SettingValues>{
+             {}, {{"historyTest", "world"}}, {{"signal", "diffuse-indirect"}}}) {
+        SettingValues cpuValues = extra, refValues = extra;
+        cpuValues.push_back({"backend", "cpu"});
+        refValues.push_back({"backend", "reference"});
+        auto cpu = makeFilter("walr", cpuValues), ref = makeFilter("walr", refValues);
+        cpu->setDebugOutputs(true);
+        ref->setDebugOutputs(true);
+        for (size_t k = 0; k < frames.size(); ++k) {
+            const ImageView a = cpu->denoise(frames[k].input());
+            const ImageView b = ref->denoise(frames[k].input());
+            const size_t n = size_t(3 * a.width * a.height);
+            ASSERT_EQ(0, std::memcmp(a.data, b.data, n * sizeof(float))) << "frame " << k;
+            ASSERT_EQ(cpu->lastStats().nonFiniteInputs, ref->lastStats().nonFiniteInputs);
+            const DebugBuffers da = cpu->debug(), db = ref->debug();
+            ASSERT_EQ(0, std::memcmp(da.accumulatedNoisy.data, db.accumulatedNoisy.data,
+                                     n * sizeof(float)))
+                << "the preprocess average, frame " << k;
+            ASSERT_EQ(0, std::memcmp(da.historyLength.data, db.historyLength.data,
+                                     size_t(a.width * a.height) * sizeof(float)))
+                << "frame " << k;
+        }
+    }
 }
 
 // End to end on a path-traced Cornell box with a moving camera, in the paper's own signal

@@ -1,8 +1,10 @@
-// The CPU backend's WALR: the reference's per-pixel preprocess and postprocess, and the
-// eight-wide spatial filter, where nearly all of WALR's time goes.
+// The CPU backend's WALR: the preprocess and postprocess (cpu_walr_temporal.h) and the spatial
+// filter (cpu_walr_spatial.h), eight pixels at a time.
 #include "backend/backend_registry.h"
 #include "backend/cpu/walr/cpu_walr_spatial.h"
+#include "backend/cpu/walr/cpu_walr_temporal.h"
 #include "backend/reference/walr/reference_walr_stages.h"
+#include <atomic>
 
 namespace bmfr::cpu {
 
@@ -17,6 +19,22 @@ class CpuWalrPasses final : public reference::HostWalrPipeline {
     }
 
   protected:
+    int64_t preprocess(const WalrPassContext& ctx) override {
+        const WalrFrame f = buffers.frame(ctx);
+        std::atomic<int64_t> nonFinite{0};
+        ctx.pool.parallelFor(f.height, 4,
+                             [&](long y0, long y1) { nonFinite += walrInputRows(f, y0, y1); });
+        float* level0 = buffers.averages[0].data();
+        ctx.pool.parallelFor(f.height, 4,
+                             [&](long y0, long y1) { walrAccumulateRows(f, y0, y1, level0); });
+        return nonFinite.load();
+    }
+
+    void postprocess(const WalrPassContext& ctx) override {
+        const WalrPost p = buffers.postInputs(ctx);
+        ctx.pool.parallelFor(p.height, 4, [&](long y0, long y1) { walrPostRows(p, y0, y1); });
+    }
+
     void atrousAndSolve(const WalrPassContext& ctx) override {
         const WalrSettings& s = ctx.settings;
         const EdgeGuide g = buffers.guide(ctx);

@@ -56,7 +56,7 @@ void walrPostprocess(const WalrPassContext& ctx, WalrBuffers& b) {
 
 PassCounters HostWalrPipeline::run(const WalrPassContext& ctx, StageTimes& times) {
     Stopwatch clock;
-    const int64_t bad = walrPreprocess(ctx, buffers);
+    const int64_t bad = preprocess(ctx);
     const int64_t discarded = countDiscarded(ctx.pool, buffers.accept.data(),
                                              buffers.accept.pixelCount(), ctx.history.hasHistory());
     times.add("preprocess", clock.lap());
@@ -65,7 +65,7 @@ PassCounters HostWalrPipeline::run(const WalrPassContext& ctx, StageTimes& times
     else
         atrousAndSolve(ctx);
     times.add("spatial", clock.lap());
-    walrPostprocess(ctx, buffers);
+    postprocess(ctx);
     times.add("postprocess", clock.lap());
     return {bad, discarded};
 }

@@ -21,6 +21,10 @@ class HostWalrPipeline : public HostPasses<WalrSettings, WalrBuffers> {
     PassCounters run(const WalrPassContext& ctx, StageTimes& times) final;
 
   protected:
+    /// walrPreprocess, unless the backend has faster passes.
+    virtual int64_t preprocess(const WalrPassContext& ctx) { return walrPreprocess(ctx, buffers); }
+    /// walrPostprocess, unless the backend has a faster pass.
+    virtual void postprocess(const WalrPassContext& ctx) { walrPostprocess(ctx, buffers); }
     /// The a-trous iterations from b.averages[0] and the solve into buffers.spatial.
     virtual void atrousAndSolve(const WalrPassContext& ctx) = 0;
 };
