@@ -1,6 +1,7 @@
 // Mara et al. 2017: tests M1 to M12 of the implementation notes on the stage kernels and the
 // whole filter, the CPU backend's running minimum against a brute-force one, and the filter end
 // to end on a Cornell box path traced with the paper's factored paths.
+#include "backend/cpu/mara2017/cpu_mara_glossy.h"
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/mara2017/cpu_running_min.h"
 #include "filters/mara2017/mara_passes.h"
@@ -311,8 +312,15 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
         maraGlossyPassPixel(a.f, a.glossyRow.data(), a.glossyOut.data(), x, y, 0, 1);
     });
     cpu::maraMedianRows(b.f, 0, h);
-    cpu::maraGlossyRows(b.f, b.glossy.data(), b.glossyRow.data(), 0, h, 1, 0);
-    cpu::maraGlossyRows(b.f, b.glossyRow.data(), b.glossyOut.data(), 0, h, 0, 1);
+    // The pair weights' rows reach into the band above: bands of 5 and 18 rows.
+    const int reach = cpu::maraGlossyReach(b.f);
+    std::vector<float> scratch(cpu::maraGlossyScratch(w, reach));
+    cpu::maraGlossyRows(b.f, b.glossy.data(), b.glossyRow.data(), 0, h, false, reach,
+                        scratch.data());
+    cpu::maraGlossyRows(b.f, b.glossyRow.data(), b.glossyOut.data(), 0, 5, true, reach,
+                        scratch.data());
+    cpu::maraGlossyRows(b.f, b.glossyRow.data(), b.glossyOut.data(), 5, h, true, reach,
+                        scratch.data());
     EXPECT_EQ(a.median, b.median);
     EXPECT_EQ(a.glossyRow, b.glossyRow);
     EXPECT_EQ(a.glossyOut, b.glossyOut);

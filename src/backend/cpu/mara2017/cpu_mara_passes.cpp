@@ -1,9 +1,10 @@
 // The CPU backend's Mara 2017: the reference stages, except the input pass and stages 3 and 8,
 // eight pixels at a time (cpu_mara_temporal.h), and stage 5, whose two 1D min passes
 // over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
-// comparisons per pixel whatever R, with the same minima bit for bit; and stages 4, 6, 7, 9 and
-// 10, eight pixels at a time (cpu_mara_rows.h).
+// comparisons per pixel whatever R, with the same minima bit for bit; and stages 4, 6 and 7
+// (cpu_mara_rows.h) and 9 and 10 (cpu_mara_glossy.h), eight pixels at a time.
 #include "backend/backend_registry.h"
+#include "backend/cpu/mara2017/cpu_mara_glossy.h"
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/mara2017/cpu_mara_temporal.h"
 #include "backend/cpu/mara2017/cpu_running_min.h"
@@ -25,6 +26,10 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         scratch_.reserve(2 * size_t(longestRun(w, h, maraFrameSettings(s, w).maxRadius)) *
                          size_t(threads));
         tables_.reserve(std::max(s.preTaps, s.finalTaps));
+        glossy_.reserve(
+            maraGlossyScratch(w, maraGlossyReachBound(s.glossySigmaScale, s.glossySigmaExponent,
+                                                      s.glossySigmaEpsilon, s.glossyTapSigmas)) *
+            size_t(threads));
     }
 
   protected:
@@ -79,11 +84,22 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     }
 
     void glossyBilateral(const MaraPassContext& ctx, const MaraFrame& f) override {
+        const int reach = maraGlossyReach(f);
+        const size_t perThread = maraGlossyScratch(f.width, reach);
+        glossy_.resize(perThread * size_t(ctx.pool.threadCount()));
+        auto scratch = [&] {
+            return glossy_.data() + perThread * size_t(ThreadPool::currentThreadIndex());
+        };
         ctx.pool.parallelFor(f.height, 4, [&](long y0, long y1) {
-            maraGlossyRows(f, f.glossyTemporal, f.glossyRow, y0, y1, 1, 0);
+            maraGlossyRows(f, f.glossyTemporal, f.glossyRow, y0, y1, false, reach, scratch());
         });
-        ctx.pool.parallelFor(f.height, 4, [&](long y0, long y1) {
-            maraGlossyRows(f, f.glossyRow, f.glossyOut, y0, y1, 0, 1);
+        // Down the columns each band first weighs the pairs of the `reach` rows above it: a
+        // few bands per worker, not small chunks.
+        const long bands = std::min<long>(4L * ctx.pool.threadCount(), (f.height + 31) / 32);
+        ctx.pool.parallelFor(bands, 1, [&](long b0, long b1) {
+            for (long b = b0; b < b1; ++b)
+                maraGlossyRows(f, f.glossyRow, f.glossyOut, b * f.height / bands,
+                               (b + 1) * f.height / bands, true, reach, scratch());
         });
     }
 
@@ -110,6 +126,7 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     }
 
     std::vector<float> stage5_, scratch_;
+    std::vector<float> glossy_; ///< the glossy passes' pair weights, per worker
     MaraTapTables tables_;
 };
 

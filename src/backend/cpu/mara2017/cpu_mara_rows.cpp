@@ -1,4 +1,5 @@
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
+#include "backend/cpu/mara2017/cpu_mara_edge8.h"
 #include "backend/cpu/simd.h"
 #include "filters/mara2017/mara_passes.h"
 #include <algorithm>
@@ -25,27 +26,6 @@ BMFR_SIMD_INLINE f8 median9(f8 p[9]) {
     sort2(p[4], p[7]), sort2(p[4], p[2]), sort2(p[6], p[4]);
     sort2(p[4], p[2]);
     return p[4];
-}
-
-/// maraEdgeWeight for eight taps, operation for operation.
-BMFR_SIMD_INLINE f8 edgeWeight8(const f8 nc[3], const f8 pc[3], const f8 nq[3], const f8 pq[3],
-                                const MaraEdgeWeights& k) {
-    f8 cn = nc[0] * nq[0] + nc[1] * nq[1] + nc[2] * nq[2];
-    cn = cn > 0.0f ? cn : 0.0f;
-    const f8 c2 = cn * cn;
-    f8 w = 1.0f - k.normal * (1.0f - c2 * c2);
-    w = w > 0.0f ? w : 0.0f;
-    const f8 dp[3] = {pq[0] - pc[0], pq[1] - pc[1], pq[2] - pc[2]};
-    const f8 d2 = dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2];
-    f8 a = dp[0] * nq[0] + dp[1] * nq[1] + dp[2] * nq[2];
-    f8 b = dp[0] * nc[0] + dp[1] * nc[1] + dp[2] * nc[2];
-    a = a < 0.0f ? -a : a, b = b < 0.0f ? -b : b;
-    const f8 along = a < b ? b : a;
-    f8 root = d2;
-    for (int l = 0; l < 8; ++l) root[l] = __builtin_sqrtf(root[l]);
-    f8 wp = 1.0f - 2.0f * k.plane * along / root;
-    wp = wp > 0.0f ? wp : 0.0f;
-    return d2 >= k.planeNearSquared ? w * (wp * wp) : w;
 }
 
 /// Lane l's record index[l] of a packed xyz buffer, as x, y and z lanes: eight 12-byte loads
@@ -263,57 +243,6 @@ BMFR_SIMD_DISPATCH(void, medianRow, (const MaraFrame& f, int y), (f, y)) {
     for (; x < w; ++x) maraMedianPixel(f, x, y);
 }
 
-BMFR_SIMD_DISPATCH(void, glossyRow,
-                   (const MaraFrame& f, const float* src, float* dst, int y, int dx, int dy),
-                   (f, src, dst, y, dx, dy)) {
-    const int w = f.width;
-    const long row = long(y) * w;
-    float g[64];
-    int x = 0;
-    while (x < w) {
-        const long i = row + x;
-        const float rough = f.in.roughness ? f.in.roughness[i] : 1.0f;
-        bool shared = x + 8 <= w;
-        for (int l = 1; shared && l < 8; ++l)
-            shared = !f.in.roughness || std::memcmp(&f.in.roughness[i + l], &rough, 4) == 0;
-        const float sigma = maraGlossySigma(std::isfinite(rough) ? rough : 1.0f, f.glossyScale,
-                                            f.glossyExponent, f.glossyEpsilon);
-        const int reach = shared ? int(std::ceil(f.glossyTapSigmas * sigma)) : 0;
-        // Eight at once when they share a sigma and, along a row, every tap is inside.
-        if (!shared || reach > 63 || (dx && (x - reach < 0 || x + 7 + reach >= w))) {
-            const int end = shared ? x + 8 : x + 1;
-            for (; x < end; ++x) maraGlossyPassPixel(f, src, dst, x, y, dx, dy);
-            continue;
-        }
-        f8 pc[3], nc[3], sum[3];
-        deinterleave3(f.position + 3 * i, pc[0], pc[1], pc[2]);
-        deinterleave3(f.normal + 3 * i, nc[0], nc[1], nc[2]);
-        deinterleave3(src + 3 * i, sum[0], sum[1], sum[2]);
-        f8 total = f8{} + 1.0f;
-        int taps = 0;
-        for (int k = 1; k <= reach; ++k, ++taps) {
-            g[k] = maraGaussian(float(k * k), sigma);
-            if (!(g[k] > 0)) break;
-        }
-        for (int k = 1; k <= taps; ++k)
-            for (int side = -1; side <= 1; side += 2) {
-                const int qx = x + side * k * dx, qy = y + side * k * dy;
-                if (qy < 0 || qy >= f.height) continue;
-                const long j = long(qy) * w + qx;
-                f8 pq[3], nq[3], s[3];
-                deinterleave3(f.position + 3 * j, pq[0], pq[1], pq[2]);
-                deinterleave3(f.normal + 3 * j, nq[0], nq[1], nq[2]);
-                deinterleave3(src + 3 * j, s[0], s[1], s[2]);
-                f8 wt = g[k] * edgeWeight8(nc, pc, nq, pq, f.edges);
-                wt = wt > 0.0f ? wt : 0.0f;
-                for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
-                total = total + wt;
-            }
-        interleave3(sum[0] / total, sum[1] / total, sum[2] / total, dst + 3 * i);
-        x += 8;
-    }
-}
-
 } // namespace
 
 void maraSparseTile(const MaraFrame& f, const float* src, bool final, int x0, int x1, long y0,
@@ -369,11 +298,6 @@ void MaraTapTables::buildFinal(const MaraFrame& f) {
 
 void maraMedianRows(const MaraFrame& f, long y0, long y1) {
     for (long y = y0; y < y1; ++y) medianRow(f, int(y));
-}
-
-void maraGlossyRows(const MaraFrame& f, const float* src, float* dst, long y0, long y1, int dx,
-                    int dy) {
-    for (long y = y0; y < y1; ++y) glossyRow(f, src, dst, int(y), dx, dy);
 }
 
 } // namespace bmfr::cpu

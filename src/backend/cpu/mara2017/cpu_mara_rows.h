@@ -1,8 +1,8 @@
-// The CPU backend's eight-wide Mara 2017 stages over rows: the sparse bilaterals, the firefly
-// median and the glossy passes. They give the reference stages' bits (the same operations in
-// the same order, no fused multiply-adds), except where eight pixels share a sparse stage's
-// rotation and radius: there the taps that land on one pixel are merged into one, so the sums
-// round differently (held to the reference by the conformance suite's tolerance).
+// The CPU backend's eight-wide Mara 2017 stages over rows: the sparse bilaterals and the
+// firefly median (the glossy passes: cpu_mara_glossy.h). They give the reference stages' bits (the
+// same operations in the same order, no fused multiply-adds), except where eight pixels share a
+// sparse stage's rotation and radius: there the taps that land on one pixel are merged into one, so
+// the sums round differently (held to the reference by the conformance suite's tolerance).
 #pragma once
 #include "filters/mara2017/mara_stages.h"
 #include <vector>
@@ -44,10 +44,5 @@ struct MaraTapTables {
 /// neighbours as one run; others gather each pixel's own taps.
 void maraSparseTile(const MaraFrame& f, const float* src, bool final, int x0, int x1, long y0,
                     long y1, const MaraTapTables& tables);
-
-/// One glossy pass (stage 9 with (dx, dy) = (1, 0), stage 10 with (0, 1)) of src into dst on
-/// rows [y0, y1). Eight pixels sharing one roughness run together; the others one by one.
-void maraGlossyRows(const MaraFrame& f, const float* src, float* dst, long y0, long y1, int dx,
-                    int dy);
 
 } // namespace bmfr::cpu

@@ -1,0 +1,153 @@
+#include "backend/cpu/mara2017/cpu_mara_glossy.h"
+#include "backend/cpu/mara2017/cpu_mara_edge8.h"
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace bmfr::cpu {
+
+using namespace simd;
+
+namespace {
+
+/// The reach of pixels with this roughness, as maraGlossyPassPixel takes it.
+int reachOf(const MaraFrame& f, float rough, float& sigma) {
+    sigma = maraGlossySigma(std::isfinite(rough) ? rough : 1.0f, f.glossyScale, f.glossyExponent,
+                            f.glossyEpsilon);
+    return int(std::ceil(f.glossyTapSigmas * sigma));
+}
+
+/// e[(k - 1) w + x] = maraEdgeWeight of pixel (x, y) against pixel (x, y) + k (dx, dy), for
+/// k = 1 .. reach and the pairs inside the image.
+BMFR_SIMD_DISPATCH(void, pairRow, (const MaraFrame& f, int y, int dx, int dy, int reach, float* e),
+                   (f, y, dx, dy, reach, e)) {
+    const int w = f.width;
+    const long row = long(y) * w;
+    for (int k = 1; k <= reach; ++k) {
+        float* ek = e + long(k - 1) * w;
+        if (y + k * dy >= f.height) break;
+        const long step = long(k) * (dx + long(dy) * w);
+        const int end = w - k * dx; // pairs from x < end
+        int x = 0;
+        for (; x + 8 <= end; x += 8) {
+            const long i = row + x, j = i + step;
+            f8 pc[3], nc[3], pq[3], nq[3];
+            deinterleave3(f.position + 3 * i, pc[0], pc[1], pc[2]);
+            deinterleave3(f.normal + 3 * i, nc[0], nc[1], nc[2]);
+            deinterleave3(f.position + 3 * j, pq[0], pq[1], pq[2]);
+            deinterleave3(f.normal + 3 * j, nq[0], nq[1], nq[2]);
+            store8(ek + x, edgeWeight8(nc, pc, nq, pq, f.edges));
+        }
+        for (; x < end; ++x) {
+            const long i = row + x, j = i + step;
+            ek[x] = maraEdgeWeight(load3(f.normal, i), load3(f.position, i), load3(f.normal, j),
+                                   load3(f.position, j), f.edges);
+        }
+    }
+}
+
+/// Row y of one pass from the pair weights: `below[k - 1]` points at the pairs that start at
+/// this row's pixels (tap +k), `above[k - 1]` at those that end there (tap -k, the pair's start
+/// k pixels back along the pass).
+BMFR_SIMD_DISPATCH(void, passRow,
+                   (const MaraFrame& f, const float* src, float* dst, int y, int dx, int dy,
+                    const float* const* below, const float* const* above),
+                   (f, src, dst, y, dx, dy, below, above)) {
+    const int w = f.width;
+    const long row = long(y) * w;
+    float g[kMaraGlossyMaxReach + 1];
+    int x = 0;
+    while (x < w) {
+        const long i = row + x;
+        const float rough = f.in.roughness ? f.in.roughness[i] : 1.0f;
+        bool shared = x + 8 <= w;
+        for (int l = 1; shared && l < 8; ++l)
+            shared = !f.in.roughness || std::memcmp(&f.in.roughness[i + l], &rough, 4) == 0;
+        float sigma = 0;
+        const int reach = shared ? reachOf(f, rough, sigma) : 0;
+        // Eight at once when they share a sigma and, along a row, every tap is inside.
+        if (!shared || reach > kMaraGlossyMaxReach ||
+            (dx && (x - reach < 0 || x + 7 + reach >= w))) {
+            const int end = shared ? x + 8 : x + 1;
+            for (; x < end; ++x) maraGlossyPassPixel(f, src, dst, x, y, dx, dy);
+            continue;
+        }
+        f8 sum[3];
+        deinterleave3(src + 3 * i, sum[0], sum[1], sum[2]);
+        f8 total = f8{} + 1.0f;
+        int taps = 0;
+        for (int k = 1; k <= reach; ++k, ++taps) {
+            g[k] = maraGaussian(float(k * k), sigma);
+            if (!(g[k] > 0)) break;
+        }
+        for (int k = 1; k <= taps; ++k)
+            for (int side = -1; side <= 1; side += 2) {
+                const int qy = y + side * k * dy;
+                if (qy < 0 || qy >= f.height) continue;
+                const long j = i + long(side) * k * (dx + long(dy) * w);
+                f8 s[3];
+                deinterleave3(src + 3 * j, s[0], s[1], s[2]);
+                const f8 e = side < 0 ? load8(above[k - 1] + x - k * dx) : load8(below[k - 1] + x);
+                f8 wt = g[k] * e;
+                wt = wt > 0.0f ? wt : 0.0f;
+                for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
+                total = total + wt;
+            }
+        interleave3(sum[0] / total, sum[1] / total, sum[2] / total, dst + 3 * i);
+        x += 8;
+    }
+}
+
+} // namespace
+
+int maraGlossyReachBound(float scale, float exponent, float epsilon, float tapSigmas) {
+    const float sigma = maraGlossySigma(1.0f, scale, exponent, epsilon);
+    return std::min(kMaraGlossyMaxReach, int(std::ceil(tapSigmas * sigma)));
+}
+
+int maraGlossyReach(const MaraFrame& f) {
+    float largest = f.in.roughness ? 0.0f : 1.0f;
+    for (long i = 0, n = long(f.width) * f.height; f.in.roughness && i < n; ++i) {
+        const float r = f.in.roughness[i];
+        largest = std::isfinite(r) ? std::max(largest, r) : 1.0f;
+        if (largest >= 1.0f) break;
+    }
+    float sigma = 0;
+    return std::min(kMaraGlossyMaxReach, reachOf(f, largest, sigma));
+}
+
+size_t maraGlossyScratch(int width, int reach) {
+    // The vertical pass keeps the pairs of the last reach + 1 rows.
+    return size_t(reach + 1) * size_t(reach) * size_t(width);
+}
+
+void maraGlossyRows(const MaraFrame& f, const float* src, float* dst, long y0, long y1, bool down,
+                    int reach, float* scratch) {
+    const int w = f.width;
+    const float* below[kMaraGlossyMaxReach];
+    const float* above[kMaraGlossyMaxReach];
+    if (!down) { // each row's pairs serve it alone
+        for (long y = y0; y < y1; ++y) {
+            pairRow(f, int(y), 1, 0, reach, scratch);
+            for (int k = 1; k <= reach; ++k)
+                below[k - 1] = above[k - 1] = scratch + long(k - 1) * w;
+            passRow(f, src, dst, int(y), 1, 0, below, above);
+        }
+        return;
+    }
+    // Down the columns: the pairs that start at row r in slot r mod (reach + 1), made from
+    // `reach` rows above the first (those the first rows' upward taps need) onwards.
+    const long slot = long(reach) * w;
+    auto rowPairs = [&](long r) { return scratch + (r % (reach + 1)) * slot; };
+    for (long r = std::max(0L, y0 - reach); r < y1; ++r) {
+        pairRow(f, int(r), 0, 1, reach, rowPairs(r));
+        if (r < y0) continue;
+        for (int k = 1; k <= reach; ++k) {
+            below[k - 1] = rowPairs(r) + long(k - 1) * w;
+            above[k - 1] = r - k >= 0 ? rowPairs(r - k) + long(k - 1) * w : nullptr;
+        }
+        passRow(f, src, dst, int(r), 0, 1, below, above);
+    }
+}
+
+} // namespace bmfr::cpu
