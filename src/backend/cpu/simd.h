@@ -261,6 +261,12 @@ BMFR_SIMD_INLINE void loadXy8(const float* p, int n, f8& x, f8& y) {
     x = __builtin_shuffle(a, b, i8{0, 2, 4, 6, 8, 10, 12, 14});
     y = __builtin_shuffle(a, b, i8{1, 3, 5, 7, 9, 11, 13, 15});
 }
+/// Stores the first n (1 to 8) lanes of x and y as packed xy records.
+BMFR_SIMD_INLINE void storeXy8(float* p, int n, f8 x, f8 y) {
+    float xy[16];
+    for (int l = 0; l < 8; ++l) xy[2 * l] = x[l], xy[2 * l + 1] = y[l];
+    std::memcpy(p, xy, sizeof(float) * 2 * size_t(n));
+}
 /// Stores the first n (1 to 8) records as packed xyz.
 BMFR_SIMD_INLINE void storeXyz8(float* p, int n, const f8 v[3]) {
     if (n == 8) return interleave3(v[0], v[1], v[2], p);

@@ -10,13 +10,6 @@ using namespace simd;
 
 namespace {
 
-/// Stores the first n (1 to 8) lanes of x and y as packed xy records.
-BMFR_SIMD_INLINE void storeXy8(float* p, int n, f8 x, f8 y) {
-    float xy[16];
-    for (int l = 0; l < 8; ++l) xy[2 * l] = x[l], xy[2 * l + 1] = y[l];
-    std::memcpy(p, xy, sizeof(float) * 2 * size_t(n));
-}
-
 /// Counts the non-finite lanes of the first n values of a plane, as finiteOrZero does.
 BMFR_SIMD_INLINE void countNonFinite(const float* plane, long i, int n, int64_t& bad) {
     if (plane) bad += countLanes(~finite8(loadFirst(plane + i, n)));

@@ -12,13 +12,6 @@ using namespace simd;
 
 namespace {
 
-/// Stores the first n (1 to 8) lanes of x and y as packed xy records.
-BMFR_SIMD_INLINE void storeXy8(float* p, int n, f8 x, f8 y) {
-    float xy[16];
-    for (int l = 0; l < 8; ++l) xy[2 * l] = x[l], xy[2 * l + 1] = y[l];
-    std::memcpy(p, xy, sizeof(float) * 2 * size_t(n));
-}
-
 /// transformPoint(m, p).w for eight points, in its order of operations.
 BMFR_SIMD_INLINE f8 depth8(const Mat4& m, const f8 p[3]) {
     return ((m.m[3][0] * p[0] + m.m[3][1] * p[1]) + m.m[3][2] * p[2]) + m.m[3][3];
