@@ -23,25 +23,30 @@ BMFR_SIMD_DISPATCH(void, pairRow, (const MaraFrame& f, int y, int dx, int dy, in
                    (f, y, dx, dy, reach, e)) {
     const int w = f.width;
     const long row = long(y) * w;
-    for (int k = 1; k <= reach; ++k) {
-        float* ek = e + long(k - 1) * w;
-        if (y + k * dy >= f.height) break;
-        const long step = long(k) * (dx + long(dy) * w);
-        const int end = w - k * dx; // pairs from x < end
-        int x = 0;
-        for (; x + 8 <= end; x += 8) {
-            const long i = row + x, j = i + step;
-            f8 pc[3], nc[3], pq[3], nq[3];
+    // Each run of eight pixels against all its partners, so that the run is read once.
+    for (int x = 0; x < w; x += 8) {
+        const long i = row + x;
+        f8 pc[3] = {}, nc[3] = {}; // a run past the row's end takes the pairs one by one
+        if (x + 8 <= w) {
             deinterleave3(f.position + 3 * i, pc[0], pc[1], pc[2]);
             deinterleave3(f.normal + 3 * i, nc[0], nc[1], nc[2]);
-            deinterleave3(f.position + 3 * j, pq[0], pq[1], pq[2]);
-            deinterleave3(f.normal + 3 * j, nq[0], nq[1], nq[2]);
-            store8(ek + x, edgeWeight8(nc, pc, nq, pq, f.edges));
         }
-        for (; x < end; ++x) {
-            const long i = row + x, j = i + step;
-            ek[x] = maraEdgeWeight(load3(f.normal, i), load3(f.position, i), load3(f.normal, j),
-                                   load3(f.position, j), f.edges);
+        for (int k = 1; k <= reach && y + k * dy < f.height; ++k) {
+            float* ek = e + long(k - 1) * w;
+            const long step = long(k) * (dx + long(dy) * w);
+            const int end = w - k * dx; // pairs from x < end
+            if (x + 8 <= end) {
+                f8 pq[3], nq[3];
+                deinterleave3(f.position + 3 * (i + step), pq[0], pq[1], pq[2]);
+                deinterleave3(f.normal + 3 * (i + step), nq[0], nq[1], nq[2]);
+                store8(ek + x, edgeWeight8(nc, pc, nq, pq, f.edges));
+                continue;
+            }
+            for (int l = 0; x + l < end; ++l) {
+                const long c = i + l, q = c + step;
+                ek[x + l] = maraEdgeWeight(load3(f.normal, c), load3(f.position, c),
+                                           load3(f.normal, q), load3(f.position, q), f.edges);
+            }
         }
     }
 }
