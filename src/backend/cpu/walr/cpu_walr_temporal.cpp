@@ -122,7 +122,6 @@ BMFR_SIMD_INLINE void accumulateGroup(const WalrFrame& f, int x, int y, int n, f
         f8 h[3], hp[3];
         // Side by side: each kept lane's footprint starts one column after the last lane's, or
         // (split) one further in some lanes, as a depth step or a small zoom spreads them.
-        const f8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
         f8 bx = ppx, by = ppy;
         for (int l = 0; l < 8; ++l) bx[l] = std::floor(bx[l]), by[l] = std::floor(by[l]);
         int x0 = 1 << 30, x1 = -(1 << 30), y0 = 0;
@@ -136,7 +135,8 @@ BMFR_SIMD_INLINE void accumulateGroup(const WalrFrame& f, int x, int y, int n, f
         }
         run = run && x1 - x0 <= 1 && x0 >= 0 && x1 + 10 < f.width && y0 >= 0 && y0 + 3 < f.height;
         if (run) {
-            const i8 upper = keep & (__builtin_convertvector(bx - lane, i8) - 1 == x1);
+            i8 upper{}; // lanes starting one further (only kept lanes have finite positions)
+            for (int l = 0; l < n; ++l) upper[l] = keep[l] && int(bx[l]) - 1 - l == x1 ? -1 : 0;
             catmullRomRun8(f, x0, y0, x1 > x0, upper, ppx - bx, ppy - by, h, hp);
         } else {
             for (int l = 0; l < n; ++l) {
