@@ -35,7 +35,7 @@ constexpr float kAllTaps = 0.44f, kSameSurface = 0.28f, kNoTap = 0.2f;
 
 float referenceTaa(const EdgeFrame& f, const uint8_t* accept, bool toneMapped = false) {
     TaaInputs a{
-        f.current.data(), nullptr,   f.history.data(), f.previousPixel.data(), f.w, f.h, 0.2f,
+        f.current.data(), nullptr,   f.history.data(), f.previousPixel.data(), f.w, f.h, {0.2f},
         accept,           toneMapped};
     std::vector<float> ycocg;
     for (size_t i = 0; i < f.current.size(); i += 3) {
@@ -50,7 +50,7 @@ float cpuTaa(const EdgeFrame& f, const uint8_t* accept, bool toneMapped = false)
     ThreadPool pool(1);
     std::vector<float> scratch(cpu::taaScratchFloats(f.w, f.h)), out(f.current.size());
     cpu::temporalAntiAliasing(pool, f.current.data(), f.history.data(), f.previousPixel.data(),
-                              scratch.data(), out.data(), f.w, f.h, 0.2f, true, accept, toneMapped);
+                              scratch.data(), out.data(), f.w, f.h, {0.2f}, true, accept, toneMapped);
     return out[3 * (f.w + 1) + 1];
 }
 

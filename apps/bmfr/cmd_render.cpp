@@ -24,7 +24,7 @@ struct RenderJob {
     std::string output, scenesDir = "../shared/scenes", layout = "manifest";
     std::optional<std::string> scene;
     std::optional<int> width, height, frames, referenceSpp, bounces, directSpp;
-    std::string paths;
+    std::string paths, jitter;
     std::optional<uint32_t> seed;
     std::optional<std::string> frameRange;
     int threads = 0;
@@ -119,6 +119,7 @@ int runRender(const RenderJob& job) {
     if (job.noReference) d.referenceSpp = 0;
     if (job.bounces) d.bounces = *job.bounces;
     if (job.seed) d.seed = *job.seed;
+    if (!job.jitter.empty()) d.jitter = job.jitter == "on";
     if (job.diffuseIndirect) d.diffuseIndirectOnly = true;
     if (job.paths == "mara") d.factoredDirectSpp = job.directSpp.value_or(16);
     if (job.paths == "bmfr") d.factoredDirectSpp = 0;
@@ -235,6 +236,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                     "BSDF-sampled secondary rays per path (default 1, as the paper)")
         ->check(integerIn(0, 64));
     cmd->add_option("--seed", job->seed, "random seed");
+    cmd->add_option("--jitter", job->jitter,
+                    "on: each frame's camera moves by a sub-pixel offset (Halton 2,3; the "
+                    "default); off: every frame samples its pixels' centres, as an engine "
+                    "without TAA jitter renders")
+        ->check(CLI::IsMember({"on", "off"}));
     cmd->add_flag("--diffuse-indirect-only", job->diffuseIndirect,
                   "colour and reference hold only the diffuse indirect light, no emission (the "
                   "signal WALR's paper filters: to compare filters on it)");

@@ -25,6 +25,8 @@ struct TemporalSettings {
     bool taa = true;                    ///< temporal anti-aliasing on the output
     bool taaSameSurface = false;        ///< TAA history only from taps on the same surface
     bool taaToneMapped = false;         ///< TAA on display values, as the authors' (clips at 1)
+    bool taaMotionWeight = false;       ///< TAA weighs the current frame more under motion
+    float taaBlurLimit = 0.05f;         ///< taaMotionWeight: blur the history may gather, px^2
     float albedoEpsilon = 0.001f;       ///< albedo floor when (de)modulating
     bool colorIsDemodulated = false;    ///< the colour input is already divided by albedo
     int threads = 0;                    ///< worker threads, 0 = all cores

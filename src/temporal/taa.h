@@ -9,6 +9,33 @@
 
 namespace bmfr {
 
+/// How TAA weighs the current frame against the history.
+struct TaaBlend {
+    float alpha = 0.2f; ///< weight of the current frame (TemporalSettings::taaBlendAlpha)
+    /// With a value above 0, the weight rises where resampling the history blurs it
+    /// (TemporalSettings::taaMotionWeight, taaBlurLimit): px^2 of blur the history may gather.
+    float blurLimit = 0.0f;
+};
+
+/// The blur one bilinear resampling adds to the history, px^2: the variance of its weights
+/// about the sampled point, ax (1 - ax) + ay (1 - ay) for the fractions ax = w1 + w3 and
+/// ay = w2 + w3 of the footprint's weights. 0 where the history moved by whole pixels, 0.5 at
+/// half a pixel on both axes.
+BMFR_HD float bilinearBlur(const float weight[4]) {
+    const float ax = weight[1] + weight[3], ay = weight[2] + weight[3];
+    return ax * (1 - ax) + ay * (1 - ay);
+}
+
+/// TAA's weight of the current frame where the history is resampled with blur `blur` (px^2).
+/// An exponential history resampled with blur b at every frame, with weight (1 - a) for the
+/// history, gathers (1 - a) b / a px^2 of blur; the weight keeps that at blurLimit, and never
+/// falls below the blend's alpha.
+BMFR_HD float taaCurrentWeight(const TaaBlend& blend, float blur) {
+    if (!(blend.blurLimit > 0.0f)) return blend.alpha;
+    const float a = blur / (blur + blend.blurLimit);
+    return a > blend.alpha ? a : blend.alpha;
+}
+
 /// One frame's TAA inputs: packed images of 3 floats per pixel, and the previous pixel of each
 /// pixel (2 floats) from the filter's reprojection.
 struct TaaInputs {
@@ -17,7 +44,7 @@ struct TaaInputs {
     const float* history = nullptr; ///< the previous frame's TAA output
     const float* previousPixel = nullptr;
     int width = 0, height = 0;
-    float alpha = 0.2f; ///< weight of the current frame
+    TaaBlend blend;
     /// The filter's accept mask (bit t = bilinear tap t passed the history discard test), or
     /// null. With it the history is gathered from the accepted taps only, so it never mixes
     /// in the surface behind an edge, and a pixel with none keeps its current colour
@@ -29,14 +56,18 @@ struct TaaInputs {
     bool toneMapped = false;
 };
 
+/// The blend the settings ask for.
+inline TaaBlend taaBlend(const TemporalSettings& s) {
+    return {s.taaBlendAlpha, s.taaMotionWeight ? s.taaBlurLimit : 0.0f};
+}
+
 /// A filter's TAA inputs (ycocg is the pass's own): `accept` is used only when the settings
 /// ask for the same-surface history.
 inline TaaInputs taaInputs(const float* current, const float* history, const float* previousPixel,
                            int width, int height, const TemporalSettings& s,
                            const uint8_t* accept) {
-    return {current,        nullptr, history,         previousPixel,
-            width,          height,  s.taaBlendAlpha, s.taaSameSurface ? accept : nullptr,
-            s.taaToneMapped};
+    return {current, nullptr, history, previousPixel, width, height, taaBlend(s),
+            s.taaSameSurface ? accept : nullptr, s.taaToneMapped};
 }
 
 /// Where TAA blends a colour: itself, or its display value (TaaInputs::toneMapped).
@@ -94,7 +125,7 @@ BMFR_HD Vec3 taaPixel(const TaaInputs& a, int x, int y) {
     else if (a.accept)
         return taaOutput(a, c);
     const Vec3 clamped = yCoCgToRgb(clamp(rgbToYCoCg(old), lo, hi));
-    return taaOutput(a, lerp(clamped, c, a.alpha));
+    return taaOutput(a, lerp(clamped, c, taaCurrentWeight(a.blend, bilinearBlur(fp.weight))));
 }
 
 } // namespace bmfr

@@ -37,6 +37,17 @@ template <class S> SettingsTable<S> temporalSettingsTable() {
          "tone-mapped frame, and converts the result back to linear (x^2.2): values above 1 come "
          "out as 1. False: TAA on linear radiance",
          BMFR_FIELD(S, taaToneMapped)},
+        {"taaMotionWeight", "taa-motion-weight", "", {},
+         "TAA weighs the current frame more where the history is resampled between pixels "
+         "(under motion, or jitter), so that the blur repeated resampling gathers stays within "
+         "taaBlurLimit: the weight is max(taaBlendAlpha, b / (b + taaBlurLimit)) for the blur "
+         "b = ax (1 - ax) + ay (1 - ay) of the bilinear fractions ax, ay. A still camera "
+         "without jitter keeps taaBlendAlpha; false: taaBlendAlpha everywhere, the authors'",
+         BMFR_FIELD(S, taaMotionWeight), "true"},
+        {"taaBlurLimit", "taa-blur-limit", "px^2", {1e-4, 100},
+         "taaMotionWeight: the blur, as a variance, that the TAA history may gather from its "
+         "resamplings",
+         BMFR_FIELD(S, taaBlurLimit)},
         {"albedoEpsilon", "albedo-epsilon", "", {1e-6, 1},
          "demodulation divides by max(albedo, eps) and re-modulation multiplies by the same",
          BMFR_FIELD(S, albedoEpsilon)},

@@ -36,9 +36,9 @@ BMFR_SIMD_DISPATCH(void, resolveRows,
 }
 
 BMFR_SIMD_DISPATCH(void, taaRows,
-                   (const float* history, float* scratch, float* out, int w, int h, float alpha,
+                   (const float* history, float* scratch, float* out, int w, int h, TaaBlend blend,
                     bool enabled, const uint8_t* accept, bool toneMapped, long y0, long y1),
-                   (history, scratch, out, w, h, alpha, enabled, accept, toneMapped, y0, y1)) {
+                   (history, scratch, out, w, h, blend, enabled, accept, toneMapped, y0, y1)) {
     const size_t pitch = ResolvedRows::pitch(w), stride = rowFloats(w);
     for (long y = y0; y < y1; ++y) {
         const float* mid = scratch + size_t(y) * stride;
@@ -46,7 +46,7 @@ BMFR_SIMD_DISPATCH(void, taaRows,
         const float* down = y + 1 < h ? mid + stride : mid;
         const float* previous = mid + ResolvedRows::rowFloats(w);
         taaRow(up, mid, down, pitch, previous, previous + pitch, history, out + 3 * y * w, w, h,
-               alpha, enabled, accept ? accept + y * w : nullptr, toneMapped);
+               blend, enabled, accept ? accept + y * w : nullptr, toneMapped);
     }
 }
 
@@ -58,13 +58,13 @@ size_t taaScratchFloats(int width, int height) {
 
 void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
                           const float* previousPixel, float* scratch, float* out, int w, int h,
-                          float alpha, bool enabled, const uint8_t* accept, bool toneMapped) {
+                          TaaBlend blend, bool enabled, const uint8_t* accept, bool toneMapped) {
     toneMapped = toneMapped && enabled;
     pool.parallelFor(h, 8, [&](long y0, long y1) {
         resolveRows(current, previousPixel, scratch, w, toneMapped, y0, y1);
     });
     pool.parallelFor(h, 8, [&](long y0, long y1) {
-        taaRows(history, scratch, out, w, h, alpha, enabled, accept, toneMapped, y0, y1);
+        taaRows(history, scratch, out, w, h, blend, enabled, accept, toneMapped, y0, y1);
     });
 }
 

@@ -1,6 +1,7 @@
 // Standalone TAA over whole images, for filters without a fused resolve pass (SVGF).
 #pragma once
 #include "core/parallel.h"
+#include "temporal/taa.h"
 #include <cstddef>
 #include <cstdint>
 
@@ -10,14 +11,14 @@ namespace bmfr::cpu {
 size_t taaScratchFloats(int width, int height);
 
 /// TAA with a 3x3 YCoCg neighbourhood clamp (Karis 2014, the authors' variant) and bilinear
-/// history at `previousPixel` (2 floats per pixel), weight `alpha` for the current frame.
+/// history at `previousPixel` (2 floats per pixel), `blend` weighing the current frame.
 /// `current`, `history` and `out` hold 3 floats per pixel. `scratch` holds
 /// taaScratchFloats(width, height) floats. With enabled = false, `out` gets `current`. `accept`
 /// (accept masks, or null) restricts the history to the accepted taps (TaaInputs::accept);
 /// toneMapped blends display values (TaaInputs::toneMapped).
 void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
                           const float* previousPixel, float* scratch, float* out, int width,
-                          int height, float alpha, bool enabled, const uint8_t* accept,
+                          int height, TaaBlend blend, bool enabled, const uint8_t* accept,
                           bool toneMapped);
 
 } // namespace bmfr::cpu

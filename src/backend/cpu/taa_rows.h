@@ -3,6 +3,7 @@
 #include "backend/cpu/reproject8.h"
 #include "backend/cpu/simd.h"
 #include "core/color.h"
+#include "temporal/taa.h"
 #include <cstddef>
 
 namespace bmfr::cpu {
@@ -52,6 +53,16 @@ BMFR_SIMD_INLINE void finishResolvedRow(float* row, size_t pitch, int width) {
     }
 }
 
+/// taaCurrentWeight(blend, bilinearBlur(weight)) (temporal/taa.h) of eight pixels.
+BMFR_SIMD_INLINE simd::f8 currentWeight8(TaaBlend blend, const simd::f8 weight[4]) {
+    using namespace simd;
+    if (!(blend.blurLimit > 0.0f)) return splat8(blend.alpha);
+    const f8 ax = weight[1] + weight[3], ay = weight[2] + weight[3];
+    const f8 blur = ax * (1 - ax) + ay * (1 - ay);
+    const f8 a = blur / (blur + blend.blurLimit);
+    return a > blend.alpha ? a : splat8(blend.alpha);
+}
+
 /// TAA of image row y (Karis 2014, the authors' variant), eight pixels at a time: clamp box =
 /// mean of the 3x3 box and 5-tap cross bounds in YCoCg; bilinear history at (previousX,
 /// previousY), renormalised at the border. up/mid/down are resolved rows y-1, y, y+1; where a
@@ -59,10 +70,11 @@ BMFR_SIMD_INLINE void finishResolvedRow(float* row, size_t pitch, int width) {
 /// unchanged. `history` is the previous output (3 floats per pixel); `out` gets 3 floats per
 /// pixel. With enabled = false the row is copied. `accept` (the row's accept masks, or null)
 /// restricts the history to the accepted taps, as TaaInputs::accept. With toneMapped the rows
-/// hold display values (storeResolved8), the history is encoded and the output decoded.
+/// hold display values (storeResolved8), the history is encoded and the output decoded. The
+/// current frame's weight is taaCurrentWeight (temporal/taa.h) of `blend`.
 BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* down, size_t pitch,
                              const float* previousX, const float* previousY, const float* history,
-                             float* out, int w, int h, float alpha, bool enabled,
+                             float* out, int w, int h, TaaBlend blend, bool enabled,
                              const uint8_t* accept, bool toneMapped) {
     using namespace simd;
     const int pad = ResolvedRows::kRowPad;
@@ -114,8 +126,9 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
         rgbToYCoCg8(old, y);
         for (int ch = 0; ch < 3; ++ch) y[ch] = min8(max8(y[ch], lo[ch]), hi[ch]);
         yCoCgToRgb8(y, clamped);
+        const f8 weight = currentWeight8(blend, fp.weight);
         for (int ch = 0; ch < 3; ++ch)
-            r[ch] = (accept ? use & some : use) ? lerp8(clamped[ch], c[ch], splat8(alpha)) : c[ch];
+            r[ch] = (accept ? use & some : use) ? lerp8(clamped[ch], c[ch], weight) : c[ch];
         if (toneMapped) gammaLanes8(r, false);
         storeXyz8(out + 3 * x, n, r);
     }

@@ -115,7 +115,7 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
             const float* up = y > 0 ? row(y - 1) : mid;
             const float* down = y + 1 < h ? row(y + 1) : mid;
             taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w, pl.previousPixel[1] + y * w,
-                   history, out + 3 * y * w, w, h, a.s.taaBlendAlpha, taa,
+                   history, out + 3 * y * w, w, h, taaBlend(a.s), taa,
                    a.s.taaSameSurface ? accept + y * w : nullptr, taa && a.s.taaToneMapped);
         }
     };

@@ -37,7 +37,7 @@ class CpuSvgfPasses final : public HostSvgfPasses {
         temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
                              buffers.previousPixel.data(), taaScratch_.data(),
                              buffers.output[h.cur].data(), h.width, h.height,
-                             ctx.settings.taaBlendAlpha, ctx.settings.taa && h.hasHistory(),
+                             taaBlend(ctx.settings), ctx.settings.taa && h.hasHistory(),
                              ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr,
                              ctx.settings.taaToneMapped);
         times.add("taa", clock.lap());
