@@ -32,8 +32,8 @@ FRAMES=${FRAMES:-8:24}
 
 # name: the command and its options (INPUT is the sequence, MARA_INPUT its factored-path render)
 methods=(
-    "bmfr:denoise INPUT --preset faithful"
-    "bmfr quality:denoise INPUT --preset quality"
+    "bmfr:denoise INPUT"
+    "bmfr faithful:denoise INPUT --preset faithful"
     "svgf:denoise INPUT --filter svgf"
     "walr:denoise INPUT --filter walr"
     "mara2017:denoise MARA_INPUT --filter mara2017"

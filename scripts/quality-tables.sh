@@ -7,7 +7,10 @@
 #
 #   bash scripts/quality-tables.sh [WORK_DIR] [SEQUENCE ...]   # default /tmp/bmfr-quality-tables
 #   REFERENCE_SPP=1024 bash scripts/quality-tables.sh /tmp/qt1k room-dark room-light cornell-moving
+#   REFERENCE_SPP=1024 JITTER=off LAYOUT=manifest bash scripts/quality-tables.sh /tmp/qt room-dark
 #
+# JITTER=on|off (default: the scene's own) renders with or without the frames' sub-pixel offsets;
+# LAYOUT=manifest|bmfr (default bmfr) the layout, manifest with the emission buffer.
 # A SEQUENCE is a preset or a scene description file. About three minutes on 2 cores (REFERENCE_SPP
 # 1024: about 4.5 minutes per sequence more). Prints one Markdown table per sequence: tone-mapped
 # RMSE (and its ratio to the noisy input's), SSIM, FLIP, temporal error and change error, and the
@@ -19,6 +22,9 @@ bmfr=$PWD/build/bmfr
 [ -x "$bmfr" ] || { echo "no build/bmfr: run bash scripts/build.sh first" >&2; exit 1; }
 work=${1:-/tmp/bmfr-quality-tables}
 spp=${REFERENCE_SPP:-64}
+layout=${LAYOUT:-bmfr}
+jitter=()
+[ -z "${JITTER:-}" ] || jitter=(--jitter "$JITTER")
 shift || true
 sequences=("$@")
 [ ${#sequences[@]} -gt 0 ] ||
@@ -26,24 +32,27 @@ sequences=("$@")
         scripts/scenes/room-light-static.json)
 mkdir -p "$work"
 
-# name: the denoise options
+# name: the denoise options (bmfr and svgf: their defaults, the quality preset)
 methods=(
-    "bmfr:--preset faithful"
-    "bmfr-quality:--preset quality"
-    "bmfr-no-taa:--preset faithful --taa false"
-    "svgf:--filter svgf --preset faithful"
-    "svgf-quality:--filter svgf --preset quality"
+    "bmfr:"
+    "bmfr-no-taa:--taa false"
+    "bmfr-authors-taa:--taa-motion-weight false"
+    "bmfr-faithful:--preset faithful"
+    "bmfr-faithful-no-taa:--preset faithful --taa false"
+    "svgf:--filter svgf"
+    "svgf-faithful:--filter svgf --preset faithful"
+    "walr:--filter walr"
     "accumulation:--preset faithful --fitting false --taa false"
 )
 
 for scene in "${sequences[@]}"; do
-    seq=$(basename "$scene" .json)
+    seq=$(basename "$scene" .json)${JITTER:+-jitter-$JITTER}
     dir=$work/$seq
     if [ ! -f "$dir/.done" ]; then
         echo "rendering $seq ..." >&2
         rm -rf "$dir"
         "$bmfr" render -o "$dir/input" -s "$scene" --width 256 --height 192 --frames 24 \
-            --reference-spp "$spp" --layout bmfr -q
+            --reference-spp "$spp" --layout "$layout" "${jitter[@]}" -q
         touch "$dir/.done"
     fi
     args=()

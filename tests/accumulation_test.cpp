@@ -1,4 +1,5 @@
 // Temporal weights on a static sequence: exact cumulative average first, then EMA.
+#include "filters/bmfr/bmfr_settings_table.h"
 #include "test_scenes.h"
 #include <bmfr/bmfr.hpp>
 #include <cmath>
@@ -16,7 +17,8 @@ TEST(Accumulation, CumulativeAverageThenExponentialInBothPhases) {
         const double tol = half ? 5.0 * std::ldexp(1.0, -10) : 1e-5;
         const int w = 40, h = 36;
         const Mat4 cam = test::cameraAt({0, 1, 3}, w, h);
-        Settings s;
+        Settings s; // the paper's weights: the faithful preset
+        applySettings(bmfrSettingsTable(), s, presetSettings("bmfr", "faithful"), "bmfr");
         s.taa = false;
         s.threads = 2;
         s.halfHistory = half;

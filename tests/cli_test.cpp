@@ -167,8 +167,8 @@ TEST(Cli, DemoRendersDenoisesEveryWayAndWritesTheReport) {
         run("demo -o " + out.string() + " --width 48 --height 36 --frames 3 --reference-spp 4 -q");
     ASSERT_EQ(r.code, 0) << r.output;
     std::vector<std::string> folders = {
-        "denoised", "accumulation_only", "bmfr_no_taa",  "svgf",
-        "walr",     "bmfr_quality",      "svgf_quality", "mara2017"};
+        "denoised", "accumulation_only", "bmfr_no_taa",   "svgf",
+        "walr",     "bmfr_faithful",     "svgf_faithful", "mara2017"};
     // OIDN where it is installed (scripts/install-oidn.sh; never in a sanitizer build).
     if (bmfr::oidn::available()) folders.push_back("oidn");
     for (const std::string& folder : folders)
@@ -176,13 +176,13 @@ TEST(Cli, DemoRendersDenoisesEveryWayAndWritesTheReport) {
     EXPECT_TRUE(fs::exists(out / "report" / "report.html"));
     std::ifstream json(out / "report" / "table.json");
     const std::string table((std::istreambuf_iterator<char>(json)), {});
-    for (const char* key : {"\"bmfr quality\"", "\"svgf quality\"", "\"mara2017\"",
+    for (const char* key : {"\"bmfr faithful\"", "\"svgf faithful\"", "\"mara2017\"",
                             "\"temporal_change_error\"", "\"ms_per_frame\""})
         EXPECT_NE(table.find(key), std::string::npos) << key;
     EXPECT_EQ(table.find("\"oidn\"") != std::string::npos, bmfr::oidn::available());
-    // The preset is applied: its output is not the faithful one's.
+    // The preset is applied: the faithful output is not the default one's.
     EXPECT_NE(bmfr::readExr((out / "denoised" / "denoised_0002.exr").string(), 3).pixels,
-              bmfr::readExr((out / "bmfr_quality" / "denoised_0002.exr").string(), 3).pixels);
+              bmfr::readExr((out / "bmfr_faithful" / "denoised_0002.exr").string(), 3).pixels);
     fs::remove_all(out);
 }
 
@@ -192,20 +192,21 @@ TEST(Cli, AblateRunsStagesAndTheGreedyFeatureStudy) {
     ASSERT_EQ(run("synth -o " + in.string() + " --width 48 --height 32 --frames 3 -q").code, 0);
     Result r = run("ablate " + in.string() + " -o " + out.string());
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* s : {"without fitting (phase II)", "without TAA", "with taaSameSurface",
+    for (const char* s : {"without fitting (phase II)", "without TAA", "without taaSameSurface",
                           "## Greedy feature selection", "+ normals", "+ material_id"})
         EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
     EXPECT_TRUE(fs::exists(out / "ablation.json"));
     EXPECT_TRUE(fs::exists(out / "plot_greedy_rmse.png"));
-    // The faithful run has no preset values to set back; the quality run sets each to the
-    // faithful default in turn, beside flipping its switches.
-    EXPECT_EQ(r.output.find("(faithful)"), std::string::npos) << r.output;
-    fs::remove_all(out);
-    Result q = run("ablate " + in.string() + " -o " + out.string() + " --preset quality");
-    ASSERT_EQ(q.code, 0) << q.output;
+    // The default (quality) run sets each value to the faithful preset's in turn, beside
+    // flipping its switches; the faithful run has no values to set back.
     for (const char* s :
          {"without secondGrid", "blockSize 32 (faithful)", "emitterRatio 16 (faithful)"})
-        EXPECT_NE(q.output.find(s), std::string::npos) << s << "\n" << q.output;
+        EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
+    fs::remove_all(out);
+    Result f = run("ablate " + in.string() + " -o " + out.string() + " --preset faithful");
+    ASSERT_EQ(f.code, 0) << f.output;
+    EXPECT_NE(f.output.find("with taaSameSurface"), std::string::npos) << f.output;
+    EXPECT_EQ(f.output.find("(faithful)"), std::string::npos) << f.output;
     fs::remove_all(in);
     fs::remove_all(out);
 }
@@ -408,35 +409,40 @@ std::vector<float> pixelsOf(const fs::path& p) {
     return bmfr::readExr(p.string(), 3).pixels;
 }
 
-TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
-    // The library's list: the quality preset sets the improvements a filter has.
+TEST(Cli, QualityIsTheDefaultAndFaithfulSetsThePapersValuesBack) {
+    // The library's list: the faithful preset sets back what the defaults improve on.
     using bmfr::presetSettings, bmfr::SettingValues;
     // In the settings table's order.
-    EXPECT_EQ(presetSettings("bmfr", "quality"), (SettingValues{{"taaSameSurface", "true"},
-                                                                {"blockSize", "16"},
-                                                                {"noiseAmplitude", "0.005"},
-                                                                {"secondBlendAlpha", "0.08"},
-                                                                {"excludeEmitters", "true"},
-                                                                {"clampFireflies", "true"},
-                                                                {"secondGrid", "true"},
-                                                                {"visibilityFeature", "true"},
-                                                                {"visibilityTaps", "true"},
-                                                                {"adaptiveHistory", "true"},
-                                                                {"emitterRatio", "4"}}));
-    EXPECT_EQ(presetSettings("svgf", "quality"), (SettingValues{{"taaSameSurface", "true"}}));
-    EXPECT_TRUE(presetSettings("bmfr", "faithful").empty());
+    EXPECT_EQ(presetSettings("bmfr", "faithful"), (SettingValues{{"taaSameSurface", "false"},
+                                                                 {"taaRangeCompressed", "false"},
+                                                                 {"taaMotionWeight", "false"},
+                                                                 {"blockSize", "32"},
+                                                                 {"noiseAmplitude", "0.01"},
+                                                                 {"secondBlendAlpha", "0.1"},
+                                                                 {"excludeEmitters", "false"},
+                                                                 {"clampFireflies", "false"},
+                                                                 {"secondGrid", "false"},
+                                                                 {"visibilityFeature", "false"},
+                                                                 {"visibilityTaps", "false"},
+                                                                 {"adaptiveHistory", "false"},
+                                                                 {"emitterRatio", "16"}}));
+    EXPECT_EQ(presetSettings("svgf", "faithful"), (SettingValues{{"taaSameSurface", "false"},
+                                                                 {"taaRangeCompressed", "false"},
+                                                                 {"taaMotionWeight", "false"}}));
+    EXPECT_TRUE(presetSettings("bmfr", "quality").empty());
     EXPECT_THROW(presetSettings("bmfr", "fast"), bmfr::Error);
-    Result listed = run("settings bmfr --preset quality");
+    Result listed = run("settings bmfr --preset faithful");
     ASSERT_EQ(listed.code, 0) << listed.output;
-    EXPECT_NE(
-        listed.output.find(
-            "bmfr: taaSameSurface=true blockSize=16 noiseAmplitude=0.005 secondBlendAlpha=0.08 "
-            "excludeEmitters=true clampFireflies=true secondGrid=true visibilityFeature=true "
-            "visibilityTaps=true adaptiveHistory=true emitterRatio=4"),
-        std::string::npos)
+    EXPECT_NE(listed.output.find(
+                  "bmfr: taaSameSurface=false taaRangeCompressed=false taaMotionWeight=false "
+                  "blockSize=32 "
+                  "noiseAmplitude=0.01 secondBlendAlpha=0.1 excludeEmitters=false "
+                  "clampFireflies=false secondGrid=false visibilityFeature=false "
+                  "visibilityTaps=false adaptiveHistory=false emitterRatio=16"),
+              std::string::npos)
         << listed.output;
-    // On the command line: --preset quality gives the bits of its switches set by hand, and
-    // --preset faithful those of no flags; a flag after the preset overrides it.
+    // On the command line: --preset faithful gives the bits of its values set by hand, and
+    // --preset quality those of no flags; a flag after the preset overrides it.
     fs::path in = bmfr::testing::scratchPath("cli", "preset_in");
     ASSERT_EQ(run("synth -o " + in.string() + " --width 40 --height 30 --frames 4 -q").code, 0);
     auto denoise = [&](const std::string& name, const std::string& flags) {
@@ -445,24 +451,29 @@ TEST(Cli, QualityPresetIsItsSwitchesAndFaithfulIsTheDefault) {
         EXPECT_EQ(r.code, 0) << r.output;
         return pixelsOf(out / "denoised_0003.exr");
     };
-    const std::vector<float>
-        quality = denoise("quality", "--preset quality"),
-        bySwitch = denoise("switch",
-                           "--taa-same-surface --exclude-emitters --second-grid --clamp-fireflies "
-                           "--visibility-feature --visibility-taps --block-size 16 "
-                           "--emitter-ratio 4 --adaptive-history --alpha2 0.08 --noise 0.005"),
-        faithful = denoise("faithful", "--preset faithful"), plain = denoise("plain", ""),
-        overridden = denoise("override", "--preset quality --taa-same-surface false "
-                                         "--exclude-emitters false --second-grid false "
-                                         "--clamp-fireflies false --visibility-feature false "
-                                         "--visibility-taps false --block-size 32 "
-                                         "--emitter-ratio 16 --adaptive-history false "
-                                         "--alpha2 0.1 --noise 0.01");
-    ASSERT_FALSE(quality.empty());
-    EXPECT_EQ(quality, bySwitch);
-    EXPECT_EQ(faithful, plain);
+    const std::vector<float> faithful = denoise("faithful", "--preset faithful"),
+                             byFlag = denoise(
+                                 "flag",
+                                 "--taa-same-surface false --taa-range-compressed false "
+                                 "--taa-motion-weight false "
+                                 "--exclude-emitters false --second-grid false "
+                                 "--clamp-fireflies false --visibility-feature false "
+                                 "--visibility-taps false --block-size 32 --emitter-ratio 16 "
+                                 "--adaptive-history false --alpha2 0.1 --noise 0.01"),
+                             quality = denoise("quality", "--preset quality"),
+                             plain = denoise("plain", ""),
+                             overridden = denoise(
+                                 "override",
+                                 "--preset faithful --taa-same-surface --taa-range-compressed "
+                                 "--taa-motion-weight --exclude-emitters --second-grid "
+                                 "--clamp-fireflies --visibility-feature "
+                                 "--visibility-taps --block-size 16 --emitter-ratio 4 "
+                                 "--adaptive-history --alpha2 0.08 --noise 0.005");
+    ASSERT_FALSE(faithful.empty());
+    EXPECT_EQ(faithful, byFlag);
+    EXPECT_EQ(quality, plain);
     EXPECT_EQ(overridden, plain);
-    EXPECT_NE(quality, plain);
+    EXPECT_NE(faithful, plain);
     EXPECT_NE(run("denoise " + in.string() + " -o " +
                   bmfr::testing::scratchPath("cli", "preset_bad").string() + " --preset fast")
                   .code,

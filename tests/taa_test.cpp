@@ -33,10 +33,10 @@ struct EdgeFrame {
 //   no tap accepted:        the current colour, 0.2
 constexpr float kAllTaps = 0.44f, kSameSurface = 0.28f, kNoTap = 0.2f;
 
-float referenceTaa(const EdgeFrame& f, const uint8_t* accept, bool toneMapped = false) {
+float referenceTaa(const EdgeFrame& f, const uint8_t* accept, TaaSpace space, TaaBlend blend) {
     TaaInputs a{
-        f.current.data(), nullptr,   f.history.data(), f.previousPixel.data(), f.w, f.h, {0.2f},
-        accept,           toneMapped};
+        f.current.data(), nullptr, f.history.data(), f.previousPixel.data(), f.w, f.h, blend,
+        accept,           space};
     std::vector<float> ycocg;
     for (size_t i = 0; i < f.current.size(); i += 3) {
         const Vec3 v = rgbToYCoCg(taaSpace(a, {f.current[i], f.current[i + 1], f.current[i + 2]}));
@@ -46,11 +46,11 @@ float referenceTaa(const EdgeFrame& f, const uint8_t* accept, bool toneMapped = 
     return taaPixel(a, 1, 1).y;
 }
 
-float cpuTaa(const EdgeFrame& f, const uint8_t* accept, bool toneMapped = false) {
+float cpuTaa(const EdgeFrame& f, const uint8_t* accept, TaaSpace space, TaaBlend blend) {
     ThreadPool pool(1);
     std::vector<float> scratch(cpu::taaScratchFloats(f.w, f.h)), out(f.current.size());
     cpu::temporalAntiAliasing(pool, f.current.data(), f.history.data(), f.previousPixel.data(),
-                              scratch.data(), out.data(), f.w, f.h, {0.2f}, true, accept, toneMapped);
+                              scratch.data(), out.data(), f.w, f.h, blend, true, accept, space);
     return out[3 * (f.w + 1) + 1];
 }
 
@@ -58,10 +58,10 @@ TEST(Taa, HistoryFromAllTapsOrOnlyTheSameSurfaceMatchesHandValues) {
     const EdgeFrame f;
     std::vector<uint8_t> all(size_t(f.w * f.h), 15), first(all.size(), 1), none(all.size(), 0);
     for (auto taa : {referenceTaa, cpuTaa}) {
-        EXPECT_NEAR(taa(f, nullptr, false), kAllTaps, 1e-6f);
-        EXPECT_NEAR(taa(f, all.data(), false), kAllTaps, 1e-6f);
-        EXPECT_NEAR(taa(f, first.data(), false), kSameSurface, 1e-6f);
-        EXPECT_NEAR(taa(f, none.data(), false), kNoTap, 1e-6f);
+        EXPECT_NEAR(taa(f, nullptr, TaaSpace::Linear, {0.2f}), kAllTaps, 1e-6f);
+        EXPECT_NEAR(taa(f, all.data(), TaaSpace::Linear, {0.2f}), kAllTaps, 1e-6f);
+        EXPECT_NEAR(taa(f, first.data(), TaaSpace::Linear, {0.2f}), kSameSurface, 1e-6f);
+        EXPECT_NEAR(taa(f, none.data(), TaaSpace::Linear, {0.2f}), kNoTap, 1e-6f);
     }
 }
 
@@ -73,16 +73,50 @@ TEST(Taa, OnToneMappedValuesBlendsDisplayValuesAndClipsAtOne) {
     EdgeFrame f;
     std::vector<uint8_t> first(size_t(f.w * f.h), 1), none(first.size(), 0);
     for (auto taa : {referenceTaa, cpuTaa}) {
-        EXPECT_NEAR(taa(f, nullptr, true), allTaps, 1e-5);
-        EXPECT_NEAR(taa(f, first.data(), true), sameSurface, 1e-5);
-        EXPECT_NEAR(taa(f, none.data(), true), kNoTap, 1e-5);
-        EXPECT_GT(std::fabs(taa(f, nullptr, true) - kAllTaps), 1e-3) << "not the linear blend";
+        EXPECT_NEAR(taa(f, nullptr, TaaSpace::Display, {0.2f}), allTaps, 1e-5);
+        EXPECT_NEAR(taa(f, first.data(), TaaSpace::Display, {0.2f}), sameSurface, 1e-5);
+        EXPECT_NEAR(taa(f, none.data(), TaaSpace::Display, {0.2f}), kNoTap, 1e-5);
+        EXPECT_GT(std::fabs(taa(f, nullptr, TaaSpace::Display, {0.2f}) - kAllTaps), 1e-3)
+            << "not the linear blend";
     }
     // Above 1 the display value, and so the output, is 1.
     for (int c = 0; c < 3; ++c) f.current[3 * (f.w + 1) + c] = 3.0f;
     for (auto taa : {referenceTaa, cpuTaa}) {
-        EXPECT_NEAR(taa(f, none.data(), true), 1.0f, 1e-6f);
-        EXPECT_NEAR(taa(f, none.data(), false), 3.0f, 1e-6f);
+        EXPECT_NEAR(taa(f, none.data(), TaaSpace::Display, {0.2f}), 1.0f, 1e-6f);
+        EXPECT_NEAR(taa(f, none.data(), TaaSpace::Linear, {0.2f}), 3.0f, 1e-6f);
+    }
+}
+
+TEST(Taa, OnRangeCompressedValuesBlendsThemAndExpandsTheResultWithoutClipping) {
+    // Pixel (1, 1) with every value v as v / (1 + v) (grey), then expanded: x / (1 - x).
+    const auto e = [](double v) { return v / (1 + v); };
+    const auto d = [](double x) { return x / (1 - x); };
+    const double allTaps = d(0.8 * 0.5 * (e(0.3) + e(0.7)) + 0.2 * e(0.2));
+    EdgeFrame f;
+    for (auto taa : {referenceTaa, cpuTaa}) {
+        EXPECT_NEAR(taa(f, nullptr, TaaSpace::Compressed, {0.2f}), allTaps, 1e-5);
+        EXPECT_GT(std::fabs(taa(f, nullptr, TaaSpace::Compressed, {0.2f}) - kAllTaps), 1e-3);
+    }
+    // A light's radiance comes back whole: nothing is clipped.
+    std::vector<uint8_t> none(size_t(f.w * f.h), 0);
+    for (int c = 0; c < 3; ++c) f.current[3 * (f.w + 1) + c] = 300.0f;
+    for (auto taa : {referenceTaa, cpuTaa})
+        EXPECT_NEAR(taa(f, none.data(), TaaSpace::Compressed, {0.2f}), 300.0f, 0.05f);
+    for (float v : {0.0f, 0.01f, 1.0f, 17.0f, 1000.0f})
+        EXPECT_NEAR(expandRange(compressRange({v, v / 2, 0})).x, v, 1e-6f + 1e-4f * v);
+}
+
+TEST(Taa, TheMotionWeightFollowsTheHistorysBilinearBlur) {
+    // Pixel (1, 1) was at (1.5, 1): the blur b = 0.25 px^2, so the current frame weighs
+    // max(alpha, b / (b + limit)): 5/6 with limit 0.05, 0.5 with 0.25, and alpha 0.6 above that.
+    const EdgeFrame f;
+    const auto blend = [](double a) { return (1 - a) * 0.5 * (0.3 + 0.7) + a * 0.2; };
+    EXPECT_NEAR(bilinearBlur(bilinearFootprint({1.5f, 1.0f}).weight), 0.25f, 1e-7f);
+    EXPECT_EQ(bilinearBlur(bilinearFootprint({2.0f, 3.0f}).weight), 0.0f);
+    for (auto taa : {referenceTaa, cpuTaa}) {
+        EXPECT_NEAR(taa(f, nullptr, TaaSpace::Linear, {0.2f, 0.05f}), blend(0.25 / 0.3), 1e-6);
+        EXPECT_NEAR(taa(f, nullptr, TaaSpace::Linear, {0.2f, 0.25f}), blend(0.5), 1e-6);
+        EXPECT_NEAR(taa(f, nullptr, TaaSpace::Linear, {0.6f, 0.25f}), blend(0.6), 1e-6);
     }
 }
 

@@ -76,7 +76,7 @@ TEST(VisibilityFeature, OffOrWithoutTheBufferTheFitIsThePapers) {
         return f;
     }();
     auto on = makeFilter("bmfr", {{"visibilityFeature", "true"}});
-    auto off = makeFilter("bmfr", {});
+    auto off = makeFilter("bmfr", {{"visibilityFeature", "false"}, {"visibilityTaps", "false"}});
     for (int i = 0; i < 2; ++i) {
         const ImageView a = on->denoise(plain.input()), b = off->denoise(frame.input());
         for (long k = 0; k < long(kVisW) * kVisH * 3; ++k) ASSERT_EQ(a.data[k], b.data[k]) << k;

@@ -26,7 +26,7 @@ struct BenchJob {
     std::string baselineFilter;
     std::vector<std::string> sets;         ///< "key=value" settings of the measured filter
     std::vector<std::string> baselineSets; ///< "key=value" settings of the baseline
-    std::string preset = "faithful", baselinePreset = "faithful"; ///< presetSettings()
+    std::string preset = "quality", baselinePreset = "quality"; ///< presetSettings()
     /// Several filters timed together, interleaved (--filters); empty = the one-filter bench.
     std::vector<std::string> filters;
     const std::string& referenceFilter() const {

@@ -190,14 +190,15 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     "--filter walr --baseline-filter bmfr --baseline-backend cpu)")
         ->check(oneOf(filterNames()));
     cmd->add_option("--preset", job->preset,
-                    "the measured filter's preset: faithful or quality (bmfr settings --preset)")
+                    "the measured filter's preset: quality (the default) or faithful (bmfr "
+                    "settings --preset)")
         ->check(oneOf(presetNames()))
-        ->default_val("faithful");
+        ->default_val("quality");
     cmd->add_option("--baseline-preset", job->baselinePreset,
                     "the baseline's preset (the quality preset against the faithful one: "
-                    "--preset quality --baseline-backend cpu)")
+                    "--baseline-preset faithful --baseline-backend cpu)")
         ->check(oneOf(presetNames()))
-        ->default_val("faithful");
+        ->default_val("quality");
     cmd->add_option("--baseline-set", job->baselineSets,
                     "key=value: a setting of the baseline, repeatable (half against float "
                     "history: --set halfHistory=true --baseline-backend cpu --baseline-set "
@@ -243,7 +244,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                 if (r.contains("cpu_path")) how = r["cpu_path"].get<std::string>() + " path";
                 if (r.contains("device")) how = r["device"].get<std::string>();
                 if (r.contains("input")) how += ", " + r["input"].get<std::string>();
-                if (job->preset != "faithful")
+                if (job->preset != "quality")
                     how += (how.empty() ? "" : ", ") + job->preset + " preset";
                 if (r.contains("history"))
                     how += (how.empty() ? "" : ", ") + r["history"].get<std::string>() + " history";

@@ -15,7 +15,7 @@ std::string escape(const std::string& s) {
 }
 
 std::string markdown() {
-    std::string out = "| filter | key | flag | unit | range | default | quality | what it does |\n"
+    std::string out = "| filter | key | flag | unit | range | default | faithful | what it does |\n"
                       "|---|---|---|---|---|---|---|---|\n";
     bool sharedDone = false;
     for (const std::string& f : filterNames()) {
@@ -23,7 +23,7 @@ std::string markdown() {
             if (d.shared && sharedDone) continue; // the same rows in every table
             out += fmt::format("| {} | `{}` | `--{}` | {} | {} | {} | {} | {} |\n",
                                d.shared ? "all" : f, d.key, d.flag, d.unit, d.range,
-                               escape(d.defaultValue), escape(d.quality), escape(d.help));
+                               escape(d.defaultValue), escape(d.faithful), escape(d.help));
         }
         sharedDone = true;
     }
@@ -43,8 +43,10 @@ void addSettingsCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("filter", job->filter, "one filter (default: all)")
         ->check(oneOf(filterNames()));
     cmd->add_flag("--markdown", job->markdown, "docs/settings.md's table");
-    cmd->add_option("--preset", job->preset,
-                    "print only what this preset sets (faithful, quality), as key=value")
+    cmd->add_option(
+           "--preset", job->preset,
+           "print only what this preset sets (quality: nothing, it is the default; faithful: "
+           "the papers' values), as key=value")
         ->check(oneOf(presetNames()));
     cmd->add_flag("-q,--quiet", job->quiet,
                   "accepted on every command; the table is this command's result");

@@ -67,11 +67,12 @@ void FilterOptions::addTo(CLI::App& cmd, const std::vector<std::string>& filters
                 o->type_name(d.range.empty() ? "TEXT" : "NUMBER");
         }
     cmd.add_option("--preset", preset,
-                   "faithful (the papers' settings) or quality (with the improvements beyond "
-                   "them; `bmfr settings FILTER --preset quality` lists them); flags and --set "
-                   "override it")
+                   "quality (the default: the papers' settings with the improvements beyond them) "
+                   "or faithful (the papers' settings alone, the reproduction; `bmfr settings "
+                   "FILTER --preset faithful` lists what it sets back); flags and --set override "
+                   "it")
         ->check(oneOf(presetNames()))
-        ->default_val("faithful")
+        ->default_val("quality")
         ->group("Options");
     cmd.add_option("--set", sets,
                    "any setting as key=value (keys: `bmfr settings FILTER`); repeatable")

@@ -33,7 +33,7 @@ struct FilterOptions {
     [[noreturn]] void rethrow(const std::string& name, const SettingError& e,
                               const SequenceDefaults& sequence = {}) const;
 
-    std::string preset = "faithful";          ///< presetSettings(), applied before the flags
+    std::string preset = "quality";           ///< presetSettings(), applied before the flags
     std::map<std::string, std::string> flags; ///< flag -> text, as given
     std::vector<std::string> sets;            ///< "key=value"
     std::vector<std::string> disabled;        ///< switch flags to turn off

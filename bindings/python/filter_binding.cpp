@@ -100,7 +100,7 @@ class PyFilter {
         try {
             values = presetSettings(name, preset);
         } catch (const Error&) {
-            throw py::value_error("preset: unknown preset '" + preset + "' (faithful, quality)");
+            throw py::value_error("preset: unknown preset '" + preset + "' (quality, faithful)");
         }
         for (const auto& [k, v] : settings) {
             const std::string keyword = py::str(k);
@@ -189,7 +189,7 @@ class PyFilter {
 
     std::string repr() const {
         std::string s = "bmfr.Filter('" + name_ + "'";
-        if (preset_ != "faithful") s += ", preset='" + preset_ + "'";
+        if (preset_ != "quality") s += ", preset='" + preset_ + "'";
         s += ", backend='" + backend_ + "'";
         for (const auto& [k, v] : given_) s += ", " + k + "=" + v;
         return s + ")";
@@ -311,12 +311,12 @@ filters made afterwards, so that their first frame allocates nothing.)")
 
     py::class_<PyFilter>(m, "Filter", R"(A temporal reconstruction filter, one per sequence.
 
-Filter(name="bmfr", preset="faithful", backend="cpu", device=None, **settings): settings by their
+Filter(name="bmfr", preset="quality", backend="cpu", device=None, **settings): settings by their
 flag name with underscores (block_size=32, taa=False) or their key (blockSize=32), over the
 preset's; bmfr.settings(name) lists them. Give backend= or device=, not both.)")
         .def(py::init<const std::string&, const std::string&, const py::object&, const py::object&,
                       const py::kwargs&>(),
-             py::arg("name") = "bmfr", py::kw_only(), py::arg("preset") = "faithful",
+             py::arg("name") = "bmfr", py::kw_only(), py::arg("preset") = "quality",
              py::arg("backend") = py::none(), py::arg("device") = py::none())
         .def("denoise", &PyFilter::denoise,
              R"(denoise(color, albedo, normal, position, view_projection, jitter=(0, 0), *,

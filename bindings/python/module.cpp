@@ -124,6 +124,7 @@ PYBIND11_MODULE(bmfr, m) {
             return values;
         },
         py::arg("name"), py::arg("preset"),
-        "The settings a preset (faithful, quality) gives a filter, by Python name; "
+        "The settings a preset gives a filter, by Python name (quality: none, it is the "
+        "default; faithful: the papers' values); "
         "bmfr.Filter(name, preset=...) applies them.");
 }

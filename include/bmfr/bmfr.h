@@ -99,9 +99,10 @@ BMFR_API void bmfrSetFilterMatrix(BMFRFilter filter, const char* name,
                                   const float* rowMajor4x4) BMFR_NOEXCEPT;
 
 /* Settings by key: every key of `bmfr settings FILTER` (the filter's own and the shared ones),
- * "preset" (string: "faithful" or "quality", applied before the other keys), and the per-frame
- * conventions of docs/c-api.md ("accumulationMode", "frameIndex", "jitterX", "jitterY",
- * "motionScaleX", "motionScaleY", "motionYUp", "motionIncludesJitter", "normalOctUnorm"). A
+ * "preset" (string: "quality", the default, or "faithful", the papers' settings alone; applied
+ * before the other keys), and the per-frame conventions of docs/c-api.md ("accumulationMode",
+ * "frameIndex", "jitterX", "jitterY", "motionScaleX", "motionScaleY", "motionYUp",
+ * "motionIncludesJitter", "normalOctUnorm"). A
  * setting of the filter's table takes effect at the next bmfrCommitFilter, which starts a new
  * history; the per-frame ones at the next execute. */
 BMFR_API void bmfrSetFilterBool(BMFRFilter filter, const char* name, bool value) BMFR_NOEXCEPT;

@@ -72,8 +72,8 @@ using SettingValues = std::vector<std::pair<std::string, std::string>>;
 /// One row of a filter's settings table.
 struct SettingDoc {
     std::string key, flag, unit, range, defaultValue, help;
-    std::string quality; ///< the value the "quality" preset gives it; empty: the default
-    bool shared = false; ///< one of the settings every filter has (TemporalSettings)
+    std::string faithful; ///< the value the "faithful" preset gives it; empty: the default
+    bool shared = false;  ///< one of the settings every filter has (TemporalSettings)
 };
 
 /// Makes the filter `name` ("bmfr", "svgf") with its defaults overridden by `values`. Throws
@@ -84,8 +84,9 @@ BMFR_API std::unique_ptr<Filter> makeFilter(const std::string& name,
 BMFR_API std::vector<std::string> filterNames();
 /// The settings table of filter `name`: the shared settings first.
 BMFR_API std::vector<SettingDoc> filterSettings(const std::string& name);
-/// The named presets, in order: "faithful" (the papers' defaults) and "quality" (the
-/// improvements beyond the papers that measured better, each also a setting of its own).
+/// The named presets, in order: "quality" (the defaults: the papers' settings with the
+/// improvements beyond them that measured better, each a setting of its own) and "faithful"
+/// (the papers' settings alone, bit for bit the reproduction).
 BMFR_API std::vector<std::string> presetNames();
 /// The settings preset `preset` gives filter `name` (those of its improvements the filter has);
 /// apply them before any others. Throws bmfr::Error for an unknown filter or preset.

@@ -23,10 +23,11 @@ struct TemporalSettings {
     float normalLimitSquared = 1.0f;    ///< history discard: squared normal distance
     float taaBlendAlpha = 0.2f;         ///< TAA weight of the current frame
     bool taa = true;                    ///< temporal anti-aliasing on the output
-    bool taaSameSurface = false;        ///< TAA history only from taps on the same surface
+    bool taaSameSurface = true;         ///< TAA history only from taps on the same surface
     bool taaToneMapped = false;         ///< TAA on display values, as the authors' (clips at 1)
-    bool taaMotionWeight = false;       ///< TAA weighs the current frame more under motion
-    float taaBlurLimit = 0.05f;         ///< taaMotionWeight: blur the history may gather, px^2
+    bool taaRangeCompressed = true;     ///< TAA on c / (1 + max(c)), so lights do not bleed
+    bool taaMotionWeight = true;        ///< TAA weighs the current frame more under motion
+    float taaBlurLimit = 0.005f;        ///< taaMotionWeight: blur the history may gather, px^2
     float albedoEpsilon = 0.001f;       ///< albedo floor when (de)modulating
     bool colorIsDemodulated = false;    ///< the colour input is already divided by albedo
     int threads = 0;                    ///< worker threads, 0 = all cores

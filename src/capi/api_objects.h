@@ -54,7 +54,7 @@ struct BMFRFilterImpl {
     BMFRDeviceImpl* device = nullptr; ///< retained
     std::string type;
 
-    std::string preset = "faithful";
+    std::string preset = "quality";
     bmfr::SettingValues values;          ///< the filter table's keys as set, one entry per key
     bmfr::SettingValues committedValues; ///< the preset's and these, as the last commit made it
     int maxWidth = 0, maxHeight = 0;

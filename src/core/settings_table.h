@@ -34,7 +34,8 @@ template <class S> struct Setting {
     const char* help; ///< one line
     std::variant<float& (*)(S&), int& (*)(S&), uint32_t& (*)(S&), bool& (*)(S&), TextField<S>>
         field;
-    const char* quality = nullptr; ///< its value in the quality preset; null: the default's
+    /// Its value in the faithful preset (the paper's) where the default departs from it.
+    const char* faithful = nullptr;
 };
 
 template <class S> using SettingsTable = std::vector<Setting<S>>;
@@ -158,7 +159,7 @@ template <class S> std::vector<SettingDoc> documentSettings(const SettingsTable<
         d.range = isNumeric(e) ? detail::formatRange(e.range, isInteger(e))
                                : (e.field.index() == 3 ? "true, false" : "");
         d.defaultValue = formatSetting(e, defaults);
-        d.quality = e.quality ? e.quality : "";
+        d.faithful = e.faithful ? e.faithful : "";
         d.shared = int(k) < shared;
         docs.push_back(d);
     }

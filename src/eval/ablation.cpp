@@ -100,10 +100,9 @@ AblationResult runAblation(const std::string& input, const std::string& output,
         st.flag(s) = false;
         r.stages.push_back(run(s, st.name));
     }
-    // The quality preset's switches (the improvements beyond the paper), each flipped in turn;
-    // its values (the block size, the emitter ratio) each set back to the faithful default.
-    const Settings faithful;
-    for (const auto& [key, value] : presetSettings("bmfr", "quality"))
+    // The improvements beyond the paper (where the two presets differ), each flipped in turn;
+    // the values (the block size, the emitter ratio) each set to the faithful preset's.
+    for (const auto& [key, faithfulValue] : presetSettings("bmfr", "faithful"))
         for (const auto& e : bmfrSettingsTable()) {
             if (e.key != key) continue;
             Settings s = base;
@@ -113,7 +112,6 @@ AblationResult runAblation(const std::string& input, const std::string& output,
                 r.stages.push_back(run(s, (on ? "without " : "with ") + key));
                 continue;
             }
-            const std::string faithfulValue = formatSetting(e, faithful);
             if (faithfulValue == formatSetting(e, base)) continue;
             applySettings(bmfrSettingsTable(), s, {{key, faithfulValue}}, "bmfr");
             r.stages.push_back(run(s, key + " " + faithfulValue + " (faithful)"));

@@ -61,17 +61,22 @@ struct KnownRow {
 // gets no gloss, as what made it is unknown.
 const KnownRow kKnownRows[] = {
     {"noisy", "the input", "the sequence's noisy input colour, not denoised"},
-    {"bmfr", "BMFR as in the paper, TAA on",
-     "BMFR as the paper describes it (the faithful preset), ending with its TAA"},
+    {"bmfr", "BMFR, the default (quality preset)",
+     "BMFR as bmfr denoise runs it by default: the paper's filter with the improvements beyond "
+     "it that measured better (the quality preset), among them a TAA that takes its history "
+     "from the same surface and weighs the current frame more under motion"},
     {"accumulation only", "bmfr without the fit",
      "BMFR without its blockwise fit (phase II): temporal accumulation and TAA alone"},
     {"bmfr without TAA", "bmfr, TAA off", "bmfr with its final TAA turned off, all else the same"},
-    {"svgf", "SVGF, TAA on", "SVGF (Schied et al. 2017), with its TAA"},
+    {"svgf", "SVGF, the default (quality preset)",
+     "SVGF (Schied et al. 2017) as bmfr denoise runs it by default, with the quality preset's "
+     "TAA"},
     {"walr", "WALR, TAA on", "WALR, with its TAA"},
-    {"bmfr quality", "BMFR, --preset quality",
-     "BMFR with --preset quality, the improvements beyond the paper (among them a TAA that "
-     "takes its history from the same surface only)"},
-    {"svgf quality", "SVGF, --preset quality", "SVGF with --preset quality"},
+    {"bmfr faithful", "BMFR as in the paper (--preset faithful)",
+     "BMFR as the paper describes it, bit for bit the reproduction (--preset faithful), ending "
+     "with the authors' TAA"},
+    {"svgf faithful", "SVGF as in the paper (--preset faithful)",
+     "SVGF as its paper describes it (--preset faithful), with the authors' TAA"},
     {"mara2017", "Mara et al. 2017 on its own factored paths",
      "Mara et al. 2017 (the paper's filter), on the same frames rendered with its own factored "
      "paths (bmfr render --paths mara: other noise, the same reference)"},
@@ -187,13 +192,15 @@ std::string tableNotes(const ComparisonResult& r, bool html) {
         notes.push_back(
             html ? "TAA (temporal anti-aliasing over the already-denoised output) blends each "
                    "frame with its reprojected history to hide the flicker and aliasing that a "
-                   "per-frame blockwise fit leaves, at the cost of some blur: against the sharp "
-                   "reference the per-frame scores (RMSE, PSNR, SSIM, FLIP, relMSE) are worse "
-                   "with TAA. What it is for is temporal stability, less flicker from frame to "
-                   "frame, which per-frame scores cannot show: the two temporal columns measure "
-                   "it (under camera motion, TAA's lag adds to the change error too)."
-                 : "TAA blends each frame with its reprojected history: steadier but blurred, so "
-                   "its per-frame scores against the sharp reference are worse.");
+                   "per-frame blockwise fit leaves. The authors' TAA (the faithful preset) blurs "
+                   "under motion, as its history is resampled every frame: against the sharp "
+                   "reference its per-frame scores (RMSE, PSNR, SSIM, FLIP, relMSE) are worse "
+                   "with TAA. The default TAA weighs the current frame more where resampling "
+                   "blurs the history, so it costs them little. What TAA is for is temporal "
+                   "stability, less flicker from frame to frame, which per-frame scores cannot "
+                   "show: the two temporal columns measure it (lag adds to the change error too)."
+                 : "TAA blends each frame with its reprojected history: steadier; the authors' "
+                   "(faithful) TAA also blurs under motion, so its per-frame scores are worse.");
     notes.push_back(
         html ? "Temporal error (&rarr; ref): the mean over pixels of |Y &minus; "
                "Y<sub>previous</sub>|, Y the luminance of the tone-mapped frame, averaged over "

@@ -60,17 +60,17 @@ std::vector<InputUse> filterInputs(const std::string& name, const SettingValues&
 }
 
 std::vector<std::string> presetNames() {
-    return {"faithful", "quality"};
+    return {"quality", "faithful"};
 }
 
 SettingValues presetSettings(const std::string& name, const std::string& preset) {
     const std::vector<SettingDoc> docs = filterSettings(name);
-    if (preset == "faithful") return {};
-    if (preset != "quality")
-        throw Error("unknown preset '" + preset + "' (expected faithful or quality)");
+    if (preset == "quality") return {};
+    if (preset != "faithful")
+        throw Error("unknown preset '" + preset + "' (expected quality or faithful)");
     SettingValues v;
     for (const SettingDoc& d : docs)
-        if (!d.quality.empty()) v.emplace_back(d.key, d.quality);
+        if (!d.faithful.empty()) v.emplace_back(d.key, d.faithful);
     return v;
 }
 

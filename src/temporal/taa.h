@@ -36,6 +36,10 @@ BMFR_HD float taaCurrentWeight(const TaaBlend& blend, float blur) {
     return a > blend.alpha ? a : blend.alpha;
 }
 
+/// The values TAA blends: linear radiance, display values (TemporalSettings::taaToneMapped,
+/// the authors') or range-compressed radiance (TemporalSettings::taaRangeCompressed).
+enum class TaaSpace : uint8_t { Linear, Display, Compressed };
+
 /// One frame's TAA inputs: packed images of 3 floats per pixel, and the previous pixel of each
 /// pixel (2 floats) from the filter's reprojection.
 struct TaaInputs {
@@ -50,11 +54,18 @@ struct TaaInputs {
     /// in the surface behind an edge, and a pixel with none keeps its current colour
     /// (TemporalSettings::taaSameSurface); without it from every tap (the authors').
     const uint8_t* accept = nullptr;
-    /// TAA on display values, gammaEncode (the authors' code runs it on its tone-mapped
-    /// frame): the current frame, its clamp box and the history are encoded, the result decoded
-    /// back to linear, so values above 1 come out as 1 (TemporalSettings::taaToneMapped).
-    bool toneMapped = false;
+    /// Display: TAA on gammaEncode values (the authors' code runs it on its tone-mapped frame):
+    /// the current frame, its clamp box and the history are encoded, the result decoded back to
+    /// linear, so values above 1 come out as 1. Compressed: the same with compressRange and
+    /// expandRange, which clip nothing.
+    TaaSpace space = TaaSpace::Linear;
 };
+
+/// The space the settings ask for: the tone-mapped one over the compressed one.
+inline TaaSpace taaSpaceOf(const TemporalSettings& s) {
+    if (s.taaToneMapped) return TaaSpace::Display;
+    return s.taaRangeCompressed ? TaaSpace::Compressed : TaaSpace::Linear;
+}
 
 /// The blend the settings ask for.
 inline TaaBlend taaBlend(const TemporalSettings& s) {
@@ -66,17 +77,20 @@ inline TaaBlend taaBlend(const TemporalSettings& s) {
 inline TaaInputs taaInputs(const float* current, const float* history, const float* previousPixel,
                            int width, int height, const TemporalSettings& s,
                            const uint8_t* accept) {
-    return {current, nullptr, history, previousPixel, width, height, taaBlend(s),
-            s.taaSameSurface ? accept : nullptr, s.taaToneMapped};
+    return {current,      nullptr, history,     previousPixel,
+            width,        height,  taaBlend(s), s.taaSameSurface ? accept : nullptr,
+            taaSpaceOf(s)};
 }
 
-/// Where TAA blends a colour: itself, or its display value (TaaInputs::toneMapped).
+/// Where TAA blends a colour (TaaInputs::space).
 BMFR_HD Vec3 taaSpace(const TaaInputs& a, Vec3 c) {
-    return a.toneMapped ? gammaEncode(c) : c;
+    if (a.space == TaaSpace::Display) return gammaEncode(c);
+    return a.space == TaaSpace::Compressed ? compressRange(c) : c;
 }
 /// What TAA outputs for a result in its space: linear again.
 BMFR_HD Vec3 taaOutput(const TaaInputs& a, Vec3 v) {
-    return a.toneMapped ? gammaDecode(v) : v;
+    if (a.space == TaaSpace::Display) return gammaDecode(v);
+    return a.space == TaaSpace::Compressed ? expandRange(v) : v;
 }
 
 /// Clamp box of pixel (x, y): the mean of the 3x3 box and the 5-tap cross bounds, in YCoCg.

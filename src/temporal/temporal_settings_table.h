@@ -31,19 +31,25 @@ template <class S> SettingsTable<S> temporalSettingsTable() {
          "TAA takes the history only from the bilinear taps that passed the history discard "
          "test (the same surface), so edges do not blur under motion; false: all four taps, "
          "the authors'",
-         BMFR_FIELD(S, taaSameSurface), "true"},
+         BMFR_FIELD(S, taaSameSurface), "false"},
         {"taaToneMapped", "taa-tone-mapped", "", {},
          "TAA blends display values clamp(x^(1/2.2), 0, 1), as the authors' code does on its "
          "tone-mapped frame, and converts the result back to linear (x^2.2): values above 1 come "
          "out as 1. False: TAA on linear radiance",
          BMFR_FIELD(S, taaToneMapped)},
+        {"taaRangeCompressed", "taa-range-compressed", "", {},
+         "TAA blends range-compressed radiance c / (1 + max(r, g, b)) and expands the result "
+         "back (Karis 2014), so that a light's pixel weighs in its neighbours' history as a "
+         "display shows it, not by its radiance; nothing is clipped. taaToneMapped, when set, "
+         "replaces it. False: linear radiance, the authors' order of operations",
+         BMFR_FIELD(S, taaRangeCompressed), "false"},
         {"taaMotionWeight", "taa-motion-weight", "", {},
          "TAA weighs the current frame more where the history is resampled between pixels "
          "(under motion, or jitter), so that the blur repeated resampling gathers stays within "
          "taaBlurLimit: the weight is max(taaBlendAlpha, b / (b + taaBlurLimit)) for the blur "
          "b = ax (1 - ax) + ay (1 - ay) of the bilinear fractions ax, ay. A still camera "
          "without jitter keeps taaBlendAlpha; false: taaBlendAlpha everywhere, the authors'",
-         BMFR_FIELD(S, taaMotionWeight), "true"},
+         BMFR_FIELD(S, taaMotionWeight), "false"},
         {"taaBlurLimit", "taa-blur-limit", "px^2", {1e-4, 100},
          "taaMotionWeight: the blur, as a variance, that the TAA history may gather from its "
          "resamplings",

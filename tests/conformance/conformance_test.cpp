@@ -254,10 +254,10 @@ TEST_P(Conformance, EverySwitchAndConfiguration) {
     }
     for (const auto& [what, values] : filter().configurations)
         expectConformance(filter().name, backend(), values, 6, p.source(), what);
-    // The switches together, as users run them: the second grid's emitter restore once wrote
-    // through the emitter bits it does not keep.
-    expectConformance(filter().name, backend(), presetSettings(filter().name, "quality"), 6,
-                      p.source(), "the quality preset");
+    // The defaults hold the switches together, as users run them (the second grid's emitter
+    // restore once wrote through the emitter bits it does not keep); the faithful preset none.
+    expectConformance(filter().name, backend(), presetSettings(filter().name, "faithful"), 6,
+                      p.source(), "the faithful preset");
 }
 
 TEST_P(Conformance, RgbaInputWithRowPaddingGivesThePackedResult) {
@@ -290,11 +290,11 @@ TEST_P(Conformance, ALightThatDims) {
             for (int x = 0; x < 64; ++x)
                 for (int c = 0; c < 3; ++c)
                     p.frames[i].color.pixels[3 * (size_t(y) * 96 + x) + c] *= 0.25f;
-    expectConformance(filter().name, backend(), {{"adaptiveHistory", "true"}}, 7, p.source(),
-                      "a light that dims");
     expectConformance(filter().name, backend(),
-                      with(presetSettings(filter().name, "quality"), "adaptiveHistory", "true"), 7,
-                      p.source(), "a light that dims, the quality preset");
+                      with(presetSettings(filter().name, "faithful"), "adaptiveHistory", "true"), 7,
+                      p.source(), "a light that dims, the faithful preset");
+    expectConformance(filter().name, backend(), {}, 7, p.source(),
+                      "a light that dims, the defaults");
 }
 
 TEST_P(Conformance, ALampInViewWithoutAnEmissionBuffer) {
@@ -312,8 +312,10 @@ TEST_P(Conformance, ALampInViewWithoutAnEmissionBuffer) {
                 }
     }
     // The reference finds the lamp: the ceiling above it is no longer lit by the fit.
-    auto on = makeFilter("bmfr", {{"backend", "reference"}, {"excludeEmitters", "true"}});
-    auto off = makeFilter("bmfr", {{"backend", "reference"}});
+    // On the paper's filter (the faithful preset) with the exclusion alone.
+    const SettingValues paper = with(presetSettings("bmfr", "faithful"), "backend", "reference");
+    auto on = makeFilter("bmfr", with(paper, "excludeEmitters", "true"));
+    auto off = makeFilter("bmfr", paper);
     double lit = 0.0;
     for (int i = 0; i < 6; ++i) {
         const ImageView a = on->denoise(p.frames[size_t(i)].input());

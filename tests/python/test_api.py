@@ -132,8 +132,8 @@ def test_exr_files_in_and_out(tmp_path):
 
 
 def test_presets_devices_and_repr(objects):
-    f = bmfr.Filter("bmfr", preset="quality", block_size=16, taa=False)
-    assert repr(f) == "bmfr.Filter('bmfr', preset='quality', backend='cpu', block_size=16, taa=False)"
+    f = bmfr.Filter("bmfr", preset="faithful", block_size=16, taa=False)
+    assert repr(f) == "bmfr.Filter('bmfr', preset='faithful', backend='cpu', block_size=16, taa=False)"
     device = bmfr.Device("cpu", threads=2)
     assert repr(device) == "bmfr.Device(backend='cpu', threads=2)"
     device.reserve(40, 30)
@@ -147,7 +147,7 @@ def test_presets_devices_and_repr(objects):
 def test_inputs_and_a_warning_for_a_missing_one(objects):
     assert bmfr.Filter("bmfr").inputs[:4] == ["color", "albedo", "normal", "position"]
     assert "visibility" not in bmfr.Filter("bmfr").inputs
-    assert "visibility" in bmfr.Filter("bmfr", preset="quality").inputs
+    assert "visibility" in bmfr.Filter("bmfr").inputs
     assert "sample_mask" in bmfr.Filter("svgf").inputs
     assert "matte_indirect" in bmfr.Filter("mara2017").inputs
     assert "diffuse_indirect" in bmfr.Filter("walr", walr_signal="diffuse-indirect").inputs

@@ -63,20 +63,21 @@ def test_same_bits_as_the_cli(sequence, tmp_path, name, extra):
     assert f.stats["total_ms"] > 0 and "non_finite_inputs" in f.stats
 
 
-def test_the_quality_preset_gives_the_cli_bits(sequence, tmp_path):
-    cli("denoise", sequence, "-o", tmp_path, "--preset", "quality", "--no-png", "--no-flip", "-q")
-    assert bmfr.preset("bmfr", "quality") == {
-        "taa_same_surface": "true", "exclude_emitters": "true", "second_grid": "true",
-        "clamp_fireflies": "true", "visibility_feature": "true",
-        "visibility_taps": "true", "block_size": "16", "emitter_ratio": "4",
-        "adaptive_history": "true", "alpha2": "0.08", "noise": "0.005"}
-    assert bmfr.preset("bmfr", "faithful") == {}
+def test_the_faithful_preset_gives_the_cli_bits(sequence, tmp_path):
+    cli("denoise", sequence, "-o", tmp_path, "--preset", "faithful", "--no-png", "--no-flip", "-q")
+    assert bmfr.preset("bmfr", "faithful") == {
+        "taa_same_surface": "false", "taa_range_compressed": "false",
+        "taa_motion_weight": "false", "exclude_emitters": "false",
+        "second_grid": "false", "clamp_fireflies": "false", "visibility_feature": "false",
+        "visibility_taps": "false", "block_size": "32", "emitter_ratio": "16",
+        "adaptive_history": "false", "alpha2": "0.1", "noise": "0.01"}
+    assert bmfr.preset("bmfr", "quality") == {}
     with pytest.raises(ValueError, match="unknown preset 'fast'"):
         bmfr.preset("bmfr", "fast")
     with pytest.raises(ValueError, match="preset: unknown preset 'fast'"):
         bmfr.Filter("bmfr", preset="fast")
     seq = bmfr.read_sequence(str(sequence))
-    f = bmfr.Filter("bmfr", preset="quality", **sequence_settings(seq.info))
+    f = bmfr.Filter("bmfr", preset="faithful", **sequence_settings(seq.info))
     for fr in seq:
         out = f.denoise(*frame_args(fr), jitter=fr["jitter"], emission=fr.get("emission"),
                         extras=fr["extras"], visibility=fr.get("visibility"))

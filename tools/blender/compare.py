@@ -25,7 +25,7 @@ import bmfr
 import blender_run
 import sphere_path
 
-FILTERS = [("bmfr", "faithful"), ("bmfr", "quality"), ("svgf", "faithful"), ("walr", "faithful")]
+FILTERS = [("bmfr", "quality"), ("bmfr", "faithful"), ("svgf", "quality"), ("walr", "quality")]
 FIRST_SCORED = 4  # the trail is scored from here: the first frames have no history to ghost
 
 
@@ -97,7 +97,7 @@ def main(argv=None):
     for spec in a.filters.split(","):
         f, preset = spec.split(":")
         for vectors in (True, False):
-            name = f"{f}{'-quality' if preset == 'quality' else ''}{'' if vectors else '-camera'}"
+            name = f"{f}{'-faithful' if preset == 'faithful' else ''}{'' if vectors else '-camera'}"
             dest = os.path.join(out, name)
             print(f"compare: denoising {name}", flush=True)
             blender_run.run(a.bmfr, "denoise", seq, "-o", dest, "--filter", f, "--preset",

@@ -20,22 +20,24 @@ struct StageSwitches {
     bool secondAccumulation = true; ///< phase III: temporal accumulation of the fitted colour
 };
 
-/// BMFR settings; defaults are the paper's and the authors' code.
+/// BMFR settings. The defaults are the quality preset: the paper's and the authors' code, with the
+/// improvements beyond them that measured better (docs/presets.md); presetSettings("bmfr",
+/// "faithful") sets the paper's back.
 struct BmfrSettings : TemporalSettings {
-    int blockSize = 32;                                ///< edge of the square regression block
+    int blockSize = 16;                                ///< edge of the square regression block
     std::vector<Feature> features = defaultFeatures(); ///< columns of T; the constant 1 first
-    float noiseAmplitude = 0.01f;   ///< half-width of the regularisation noise on feature columns
+    float noiseAmplitude = 0.005f;  ///< half-width of the regularisation noise on feature columns
     float firstBlendAlpha = 0.2f;   ///< phase I minimum new-frame weight (CMA, then EMA)
-    float secondBlendAlpha = 0.1f;  ///< phase III minimum new-frame weight
+    float secondBlendAlpha = 0.08f; ///< phase III minimum new-frame weight
     uint32_t seed = 0;              ///< regularisation noise seed
     bool halfHistory = true;        ///< normals and colour history as 16-bit floats (else float32)
-    bool excludeEmitters = false;   ///< fit blocks without bright patches (lights in view)
-    float emitterRatio = 16.0f;     ///< a patch pixel is this many times the block's median
-    bool secondGrid = false;        ///< pixels without history also fitted on a shifted grid
-    bool clampFireflies = false;    ///< isolated pixels far above their block clamped in the fit
-    bool visibilityFeature = false; ///< fit FrameInput::visibility as one more feature, if given
-    bool visibilityTaps = false; ///< no phase III / TAA history across FrameInput::visibility edges
-    bool adaptiveHistory = false;        ///< shorter histories where the lighting changed
+    bool excludeEmitters = true;    ///< fit blocks without bright patches (lights in view)
+    float emitterRatio = 4.0f;      ///< a patch pixel is this many times the block's median
+    bool secondGrid = true;         ///< pixels without history also fitted on a shifted grid
+    bool clampFireflies = true;     ///< isolated pixels far above their block clamped in the fit
+    bool visibilityFeature = true;  ///< fit FrameInput::visibility as one more feature, if given
+    bool visibilityTaps = true;  ///< no phase III / TAA history across FrameInput::visibility edges
+    bool adaptiveHistory = true; ///< shorter histories where the lighting changed
     float historyChangeThreshold = 2.0f; ///< adaptiveHistory: the noise allowance, standard errors
     float historyChangeGain = 4.0f;      ///< adaptiveHistory: how strongly a change shortens them
     StageSwitches stages{};

@@ -14,8 +14,8 @@ size_t rowFloats(int w) {
 
 BMFR_SIMD_DISPATCH(void, resolveRows,
                    (const float* current, const float* previousPixel, float* scratch, int w,
-                    bool toneMapped, long y0, long y1),
-                   (current, previousPixel, scratch, w, toneMapped, y0, y1)) {
+                    TaaSpace space, long y0, long y1),
+                   (current, previousPixel, scratch, w, space, y0, y1)) {
     const size_t pitch = ResolvedRows::pitch(w);
     for (long y = y0; y < y1; ++y) {
         float* row = scratch + size_t(y) * rowFloats(w);
@@ -25,7 +25,7 @@ BMFR_SIMD_DISPATCH(void, resolveRows,
             const long i = y * w + x;
             f8 c[3];
             loadXyz8(current + 3 * i, n, c);
-            storeResolved8(row, pitch, x, c, toneMapped);
+            storeResolved8(row, pitch, x, c, space);
             float pp[16] = {};
             std::memcpy(pp, previousPixel + 2 * i, sizeof(float) * 2 * size_t(n));
             for (int l = 0; l < 8; ++l)
@@ -37,8 +37,8 @@ BMFR_SIMD_DISPATCH(void, resolveRows,
 
 BMFR_SIMD_DISPATCH(void, taaRows,
                    (const float* history, float* scratch, float* out, int w, int h, TaaBlend blend,
-                    bool enabled, const uint8_t* accept, bool toneMapped, long y0, long y1),
-                   (history, scratch, out, w, h, blend, enabled, accept, toneMapped, y0, y1)) {
+                    bool enabled, const uint8_t* accept, TaaSpace space, long y0, long y1),
+                   (history, scratch, out, w, h, blend, enabled, accept, space, y0, y1)) {
     const size_t pitch = ResolvedRows::pitch(w), stride = rowFloats(w);
     for (long y = y0; y < y1; ++y) {
         const float* mid = scratch + size_t(y) * stride;
@@ -46,7 +46,7 @@ BMFR_SIMD_DISPATCH(void, taaRows,
         const float* down = y + 1 < h ? mid + stride : mid;
         const float* previous = mid + ResolvedRows::rowFloats(w);
         taaRow(up, mid, down, pitch, previous, previous + pitch, history, out + 3 * y * w, w, h,
-               blend, enabled, accept ? accept + y * w : nullptr, toneMapped);
+               blend, enabled, accept ? accept + y * w : nullptr, space);
     }
 }
 
@@ -58,13 +58,13 @@ size_t taaScratchFloats(int width, int height) {
 
 void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
                           const float* previousPixel, float* scratch, float* out, int w, int h,
-                          TaaBlend blend, bool enabled, const uint8_t* accept, bool toneMapped) {
-    toneMapped = toneMapped && enabled;
+                          TaaBlend blend, bool enabled, const uint8_t* accept, TaaSpace space) {
+    if (!enabled) space = TaaSpace::Linear;
     pool.parallelFor(h, 8, [&](long y0, long y1) {
-        resolveRows(current, previousPixel, scratch, w, toneMapped, y0, y1);
+        resolveRows(current, previousPixel, scratch, w, space, y0, y1);
     });
     pool.parallelFor(h, 8, [&](long y0, long y1) {
-        taaRows(history, scratch, out, w, h, blend, enabled, accept, toneMapped, y0, y1);
+        taaRows(history, scratch, out, w, h, blend, enabled, accept, space, y0, y1);
     });
 }
 

@@ -15,10 +15,10 @@ size_t taaScratchFloats(int width, int height);
 /// `current`, `history` and `out` hold 3 floats per pixel. `scratch` holds
 /// taaScratchFloats(width, height) floats. With enabled = false, `out` gets `current`. `accept`
 /// (accept masks, or null) restricts the history to the accepted taps (TaaInputs::accept);
-/// toneMapped blends display values (TaaInputs::toneMapped).
+/// `space` is where it blends (TaaInputs::space).
 void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
                           const float* previousPixel, float* scratch, float* out, int width,
                           int height, TaaBlend blend, bool enabled, const uint8_t* accept,
-                          bool toneMapped);
+                          TaaSpace space);
 
 } // namespace bmfr::cpu

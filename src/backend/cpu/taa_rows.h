@@ -20,10 +20,20 @@ struct ResolvedRows {
     static size_t rowFloats(int width) { return kPlanes * pitch(width); }
 };
 
-/// gammaEncode (toneMapped) or gammaDecode of eight pixels, lane by lane: taaSpace and
-/// taaOutput (temporal/taa.h) of TaaInputs::toneMapped.
-BMFR_SIMD_INLINE void gammaLanes8(simd::f8 v[3], bool encode) {
+/// taaSpace (encode) or taaOutput (temporal/taa.h) of eight pixels in `space`: gammaEncode or
+/// gammaDecode lane by lane, compressRange or expandRange eight wide.
+BMFR_SIMD_INLINE void spaceLanes8(simd::f8 v[3], TaaSpace space, bool encode) {
     using namespace simd;
+    if (space == TaaSpace::Compressed) {
+        f8 m = v[0] > v[1] ? v[0] : v[1];
+        m = m > v[2] ? m : v[2];
+        m = m > 0.0f ? m : 0.0f;
+        f8 d = encode ? 1.0f + m : 1.0f - m;
+        if (!encode) d = d > 1.0f / 65536.0f ? d : 1.0f / 65536.0f;
+        for (int c = 0; c < 3; ++c) v[c] = v[c] / d;
+        return;
+    }
+    if (space != TaaSpace::Display) return;
     alignas(32) float t[8];
     for (int c = 0; c < 3; ++c) {
         store8(t, v[c]);
@@ -33,12 +43,12 @@ BMFR_SIMD_INLINE void gammaLanes8(simd::f8 v[3], bool encode) {
 }
 
 /// Writes eight pixels' RGB and YCoCg at x (all eight lanes; the row has room for them), in
-/// TAA's space: display values when toneMapped.
+/// TAA's space.
 BMFR_SIMD_INLINE void storeResolved8(float* row, size_t pitch, int x, const simd::f8 linear[3],
-                                     bool toneMapped) {
+                                     TaaSpace space) {
     using namespace simd;
     f8 rgb[3] = {linear[0], linear[1], linear[2]}, ycocg[3];
-    if (toneMapped) gammaLanes8(rgb, true);
+    spaceLanes8(rgb, space, true);
     rgbToYCoCg8(rgb, ycocg);
     float* p = row + ResolvedRows::kRowPad + x;
     for (int c = 0; c < 3; ++c)
@@ -69,13 +79,13 @@ BMFR_SIMD_INLINE simd::f8 currentWeight8(TaaBlend blend, const simd::f8 weight[4
 /// row lies outside the image the nearest inside one stands in, which leaves every min and max
 /// unchanged. `history` is the previous output (3 floats per pixel); `out` gets 3 floats per
 /// pixel. With enabled = false the row is copied. `accept` (the row's accept masks, or null)
-/// restricts the history to the accepted taps, as TaaInputs::accept. With toneMapped the rows
-/// hold display values (storeResolved8), the history is encoded and the output decoded. The
+/// restricts the history to the accepted taps, as TaaInputs::accept. The rows hold values in
+/// `space` (storeResolved8), the history is encoded into it and the output decoded. The
 /// current frame's weight is taaCurrentWeight (temporal/taa.h) of `blend`.
 BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* down, size_t pitch,
                              const float* previousX, const float* previousY, const float* history,
                              float* out, int w, int h, TaaBlend blend, bool enabled,
-                             const uint8_t* accept, bool toneMapped) {
+                             const uint8_t* accept, TaaSpace space) {
     using namespace simd;
     const int pad = ResolvedRows::kRowPad;
     for (int x = 0; x < w; x += 8) {
@@ -91,7 +101,7 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
         const i8 use = (fp.x0 >= -1) & (fp.y0 >= -1) & (fp.x0 < w) & (fp.y0 < h) & (mask != 0);
         if (!anyLane(use & firstLanes(n))) {
             f8 r[3] = {c[0], c[1], c[2]};
-            if (toneMapped) gammaLanes8(r, false);
+            spaceLanes8(r, space, false);
             storeXyz8(out + 3 * x, n, r);
             continue;
         }
@@ -117,7 +127,7 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
             taps, fp.weight, tapUse,
             [&](int k, f8* v) {
                 tapXyz(taps, history, k, v);
-                if (toneMapped) gammaLanes8(v, true);
+                spaceLanes8(v, space, true);
             },
             old);
         const i8 some = total > 0.0f;
@@ -129,7 +139,7 @@ BMFR_SIMD_INLINE void taaRow(const float* up, const float* mid, const float* dow
         const f8 weight = currentWeight8(blend, fp.weight);
         for (int ch = 0; ch < 3; ++ch)
             r[ch] = (accept ? use & some : use) ? lerp8(clamped[ch], c[ch], weight) : c[ch];
-        if (toneMapped) gammaLanes8(r, false);
+        spaceLanes8(r, space, false);
         storeXyz8(out + 3 * x, n, r);
     }
 }

@@ -12,8 +12,9 @@ TextField<S> featuresField() {
             +[](S& s, const std::string& v) { s.features = parseFeatures(v); }};
 }
 
-// The last value of a row, where there is one, is the quality preset's: the switches that
-// measured better than the paper on our sequences (docs/presets.md). Half the paper's block:
+// The defaults are the quality preset's: the paper's, with the switches and values that
+// measured better than the paper on our sequences (docs/presets.md). The last value of a row,
+// where there is one, is the faithful preset's (the paper's). Half the paper's block:
 // multi-bounce light in Sponza varies faster than a 32-pixel block's polynomial follows, at
 // 320x180 and at 640x360 alike; the emitter mask then needs the lower ratio, as a lamp's smeared
 // edge is a larger share of a smaller block. Half the paper's regularisation noise shrinks the
@@ -24,7 +25,7 @@ TextField<S> featuresField() {
 SettingsTable<S> ownSettings() {
     return {
         {"blockSize", "block-size", "pixels", {8, 64}, "edge of the square regression block (even)",
-         BMFR_FIELD(S, blockSize), "16"},
+         BMFR_FIELD(S, blockSize), "32"},
         {"features", "features", "", {},
          "columns of T (paper eq. 8): 1, n.x, n.y, n.z, p.x, p.y, p.z, extraK "
          "(FrameInput::extras[K]), each optionally ^E; the constant 1 first, at most 24",
@@ -32,12 +33,12 @@ SettingsTable<S> ownSettings() {
         {"noiseAmplitude", "noise", "", {0, 1},
          "half-width of the uniform regularisation noise added to every non-constant scaled "
          "feature column, never to colour",
-         BMFR_FIELD(S, noiseAmplitude), "0.005"},
+         BMFR_FIELD(S, noiseAmplitude), "0.01"},
         {"firstBlendAlpha", "alpha1", "", {0, 1, true},
          "phase I minimum new-frame weight (cumulative average until 1/(n+1) drops below it)",
          BMFR_FIELD(S, firstBlendAlpha)},
         {"secondBlendAlpha", "alpha2", "", {0, 1, true},
-         "phase III minimum new-frame weight, max(1/n, alpha2)", BMFR_FIELD(S, secondBlendAlpha), "0.08"},
+         "phase III minimum new-frame weight, max(1/n, alpha2)", BMFR_FIELD(S, secondBlendAlpha), "0.1"},
         {"seed", "seed", "", {0, 4294967295.0},
          "regularisation noise seed; the same seed and input give the same bits at any thread "
          "count",
@@ -53,35 +54,35 @@ SettingsTable<S> ownSettings() {
          "(emitterRatio) around a flat, bright patch of current samples, as a light in view "
          "without an emission buffer: the light keeps its own sample, and no history crosses "
          "its edge. Does nothing with an emission buffer",
-         BMFR_FIELD(S, excludeEmitters), "true"},
+         BMFR_FIELD(S, excludeEmitters), "false"},
         {"clampFireflies", "clamp-fireflies", "", {},
          "in the fit's input (not the history), a pixel above 8x its block's median luminance "
          "with at most three such neighbours is scaled down to that level, so a firefly does "
          "not brighten its block; in full without history, fading to nothing at 5 samples of "
          "history (unbiased where the history is long), except within 2 pixels of a light of "
          "the previous frame, whose smeared history it keeps out of the fit",
-         BMFR_FIELD(S, clampFireflies), "true"},
+         BMFR_FIELD(S, clampFireflies), "false"},
         {"secondGrid", "second-grid", "", {},
          "pixels without history (the first frame after a reset, disocclusions) take the mean of "
          "the fit and a second fit on the grid moved by half a block, so the block edges blur "
          "out",
-         BMFR_FIELD(S, secondGrid), "true"},
+         BMFR_FIELD(S, secondGrid), "false"},
         {"visibilityFeature", "visibility-feature", "", {},
          "when frames carry a visibility buffer (the key light's noise-free shadow times its "
          "cosine), fit it as one more feature column, so a hard shadow edge does not block up; "
          "give it on every frame or none",
-         BMFR_FIELD(S, visibilityFeature), "true"},
+         BMFR_FIELD(S, visibilityFeature), "false"},
         {"visibilityTaps", "visibility-taps", "", {},
          "when frames carry a visibility buffer, phases I and III and the same-surface TAA take "
          "no history tap whose pixel was lit (visibility above 0) last frame where this one is "
          "not, or the reverse, so shadow edges stay sharp; give it on every frame or none",
-         BMFR_FIELD(S, visibilityTaps), "true"},
+         BMFR_FIELD(S, visibilityTaps), "false"},
         {"adaptiveHistory", "adaptive-history", "", {},
          "where a 32x32 tile's mean current sample has left its reprojected history's mean by "
          "more than historyChangeThreshold standard errors (a moving light), phase III weighs "
          "the new frame more, in proportion, and both phases' histories shorten; elsewhere they "
          "stay the paper's",
-         BMFR_FIELD(S, adaptiveHistory), "true"},
+         BMFR_FIELD(S, adaptiveHistory), "false"},
         {"historyChangeThreshold", "history-change-threshold", "standard errors", {0, 100},
          "adaptiveHistory: how far a tile's mean current sample may lie from its history's mean "
          "before the history counts as stale, in standard errors of that mean",
@@ -94,7 +95,7 @@ SettingsTable<S> ownSettings() {
         {"emitterRatio", "emitter-ratio", "ratio", {2, 1e6},
          "excludeEmitters: the demodulated accumulated luminance, as a multiple of the block's "
          "lower quartile, above which a pixel may belong to an emitter",
-         BMFR_FIELD(S, emitterRatio), "4"},
+         BMFR_FIELD(S, emitterRatio), "16"},
         {"demodulate", "demodulate", "", {}, "divide colour by albedo before filtering",
          BMFR_FIELD(S, stages.demodulate)},
         {"firstAccumulation", "accumulation", "", {}, "phase I: accumulate the noisy colour",

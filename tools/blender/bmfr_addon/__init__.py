@@ -44,9 +44,10 @@ class BmfrSceneSettings(bpy.types.PropertyGroup):
                ("walr", "WALR", "Weighted À-trous linear regression"),
                ("mara2017", "Mara 2017", "Mara et al. 2017, real-time glossy denoising")])
     preset: bpy.props.EnumProperty(
-        name="Preset", default="faithful",
-        items=[("faithful", "Faithful", "the paper's settings"),
-               ("quality", "Quality", "with bmfr's improvements beyond the paper")])
+        name="Preset", default="quality",
+        items=[("quality", "Quality", "the default: the paper's settings with bmfr's improvements "
+                "beyond it"),
+               ("faithful", "Faithful", "the paper's settings alone (the reproduction)")])
     samples: bpy.props.IntProperty(
         name="Samples", default=1, min=1, soft_max=64, max=65536,
         description="Samples per pixel of the frames to denoise")

@@ -77,7 +77,7 @@ BMFR_SIMD_INLINE void phase3Group(const FrameArgs& a, const FramePlanes<T>& pl, 
     if (owned)
         for (int ch = 0; ch < 3; ++ch) storeFirst(pl.accumulated[ch] + i, c[ch], n);
     remodulate8(c, a.in, i, n, s.stages.demodulate || s.colorIsDemodulated, s.albedoEpsilon);
-    storeResolved8(row, pitch, x, c, s.taa && s.taaToneMapped && t.hasHistory());
+    storeResolved8(row, pitch, x, c, s.taa && t.hasHistory() ? taaSpaceOf(s) : TaaSpace::Linear);
 }
 
 /// Phase III of image row y into a resolved row. The halo rows a neighbouring task owns are
@@ -116,7 +116,8 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
             const float* down = y + 1 < h ? row(y + 1) : mid;
             taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w, pl.previousPixel[1] + y * w,
                    history, out + 3 * y * w, w, h, taaBlend(a.s), taa,
-                   a.s.taaSameSurface ? accept + y * w : nullptr, taa && a.s.taaToneMapped);
+                   a.s.taaSameSurface ? accept + y * w : nullptr,
+                   taa ? taaSpaceOf(a.s) : TaaSpace::Linear);
         }
     };
     withFramePlanes<kIsa>(a.b, a.t.cur, a.s.halfHistory, rows);

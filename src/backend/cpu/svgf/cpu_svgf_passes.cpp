@@ -39,7 +39,7 @@ class CpuSvgfPasses final : public HostSvgfPasses {
                              buffers.output[h.cur].data(), h.width, h.height,
                              taaBlend(ctx.settings), ctx.settings.taa && h.hasHistory(),
                              ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr,
-                             ctx.settings.taaToneMapped);
+                             taaSpaceOf(ctx.settings));
         times.add("taa", clock.lap());
         return counters;
     }
