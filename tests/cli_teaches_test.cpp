@@ -47,7 +47,7 @@ TEST(CliTeaches, MistypedNamesAreUsageErrorsThatSuggestTheNearestName) {
                     "(did you mean 'svgf'?)"},
              Expect{"--filter oidn", 2,
                     "--filter: 'oidn' is not one of bmfr, svgf, walr, mara2017"},
-             Expect{"--preset fast", 2, "--preset: 'fast' is not one of faithful, quality"},
+             Expect{"--preset fast", 2, "--preset: 'fast' is not one of quality, faithful"},
              Expect{"--preset qualty", 2, "(did you mean 'quality'?)"},
              Expect{"--disable taaa", 2,
                     "--disable taaa: not a switch of the bmfr filter (did you "
