@@ -19,9 +19,9 @@ void addReprojection(std::vector<InputUse>& uses, bool previousNormal) {
 std::vector<InputUse> inputsRead(const BmfrSettings& s) {
     std::vector<InputUse> uses = {{"emission", ""}};
     addReprojection(uses, true);
-    if (s.visibilityFeature || s.visibilityTaps)
-        uses.push_back({"visibility", "no visibility feature column and no visibility taps: "
-                                      "hard shadows are fitted as the paper fits them"});
+    // On by default, and most engines have no such buffer: without it BMFR fits hard shadows
+    // as the paper does, which is no reason to warn.
+    if (s.visibilityFeature || s.visibilityTaps) uses.push_back({"visibility", ""});
     const bool extras = std::any_of(s.features.begin(), s.features.end(), [](const Feature& f) {
         return f.source == FeatureSource::Extra;
     });

@@ -146,8 +146,8 @@ def test_presets_devices_and_repr(objects):
 
 def test_inputs_and_a_warning_for_a_missing_one(objects):
     assert bmfr.Filter("bmfr").inputs[:4] == ["color", "albedo", "normal", "position"]
-    assert "visibility" not in bmfr.Filter("bmfr").inputs
     assert "visibility" in bmfr.Filter("bmfr").inputs
+    assert "visibility" not in bmfr.Filter("bmfr", preset="faithful").inputs
     assert "sample_mask" in bmfr.Filter("svgf").inputs
     assert "matte_indirect" in bmfr.Filter("mara2017").inputs
     assert "diffuse_indirect" in bmfr.Filter("walr", walr_signal="diffuse-indirect").inputs
