@@ -17,13 +17,23 @@ struct TaaBlend {
     float blurLimit = 0.0f;
 };
 
-/// The blur one bilinear resampling adds to the history, px^2: the variance of its weights
-/// about the sampled point, ax (1 - ax) + ay (1 - ay) for the fractions ax = w1 + w3 and
-/// ay = w2 + w3 of the footprint's weights. 0 where the history moved by whole pixels, 0.5 at
-/// half a pixel on both axes.
+/// Fractions of a pixel within this of a whole pixel count as none in bilinearBlur: the
+/// reprojection of a still camera lands that close to the pixel centres, not on them.
+constexpr float kTaaStillFraction = 1.0f / 32.0f;
+
+/// The blur one bilinear resampling adds to the history along one axis, px^2: the variance
+/// a (1 - a) of its weights about the sampled point, for the fraction a; 0 within
+/// kTaaStillFraction of a whole pixel.
+BMFR_HD float axisBlur(float a) {
+    const bool still = a < kTaaStillFraction || a > 1.0f - kTaaStillFraction;
+    return still ? 0.0f : a * (1 - a);
+}
+
+/// The blur one bilinear resampling adds to the history, px^2: axisBlur of the fractions
+/// ax = w1 + w3 and ay = w2 + w3 of the footprint's weights. 0 where the history moved by
+/// whole pixels, 0.5 at half a pixel on both axes.
 BMFR_HD float bilinearBlur(const float weight[4]) {
-    const float ax = weight[1] + weight[3], ay = weight[2] + weight[3];
-    return ax * (1 - ax) + ay * (1 - ay);
+    return axisBlur(weight[1] + weight[3]) + axisBlur(weight[2] + weight[3]);
 }
 
 /// TAA's weight of the current frame where the history is resampled with blur `blur` (px^2).

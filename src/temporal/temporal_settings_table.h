@@ -45,7 +45,8 @@ template <class S> SettingsTable<S> temporalSettingsTable() {
          BMFR_FIELD(S, taaRangeCompressed), "false"},
         {"taaMotionWeight", "taa-motion-weight", "", {},
          "TAA weighs the current frame more where the history is resampled between pixels "
-         "(under motion, or jitter), so that the blur repeated resampling gathers stays within "
+         "(under motion, or jitter; fractions within 1/32 px of a pixel count as none), so that "
+         "the blur repeated resampling gathers stays within "
          "taaBlurLimit: the weight is max(taaBlendAlpha, b / (b + taaBlurLimit)) for the blur "
          "b = ax (1 - ax) + ay (1 - ay) of the bilinear fractions ax, ay. A still camera "
          "without jitter keeps taaBlendAlpha; false: taaBlendAlpha everywhere, the authors'",

@@ -68,7 +68,10 @@ BMFR_SIMD_INLINE simd::f8 currentWeight8(TaaBlend blend, const simd::f8 weight[4
     using namespace simd;
     if (!(blend.blurLimit > 0.0f)) return splat8(blend.alpha);
     const f8 ax = weight[1] + weight[3], ay = weight[2] + weight[3];
-    const f8 blur = ax * (1 - ax) + ay * (1 - ay);
+    const float lo = kTaaStillFraction, hi = 1.0f - kTaaStillFraction;
+    const f8 bx = (ax < lo) | (ax > hi) ? 0.0f : ax * (1 - ax);
+    const f8 by = (ay < lo) | (ay > hi) ? 0.0f : ay * (1 - ay);
+    const f8 blur = bx + by;
     const f8 a = blur / (blur + blend.blurLimit);
     return a > blend.alpha ? a : splat8(blend.alpha);
 }
