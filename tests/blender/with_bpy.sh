@@ -7,7 +7,7 @@ build=$(cd "$1" && pwd)
 shift
 here=$(cd "$(dirname "$0")" && pwd)
 tests=("$@")
-[ ${#tests[@]} -gt 0 ] || tests=(round_trip trail_test addon_test)
+[ ${#tests[@]} -gt 0 ] || tests=(round_trip trail_test addon_test visibility_test)
 venv=$build/bpy-venv
 if [ ! -x "$venv/bin/python" ]; then
     /usr/bin/python3 -m venv "$venv"

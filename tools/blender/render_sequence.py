@@ -4,6 +4,7 @@
     python3 tools/blender/render_sequence.py -- OUT --blend scene.blend     (PyPI's bpy)
             [--frames A:B] [--spp N] [--reference-spp N] [--device CPU|GPU]
             [--width W --height H] [--no-jitter] [--motion auto|on|off] [--denoiser] [--seed S]
+            [--visibility auto|off]
 
 Frames A..B-1 are Blender frame numbers (default: the scene's range) and name the files
 (frame_0001.exr ...). `bmfr denoise OUT -o RESULT` then reads the folder directly. What it
@@ -38,6 +39,8 @@ def parse_args():
     p.add_argument("--denoiser", action="store_true",
                    help="also Cycles' own denoiser (OIDN) per frame: Combined is then its result "
                         "and bmfr reads the Noisy Image pass")
+    p.add_argument("--visibility", default="auto", choices=["auto", "off"],
+                   help="auto: also the brightest sun's visibility pass, when there is a sun")
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--blend", help="open this .blend first (for the bpy module from PyPI, which "
                                    "has no command line to name it on)")
@@ -65,7 +68,7 @@ def main():
     opts = sequence.Options(spp=args.spp, reference_spp=args.reference_spp, frames=frames,
                             width=args.width, height=args.height, jitter=not args.no_jitter,
                             seed=args.seed, device=args.device, motion=args.motion,
-                            denoiser=args.denoiser)
+                            denoiser=args.denoiser, visibility=args.visibility)
 
     def progress(done, total, text):
         if not args.quiet:
@@ -86,7 +89,8 @@ def main():
         print(f"render_sequence: wrote {s['frames']} frames of {s['width']}x{s['height']} "
               f"(Blender frames {s['first']}-{s['first'] + s['frames'] - 1}, {s['device']}) to "
               f"{s['output']}; moving: {moving}; motion vectors "
-              f"{'written' if s['motion'] else 'not written'}")
+              f"{'written' if s['motion'] else 'not written'}; visibility "
+              f"{'of ' + repr(s['visibility']) if s['visibility'] else 'not written'}")
 
 
 main()

@@ -62,6 +62,10 @@ class BmfrSceneSettings(bpy.types.PropertyGroup):
         name="Motion vectors", default=True,
         description="Cycles' Vector pass and previous positions when anything moves, so that "
                     "moving objects keep their history (else reprojection by the camera)")
+    use_visibility: bpy.props.BoolProperty(
+        name="Sun visibility", default=True,
+        description="Also render the brightest sun's shadow pass (1 sample, no bounces), which "
+                    "BMFR fits so that hard shadows stay sharp; only when the scene has a sun")
     output: bpy.props.StringProperty(
         name="Output", subtype="DIR_PATH", default="//bmfr/",
         description="Folder for the passes (passes/), the denoised frames (denoised/) and the "
@@ -106,7 +110,8 @@ class BMFR_OT_render_denoise(bpy.types.Operator):
             self.report({"ERROR"}, f"bmfr: {report} is not an earlier bmfr report; not replacing it")
             return {"CANCELLED"}
         opts = sequence.Options(spp=s.samples, reference_spp=s.reference_samples,
-                                device=s.device, motion="auto" if s.use_motion else "off")
+                                device=s.device, motion="auto" if s.use_motion else "off",
+                                visibility="auto" if s.use_visibility else "off")
         wm = context.window_manager
         total = scene.frame_end - scene.frame_start + 1
         wm.progress_begin(0, total + 2)
@@ -164,8 +169,8 @@ class BMFR_PT_render(bpy.types.Panel):
         layout = self.layout
         s = context.scene.bmfr
         layout.use_property_split = True
-        for name in ("filter", "preset", "samples", "device", "use_motion", "reference_samples",
-                     "output"):
+        for name in ("filter", "preset", "samples", "device", "use_motion", "use_visibility",
+                     "reference_samples", "output"):
             layout.prop(s, name)
         if context.scene.render.engine != "CYCLES":
             layout.label(text="Renders with Cycles", icon="INFO")

@@ -26,6 +26,8 @@ import os
 
 import bpy
 
+from . import visibility as key_light
+
 PASS_NOTE = "Combined, Denoising Albedo, Normal, Position, Emit (Cycles pass names)"
 PREVIOUS_AOV = "bmfr_previous_position"
 ROW_PROPERTY = "bmfr_previous_row"  # + 0, 1, 2: this frame's world -> the previous frame's
@@ -46,7 +48,7 @@ class SequenceError(Exception):
 
 class Options:
     def __init__(self, spp=1, reference_spp=0, frames=None, width=None, height=None, jitter=True,
-                 seed=1, device="CPU", motion="auto", denoiser=False):
+                 seed=1, device="CPU", motion="auto", denoiser=False, visibility="auto"):
         self.spp = spp                      # samples per pixel of the noisy frames, >= 1
         self.reference_spp = reference_spp  # 0: no reference
         self.frames = frames                # (first, last): Blender frames first..last-1
@@ -56,6 +58,7 @@ class Options:
         self.device = device                # CPU or GPU (the GPU Cycles finds)
         self.motion = motion                # auto (when anything moves), on or off
         self.denoiser = denoiser            # Cycles' own OIDN per frame, beside the noisy image
+        self.visibility = visibility        # auto (the brightest sun's, when there is one) or off
 
 
 def halton(index, base):
@@ -116,6 +119,8 @@ def check_scene(scene, opts):
         problems.append(f"device {opts.device}: CPU or GPU")
     if opts.motion not in ("auto", "on", "off"):
         problems.append(f"motion {opts.motion}: auto, on or off")
+    if opts.visibility not in ("auto", "off"):
+        problems.append(f"visibility {opts.visibility}: auto or off")
     if problems:
         raise SequenceError("; ".join(problems))
 
@@ -375,6 +380,40 @@ def render_sequence(scene, out, opts, progress=None):
         scene.frame_set(scene.frame_current)
 
 
+def shift_lens(cam, shift, jitter, w, h):
+    """Moves the view by `jitter` pixels (y down) from the lens shift `shift`."""
+    # Lens shift is in units of the larger image side; +x moves the view right and +y up.
+    side = max(w, h)
+    cam.data.shift_x = shift[0] + jitter[0] / side
+    cam.data.shift_y = shift[1] - jitter[1] / side
+
+
+def render_visibility(scene, out, first, jitters, layer, frames, progress):
+    """Each frame's key-light visibility through the frame's own jittered point, after the
+    frames (one change of materials for all of them); entries are added to `frames`."""
+    sun = key_light.key_sun(scene)
+    undo = key_light.prepare(scene, sun)
+    w, h = scene.render.resolution_x, scene.render.resolution_y
+    try:
+        for n, jitter in enumerate(jitters):
+            scene.frame_set(first + n)
+            cam = scene.camera
+            shift = (cam.data.shift_x, cam.data.shift_y)
+            shift_lens(cam, shift, jitter, w, h)
+            scene.cycles.seed = first + n
+            name = f"visibility_{first + n:04d}.exr"
+            try:
+                render_to(scene, os.path.join(out, name))
+            finally:
+                cam.data.shift_x, cam.data.shift_y = shift
+            frames[n]["visibility"] = {"file": name, "layer": f"{layer.name}.Combined"}
+            if progress:
+                progress(n + 1, len(jitters), f"visibility {n + 1}/{len(jitters)}")
+    finally:
+        for f in reversed(undo):
+            f()
+
+
 def render_frames(scene, out, opts, first, last, state, progress):
     layer, device = configure(scene, opts, state)
     render = scene.render
@@ -401,6 +440,7 @@ def render_frames(scene, out, opts, first, last, state, progress):
         doc["motion_convention"] = "cycles"
     total = last - first
     previous_camera = None
+    jitters = []
     for n, frame in enumerate(range(first, last)):
         if motion:
             set_previous_rows(scene, frame, movers)  # leaves the scene at `frame`
@@ -412,13 +452,11 @@ def render_frames(scene, out, opts, first, last, state, progress):
         vp = view_projection(cam, depsgraph, render)
         p0 = projection(cam, depsgraph, render)
         jitter = (halton(n + 1, 2) - 0.5, halton(n + 1, 3) - 0.5) if opts.jitter else (0.0, 0.0)
-        # Lens shift is in units of the larger image side; +x moves the view right and +y up.
-        side = max(w, h)
-        cam.data.shift_x = shift[0] + jitter[0] / side
-        cam.data.shift_y = shift[1] - jitter[1] / side
+        shift_lens(cam, shift, jitter, w, h)
         depsgraph = bpy.context.evaluated_depsgraph_get()
         p1 = projection(cam, depsgraph, render)
         realised = ((p1[0][2] - p0[0][2]) * w / 2, -(p1[1][2] - p0[1][2]) * h / 2)
+        jitters.append(jitter)
         scene.cycles.samples = opts.spp
         scene.cycles.seed = opts.seed * 7919 + frame
         name = f"frame_{frame:04d}.exr"
@@ -449,6 +487,12 @@ def render_frames(scene, out, opts, first, last, state, progress):
         write_json_atomically(os.path.join(out, "sequence.json"), doc)
         if progress:
             progress(n + 1, total, f"frame {n + 1}/{total} (Blender frame {frame})")
-    return {"output": out, "frames": total, "first": first, "width": w, "height": h,
+    sun = key_light.key_sun(scene) if opts.visibility == "auto" else None
+    if sun is not None:
+        render_visibility(scene, out, first, jitters, layer, frames, progress)
+        doc["generator"] += f"; visibility of the sun '{sun.name}'"
+        write_json_atomically(os.path.join(out, "sequence.json"), doc)
+    return {"visibility": sun.name if sun else None,
+            "output": out, "frames": total, "first": first, "width": w, "height": h,
             "device": device, "motion": motion, "moving": moving,
             "without_previous_position": without_previous}
