@@ -10,8 +10,10 @@
 #   REFERENCE_SPP=1024 JITTER=off LAYOUT=manifest bash scripts/quality-tables.sh /tmp/qt room-dark
 #
 # JITTER=on|off (default: the scene's own) renders with or without the frames' sub-pixel offsets;
-# LAYOUT=manifest|bmfr (default bmfr) the layout, manifest with the emission buffer.
-# A SEQUENCE is a preset or a scene description file. About three minutes on 2 cores (REFERENCE_SPP
+# LAYOUT=manifest|bmfr (default bmfr) the layout, manifest with the emission and visibility
+# buffers; SIZE=WxH (default 256x192) the frames' size.
+# A SEQUENCE is a preset, a scene description file, or a folder that holds a rendered sequence
+# with references (a Cycles one from tools/blender/render_sequence.py, say), scored as it is. About three minutes on 2 cores (REFERENCE_SPP
 # 1024: about 4.5 minutes per sequence more). Prints one Markdown table per sequence: tone-mapped
 # RMSE (and its ratio to the noisy input's), SSIM, FLIP, temporal error and change error, and the
 # reference's own temporal error. The change error needs a converged reference: a 64-spp
@@ -23,6 +25,7 @@ bmfr=$PWD/build/bmfr
 work=${1:-/tmp/bmfr-quality-tables}
 spp=${REFERENCE_SPP:-64}
 layout=${LAYOUT:-bmfr}
+size=${SIZE:-256x192}
 jitter=()
 [ -z "${JITTER:-}" ] || jitter=(--jitter "$JITTER")
 shift || true
@@ -39,19 +42,25 @@ methods=(
     "bmfr-authors-taa:--taa-motion-weight false"
     "bmfr-faithful:--preset faithful"
     "bmfr-faithful-no-taa:--preset faithful --taa false"
+    "bmfr-no-visibility:--visibility-feature false --visibility-taps false"
     "svgf:--filter svgf"
     "svgf-faithful:--filter svgf --preset faithful"
     "walr:--filter walr"
+    "mara2017:--filter mara2017"
     "accumulation:--preset faithful --fitting false --taa false"
 )
 
 for scene in "${sequences[@]}"; do
     seq=$(basename "$scene" .json)${JITTER:+-jitter-$JITTER}
     dir=$work/$seq
-    if [ ! -f "$dir/.done" ]; then
+    input=$dir/input
+    if [ -f "$scene/sequence.json" ]; then
+        input=$(cd "$scene" && pwd)
+        mkdir -p "$dir"
+    elif [ ! -f "$dir/.done" ]; then
         echo "rendering $seq ..." >&2
         rm -rf "$dir"
-        "$bmfr" render -o "$dir/input" -s "$scene" --width 256 --height 192 --frames 24 \
+        "$bmfr" render -o "$dir/input" -s "$scene" --width "${size%x*}" --height "${size#*x}" --frames 24 \
             --reference-spp "$spp" --layout "$layout" "${jitter[@]}" -q
         touch "$dir/.done"
     fi
@@ -59,10 +68,10 @@ for scene in "${sequences[@]}"; do
     for m in "${methods[@]}"; do
         name=${m%%:*}
         # shellcheck disable=SC2086 # the options are words
-        "$bmfr" denoise "$dir/input" -o "$dir/$name" ${m#*:} -q --no-png --no-flip --overwrite
+        "$bmfr" denoise "$input" -o "$dir/$name" ${m#*:} -q --no-png --no-flip --overwrite
         args+=("$name=$dir/$name")
     done
-    "$bmfr" eval -r "$dir/input" -m noisy "${args[@]}" -o "$dir/eval" --frames 8:24 --json -q \
+    "$bmfr" eval -r "$input" -m noisy "${args[@]}" -o "$dir/eval" --frames 8:24 --json -q \
         > "$dir/scores.json"
     /usr/bin/python3 - "$seq" "$dir/scores.json" "$spp" "${methods[@]%%:*}" noisy <<'EOF'
 import json, sys
