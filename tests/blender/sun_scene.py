@@ -38,7 +38,10 @@ def main():
     bpy.ops.mesh.primitive_plane_add(size=2 * LEAF[1], location=LEAF[0])
     bpy.context.active_object.data.materials.append(leaf)
     sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-    sun.data.energy = 3.0
+    sun.data.color = (1.0, 0.8, 0.6)  # the pass is white, and the colour is put back
+    for frame, energy in ((1, 3.0), (2, 5.0)):  # animated: the pass must not follow it
+        sun.data.energy = energy
+        sun.data.keyframe_insert("energy", frame=frame)
     sun.data.angle = math.radians(2.0)  # the pass must not depend on it
     sun.rotation_mode = "QUATERNION"
     sun.rotation_quaternion = Vector(SUN_TOWARDS).to_track_quat("Z", "Y")
@@ -55,7 +58,7 @@ def main():
     world = bpy.data.worlds.new("sky")
     world.color = (0.3, 0.3, 0.35)
     scene.world = world
-    scene.frame_start = scene.frame_end = 1
+    scene.frame_start, scene.frame_end = 1, 2
     scene.render.resolution_x, scene.render.resolution_y = 64, 48
     scene.cycles.use_denoising = False
     bpy.ops.wm.save_as_mainfile(filepath=out)

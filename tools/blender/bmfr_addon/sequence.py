@@ -388,30 +388,27 @@ def shift_lens(cam, shift, jitter, w, h):
     cam.data.shift_y = shift[1] - jitter[1] / side
 
 
-def render_visibility(scene, out, first, jitters, layer, frames, progress):
+def render_visibility(scene, out, first, jitters, layer, frames, state, progress):
     """Each frame's key-light visibility through the frame's own jittered point, after the
-    frames (one change of materials for all of them); entries are added to `frames`."""
-    sun = key_light.key_sun(scene)
-    undo = key_light.prepare(scene, sun)
+    frames (one change of materials for all of them); entries are added to `frames`. The
+    scene's changes go on state's undo list."""
+    sun = key_light.key_sun(scene, layer)
+    key_light.prepare(scene, sun, state.undo)
     w, h = scene.render.resolution_x, scene.render.resolution_y
-    try:
-        for n, jitter in enumerate(jitters):
-            scene.frame_set(first + n)
-            cam = scene.camera
-            shift = (cam.data.shift_x, cam.data.shift_y)
-            shift_lens(cam, shift, jitter, w, h)
-            scene.cycles.seed = first + n
-            name = f"visibility_{first + n:04d}.exr"
-            try:
-                render_to(scene, os.path.join(out, name))
-            finally:
-                cam.data.shift_x, cam.data.shift_y = shift
-            frames[n]["visibility"] = {"file": name, "layer": f"{layer.name}.Combined"}
-            if progress:
-                progress(n + 1, len(jitters), f"visibility {n + 1}/{len(jitters)}")
-    finally:
-        for f in reversed(undo):
-            f()
+    for n, jitter in enumerate(jitters):
+        scene.frame_set(first + n)
+        cam = scene.camera
+        shift = (cam.data.shift_x, cam.data.shift_y)
+        shift_lens(cam, shift, jitter, w, h)
+        scene.cycles.seed = first + n
+        name = f"visibility_{first + n:04d}.exr"
+        try:
+            render_to(scene, os.path.join(out, name))
+        finally:
+            cam.data.shift_x, cam.data.shift_y = shift
+        frames[n]["visibility"] = {"file": name, "layer": f"{layer.name}.Combined"}
+        if progress:
+            progress(len(jitters), len(jitters), f"visibility {n + 1}/{len(jitters)}")
 
 
 def render_frames(scene, out, opts, first, last, state, progress):
@@ -487,9 +484,9 @@ def render_frames(scene, out, opts, first, last, state, progress):
         write_json_atomically(os.path.join(out, "sequence.json"), doc)
         if progress:
             progress(n + 1, total, f"frame {n + 1}/{total} (Blender frame {frame})")
-    sun = key_light.key_sun(scene) if opts.visibility == "auto" else None
+    sun = key_light.key_sun(scene, layer) if opts.visibility == "auto" else None
     if sun is not None:
-        render_visibility(scene, out, first, jitters, layer, frames, progress)
+        render_visibility(scene, out, first, jitters, layer, frames, state, progress)
         doc["generator"] += f"; visibility of the sun '{sun.name}'"
         write_json_atomically(os.path.join(out, "sequence.json"), doc)
     return {"visibility": sun.name if sun else None,
