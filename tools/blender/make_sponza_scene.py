@@ -9,6 +9,7 @@ a constant sky (radiance 3.0/3.5/4.5) through a portal over the opening; four bo
 unclamped, no glossy blur. The camera moves as sponza-atrium's does over its 60 frames, of
 which frames 1..N are kept (default 24). glTF is y-up and Blender z-up: (x, y, z) -> (x, -z, y).
 """
+import argparse
 import math
 import os
 import sys
@@ -46,15 +47,30 @@ def animate(obj, a, b, frames):
     linear(obj)
 
 
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    p = argparse.ArgumentParser(prog="make_sponza_scene.py", description=__doc__.split("\n")[0])
+    p.add_argument("output", help=".blend file to write")
+    p.add_argument("--gltf", default=DEFAULT_GLTF, help="Sponza.gltf (default: ../shared's)")
+    p.add_argument("--frames", type=int, default=24, help="frames 1..N, 2 to 60 (default 24)")
+    p.add_argument("--size", default="320x180", help="WxH (default 320x180)")
+    a = p.parse_args(argv)
+    try:
+        a.width, a.height = (int(v) for v in a.size.split("x"))
+    except ValueError:
+        p.error(f"--size {a.size}: expected WxH, as 320x180")
+    if a.width < 1 or a.height < 1 or not 2 <= a.frames <= 60:
+        p.error("the size must be at least 1x1 and the frames 2 to 60")
+    if not os.path.exists(a.gltf):
+        print(f"make_sponza_scene.py: {a.gltf} not found (give --gltf PATH)", file=sys.stderr)
+        sys.exit(1)
+    return a
+
+
 def main():
-    argv = sys.argv[sys.argv.index("--") + 1:]
-    out = os.path.abspath(argv[0])
-    gltf = argv[argv.index("--gltf") + 1] if "--gltf" in argv else DEFAULT_GLTF
-    frames = int(argv[argv.index("--frames") + 1]) if "--frames" in argv else 24
-    size = argv[argv.index("--size") + 1] if "--size" in argv else "320x180"
-    width, height = (int(v) for v in size.split("x"))
-    if not os.path.exists(gltf):
-        sys.exit(f"make_sponza_scene.py: {gltf} not found (give --gltf PATH)")
+    args = parse_args()
+    out = os.path.abspath(args.output)
+    gltf, frames, width, height = args.gltf, args.frames, args.width, args.height
     bpy.ops.wm.read_factory_settings(use_empty=True)
     # Debian's Blender 3.4 importer uses np.bool, which NumPy 1.24 to 1.26 do not have.
     if "bool" not in numpy.__dict__:
