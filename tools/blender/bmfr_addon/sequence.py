@@ -35,6 +35,8 @@ ROW_PROPERTY = "bmfr_previous_row"  # + 0, 1, 2: this frame's world -> the previ
 
 # Object types that render surfaces (and so get the previous-position AOV).
 GEOMETRY = {"MESH", "CURVE", "SURFACE", "META", "FONT"}
+# Object types that render something a pixel's motion vector follows.
+SURFACES = GEOMETRY | {"CURVES", "POINTCLOUD", "VOLUME"}
 # Modifiers that may move the surface from frame to frame (counted as moving, not checked).
 DEFORMING = {"ARMATURE", "CLOTH", "SOFT_BODY", "WAVE", "NODES", "MESH_CACHE",
              "MESH_SEQUENCE_CACHE", "HOOK", "OCEAN", "DYNAMIC_PAINT", "EXPLODE", "FLUID",
@@ -164,9 +166,12 @@ def use_gpu(scene, state):
 
 
 def moving_objects(scene, first, last):
-    """Names of the objects other than the camera whose world matrix changes over the frames,
-    and of those that deform (armature, shape keys, animated modifiers: counted as moving)."""
-    objs = [o for o in scene.objects if o != scene.camera and o.type != "CAMERA"]
+    """Names of the objects that render surfaces (and the empties that instance a collection)
+    whose world matrix changes over the frames, and of those that deform (armature, shape keys,
+    animated modifiers: counted as moving). Cameras, lights and other empties move no surface:
+    a camera-only animation needs no Vector pass."""
+    objs = [o for o in scene.objects if o.type in SURFACES
+            or (o.type == "EMPTY" and o.instance_type == "COLLECTION")]
     start = {}
     moving = set()
     for frame in range(first, last):
