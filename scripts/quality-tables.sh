@@ -13,8 +13,8 @@
 # LAYOUT=manifest|bmfr (default bmfr) the layout, manifest with the emission and visibility
 # buffers; SIZE=WxH (default 256x192) the frames' size.
 # A SEQUENCE is a preset, a scene description file, or a folder that holds a rendered sequence
-# with references (a Cycles one from tools/blender/render_sequence.py, say), scored as it is. About three minutes on 2 cores (REFERENCE_SPP
-# 1024: about 4.5 minutes per sequence more). Prints one Markdown table per sequence: tone-mapped
+# with references (a Cycles one from tools/blender/render_sequence.py, say), scored as it is.
+# About three minutes on 2 cores (REFERENCE_SPP 1024: about 4.5 minutes per sequence more). Prints one Markdown table per sequence: tone-mapped
 # RMSE (and its ratio to the noisy input's), SSIM, FLIP, temporal error and change error, and the
 # reference's own temporal error. The change error needs a converged reference: a 64-spp
 # reference's own noise makes up most of it.
@@ -60,8 +60,8 @@ for scene in "${sequences[@]}"; do
     elif [ ! -f "$dir/.done" ]; then
         echo "rendering $seq ..." >&2
         rm -rf "$dir"
-        "$bmfr" render -o "$dir/input" -s "$scene" --width "${size%x*}" --height "${size#*x}" --frames 24 \
-            --reference-spp "$spp" --layout "$layout" "${jitter[@]}" -q
+        "$bmfr" render -o "$dir/input" -s "$scene" --width "${size%x*}" --height "${size#*x}" \
+            --frames 24 --reference-spp "$spp" --layout "$layout" "${jitter[@]}" -q
         touch "$dir/.done"
     fi
     args=()

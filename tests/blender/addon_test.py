@@ -18,9 +18,7 @@ CLI = os.environ["BMFR_CLI"]
 
 
 def main():
-    if not blender_run.blender_command():
-        print("blender is not installed: skipped")
-        return 77
+    blender_run.require_blender()
     work = tempfile.mkdtemp(prefix="bmfr_addon_")
     zip_path = os.path.join(work, "bmfr_addon.zip")
     addon = os.path.join(blender_run.ROOT, "tools/blender/bmfr_addon")

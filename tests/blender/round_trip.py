@@ -34,9 +34,7 @@ def projection_error(frame):
 
 
 def main():
-    if not blender_run.blender_command():
-        print("blender is not installed: skipped")
-        return 77
+    blender_run.require_blender()
     work = tempfile.mkdtemp(prefix="bmfr_blender_")
     blend, seq = os.path.join(work, "room.blend"), os.path.join(work, "seq")
     print(f"Blender {blender_run.info()[0]}")

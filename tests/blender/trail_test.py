@@ -16,9 +16,7 @@ MIN_RATIO = 1.12
 
 
 def main():
-    if not blender_run.blender_command():
-        print("blender is not installed: skipped")
-        return 77
+    blender_run.require_blender()
     work = tempfile.mkdtemp(prefix="bmfr_trail_")
     ratios = compare.main([work, "--size", "96x54", "--frames", "10", "--reference-spp", "64",
                            "--filters", "bmfr:faithful,svgf:faithful", "--no-flip"])

@@ -59,9 +59,7 @@ def edge_distance(p, d, geo):
 
 
 def main():
-    if not blender_run.blender_command():
-        print("blender is not installed: skipped")
-        return 77
+    blender_run.require_blender()
     work = tempfile.mkdtemp(prefix="bmfr_visibility_")
     blend, seq = os.path.join(work, "sun.blend"), os.path.join(work, "seq")
     blender_run.run_script(os.path.join(HERE, "sun_scene.py"), blend)

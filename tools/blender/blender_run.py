@@ -18,6 +18,13 @@ def blender_command():
     return [blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python"] if blender else None
 
 
+def require_blender():
+    """Exits 77 (ctest's skip) with a message when there is no Blender."""
+    if not blender_command():
+        print("blender is not installed: skipped")
+        sys.exit(77)
+
+
 def run(*cmd, env=None, expect_failure=False):
     r = subprocess.run([str(c) for c in cmd], capture_output=True, text=True,
                        env=dict(os.environ, **(env or {})))

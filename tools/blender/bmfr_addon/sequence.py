@@ -393,11 +393,10 @@ def shift_lens(cam, shift, jitter, w, h):
     cam.data.shift_y = shift[1] - jitter[1] / side
 
 
-def render_visibility(scene, out, first, jitters, layer, frames, state, progress):
-    """Each frame's key-light visibility through the frame's own jittered point, after the
+def render_visibility(scene, out, first, jitters, layer, sun, frames, state, progress):
+    """Each frame's visibility of `sun` through the frame's own jittered point, after the
     frames (one change of materials for all of them); entries are added to `frames`. The
     scene's changes go on state's undo list."""
-    sun = key_light.key_sun(scene, layer)
     key_light.prepare(scene, sun, state.undo)
     w, h = scene.render.resolution_x, scene.render.resolution_y
     for n, jitter in enumerate(jitters):
@@ -491,7 +490,7 @@ def render_frames(scene, out, opts, first, last, state, progress):
             progress(n + 1, total, f"frame {n + 1}/{total} (Blender frame {frame})")
     sun = key_light.key_sun(scene, layer) if opts.visibility == "auto" else None
     if sun is not None:
-        render_visibility(scene, out, first, jitters, layer, frames, state, progress)
+        render_visibility(scene, out, first, jitters, layer, sun, frames, state, progress)
         doc["generator"] += f"; visibility of the sun '{sun.name}'"
         write_json_atomically(os.path.join(out, "sequence.json"), doc)
     return {"visibility": sun.name if sun else None,

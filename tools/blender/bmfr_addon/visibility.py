@@ -8,9 +8,10 @@ a white diffuse surface facing it reads 1, and paths stop at the first hit. One 
 the frame's jittered point is then exact. Only a sun is taken: a point or spot light's
 falloff is not a visibility. An object without any material reads Cycles' default grey (0.8)
 where the sun reaches it. The animation and drivers of what the pass sets are muted while it
-renders (a render evaluates them over a value set by hand). Alpha is found by following the active output's surface back through
-mix and add shaders to a Principled BSDF; transparency built otherwise (a Transparent BSDF in a
-mix, a Principled inside a node group) is not seen, and such a surface casts a solid shadow.
+renders (a render evaluates them over a value set by hand). Alpha is found by following the
+active output's surface back through mix and add shaders to a Principled BSDF; transparency
+built otherwise (a Transparent BSDF in a mix, a Principled inside a node group) is not seen,
+and such a surface casts a solid shadow.
 """
 import math
 
