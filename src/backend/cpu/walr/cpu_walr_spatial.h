@@ -2,9 +2,17 @@
 // of positions and normals, then each pixel's 14 averages gathered as one cache line per tap,
 // and the per-pixel solve eight pixels at a time. Mirrors walrAtrousPixel and walrSolvePixel
 // (filters/walr/atrous_averages.h) bit for bit, on averages interleaved 16 floats per pixel.
+//
+// The trace skips taps whose steps provably all weigh 1: the segment from each pixel along each
+// forward tap direction (4 to 7; taps 0 to 3 run along them backwards) has a bound on how far its
+// positions stray from its chord (the straight line between its two end positions), built for the
+// lengths 9, 27 and 81 from the length below (starting from 1, where the bound is 0). Along the
+// chord the plane distance is linear, so the end's distance plus the bound (with a margin for
+// rounding) below the ramp's start mean no pixel of the segment can lower the traced minimum.
 #pragma once
 #include "core/parallel.h"
 #include "filters/walr/atrous_averages.h"
+#include <atomic>
 #include <vector>
 
 namespace bmfr::cpu {
@@ -13,19 +21,33 @@ namespace bmfr::cpu {
 /// that every tap's trace loads eight lanes without bounds checks. Filled once per frame. Also
 /// each pixel's trace along each of the 8 directions so far (smallest weight and first zero):
 /// the segment of iteration t begins with that of iteration t - 1, so each iteration traces
-/// only the steps beyond the last one's.
+/// only the steps beyond the last one's. And the chord bounds of the segments of length
+/// `chordLength` that start at each pixel, along the four forward directions.
 struct EdgePlanes {
     static constexpr int kPad = 96; ///< >= the largest step (81) + 8 lanes - 1
     std::vector<float> planes;
     std::vector<float> tracedMin; ///< [row][block of 8 pixels][direction][lane]
     std::vector<int32_t> tracedEdge;
+    /// [level parity][row][forward direction][padded column]: the largest distance (in each
+    /// coordinate) of a segment's positions from its chord; +inf where it leaves the image.
+    std::vector<float> chordBound[2];
+    int chordLength = 0; ///< the segments' length in chordBound[chordLevel]; 0 = none yet
+    int chordLevel = 0;
+    /// Taps of eight pixels whose steps the chord bounds let the trace skip, since fill.
+    std::atomic<long> skippedTaps{0};
     long rowStride = 0; ///< floats from one row of a plane to the next
     long planeSize = 0; ///< floats from a row of one plane to the same row of the next
     long blocksPerRow = 0;
     const float* plane(int k) const { return planes.data() + k * planeSize + kPad; }
+    /// The chord bounds along tap 4 + d's direction (walrTapX, walrTapY) at row 0, column 0.
+    const float* chordBounds(int d) const {
+        return chordBound[chordLevel].data() + d * planeSize + kPad;
+    }
     /// Sizes the planes for a width x height guide (fill does too, when they are not).
     void allocate(int width, int height);
     void fill(ThreadPool& pool, const EdgeGuide& g);
+    /// Builds the chord bounds of length 3 L from those of length L (3 from none).
+    void buildChordBounds(ThreadPool& pool, const EdgeGuide& g);
 };
 
 /// One a-trous iteration (walrAtrousPixel) over the whole image; level.layout must be
