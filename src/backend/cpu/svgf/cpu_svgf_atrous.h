@@ -1,9 +1,9 @@
-// The CPU backend's SVGF a-trous levels: eight pixels of a row at a time over planar copies of
-// the colour, variance, luminance and guides, each row padded by an apron whose mask is zero,
-// so that a tap past the row's ends needs no bounds test. Same taps, order and feedback as the
-// reference (filters/svgf/svgf_kernels.h); rounded differently, within the conformance
-// tolerance: exp8, fused multiply-adds, phiDepth folded into the gradient and the luminance
-// term multiplied by a reciprocal.
+// The CPU backend's SVGF a-trous levels: eight pixels of a row at a time (sixteen on the
+// AVX-512 path) over planar copies of the colour, variance, luminance and guides, each row
+// padded by an apron whose mask is zero, so that a tap past the row's ends needs no bounds test.
+// Same taps, order and feedback as the reference (filters/svgf/svgf_kernels.h); rounded
+// differently, within the conformance tolerance: a polynomial exponential, fused multiply-adds,
+// phiDepth folded into the gradient and the luminance term multiplied by a reciprocal.
 #pragma once
 #include "core/parallel.h"
 #include "filters/svgf/svgf_passes.h"
@@ -11,7 +11,7 @@
 
 namespace bmfr::cpu {
 
-/// Whether the eight-wide levels run these settings: an integer normal exponent (repeated
+/// Whether the vector levels run these settings: an integer normal exponent (repeated
 /// squaring, as the reference's normalWeight); others take the reference's levels.
 bool cpuAtrousSupports(const SvgfSettings& s);
 
