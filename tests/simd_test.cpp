@@ -193,3 +193,33 @@ TEST(Simd, ExpWithinTwoUlpOfTheLibraryAndItsNonPositiveFormAlike) {
     EXPECT_EQ(e[2], 1.0f);
     EXPECT_NEAR(e[3], 2.7182817f, 1e-6f);
 }
+
+// The helpers written once for eight and sixteen lanes give each lane the same bits at both
+// widths (the sixteen-wide SVGF levels rely on it).
+TEST(Simd, SixteenLanesAreTwoTimesEightLaneForLane) {
+    for (float x = -100.0f; x < 100.0f; x += 0.37f) {
+        f32x16 wide;
+        for (int l = 0; l < 16; ++l) wide[l] = x + 0.011f * float(l) * (l % 2 ? -1.0f : 1.0f);
+        f8 half[2];
+        for (int h = 0; h < 2; ++h)
+            for (int l = 0; l < 8; ++l) half[h][l] = wide[8 * h + l];
+        const f32x16 colour[3] = {wide, wide * 0.5f, absOf(wide)};
+        const f32x16 exp = expNonPositive(-absOf(wide)), lum = luminanceOf(colour);
+        const f32x16 low = minOf(wide, splat<f32x16>(1.5f)),
+                     high = maxOf(wide, splat<f32x16>(1.5f));
+        for (int h = 0; h < 2; ++h) {
+            const f8 c[3] = {half[h], half[h] * 0.5f, abs8(half[h])};
+            const f8 e = expNonPositive8(-abs8(half[h])), y = luminance8(c);
+            const f8 lo = min8(half[h], splat8(1.5f)), hi = max8(half[h], splat8(1.5f));
+            for (int l = 0; l < 8; ++l) {
+                EXPECT_EQ(exp[8 * h + l], e[l]) << wide[8 * h + l];
+                EXPECT_EQ(lum[8 * h + l], y[l]) << wide[8 * h + l];
+                EXPECT_EQ(low[8 * h + l], lo[l]);
+                EXPECT_EQ(high[8 * h + l], hi[l]);
+            }
+        }
+    }
+    float out[16] = {};
+    storeFirstLanes(out, splat<f32x16>(2.0f), 11);
+    for (int l = 0; l < 16; ++l) EXPECT_EQ(out[l], l < 11 ? 2.0f : 0.0f) << l;
+}
