@@ -366,6 +366,9 @@ template <class V> BMFR_SIMD_INLINE V loadVector(const float* p) {
     std::memcpy(&v, p, sizeof v);
     return v;
 }
+template <class V> BMFR_SIMD_INLINE void storeVector(float* p, V v) {
+    std::memcpy(p, &v, sizeof v);
+}
 /// Stores the first n (1 to the lane count) lanes.
 template <class V> BMFR_SIMD_INLINE void storeFirstLanes(float* p, V v, int n) {
     if (n == kLanesOf<V>) {

@@ -14,31 +14,10 @@ namespace {
 
 constexpr int kGroup = 4; // columns per sweep: four accumulators plus v stay in registers
 
-/// The sweeps work on V, eight floats (f8) or, on the AVX-512 path, sixteen (f16v).
-typedef float f16v __attribute__((vector_size(64)));
-template <class V> constexpr int kLanes = int(sizeof(V) / sizeof(float));
-template <class V> BMFR_SIMD_INLINE V loadV(const float* p) {
-    V v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-template <class V> BMFR_SIMD_INLINE void storeV(float* p, V v) {
-    std::memcpy(p, &v, sizeof v);
-}
-template <class V> BMFR_SIMD_INLINE V splatV(float a) {
-    if constexpr (kLanes<V> == 8) {
-        return simd::splat8(a);
-    } else {
-        const f8 h = simd::splat8(a);
-        V v;
-        std::memcpy(&v, &h, sizeof h);
-        std::memcpy(reinterpret_cast<char*>(&v) + sizeof h, &h, sizeof h);
-        return v;
-    }
-}
+/// The sweeps work on V, eight floats (f8) or, on the AVX-512 path, sixteen (f32x16).
 /// Sum of the lanes as a fixed tree (repeatable): halves added until eight remain, then hsum8.
 template <class V> BMFR_SIMD_INLINE float hsumV(V v) {
-    if constexpr (kLanes<V> == 8) {
+    if constexpr (kLanesOf<V> == 8) {
         return hsum8(v);
     } else {
         f8 lo, hi;
@@ -50,13 +29,13 @@ template <class V> BMFR_SIMD_INLINE float hsumV(V v) {
 
 /// The first row at or after `row` where whole vectors start.
 template <class V> BMFR_SIMD_INLINE int alignedRow(int row, int rows) {
-    return std::min((row + kLanes<V> - 1) & ~(kLanes<V> - 1), rows);
+    return std::min((row + kLanesOf<V> - 1) & ~(kLanesOf<V> - 1), rows);
 }
 
 /// The row index of each lane of the vector that starts at row i.
 template <class V> BMFR_SIMD_INLINE V rowsFrom(int i) {
     V v;
-    for (int l = 0; l < kLanes<V>; ++l) v[l] = float(i + l);
+    for (int l = 0; l < kLanesOf<V>; ++l) v[l] = float(i + l);
     return v;
 }
 
@@ -64,22 +43,22 @@ template <class V> BMFR_SIMD_INLINE V rowsFrom(int i) {
 /// (every block, whose W is a multiple of 64). Else the rows before the first whole vector, up
 /// to fifteen per column on the AVX-512 path and a large share of a small block's, go one by one.
 template <class V> BMFR_SIMD_INLINE bool vectorHead(int rows) {
-    return rows % kLanes<V> == 0;
+    return rows % kLanesOf<V> == 0;
 }
 
 /// d[g] = v . a_g over rows [begin, rows) for `count` columns a_g, `stride` floats apart.
 template <class V, int count>
 BMFR_SIMD_INLINE void dotGroupOf(const float* v, const float* a, int rows, long stride, int begin,
                                  float* d) {
-    constexpr int L = kLanes<V>;
+    constexpr int L = kLanesOf<V>;
     V acc[kGroup] = {};
     if (vectorHead<V>(rows)) {
         // The vector holding row `begin` with the rows before it masked out, then whole ones.
         const int first = begin & ~(L - 1);
         for (int i = first; i < rows; i += L) {
-            V x = loadV<V>(v + i);
+            V x = loadVector<V>(v + i);
             if (i == first) x = rowsFrom<V>(i) >= float(begin) ? x : V{};
-            for (int g = 0; g < count; ++g) acc[g] += x * loadV<V>(a + long(g) * stride + i);
+            for (int g = 0; g < count; ++g) acc[g] += x * loadVector<V>(a + long(g) * stride + i);
         }
         for (int g = 0; g < count; ++g) d[g] = hsumV(acc[g]);
         return;
@@ -91,8 +70,8 @@ BMFR_SIMD_INLINE void dotGroupOf(const float* v, const float* a, int rows, long 
     for (int i = tail; i < rows; ++i)
         for (int g = 0; g < count; ++g) head[g] += v[i] * a[long(g) * stride + i];
     for (int i = body; i < tail; i += L) {
-        const V x = loadV<V>(v + i);
-        for (int g = 0; g < count; ++g) acc[g] += x * loadV<V>(a + long(g) * stride + i);
+        const V x = loadVector<V>(v + i);
+        for (int g = 0; g < count; ++g) acc[g] += x * loadVector<V>(a + long(g) * stride + i);
     }
     for (int g = 0; g < count; ++g) d[g] = head[g] + hsumV(acc[g]);
 }
@@ -119,24 +98,24 @@ BMFR_SIMD_INLINE void dotGroup(const float* v, const float* a, int count, int ro
 template <class V, int count, bool look, bool self>
 BMFR_SIMD_INLINE void updateGroupOf(const float* v, float* a, int rows, long stride, int k,
                                     const float* f, const float* next, float* d) {
-    constexpr int L = kLanes<V>;
+    constexpr int L = kLanesOf<V>;
     V fs[count], acc[count] = {};
-    for (int g = 0; g < count; ++g) fs[g] = splatV<V>(f[g]);
+    for (int g = 0; g < count; ++g) fs[g] = splat<V>(f[g]);
     // Rows [i, i + L): update from row k, dot products from row k + 1 (k + 2 for the next
     // reflector's own sum of squares), the rows before them masked out in the vectors holding
     // them.
     auto sweep = [&](int i, auto masked) {
-        const V x = loadV<V>(v + i);
+        const V x = loadVector<V>(v + i);
         V col[count];
         for (int g = 0; g < count; ++g) {
             float* p = a + long(g) * stride + i;
-            const V old = loadV<V>(p);
+            const V old = loadVector<V>(p);
             col[g] = old - fs[g] * x;
             if constexpr (masked) col[g] = rowsFrom<V>(i) >= float(k) ? col[g] : old;
-            storeV(p, col[g]);
+            storeVector(p, col[g]);
         }
         if constexpr (!look) return;
-        const V u = self ? col[0] : loadV<V>(next + i);
+        const V u = self ? col[0] : loadVector<V>(next + i);
         for (int g = 0; g < count; ++g) {
             V term = u * col[g];
             if constexpr (masked) {
@@ -198,7 +177,7 @@ BMFR_SIMD_INLINE void updateGroup(const float* v, float* a, int count, int rows,
 BMFR_SIMD_DISPATCH(int, solveHouseholderPaths,
                    (float* columns, int featureCount, int rows, long stride, float* coeffs),
                    (columns, featureCount, rows, stride, coeffs)) {
-    using V = std::conditional_t<kIsa == Isa::Avx512, f16v, f8>;
+    using V = std::conditional_t<kIsa == Isa::Avx512, f32x16, f8>;
     const int M = featureCount, total = featureCount + 3;
     auto column = [&](int j) { return columns + long(j) * stride; };
     HouseholderSteps q;
