@@ -6,9 +6,10 @@
 // The trace skips taps whose steps provably all weigh 1: the segment from each pixel along each
 // forward tap direction (4 to 7; taps 0 to 3 run along them backwards) has a bound on how far its
 // positions stray from its chord (the straight line between its two end positions), built for the
-// lengths 9, 27 and 81 from the length below (starting from 1, where the bound is 0). Along the
-// chord the plane distance is linear, so the end's distance plus the bound (with a margin for
-// rounding) below the ramp's start mean no pixel of the segment can lower the traced minimum.
+// lengths 3, 9, 27 and 81, each from the one below (a one-step segment's bound is 0), and used
+// from step 9 on. Along the chord the plane distance is linear, so the end's distance plus the
+// bound (with a margin for rounding) below the ramp's start mean no pixel of the segment can
+// lower the traced minimum.
 #pragma once
 #include "core/parallel.h"
 #include "filters/walr/atrous_averages.h"
