@@ -1,5 +1,8 @@
 // SVGF: the a-trous filter keeps constants and edges, the variance estimate converges, and the
 // whole filter denoises, also with fewer than 1 spp.
+#include "backend/cpu/isa.h"
+#include "backend/cpu/svgf/cpu_svgf_variance.h"
+#include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/hash.h"
 #include "core/image.h"
 #include "filters/svgf/svgf_kernels.h"
@@ -165,6 +168,61 @@ TEST(Svgf, SettingsAndFactoryErrors) {
     EXPECT_THROW(makeFilter("svgf", {{"blockSize", "16"}}), Error);
     EXPECT_THROW(makeFilter("bmfr", {{"blockSize", "sixteen"}}), Error);
     EXPECT_THROW(makeFilter("walr", {{"backend", "cuda"}}), Error); // bmfr and svgf only
+}
+
+// The CPU backend's variance estimate against the reference's, on every path the processor has:
+// long histories bit for bit, short ones (the 7x7 bilateral) within rounding, at the sides too
+// (a width that is no multiple of eight) and with a non-default normal exponent.
+TEST(Svgf, CpuVarianceEstimateMatchesTheReference) {
+    const int w = 45, h = 23;
+    const long n = long(w) * h;
+    std::vector<float> integrated(size_t(3 * n)), moments(size_t(2 * n)), normal(size_t(3 * n));
+    std::vector<float> depth(static_cast<size_t>(n)), gradient(size_t(2 * n));
+    std::vector<uint8_t> length(static_cast<size_t>(n));
+    auto rnd = [](long i, uint32_t k) { return unitFloat(hashKeys(uint32_t(i), k, 91u)); };
+    for (long i = 0; i < n; ++i) {
+        for (int c = 0; c < 3; ++c) integrated[size_t(3 * i + c)] = 2.0f * rnd(i, uint32_t(c));
+        const float l = rnd(i, 3);
+        moments[size_t(2 * i)] = l, moments[size_t(2 * i + 1)] = l * l + 0.1f * rnd(i, 4);
+        const Vec3 nv = normalize(Vec3{0.2f * rnd(i, 5), 0.2f * rnd(i, 6), 1.0f});
+        normal[size_t(3 * i)] = nv.x, normal[size_t(3 * i + 1)] = nv.y;
+        normal[size_t(3 * i + 2)] = nv.z;
+        depth[size_t(i)] = 5.0f + float(i % w) * 0.01f + (i % 7 == 0 ? 1.0f : 0.0f);
+        gradient[size_t(2 * i)] = 0.01f, gradient[size_t(2 * i + 1)] = 0.002f;
+        length[size_t(i)] = uint8_t(hashKeys(uint32_t(i), 8u) % 7); // 0 (no sample) to 6
+    }
+    SvgfFrame f;
+    f.width = w, f.height = h;
+    f.integrated = integrated.data(), f.integratedMoments = moments.data();
+    f.normal = normal.data(), f.depth = depth.data(), f.depthGradient = gradient.data();
+    f.length = length.data();
+    for (float phiNormal : {128.0f, 32.0f})
+        for (cpu::Isa isa : cpu::supportedIsas()) {
+            cpu::setActiveIsa(isa);
+            SvgfSettings s;
+            s.phiNormal = phiNormal;
+            ASSERT_TRUE(cpu::cpuVarianceSupports(s));
+            std::vector<float> refOut(size_t(4 * n)), refVar(static_cast<size_t>(n)),
+                out(refOut.size()), var(refVar.size());
+            reference::svgfVariancePixels(f, s, 0, h, refOut.data(), refVar.data());
+            cpu::svgfVarianceRows(f, s, 0, h, out.data(), var.data());
+            int estimated = 0;
+            for (long i = 0; i < n; ++i) {
+                const bool estimate = length[size_t(i)] > 0 && length[size_t(i)] < 4;
+                estimated += estimate;
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ(out[size_t(4 * i + c)], refOut[size_t(4 * i + c)]) << i;
+                if (estimate) {
+                    EXPECT_NEAR(var[size_t(i)], refVar[size_t(i)], 1e-5f * (1 + refVar[size_t(i)]))
+                        << i << " " << cpu::isaName(isa);
+                } else {
+                    ASSERT_EQ(var[size_t(i)], refVar[size_t(i)]) << i << " " << cpu::isaName(isa);
+                }
+                ASSERT_EQ(out[size_t(4 * i + 3)], var[size_t(i)]) << i;
+            }
+            EXPECT_GT(estimated, int(n / 3));
+        }
+    cpu::setActiveIsa(cpu::bestIsa());
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 #include "backend/cpu/svgf/cpu_svgf_atrous.h"
 #include "backend/cpu/simd.h"
+#include "backend/cpu/svgf/cpu_svgf_weights.h"
 #include <algorithm>
 #include <cmath>
 
@@ -19,16 +20,6 @@ struct LevelArgs {
     int width, height, radius, step, normalExponent;
     float phiDepth, phiLuminance;
 };
-
-/// max(0, c)^e by repeated squaring, as the reference's normalWeight; kExponent > 0 fixes e at
-/// compile time (the default 128 is seven squarings in a row), 0 reads it from `e`.
-template <int kExponent, class V> BMFR_SIMD_INLINE V normalPower(V c, int e) {
-    V base = maxOf(V{}, c), result = splat<V>(1.0f);
-    if constexpr (kExponent > 0) e = kExponent;
-    for (; e > 0; e >>= 1, base *= base)
-        if (e & 1) result *= base;
-    return result;
-}
 
 /// kExponent and kRadius > 0 fix the normal exponent and the kernel radius at compile time (the
 /// defaults: the taps unrolled, their constants folded); 0 reads them from `a`. V is eight or

@@ -1,10 +1,11 @@
-// The CPU backend's SVGF: the reference's variance and re-modulation, with eight-wide
-// accumulation (cpu_svgf_accumulate.h), a-trous levels (cpu_svgf_atrous.h) and the TAA shared
-// with BMFR.
+// The CPU backend's SVGF: the reference's re-modulation, with eight-wide accumulation
+// (cpu_svgf_accumulate.h), variance estimate (cpu_svgf_variance.h), a-trous levels
+// (cpu_svgf_atrous.h) and the TAA shared with BMFR.
 #include "backend/backend_registry.h"
 #include "backend/cpu/cpu_taa.h"
 #include "backend/cpu/svgf/cpu_svgf_accumulate.h"
 #include "backend/cpu/svgf/cpu_svgf_atrous.h"
+#include "backend/cpu/svgf/cpu_svgf_variance.h"
 #include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/stopwatch.h"
 
@@ -20,8 +21,9 @@ class CpuSvgfPasses final : public HostSvgfPasses {
         atrous_.reserve(w, h, s);
     }
     PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
-        const PassCounters counters =
-            reference::svgfAccumulateAndVariance(ctx, buffers, times, svgfAccumulateRows);
+        const PassCounters counters = reference::svgfAccumulateAndVariance(
+            ctx, buffers, times, svgfAccumulateRows,
+            cpuVarianceSupports(ctx.settings) ? svgfVarianceRows : reference::svgfVariancePixels);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
         if (cpuAtrousSupports(ctx.settings)) {

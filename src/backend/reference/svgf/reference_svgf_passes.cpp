@@ -14,8 +14,15 @@ int64_t svgfAccumulatePixels(const SvgfFrame& f, long y0, long y1) {
     return bad;
 }
 
+void svgfVariancePixels(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1,
+                        float* filtered, float* variance) {
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < f.width; ++x) svgfVariancePixel(f, s, x, int(y), filtered, variance);
+}
+
 PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
-                                       StageTimes& times, SvgfAccumulateRows rows) {
+                                       StageTimes& times, SvgfAccumulateRows rows,
+                                       SvgfVarianceRows varianceRows) {
     const SvgfSettings& s = ctx.settings;
     const TemporalHistory& h = ctx.history;
     const int w = h.width;
@@ -27,8 +34,8 @@ PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& 
     const int64_t discarded =
         countDiscarded(ctx.pool, f.accept, b.accept.pixelCount(), h.hasHistory());
     times.add("accumulate", clock.lap());
-    ctx.pool.forEachPixel(w, h.height, 4, [&](int x, int y) {
-        svgfVariancePixel(f, s, x, y, b.filtered[0].data(), b.variance.data());
+    ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {
+        varianceRows(f, s, y0, y1, b.filtered[0].data(), b.variance.data());
     });
     times.add("variance", clock.lap());
     return {nonFinite.load(), discarded};

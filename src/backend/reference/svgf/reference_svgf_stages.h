@@ -10,11 +10,19 @@ namespace bmfr::reference {
 int64_t svgfAccumulatePixels(const SvgfFrame& f, long y0, long y1);
 using SvgfAccumulateRows = int64_t (*)(const SvgfFrame& f, long y0, long y1);
 
+/// svgfVariancePixel over the rows [y0, y1), into filtered (4 floats per pixel) and variance.
+void svgfVariancePixels(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1,
+                        float* filtered, float* variance);
+using SvgfVarianceRows = void (*)(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1,
+                                  float* filtered, float* variance);
+
 /// Accumulation (`rows` over every row) and depth gradient ("accumulate"), then the variance
-/// estimate ("variance") into b.filtered[0]. Returns the non-finite and discarded counts.
+/// estimate (`varianceRows`, "variance") into b.filtered[0]. Returns the non-finite and
+/// discarded counts.
 PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
                                        StageTimes& times,
-                                       SvgfAccumulateRows rows = svgfAccumulatePixels);
+                                       SvgfAccumulateRows rows = svgfAccumulatePixels,
+                                       SvgfVarianceRows varianceRows = svgfVariancePixels);
 /// The a-trous levels' guides (normal, depth, its gradient, history length) for this frame.
 AtrousLevel atrousGuides(const SvgfPassContext& ctx, SvgfBuffers& b);
 /// The a-trous levels from b.filtered[0]: the step-1 level fed back as the colour history, the

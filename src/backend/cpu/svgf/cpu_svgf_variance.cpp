@@ -1,0 +1,109 @@
+#include "backend/cpu/svgf/cpu_svgf_variance.h"
+#include "backend/cpu/simd.h"
+#include "backend/cpu/svgf/cpu_svgf_weights.h"
+#include <algorithm>
+
+namespace bmfr::cpu {
+
+using namespace simd;
+
+namespace {
+
+/// The 7x7 estimate's moments of eight pixels from i, every tap inside the row.
+template <int kExponent>
+BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s, int y, long i,
+                                       const f8 centre[3], f8& m1, f8& m2) {
+    const int w = f.width;
+    f8 n0[3], gx, gy;
+    deinterleave3(f.normal + 3 * i, n0[0], n0[1], n0[2]);
+    loadXy8(f.depthGradient + 2 * i, 8, gx, gy);
+    const f8 z0 = load8(f.depth + i), l0 = luminance8(centre);
+    f8 sw{}, s1{}, s2{};
+    for (int dy = -3; dy <= 3; ++dy) {
+        if (y + dy < 0 || y + dy >= f.height) continue;
+        for (int dx = -3; dx <= 3; ++dx) {
+            const long q = i + long(dy) * w + dx;
+            const i8 sampled = loadBytes(f.length + q, 8) != 0;
+            f8 nq[3], cq[3], mq1, mq2;
+            deinterleave3(f.normal + 3 * q, nq[0], nq[1], nq[2]);
+            deinterleave3(f.integrated + 3 * q, cq[0], cq[1], cq[2]);
+            loadXy8(f.integratedMoments + 2 * q, 8, mq1, mq2);
+            const f8 slope = abs8(gx * float(dx) + gy * float(dy));
+            const f8 depthArg = abs8(z0 - load8(f.depth + q)) / (s.phiDepth * slope + 1e-6f);
+            const f8 lumArg = abs8(l0 - luminance8(cq)) / 10.0f;
+            const f8 dotN = (n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2];
+            const f8 wn = normalPower<kExponent>(dotN, int(s.phiNormal));
+            // Every factor is finite (the exponential of -arg <= 0 is at most 1), so a tap
+            // without a sample adds exactly nothing, as the reference's skip.
+            const f8 wq = sampled ? wn * expNonPositive8(-(depthArg + lumArg)) : f8{};
+            sw += wq;
+            s1 += wq * mq1;
+            s2 += wq * mq2;
+        }
+    }
+    const i8 some = sw > 0.0f;
+    m1 = some ? s1 / sw : m1;
+    m2 = some ? s2 / sw : m2;
+}
+
+template <int kExponent>
+BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1,
+                                     float* filtered, float* varianceOut) {
+    const int w = f.width;
+    const f8 limit = splat8(float(s.spatialVarianceFrames));
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < w; x += 8) {
+            const int n = std::min(8, w - x);
+            const long i = y * w + x;
+            const f8 length = __builtin_convertvector(loadBytes(f.length + i, n), f8);
+            const i8 estimate = (length > 0.0f) & (length < limit);
+            const bool inside = x >= 3 && x + 8 + 3 <= w;
+            if (anyLane(estimate) && !inside) { // taps past a side: the reference's pixels
+                for (int l = 0; l < n; ++l)
+                    svgfVariancePixel(f, s, x + l, int(y), filtered, varianceOut);
+                continue;
+            }
+            f8 c[3], m1, m2;
+            loadXyz8(f.integrated + 3 * i, n, c);
+            loadXy8(f.integratedMoments + 2 * i, n, m1, m2);
+            f8 variance = m2 - m1 * m1;
+            if (anyLane(estimate)) {
+                f8 e1 = m1, e2 = m2;
+                bilateralMoments<kExponent>(f, s, int(y), i, c, e1, e2);
+                // Boost the uncertain estimate of short histories (as the authors' code).
+                const f8 boosted = (e2 - e1 * e1) * 4.0f / (estimate ? length : splat8(1.0f));
+                variance = estimate ? boosted : variance;
+            }
+            variance = variance > 0.0f ? variance : f8{}; // std::fmax(variance, 0)
+            float out[32];
+            for (int l = 0; l < 8; ++l) {
+                out[4 * l] = c[0][l], out[4 * l + 1] = c[1][l], out[4 * l + 2] = c[2][l];
+                out[4 * l + 3] = variance[l];
+            }
+            std::memcpy(filtered + 4 * i, out, sizeof(float) * 4 * size_t(n));
+            storeFirst(varianceOut + i, variance, n);
+        }
+}
+
+BMFR_SIMD_DISPATCH(void, varianceRows,
+                   (const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
+                    float* variance),
+                   (f, s, y0, y1, filtered, variance)) {
+    if (s.phiNormal == 128.0f)
+        varianceRowsOf<128>(f, s, y0, y1, filtered, variance);
+    else
+        varianceRowsOf<0>(f, s, y0, y1, filtered, variance);
+}
+
+} // namespace
+
+bool cpuVarianceSupports(const SvgfSettings& s) {
+    return float(int(s.phiNormal)) == s.phiNormal;
+}
+
+void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
+                      float* variance) {
+    varianceRows(f, s, y0, y1, filtered, variance);
+}
+
+} // namespace bmfr::cpu

@@ -1,0 +1,18 @@
+// SVGF's normal weight for a vector of pixels, shared by the CPU backend's a-trous levels and
+// its variance estimate.
+#pragma once
+#include "backend/cpu/simd.h"
+
+namespace bmfr::cpu {
+
+/// max(0, c)^e by repeated squaring, as the reference's normalWeight; kExponent > 0 fixes e at
+/// compile time (the default 128 is seven squarings in a row), 0 reads it from `e`.
+template <int kExponent, class V> BMFR_SIMD_INLINE V normalPower(V c, int e) {
+    V base = simd::maxOf(V{}, c), result = simd::splat<V>(1.0f);
+    if constexpr (kExponent > 0) e = kExponent;
+    for (; e > 0; e >>= 1, base *= base)
+        if (e & 1) result *= base;
+    return result;
+}
+
+} // namespace bmfr::cpu
