@@ -89,13 +89,19 @@ template <class V> constexpr int kLanesOf = VectorTraits<V>::kLanes;
 #define BMFR_SIMD_DISPATCH_FLAT(Ret, name, Params, Args)                                           \
     BMFR_SIMD_DISPATCH_WITH(__attribute__((flatten)), inline, Ret, name, Params, Args)
 
-BMFR_SIMD_INLINE f8 load8(const float* p) {
-    f8 v;
+template <class V> BMFR_SIMD_INLINE V loadVector(const float* p) {
+    V v;
     std::memcpy(&v, p, sizeof v);
     return v;
 }
-BMFR_SIMD_INLINE void store8(float* p, f8 v) {
+template <class V> BMFR_SIMD_INLINE void storeVector(float* p, V v) {
     std::memcpy(p, &v, sizeof v);
+}
+BMFR_SIMD_INLINE f8 load8(const float* p) {
+    return loadVector<f8>(p);
+}
+BMFR_SIMD_INLINE void store8(float* p, f8 v) {
+    storeVector(p, v);
 }
 /// Half planes (history stored as 16-bit floats). As _Float16, for the baseline path: integer
 /// arithmetic, since GCC 12 splits a vector conversion to _Float16 into one conversion per lane.
@@ -360,14 +366,6 @@ template <class V> BMFR_SIMD_INLINE V splat(float a) {
 }
 BMFR_SIMD_INLINE f8 splat8(float a) {
     return splat<f8>(a);
-}
-template <class V> BMFR_SIMD_INLINE V loadVector(const float* p) {
-    V v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-template <class V> BMFR_SIMD_INLINE void storeVector(float* p, V v) {
-    std::memcpy(p, &v, sizeof v);
 }
 /// Stores the first n (1 to the lane count) lanes.
 template <class V> BMFR_SIMD_INLINE void storeFirstLanes(float* p, V v, int n) {

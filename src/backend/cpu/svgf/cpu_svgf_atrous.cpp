@@ -108,10 +108,6 @@ BMFR_SIMD_DISPATCH(void, atrousRows, (const LevelArgs& a, long y0, long y1), (a,
 
 } // namespace
 
-bool cpuAtrousSupports(const SvgfSettings& s) {
-    return float(int(s.phiNormal)) == s.phiNormal;
-}
-
 void CpuAtrous::reserve(int w, int h, const SvgfSettings& s) {
     // Taps reach radius x the largest step beyond the row; sixteen lanes read past its end.
     const int reach = s.kernelRadius * (1 << (s.iterations - 1));

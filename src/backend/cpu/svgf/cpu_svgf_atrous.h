@@ -11,10 +11,6 @@
 
 namespace bmfr::cpu {
 
-/// Whether the vector levels run these settings: an integer normal exponent (repeated
-/// squaring, as the reference's normalWeight); others take the reference's levels.
-bool cpuAtrousSupports(const SvgfSettings& s);
-
 class CpuAtrous {
   public:
     /// Sizes the planes for a w x h frame with these settings (run does it when they change).

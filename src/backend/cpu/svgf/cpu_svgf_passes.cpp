@@ -6,6 +6,7 @@
 #include "backend/cpu/svgf/cpu_svgf_accumulate.h"
 #include "backend/cpu/svgf/cpu_svgf_atrous.h"
 #include "backend/cpu/svgf/cpu_svgf_variance.h"
+#include "backend/cpu/svgf/cpu_svgf_weights.h"
 #include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/stopwatch.h"
 
@@ -23,10 +24,11 @@ class CpuSvgfPasses final : public HostSvgfPasses {
     PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
         const PassCounters counters = reference::svgfAccumulateAndVariance(
             ctx, buffers, times, svgfAccumulateRows,
-            cpuVarianceSupports(ctx.settings) ? svgfVarianceRows : reference::svgfVariancePixels);
+            cpuNormalPowerSupports(ctx.settings) ? svgfVarianceRows
+                                                 : reference::svgfVariancePixels);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
-        if (cpuAtrousSupports(ctx.settings)) {
+        if (cpuNormalPowerSupports(ctx.settings)) {
             float* const filtered[2] = {buffers.filtered[0].data(), buffers.filtered[1].data()};
             buffers.outputLevel =
                 atrous_.run(ctx.pool, ctx.settings, reference::atrousGuides(ctx, buffers), filtered,

@@ -97,10 +97,6 @@ BMFR_SIMD_DISPATCH(void, varianceRows,
 
 } // namespace
 
-bool cpuVarianceSupports(const SvgfSettings& s) {
-    return float(int(s.phiNormal)) == s.phiNormal;
-}
-
 void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
                       float* variance) {
     varianceRows(f, s, y0, y1, filtered, variance);

@@ -8,10 +8,8 @@
 
 namespace bmfr::cpu {
 
-/// Whether svgfVarianceRows runs these settings (an integer phiNormal, as the a-trous levels).
-bool cpuVarianceSupports(const SvgfSettings& s);
-
-/// svgfVariancePixel over the rows [y0, y1).
+/// svgfVariancePixel over the rows [y0, y1), for settings that cpuNormalPowerSupports
+/// (cpu_svgf_weights.h).
 void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
                       float* variance);
 

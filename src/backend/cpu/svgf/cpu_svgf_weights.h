@@ -2,8 +2,15 @@
 // its variance estimate.
 #pragma once
 #include "backend/cpu/simd.h"
+#include <bmfr/filters/svgf_filter.h>
 
 namespace bmfr::cpu {
+
+/// Whether the vector passes run these settings: an integer normal exponent (repeated squaring,
+/// as the reference's normalWeight); others take the reference's stages.
+inline bool cpuNormalPowerSupports(const SvgfSettings& s) {
+    return float(int(s.phiNormal)) == s.phiNormal;
+}
 
 /// max(0, c)^e by repeated squaring, as the reference's normalWeight; kExponent > 0 fixes e at
 /// compile time (the default 128 is seven squarings in a row), 0 reads it from `e`.

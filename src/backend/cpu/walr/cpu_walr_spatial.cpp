@@ -54,8 +54,8 @@ BMFR_SIMD_INLINE f8 largest3(const f8 v[3]) {
 }
 
 BMFR_SIMD_DISPATCH(void, chordBoundRows,
-                   (const EdgeGuide& g, EdgePlanes& e, int length, const float* below, float* out,
-                    long y0, long y1),
+                   (const EdgeGuide& g, const EdgePlanes& e, int length, const float* below,
+                    float* out, long y0, long y1),
                    (g, e, length, below, out, y0, y1)) {
     const long chordRow = 4 * e.planeSize;
     const float* p[3] = {e.plane(0), e.plane(1), e.plane(2)};
