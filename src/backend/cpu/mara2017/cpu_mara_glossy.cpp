@@ -60,7 +60,9 @@ BMFR_SIMD_DISPATCH(void, passRow,
                    (f, src, dst, y, dx, dy, below, above)) {
     const int w = f.width;
     const long row = long(y) * w;
-    float g[kMaraGlossyMaxReach + 1];
+    // The Gaussian of the last sigma: runs along a row mostly share one roughness.
+    float g[kMaraGlossyMaxReach + 1], gSigma = -1.0f;
+    int gReach = -1, taps = 0;
     int x = 0;
     while (x < w) {
         const long i = row + x;
@@ -80,10 +82,12 @@ BMFR_SIMD_DISPATCH(void, passRow,
         f8 sum[3];
         deinterleave3(src + 3 * i, sum[0], sum[1], sum[2]);
         f8 total = f8{} + 1.0f;
-        int taps = 0;
-        for (int k = 1; k <= reach; ++k, ++taps) {
-            g[k] = maraGaussian(float(k * k), sigma);
-            if (!(g[k] > 0)) break;
+        if (!(sigma == gSigma && reach == gReach)) {
+            gSigma = sigma, gReach = reach, taps = 0;
+            for (int k = 1; k <= reach; ++k, ++taps) {
+                g[k] = maraGaussian(float(k * k), sigma);
+                if (!(g[k] > 0)) break;
+            }
         }
         for (int k = 1; k <= taps; ++k)
             for (int side = -1; side <= 1; side += 2) {

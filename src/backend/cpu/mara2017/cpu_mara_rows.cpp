@@ -78,41 +78,64 @@ struct SparseSum {
 /// The most taps of a sparse stage (the settings' range).
 constexpr int kMaxTaps = 256;
 
+/// Stage 7's taps at a radius outside the tables (MaraTapTables), per rotation as the runs need
+/// them, kept while the radius stays: stage 5's box minimum holds one radius over long stretches
+/// of a row, and building the taps (a scalar exponential each) cost as much as filtering with
+/// them.
+struct RadiusTaps {
+    float radius = -1.0f;
+    int count[kMaraSpiralRotations];
+    int dx[kMaraSpiralRotations][kMaxTaps], dy[kMaraSpiralRotations][kMaxTaps];
+    float g[kMaraSpiralRotations][kMaxTaps];
+
+    /// Rotation r's taps at radius `at`: the `taps` unit offsets of `spiral` scaled, with Gaussian
+    /// weights of `sigma`.
+    BMFR_SIMD_INLINE int build(int r, const float* spiral, int taps, float at, float sigma) {
+        if (!(at == radius)) {
+            radius = at;
+            std::fill(count, count + kMaraSpiralRotations, -1);
+        }
+        if (count[r] >= 0) return count[r];
+        // Below 4 pixels the taps land on at most 81 pixels: merged as MaraTapRuns merges them
+        // (confident pixels whose history is not perfect sit just above (1 - h) R).
+        int slot[81];
+        const bool merge = at < 4.0f;
+        if (merge) std::fill(slot, slot + 81, -1);
+        int n = 0;
+        for (int k = 0; k < taps; ++k) {
+            const int ox = maraTapOffset(spiral[2 * k], at),
+                      oy = maraTapOffset(spiral[2 * k + 1], at);
+            const float gk = maraGaussian(float(ox * ox + oy * oy), sigma);
+            int* t = merge ? &slot[9 * (oy + 4) + ox + 4] : nullptr;
+            if (t && *t >= 0) {
+                g[r][*t] += gk;
+                continue;
+            }
+            if (t) *t = n;
+            dx[r][n] = ox, dy[r][n] = oy, g[r][n] = gk;
+            ++n;
+        }
+        return count[r] = n;
+    }
+};
+
 /// Eight centres sharing one rotation and one radius: tap by tap, the eight neighbours at one
 /// offset are one run of the packed buffers. `runs` holds the merged taps, or, where null, the
-/// `taps` unit offsets of `spiral` are scaled by `radius` here.
+/// `taps` unit offsets of `spiral` are scaled by `radius` in `built`.
 BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, int y, i8 live,
                                  const MaraTapRuns* runs, int rotation, const float* spiral,
-                                 int taps, float radius, float sigma, SparseSum& acc) {
-    int dxs[kMaxTaps], dys[kMaxTaps];
-    float gs[kMaxTaps];
-    const int *dx = dxs, *dy = dys;
-    const float* g = gs;
-    int count = taps;
+                                 int taps, float radius, float sigma, RadiusTaps& built,
+                                 SparseSum& acc) {
+    const int *dx, *dy;
+    const float* g;
+    int count;
     if (runs) {
         const int b = runs->begin[size_t(rotation)];
         dx = runs->dx.data() + b, dy = runs->dy.data() + b, g = runs->g.data() + b;
         count = runs->begin[size_t(rotation) + 1] - b;
     } else {
-        // Below 4 pixels the taps land on at most 81 pixels: merged as MaraTapRuns merges them
-        // (confident pixels whose history is not perfect sit just above (1 - h) R).
-        int slot[81];
-        const bool merge = radius < 4.0f;
-        if (merge) std::fill(slot, slot + 81, -1);
-        count = 0;
-        for (int k = 0; k < taps; ++k) {
-            const int ox = maraTapOffset(spiral[2 * k], radius),
-                      oy = maraTapOffset(spiral[2 * k + 1], radius);
-            const float gk = maraGaussian(float(ox * ox + oy * oy), sigma);
-            int* t = merge ? &slot[9 * (oy + 4) + ox + 4] : nullptr;
-            if (t && *t >= 0) {
-                gs[*t] += gk;
-                continue;
-            }
-            if (t) *t = count;
-            dxs[count] = ox, dys[count] = oy, gs[count] = gk;
-            ++count;
-        }
+        count = built.build(rotation, spiral, taps, radius, sigma);
+        dx = built.dx[rotation], dy = built.dy[rotation], g = built.g[rotation];
     }
     const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
     const int w = f.width;
@@ -177,8 +200,8 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
 
 BMFR_SIMD_DISPATCH(void, sparseRow,
                    (const MaraFrame& f, const float* src, bool final, int y, int x0, int x1,
-                    const MaraTapTables& tables),
-                   (f, src, final, y, x0, x1, tables)) {
+                    const MaraTapTables& tables, RadiusTaps& built),
+                   (f, src, final, y, x0, x1, tables, built)) {
     const long row = long(y) * f.width;
     float* dst = final ? f.matteOut : f.matteHistory;
     const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
@@ -211,7 +234,7 @@ BMFR_SIMD_DISPATCH(void, sparseRow,
                 if (shared == tables.radius[k]) runs = &tables.runs[k];
             sharedTaps(f, src, x, y, live, runs, rotation,
                        f.finalSpiral + 2 * f.finalTaps * rotation, f.finalTaps, shared,
-                       f.finalSigma * shared, acc);
+                       f.finalSigma * shared, built, acc);
         } else {
             laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
         }
@@ -247,7 +270,9 @@ BMFR_SIMD_DISPATCH(void, medianRow, (const MaraFrame& f, int y), (f, y)) {
 
 void maraSparseTile(const MaraFrame& f, const float* src, bool final, int x0, int x1, long y0,
                     long y1, const MaraTapTables& tables) {
-    for (long y = y0; y < y1; ++y) sparseRow(f, src, final, int(y), x0, x1, tables);
+    static thread_local RadiusTaps built;
+    built.radius = -1.0f; // the spiral turns every frame
+    for (long y = y0; y < y1; ++y) sparseRow(f, src, final, int(y), x0, x1, tables, built);
 }
 
 void MaraTapRuns::build(const int* offsets, const float* gauss, int taps) {
