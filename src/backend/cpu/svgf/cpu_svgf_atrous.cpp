@@ -23,11 +23,14 @@ struct LevelArgs {
 
 /// kExponent and kRadius > 0 fix the normal exponent and the kernel radius at compile time (the
 /// defaults: the taps unrolled, their constants folded); 0 reads them from `a`. V is eight or
-/// sixteen lanes. Two passes per vector of pixels, the taps' weights and then the colour sums,
-/// so that neither holds more vectors than the sixteen AVX2 registers.
+/// sixteen lanes. Eight lanes take two passes per vector of pixels, the taps' weights and then
+/// the colour sums, so that neither holds more vectors than the sixteen AVX2 registers; sixteen
+/// (AVX-512, thirty-two registers) add each tap as they weigh it. The sums are the same either
+/// way, tap by tap.
 template <class V, int kExponent, int kRadius>
 BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
     constexpr int kLanes = kLanesOf<V>;
+    constexpr bool kFused = kLanes == 16;
     const auto load = loadVector<V>;
     const int r = kRadius > 0 ? kRadius : a.radius, step = a.step;
     const float centre = atrousTap(r, 0) * atrousTap(r, 0);
@@ -56,39 +59,51 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             const V nx0 = load(a.nx + c), ny0 = load(a.ny + c), nz0 = load(a.nz + c);
             const V z0 = load(a.depth + c), l0 = load(a.in[4] + c);
             const V gx0 = a.phiDepth * load(a.gradX + c), gy0 = a.phiDepth * load(a.gradY + c);
+            const V r0 = load(a.in[0] + c), g0 = load(a.in[1] + c), b0 = load(a.in[2] + c);
+            const V v0 = load(a.in[3] + c);
+            V sumR = r0, sumG = g0, sumB = b0, sumV = v0, sumW = splat<V>(1.0f);
+            // Inlined: an out-of-line copy would not share the caller's vector registers.
+            auto add = [&] [[gnu::always_inline]] (V wgt, long q) {
+                sumR += wgt * load(a.in[0] + q), sumG += wgt * load(a.in[1] + q);
+                sumB += wgt * load(a.in[2] + q);
+                sumV += wgt * wgt * load(a.in[3] + q);
+                sumW += wgt;
+            };
+            // The slope along a tap, (kx gx0 + ky gy0) step: step is a power of two and |kx|,
+            // |ky| <= 2, so scaling the gradient by the step first rounds nothing, and the taps
+            // unrolled take kx and ky as constants.
+            const V gxs = gx0 * float(step), gys = gy0 * float(step);
             int taps = 0;
+#pragma GCC unroll 5
             for (int ky = -r; ky <= r; ++ky) {
                 const long qy = y + long(ky) * step;
                 if (qy < 0 || qy >= a.height) continue;
+#pragma GCC unroll 5
                 for (int kx = -r; kx <= r; ++kx) {
                     if (kx == 0 && ky == 0) continue;
                     const long q = c + long(ky) * step * a.pitch + long(kx) * step;
                     const V dotN =
                         nx0 * load(a.nx + q) + ny0 * load(a.ny + q) + nz0 * load(a.nz + q);
                     const V wn = normalPower<kExponent>(dotN, a.normalExponent);
-                    const V slope = gx0 * float(kx * step) + gy0 * float(ky * step);
+                    const V slope = kx == 0   ? gys * float(ky)
+                                    : ky == 0 ? gxs * float(kx)
+                                              : gxs * float(kx) + gys * float(ky);
                     const V depthArg = absOf(z0 - load(a.depth + q)) / (absOf(slope) + 1e-6f);
                     const V arg = depthArg + absOf(l0 - load(a.in[4] + q)) * inverseLum;
                     const float tap = atrousTap(r, kx) * atrousTap(r, ky) / centre;
                     // Every factor is finite (the exponential of -arg <= 0 is at most 1), so a
-                    // tap without a sample (mask 0), or with wn = 0, adds exactly nothing, as
-                    // the reference's skip.
-                    const V w = tap * load(a.mask + q) * wn * expNonPositive(-arg);
+                    // tap without a sample, whose normal planes hold 0 (wn = 0), adds exactly
+                    // nothing, as the reference's skip.
+                    const V w = tap * wn * expNonPositive(-arg);
+                    if constexpr (kFused) {
+                        add(w, q);
+                        continue;
+                    }
                     std::memcpy(weights + kLanes * taps, &w, sizeof w);
                     offsets[taps++] = q;
                 }
             }
-            const V r0 = load(a.in[0] + c), g0 = load(a.in[1] + c), b0 = load(a.in[2] + c);
-            const V v0 = load(a.in[3] + c);
-            V sumR = r0, sumG = g0, sumB = b0, sumV = v0, sumW = splat<V>(1.0f);
-            for (int t = 0; t < taps; ++t) {
-                const V wgt = load(weights + kLanes * t);
-                const long q = offsets[t];
-                sumR += wgt * load(a.in[0] + q), sumG += wgt * load(a.in[1] + q);
-                sumB += wgt * load(a.in[2] + q);
-                sumV += wgt * wgt * load(a.in[3] + q);
-                sumW += wgt;
-            }
+            for (int t = 0; t < taps; ++t) add(load(weights + kLanes * t), offsets[t]);
             const IntOf<V> sampled = load(a.mask + c) > zero;
             const V out[4] = {sampled ? sumR / sumW : r0, sampled ? sumG / sumW : g0,
                               sampled ? sumB / sumW : b0, sampled ? sumV / (sumW * sumW) : v0};
@@ -129,13 +144,16 @@ int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& g
         for (long y = y0; y < y1; ++y)
             for (int x = 0; x < w; ++x) {
                 const long i = y * w + x, p = y * pitch + x;
-                plane(Nx)[p] = g.normal[3 * i];
-                plane(Ny)[p] = g.normal[3 * i + 1];
-                plane(Nz)[p] = g.normal[3 * i + 2];
+                // A pixel without a sample gets normal 0, so that its weight as a tap is 0
+                // (the mask then serves the variance's prefilter alone).
+                const bool sampled = g.length[i] > 0;
+                plane(Nx)[p] = sampled ? g.normal[3 * i] : 0.0f;
+                plane(Ny)[p] = sampled ? g.normal[3 * i + 1] : 0.0f;
+                plane(Nz)[p] = sampled ? g.normal[3 * i + 2] : 0.0f;
                 plane(Depth)[p] = g.depth[i];
                 plane(GradX)[p] = g.depthGradient[2 * i];
                 plane(GradY)[p] = g.depthGradient[2 * i + 1];
-                plane(Mask)[p] = g.length[i] > 0 ? 1.0f : 0.0f;
+                plane(Mask)[p] = sampled ? 1.0f : 0.0f;
                 for (int k = 0; k < 4; ++k) plane(Colour + k)[p] = filtered[0][4 * i + k];
                 const float* rgb = filtered[0] + 4 * i;
                 plane(Colour + 4)[p] = luminance({rgb[0], rgb[1], rgb[2]});
