@@ -403,9 +403,12 @@ constexpr float kExpLow = -87.33654f, kExpHigh = 88.37626f;
 /// then n added to the exponent); exp8 and expNonPositive handle the rest.
 template <class V> BMFR_SIMD_INLINE V expInRange(V x) {
     using I = IntOf<V>;
-    const V fx = x * 1.44269504088896341f + 0.5f;
-    V n = __builtin_convertvector(__builtin_convertvector(fx, I), V);
-    n = n > fx ? n - 1.0f : n; // floor
+    // n, x / ln 2 to the nearest integer, by adding 1.5 2^23 + 127: the sum's ulp is 1, and its
+    // low mantissa bits hold n + 127, the exponent bits of 2^n, for the shift below. (Cephes
+    // floors x / ln 2 + 1/2: the same n except within a rounding of a half.)
+    constexpr float kShift = 12582912.0f + 127.0f;
+    const V t = x * 1.44269504088896341f + kShift;
+    const V n = t - kShift;
     const V r = (x - n * 0.693359375f) - n * -2.12194440e-4f;
     V p = 1.9875691500e-4f * r + 1.3981999507e-3f;
     p = p * r + 8.3334519073e-3f;
@@ -413,7 +416,9 @@ template <class V> BMFR_SIMD_INLINE V expInRange(V x) {
     p = p * r + 1.6666665459e-1f;
     p = p * r + 5.0000001201e-1f;
     const V y = (p * (r * r) + r) + 1.0f;
-    const I bits = (__builtin_convertvector(n, I) + 127) << 23;
+    I bits;
+    std::memcpy(&bits, &t, sizeof bits);
+    bits <<= 23;
     V scale;
     std::memcpy(&scale, &bits, sizeof scale);
     return y * scale;
