@@ -73,6 +73,18 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             // |ky| <= 2, so scaling the gradient by the step first rounds nothing, and the taps
             // unrolled take kx and ky as constants.
             const V gxs = gx0 * float(step), gys = gy0 * float(step);
+            // 1 / (|slope| + 1e-6) per direction, the taps numbered row by row: tap d and its
+            // mirror (-kx, -ky), numbered 2 half - d, share it.
+            const int side = 2 * r + 1, half = side * side / 2;
+            V inverseSlope[12];
+#pragma GCC unroll 12
+            for (int d = 0; d < half; ++d) {
+                const int kx = d % side - r, ky = d / side - r;
+                const V slope = kx == 0   ? gys * float(ky)
+                                : ky == 0 ? gxs * float(kx)
+                                          : gxs * float(kx) + gys * float(ky);
+                inverseSlope[d] = 1.0f / (absOf(slope) + 1e-6f);
+            }
             int taps = 0;
 #pragma GCC unroll 5
             for (int ky = -r; ky <= r; ++ky) {
@@ -85,10 +97,9 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                     const V dotN =
                         nx0 * load(a.nx + q) + ny0 * load(a.ny + q) + nz0 * load(a.nz + q);
                     const V wn = normalPower<kExponent>(dotN, a.normalExponent);
-                    const V slope = kx == 0   ? gys * float(ky)
-                                    : ky == 0 ? gxs * float(kx)
-                                              : gxs * float(kx) + gys * float(ky);
-                    const V depthArg = absOf(z0 - load(a.depth + q)) / (absOf(slope) + 1e-6f);
+                    const int d = (ky + r) * side + kx + r;
+                    const V depthArg =
+                        absOf(z0 - load(a.depth + q)) * inverseSlope[d < half ? d : 2 * half - d];
                     const V arg = depthArg + absOf(l0 - load(a.in[4] + q)) * inverseLum;
                     const float tap = atrousTap(r, kx) * atrousTap(r, ky) / centre;
                     // Every factor is finite (the exponential of -arg <= 0 is at most 1), so a

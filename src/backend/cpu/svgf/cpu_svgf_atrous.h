@@ -3,7 +3,8 @@
 // padded by an apron whose mask is zero, so that a tap past the row's ends needs no bounds test.
 // Same taps, order and feedback as the reference (filters/svgf/svgf_kernels.h); rounded
 // differently, within the conformance tolerance: a polynomial exponential, fused multiply-adds,
-// phiDepth folded into the gradient and the luminance term multiplied by a reciprocal.
+// phiDepth folded into the gradient, and the luminance and depth terms multiplied by
+// reciprocals (the depth term's shared by a tap and its mirror).
 #pragma once
 #include "core/parallel.h"
 #include "filters/svgf/svgf_passes.h"
