@@ -98,11 +98,55 @@ BMFR_SIMD_INLINE void catmullRomRun8(const WalrFrame& f, int x0, int y0, bool sp
     for (int c = 0; c < 3; ++c) a[c] = max8(sumA[c], f8{}), b[c] = max8(sumB[c], f8{});
 }
 
+/// The history lookup of walrAccumulatePixel for eight pixels of a row, away from the image's
+/// sides, under the depth test: each lane's previous position (pp, walrDilatedOffset's), whether
+/// its nearest previous pixel keeps the history, and that pixel's samples. The same operations
+/// lane for lane, the 3x3 search in the same order.
+BMFR_SIMD_INLINE void historyLookup8(const WalrFrame& f, int x, int y, f8& ppx, f8& ppy, i8& keep,
+                                     f8& samples) {
+    const int w = f.width;
+    const long i = long(y) * w + x;
+    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    i8 best = lane + int(i);
+    if (f.dilation) {
+        const f8 centre = load8(f.depth + i);
+        f8 z = centre > 0.0f ? centre : splat8(INFINITY);
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const long o = i + long(dy) * w + dx;
+                const f8 d = load8(f.depth + o);
+                const i8 closer = (d > 0.0f) & (d < z);
+                z = closer ? d : z;
+                best = closer ? lane + int(o) : best;
+            }
+    }
+    f8 offX, offY;
+    for (int l = 0; l < 8; ++l)
+        offX[l] = f.offset[2 * best[l]], offY[l] = f.offset[2 * best[l] + 1];
+    ppx = (float(x) + __builtin_convertvector(lane, f8)) + offX;
+    ppy = float(y) + offY;
+    const i8 near = (abs8(ppx) < 1e8f) & (abs8(ppy) < 1e8f); // finite, and ints below
+    f8 rx = near ? ppx + 0.5f : f8{}, ry = near ? ppy + 0.5f : f8{};
+    for (int l = 0; l < 8; ++l) rx[l] = std::floor(rx[l]), ry[l] = std::floor(ry[l]);
+    const i8 nx = __builtin_convertvector(rx, i8), ny = __builtin_convertvector(ry, i8);
+    const i8 inside = near & (nx >= 0) & (ny >= 0) & (nx < w) & (ny < f.height);
+    const i8 j = inside ? ny * w + nx : lane + int(i);
+    f8 count, previousDepth;
+    for (int l = 0; l < 8; ++l) count[l] = f.prevCount[j[l]], previousDepth[l] = f.prevDepth[j[l]];
+    samples = inside ? count : f8{};
+    const f8 e = load8(f.expectedDepth + i);
+    keep = inside & (count > 0.0f) & (e > 0.0f) & (abs8(e - previousDepth) <= f.depthTolerance * e);
+}
+
 BMFR_SIMD_INLINE void accumulateGroup(const WalrFrame& f, int x, int y, int n, float* averages) {
     const long i = long(y) * f.width + x;
     f8 ppx{}, ppy{}, samples{};
     i8 keep{};
-    for (int l = 0; l < n; ++l) {
+    // The vector lookup reads the 3x3 around each lane, and indexes pixels as int.
+    const bool vector = n == 8 && f.depthTest && x >= 1 && x + 9 <= f.width && y >= 1 &&
+                        y + 1 < f.height && long(f.width) * f.height < (1L << 31);
+    if (vector) historyLookup8(f, x, y, ppx, ppy, keep, samples);
+    for (int l = 0; l < n && !vector; ++l) {
         const Vec2 off = walrDilatedOffset(f, x + l, y);
         const Vec2 pp{float(x + l) + off.x, float(y) + off.y};
         ppx[l] = pp.x, ppy[l] = pp.y;
