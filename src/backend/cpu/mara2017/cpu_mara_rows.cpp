@@ -163,6 +163,7 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
     // Every lane's taps, tap-major, so that the tap loop reads them as vectors.
     alignas(32) int ox[kMaxTaps * 8], oy[kMaxTaps * 8];
     alignas(32) float og[kMaxTaps * 8];
+    int rotations[8] = {}; // each lane's, where it computed its taps
     for (int l = 0; l < 8; ++l) {
         const int r = maraPixelRotation(x + (l < n ? l : 0), y, f.rotationWidth, f.frame, f.seed,
                                         final ? 7 : 4);
@@ -170,6 +171,15 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
         for (int k = 0; final && k < MaraTapTables::kRadii; ++k)
             if (radius[l] == tables.radius[k]) t = k;
         if (final && t < 0) { // as maraSparseBilateral computes them
+            int same = 0;     // an earlier lane with this radius and rotation, whose taps it shares
+            while (same < l && !(radius[same] == radius[l] && rotations[same] == r)) ++same;
+            rotations[l] = r;
+            if (same < l) {
+                for (int k = 0; k < taps; ++k)
+                    ox[8 * k + l] = ox[8 * k + same], oy[8 * k + l] = oy[8 * k + same],
+                               og[8 * k + l] = og[8 * k + same];
+                continue;
+            }
             const float* spiral = f.finalSpiral + 2 * taps * r;
             const float sigma = f.finalSigma * radius[l];
             for (int k = 0; k < taps; ++k) {
