@@ -63,6 +63,9 @@ BMFR_SIMD_DISPATCH(void, passRow,
     // The Gaussian of the last sigma: runs along a row mostly share one roughness.
     float g[kMaraGlossyMaxReach + 1], gSigma = -1.0f;
     int gReach = -1, taps = 0;
+    // And the sigma and reach of the last roughness (a power each).
+    float lastRough = NAN, lastSigma = 0;
+    int lastReach = 0;
     int x = 0;
     while (x < w) {
         const long i = row + x;
@@ -70,8 +73,10 @@ BMFR_SIMD_DISPATCH(void, passRow,
         bool shared = x + 8 <= w;
         for (int l = 1; shared && l < 8; ++l)
             shared = !f.in.roughness || std::memcmp(&f.in.roughness[i + l], &rough, 4) == 0;
-        float sigma = 0;
-        const int reach = shared ? reachOf(f, rough, sigma) : 0;
+        if (shared && std::memcmp(&rough, &lastRough, 4) != 0)
+            lastRough = rough, lastReach = reachOf(f, rough, lastSigma);
+        const float sigma = lastSigma;
+        const int reach = shared ? lastReach : 0;
         // Eight at once when they share a sigma and, along a row, every tap is inside.
         if (!shared || reach > kMaraGlossyMaxReach ||
             (dx && (x - reach < 0 || x + 7 + reach >= w))) {
