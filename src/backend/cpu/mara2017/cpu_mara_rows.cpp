@@ -1,5 +1,5 @@
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
-#include "backend/cpu/mara2017/cpu_mara_edge8.h"
+#include "backend/cpu/mara2017/cpu_mara_edge_weight.h"
 #include "backend/cpu/simd.h"
 #include "filters/mara2017/mara_passes.h"
 #include <algorithm>
