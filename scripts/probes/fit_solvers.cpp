@@ -26,54 +26,47 @@ typedef double d8 __attribute__((vector_size(64)));
 typedef float f8 __attribute__((vector_size(32)));
 typedef float f16 __attribute__((vector_size(64)));
 
-d8 widen(const float* p) {
-    f8 v;
-    std::memcpy(&v, p, sizeof v);
-    return __builtin_convertvector(v, d8);
+/// Lanes [r, r + L) of a column as V: doubles (widened, L = 8) or floats (L = 16).
+template <class V> V lanesAt(const float* p) {
+    if constexpr (sizeof(V) / sizeof(V{}[0]) == 8) {
+        f8 v;
+        std::memcpy(&v, p, sizeof v);
+        return __builtin_convertvector(v, d8);
+    } else {
+        V v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
 }
 
-/// G[i][j] for i < M, j >= i, j < T: tiles of 5 x 4 entries, the products and sums in double.
+/// G[i][j] for i < M, j >= i, j < T: tiles of 5 x 4 entries, the products and sums in V's
+/// element type (d8: double, f16: float, sixteen lanes), the lanes summed in double.
+template <class V> void gram(const float* a, double G[T][T]) {
+    constexpr int L = sizeof(V) / sizeof(V{}[0]);
+    for (int i0 = 0; i0 < M; i0 += 5)
+        for (int j0 = i0 / 4 * 4; j0 < T; j0 += 4) {
+            const int nj = std::min(4, T - j0);
+            V acc[5][4] = {};
+            for (int r = 0; r < W; r += L) {
+                V ci[5], cj[4] = {};
+                for (int i = 0; i < 5; ++i) ci[i] = lanesAt<V>(a + (i0 + i) * S + r);
+                for (int j = 0; j < nj; ++j) cj[j] = lanesAt<V>(a + (j0 + j) * S + r);
+                for (int i = 0; i < 5; ++i)
+                    for (int j = 0; j < 4; ++j) acc[i][j] += ci[i] * cj[j];
+            }
+            for (int i = 0; i < 5; ++i)
+                for (int j = 0; j < nj; ++j) {
+                    double s = 0;
+                    for (int l = 0; l < L; ++l) s += acc[i][j][l];
+                    G[i0 + i][j0 + j] = s;
+                }
+        }
+}
 [[gnu::noinline]] void gramDouble(const float* a, double G[T][T]) {
-    for (int i0 = 0; i0 < M; i0 += 5)
-        for (int j0 = i0 / 4 * 4; j0 < T; j0 += 4) {
-            const int nj = std::min(4, T - j0);
-            d8 acc[5][4] = {};
-            for (int r = 0; r < W; r += 8) {
-                d8 ci[5], cj[4] = {};
-                for (int i = 0; i < 5; ++i) ci[i] = widen(a + (i0 + i) * S + r);
-                for (int j = 0; j < nj; ++j) cj[j] = widen(a + (j0 + j) * S + r);
-                for (int i = 0; i < 5; ++i)
-                    for (int j = 0; j < 4; ++j) acc[i][j] += ci[i] * cj[j];
-            }
-            for (int i = 0; i < 5; ++i)
-                for (int j = 0; j < nj; ++j) {
-                    double s = 0;
-                    for (int l = 0; l < 8; ++l) s += acc[i][j][l];
-                    G[i0 + i][j0 + j] = s;
-                }
-        }
+    gram<d8>(a, G);
 }
-
-/// The same with the products and sums in float, sixteen lanes, the lanes summed in double.
 [[gnu::noinline]] void gramFloat(const float* a, double G[T][T]) {
-    for (int i0 = 0; i0 < M; i0 += 5)
-        for (int j0 = i0 / 4 * 4; j0 < T; j0 += 4) {
-            const int nj = std::min(4, T - j0);
-            f16 acc[5][4] = {};
-            for (int r = 0; r < W; r += 16) {
-                f16 ci[5], cj[4] = {};
-                for (int i = 0; i < 5; ++i) std::memcpy(&ci[i], a + (i0 + i) * S + r, 64);
-                for (int j = 0; j < nj; ++j) std::memcpy(&cj[j], a + (j0 + j) * S + r, 64);
-                for (int i = 0; i < 5; ++i)
-                    for (int j = 0; j < 4; ++j) acc[i][j] += ci[i] * cj[j];
-            }
-            for (int i = 0; i < 5; ++i)
-                for (int j = 0; j < nj; ++j) {
-                    double s = 0;
-                    for (int l = 0; l < 16; ++l) s += acc[i][j][l];
-                    G[i0 + i][j0 + j] = s;
-                }
-        }
+    gram<f16>(a, G);
 }
 
 /// gramFloat of the columns less their means (into c), the means added back in double.

@@ -28,10 +28,4 @@ BMFR_SIMD_INLINE V edgeWeightOf(const V nc[3], const V pc[3], const V nq[3], con
     return d2 >= k.planeNearSquared ? w * (wp * wp) : w;
 }
 
-BMFR_SIMD_INLINE simd::f8 edgeWeight8(const simd::f8 nc[3], const simd::f8 pc[3],
-                                      const simd::f8 nq[3], const simd::f8 pq[3],
-                                      const MaraEdgeWeights& k) {
-    return edgeWeightOf(nc, pc, nq, pq, k);
-}
-
 } // namespace bmfr::cpu

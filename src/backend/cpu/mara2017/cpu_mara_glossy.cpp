@@ -77,12 +77,10 @@ BMFR_SIMD_DISPATCH(void, passRow,
                    (f, src, dst, y, dx, dy, below, above)) {
     const int w = f.width;
     const long row = long(y) * w;
-    // The Gaussian of the last sigma: runs along a row mostly share one roughness.
-    float g[kMaraGlossyMaxReach + 1], gSigma = -1.0f;
-    int gReach = -1, taps = 0;
-    // And the sigma and reach of the last roughness (a power each).
-    float lastRough = NAN, lastSigma = 0;
-    int lastReach = 0;
+    // The last roughness's reach and Gaussian (a power and an exponential per tap): runs along
+    // a row mostly share one roughness.
+    float g[kMaraGlossyMaxReach + 1], lastRough = NAN;
+    int lastReach = 0, taps = 0;
     int x = 0;
     while (x < w) {
         const long i = row + x;
@@ -90,9 +88,14 @@ BMFR_SIMD_DISPATCH(void, passRow,
         bool shared = x + 8 <= w;
         for (int l = 1; shared && l < 8; ++l)
             shared = !f.in.roughness || std::memcmp(&f.in.roughness[i + l], &rough, 4) == 0;
-        if (shared && std::memcmp(&rough, &lastRough, 4) != 0)
-            lastRough = rough, lastReach = reachOf(f, rough, lastSigma);
-        const float sigma = lastSigma;
+        if (shared && std::memcmp(&rough, &lastRough, 4) != 0) {
+            float sigma = 0;
+            lastRough = rough, lastReach = reachOf(f, rough, sigma), taps = 0;
+            for (int k = 1; k <= std::min(lastReach, kMaraGlossyMaxReach); ++k, ++taps) {
+                g[k] = maraGaussian(float(k * k), sigma);
+                if (!(g[k] > 0)) break;
+            }
+        }
         const int reach = shared ? lastReach : 0;
         // Eight at once when they share a sigma and, along a row, every tap is inside.
         if (!shared || reach > kMaraGlossyMaxReach ||
@@ -104,13 +107,6 @@ BMFR_SIMD_DISPATCH(void, passRow,
         f8 sum[3];
         deinterleave3(src + 3 * i, sum[0], sum[1], sum[2]);
         f8 total = f8{} + 1.0f;
-        if (!(sigma == gSigma && reach == gReach)) {
-            gSigma = sigma, gReach = reach, taps = 0;
-            for (int k = 1; k <= reach; ++k, ++taps) {
-                g[k] = maraGaussian(float(k * k), sigma);
-                if (!(g[k] > 0)) break;
-            }
-        }
         for (int k = 1; k <= taps; ++k)
             for (int side = -1; side <= 1; side += 2) {
                 const int qy = y + side * k * dy;

@@ -68,7 +68,7 @@ struct SparseSum {
             gatherXyz8(f.normal, index, nq);
             gatherXyz8(src, index, s);
         }
-        f8 wt = g * edgeWeight8(nc, pc, nq, pq, f.edges);
+        f8 wt = g * edgeWeightOf(nc, pc, nq, pq, f.edges);
         wt = inside & (wt > 0.0f) ? wt : 0.0f;
         for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
         total = total + wt;
