@@ -442,6 +442,54 @@ template <class V> BMFR_SIMD_INLINE V expNonPositive(V x) {
 BMFR_SIMD_INLINE f8 expNonPositive8(f8 x) {
     return expNonPositive(x);
 }
+#if BMFR_SIMD_F16C
+/// maxOf for sixteen lanes on the AVX-512 path: one vmaxps (b where a < b, else a, NaN and
+/// signed zeros alike), where GCC 12 makes maxOf with a constant operand a compare and a
+/// masked move.
+BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
+    f32x16 r;
+    asm("vmaxps %2, %1, %0" : "=v"(r) : "v"(b), "vm"(a));
+    return r;
+}
+/// 2^u per lane of u[0 .. n) (n <= 5), in place, u[skip] left alone; u <= 0 (not NaN; -inf
+/// included), clamped at -126, so that the result is at least 2^-126. 2^round(u) by vscalefps
+/// times a degree-5 polynomial of u - round(u) (relative error below 2.4e-7 there): nine
+/// instructions where expNonPositive takes seventeen, each step taken for every vector in
+/// turn, so that the n dependency chains interleave. Only for bodies compiled for the AVX-512
+/// path (inline assembly, as F16cHalf's).
+BMFR_SIMD_INLINE void exp2NonPositive16Rows(f32x16* u, int n, int skip) {
+    f32x16 rounded[5], p[5];
+#pragma GCC unroll 5
+    for (int t = 0; t < n; ++t) {
+        if (t == skip) continue;
+        u[t] = maxOf16(u[t], splat<f32x16>(-126.0f));
+        // Nearest even, no precision exception.
+        asm("vrndscaleps $8, %1, %0" : "=v"(rounded[t]) : "v"(u[t]));
+        u[t] -= rounded[t];
+    }
+    constexpr float c[6] = {1.000000119f,    6.931469440e-1f, 2.402212024e-1f,
+                            5.550713092e-2f, 9.675540961e-3f, 1.327647129e-3f};
+#pragma GCC unroll 5
+    for (int t = 0; t < n; ++t)
+        if (t != skip) p[t] = c[5] * u[t] + c[4];
+#pragma GCC unroll 4
+    for (int k = 3; k >= 0; --k)
+#pragma GCC unroll 5
+        for (int t = 0; t < n; ++t)
+            if (t != skip) p[t] = p[t] * u[t] + c[k];
+#pragma GCC unroll 5
+    for (int t = 0; t < n; ++t)
+        if (t != skip) asm("vscalefps %2, %1, %0" : "=v"(u[t]) : "v"(p[t]), "v"(rounded[t]));
+}
+#else
+BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
+    return maxOf(a, b);
+}
+BMFR_SIMD_INLINE void exp2NonPositive16Rows(f32x16* u, int n, int skip) {
+    for (int t = 0; t < n; ++t)
+        if (t != skip) u[t] = expNonPositive(maxOf(u[t], splat<f32x16>(-126.0f)) * 0.6931472f);
+}
+#endif
 
 /// Sum of the eight lanes, as a fixed tree (repeatable).
 BMFR_SIMD_INLINE float hsum8(f8 v) {

@@ -37,6 +37,14 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
     const V zero{};
     alignas(64) float weights[kLanes * 24]; // (2 r + 1)^2 - 1 taps, r <= 2
     long offsets[24];
+    // The taps' weights relative to the centre's, numbered row by row, and their logarithms
+    // for the sixteen-lane exponential, which folds them into its argument.
+    const int side = 2 * r + 1, half = side * side / 2;
+    float tapOf[25], log2Tap[25];
+    for (int d = 0; d < side * side; ++d) {
+        tapOf[d] = atrousTap(r, d % side - r) * atrousTap(r, d / side - r) / centre;
+        log2Tap[d] = std::log2(tapOf[d]);
+    }
     for (long y = y0; y < y1; ++y)
         for (int x = 0; x < a.width; x += kLanes) {
             const long c = y * a.pitch + x;
@@ -75,7 +83,6 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             const V gxs = gx0 * float(step), gys = gy0 * float(step);
             // 1 / (|slope| + 1e-6) per direction, the taps numbered row by row: tap d and its
             // mirror (-kx, -ky), numbered 2 half - d, share it.
-            const int side = 2 * r + 1, half = side * side / 2;
             V inverseSlope[12];
 #pragma GCC unroll 12
             for (int d = 0; d < half; ++d) {
@@ -90,28 +97,52 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             for (int ky = -r; ky <= r; ++ky) {
                 const long qy = y + long(ky) * step;
                 if (qy < 0 || qy >= a.height) continue;
+                // Sixteen lanes weigh a row's taps together and then add them: their
+                // exponentials interleaved, so that the out-of-order core overlaps their chains.
+                V u[5], wn[5];
+                long qs[5];
 #pragma GCC unroll 5
                 for (int kx = -r; kx <= r; ++kx) {
                     if (kx == 0 && ky == 0) continue;
                     const long q = c + long(ky) * step * a.pitch + long(kx) * step;
-                    const V dotN =
-                        nx0 * load(a.nx + q) + ny0 * load(a.ny + q) + nz0 * load(a.nz + q);
-                    const V wn = normalPower<kExponent>(dotN, a.normalExponent);
-                    const int d = (ky + r) * side + kx + r;
+                    const int d = (ky + r) * side + kx + r, t = kx + r;
                     const V depthArg =
                         absOf(z0 - load(a.depth + q)) * inverseSlope[d < half ? d : 2 * half - d];
                     const V arg = depthArg + absOf(l0 - load(a.in[4] + q)) * inverseLum;
-                    const float tap = atrousTap(r, kx) * atrousTap(r, ky) / centre;
+                    if constexpr (kFused) {
+                        // One power of two: the tap's, the edge terms' and (for the default
+                        // exponent) the normal's logarithms added.
+                        qs[t] = q;
+                        u[t] = arg * -1.44269504088896341f + log2Tap[d];
+                        if constexpr (kExponent == 128) {
+                            const V nx = 1.0f - nx0 * load(a.nx + q) - ny0 * load(a.ny + q) -
+                                         nz0 * load(a.nz + q);
+                            u[t] += normalLog2Power128(nx);
+                        } else {
+                            wn[t] = normalPower<kExponent>(
+                                nx0 * load(a.nx + q) + ny0 * load(a.ny + q) + nz0 * load(a.nz + q),
+                                a.normalExponent);
+                        }
+                        continue;
+                    }
+                    const V dotN =
+                        nx0 * load(a.nx + q) + ny0 * load(a.ny + q) + nz0 * load(a.nz + q);
+                    const V w = tapOf[d] * normalPower<kExponent>(dotN, a.normalExponent) *
+                                expNonPositive(-arg);
                     // Every factor is finite (the exponential of -arg <= 0 is at most 1), so a
                     // tap without a sample, whose normal planes hold 0 (wn = 0), adds exactly
                     // nothing, as the reference's skip.
-                    const V w = tap * wn * expNonPositive(-arg);
-                    if constexpr (kFused) {
-                        add(w, q);
-                        continue;
-                    }
                     std::memcpy(weights + kLanes * taps, &w, sizeof w);
                     offsets[taps++] = q;
+                }
+                if constexpr (kFused) {
+                    const int skip = ky == 0 ? r : -1;
+                    exp2NonPositive16Rows(u, side, skip);
+#pragma GCC unroll 5
+                    for (int t = 0; t < side; ++t) {
+                        if (t == skip) continue;
+                        add(kExponent == 128 ? u[t] : wn[t] * u[t], qs[t]);
+                    }
                 }
             }
             for (int t = 0; t < taps; ++t) add(load(weights + kLanes * t), offsets[t]);
