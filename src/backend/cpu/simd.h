@@ -451,21 +451,34 @@ BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
     asm("vmaxps %2, %1, %0" : "=v"(r) : "v"(b), "vm"(a));
     return r;
 }
+#else
+BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
+    return maxOf(a, b);
+}
+#endif
 /// 2^u per lane of u[0 .. n) (n <= 5), in place, u[skip] left alone; u <= 0 (not NaN; -inf
-/// included), clamped at -126, so that the result is at least 2^-126. 2^round(u) by vscalefps
-/// times a degree-5 polynomial of u - round(u) (relative error below 2.4e-7 there): nine
-/// instructions where expNonPositive takes seventeen, each step taken for every vector in
-/// turn, so that the n dependency chains interleave. Only for bodies compiled for the AVX-512
-/// path (inline assembly, as F16cHalf's).
-BMFR_SIMD_INLINE void exp2NonPositive16Rows(f32x16* u, int n, int skip) {
-    f32x16 rounded[5], p[5];
+/// included), clamped at -126, so that the result is at least 2^-126. 2^round(u) times a
+/// degree-5 polynomial of u - round(u) (relative error below 2.4e-7 there); each step taken for
+/// every vector in turn, so that the n dependency chains interleave. Sixteen lanes (the AVX-512
+/// path) round with vrndscaleps and scale with vscalefps (inline assembly, as F16cHalf's):
+/// nine instructions where expNonPositive takes seventeen; eight lanes round by adding
+/// 1.5 2^23 + 127, whose low mantissa bits are then 2^round(u)'s exponent bits (eleven).
+template <class V> BMFR_SIMD_INLINE void exp2NonPositiveRows(V* u, int n, int skip) {
+    constexpr bool kScalef = BMFR_SIMD_F16C && kLanesOf<V> == 16;
+    constexpr float kShift = 12582912.0f + 127.0f;
+    V rounded[5], p[5];
 #pragma GCC unroll 5
     for (int t = 0; t < n; ++t) {
         if (t == skip) continue;
-        u[t] = maxOf16(u[t], splat<f32x16>(-126.0f));
-        // Nearest even, no precision exception.
-        asm("vrndscaleps $8, %1, %0" : "=v"(rounded[t]) : "v"(u[t]));
-        u[t] -= rounded[t];
+        if constexpr (kScalef) {
+            u[t] = maxOf16(u[t], splat<V>(-126.0f));
+            asm("vrndscaleps $8, %1, %0" : "=v"(rounded[t]) : "v"(u[t])); // nearest even
+            u[t] -= rounded[t];
+        } else {
+            u[t] = maxOf(u[t], splat<V>(-126.0f));
+            rounded[t] = u[t] + kShift; // n + 127 in the low bits
+            u[t] -= rounded[t] - kShift;
+        }
     }
     constexpr float c[6] = {1.000000119f,    6.931469440e-1f, 2.402212024e-1f,
                             5.550713092e-2f, 9.675540961e-3f, 1.327647129e-3f};
@@ -478,18 +491,16 @@ BMFR_SIMD_INLINE void exp2NonPositive16Rows(f32x16* u, int n, int skip) {
         for (int t = 0; t < n; ++t)
             if (t != skip) p[t] = p[t] * u[t] + c[k];
 #pragma GCC unroll 5
-    for (int t = 0; t < n; ++t)
-        if (t != skip) asm("vscalefps %2, %1, %0" : "=v"(u[t]) : "v"(p[t]), "v"(rounded[t]));
+    for (int t = 0; t < n; ++t) {
+        if (t == skip) continue;
+        if constexpr (kScalef) {
+            asm("vscalefps %2, %1, %0" : "=v"(u[t]) : "v"(p[t]), "v"(rounded[t]));
+        } else {
+            const V scale = V(IntOf<V>(rounded[t]) << 23);
+            u[t] = p[t] * scale;
+        }
+    }
 }
-#else
-BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
-    return maxOf(a, b);
-}
-BMFR_SIMD_INLINE void exp2NonPositive16Rows(f32x16* u, int n, int skip) {
-    for (int t = 0; t < n; ++t)
-        if (t != skip) u[t] = expNonPositive(maxOf(u[t], splat<f32x16>(-126.0f)) * 0.6931472f);
-}
-#endif
 
 /// Sum of the eight lanes, as a fixed tree (repeatable).
 BMFR_SIMD_INLINE float hsum8(f8 v) {

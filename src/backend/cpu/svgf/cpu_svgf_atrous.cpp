@@ -23,28 +23,21 @@ struct LevelArgs {
 
 /// kExponent and kRadius > 0 fix the normal exponent and the kernel radius at compile time (the
 /// defaults: the taps unrolled, their constants folded); 0 reads them from `a`. V is eight or
-/// sixteen lanes. Eight lanes take two passes per vector of pixels, the taps' weights and then
-/// the colour sums, so that neither holds more vectors than the sixteen AVX2 registers; sixteen
-/// (AVX-512, thirty-two registers) add each tap as they weigh it. The sums are the same either
-/// way, tap by tap.
+/// sixteen lanes. Each tap's weight is one power of two: the tap's, the edge terms' and (for
+/// the default exponent) the normal's logarithms added. A row of taps is weighed together and
+/// then added, tap by tap, so that their exponentials' chains interleave.
 template <class V, int kExponent, int kRadius>
 BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
     constexpr int kLanes = kLanesOf<V>;
-    constexpr bool kFused = kLanes == 16;
     const auto load = loadVector<V>;
     const int r = kRadius > 0 ? kRadius : a.radius, step = a.step;
     const float centre = atrousTap(r, 0) * atrousTap(r, 0);
     const V zero{};
-    alignas(64) float weights[kLanes * 24]; // (2 r + 1)^2 - 1 taps, r <= 2
-    long offsets[24];
-    // The taps' weights relative to the centre's, numbered row by row, and their logarithms
-    // for the sixteen-lane exponential, which folds them into its argument.
+    // The logarithms of the taps' weights relative to the centre's, numbered row by row.
     const int side = 2 * r + 1, half = side * side / 2;
-    float tapOf[25], log2Tap[25];
-    for (int d = 0; d < side * side; ++d) {
-        tapOf[d] = atrousTap(r, d % side - r) * atrousTap(r, d / side - r) / centre;
-        log2Tap[d] = std::log2(tapOf[d]);
-    }
+    float log2Tap[25];
+    for (int d = 0; d < side * side; ++d)
+        log2Tap[d] = std::log2(atrousTap(r, d % side - r) * atrousTap(r, d / side - r) / centre);
     for (long y = y0; y < y1; ++y)
         for (int x = 0; x < a.width; x += kLanes) {
             const long c = y * a.pitch + x;
@@ -92,13 +85,10 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                                           : gxs * float(kx) + gys * float(ky);
                 inverseSlope[d] = 1.0f / (absOf(slope) + 1e-6f);
             }
-            int taps = 0;
 #pragma GCC unroll 5
             for (int ky = -r; ky <= r; ++ky) {
                 const long qy = y + long(ky) * step;
                 if (qy < 0 || qy >= a.height) continue;
-                // Sixteen lanes weigh a row's taps together and then add them: their
-                // exponentials interleaved, so that the out-of-order core overlaps their chains.
                 V u[5], wn[5];
                 long qs[5];
 #pragma GCC unroll 5
@@ -109,43 +99,28 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                     const V depthArg =
                         absOf(z0 - load(a.depth + q)) * inverseSlope[d < half ? d : 2 * half - d];
                     const V arg = depthArg + absOf(l0 - load(a.in[4] + q)) * inverseLum;
-                    if constexpr (kFused) {
-                        // One power of two: the tap's, the edge terms' and (for the default
-                        // exponent) the normal's logarithms added.
-                        qs[t] = q;
-                        u[t] = arg * -1.44269504088896341f + log2Tap[d];
-                        if constexpr (kExponent == 128) {
-                            const V nx = 1.0f - nx0 * load(a.nx + q) - ny0 * load(a.ny + q) -
-                                         nz0 * load(a.nz + q);
-                            u[t] += normalLog2Power128(nx);
-                        } else {
-                            wn[t] = normalPower<kExponent>(
-                                nx0 * load(a.nx + q) + ny0 * load(a.ny + q) + nz0 * load(a.nz + q),
-                                a.normalExponent);
-                        }
-                        continue;
+                    qs[t] = q;
+                    u[t] = arg * -1.44269504088896341f + log2Tap[d];
+                    if constexpr (kExponent == 128) {
+                        const V nx = 1.0f - nx0 * load(a.nx + q) - ny0 * load(a.ny + q) -
+                                     nz0 * load(a.nz + q);
+                        u[t] += normalLog2Power128(nx);
+                    } else {
+                        // A tap without a sample, whose normal planes hold 0, weighs 0, as the
+                        // reference's skip.
+                        wn[t] = normalPower<kExponent>(nx0 * load(a.nx + q) + ny0 * load(a.ny + q) +
+                                                           nz0 * load(a.nz + q),
+                                                       a.normalExponent);
                     }
-                    const V dotN =
-                        nx0 * load(a.nx + q) + ny0 * load(a.ny + q) + nz0 * load(a.nz + q);
-                    const V w = tapOf[d] * normalPower<kExponent>(dotN, a.normalExponent) *
-                                expNonPositive(-arg);
-                    // Every factor is finite (the exponential of -arg <= 0 is at most 1), so a
-                    // tap without a sample, whose normal planes hold 0 (wn = 0), adds exactly
-                    // nothing, as the reference's skip.
-                    std::memcpy(weights + kLanes * taps, &w, sizeof w);
-                    offsets[taps++] = q;
                 }
-                if constexpr (kFused) {
-                    const int skip = ky == 0 ? r : -1;
-                    exp2NonPositive16Rows(u, side, skip);
+                const int skip = ky == 0 ? r : -1;
+                exp2NonPositiveRows(u, side, skip);
 #pragma GCC unroll 5
-                    for (int t = 0; t < side; ++t) {
-                        if (t == skip) continue;
-                        add(kExponent == 128 ? u[t] : wn[t] * u[t], qs[t]);
-                    }
+                for (int t = 0; t < side; ++t) {
+                    if (t == skip) continue;
+                    add(kExponent == 128 ? u[t] : wn[t] * u[t], qs[t]);
                 }
             }
-            for (int t = 0; t < taps; ++t) add(load(weights + kLanes * t), offsets[t]);
             const IntOf<V> sampled = load(a.mask + c) > zero;
             const V out[4] = {sampled ? sumR / sumW : r0, sampled ? sumG / sumW : g0,
                               sampled ? sumB / sumW : b0, sampled ? sumV / (sumW * sumW) : v0};
