@@ -21,24 +21,46 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
     f8 sw{}, s1{}, s2{};
     for (int dy = -3; dy <= 3; ++dy) {
         if (y + dy < 0 || y + dy >= f.height) continue;
+        // A row's seven taps: their weights (one power of two each for the default exponent, as
+        // the a-trous levels' taps), then their sums.
+        f8 wq[7], mq1[7], mq2[7];
+        i8 facing[7]; // n0 . nq > 0: the reference's normal weight is 0 elsewhere
         for (int dx = -3; dx <= 3; ++dx) {
+            const int t = dx + 3;
             const long q = i + long(dy) * w + dx;
-            const i8 sampled = loadBytes(f.length + q, 8) != 0;
-            f8 nq[3], cq[3], mq1, mq2;
+            f8 nq[3], cq[3];
             deinterleave3(f.normal + 3 * q, nq[0], nq[1], nq[2]);
             deinterleave3(f.integrated + 3 * q, cq[0], cq[1], cq[2]);
-            loadXy8(f.integratedMoments + 2 * q, 8, mq1, mq2);
+            loadXy8(f.integratedMoments + 2 * q, 8, mq1[t], mq2[t]);
             const f8 slope = abs8(gx * float(dx) + gy * float(dy));
             const f8 depthArg = abs8(z0 - load8(f.depth + q)) / (s.phiDepth * slope + 1e-6f);
-            const f8 lumArg = abs8(l0 - luminance8(cq)) / 10.0f;
-            const f8 dotN = (n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2];
-            const f8 wn = normalPower<kExponent>(dotN, int(s.phiNormal));
-            // Every factor is finite (the exponential of -arg <= 0 is at most 1), so a tap
-            // without a sample adds exactly nothing, as the reference's skip.
-            const f8 wq = sampled ? wn * expNonPositive8(-(depthArg + lumArg)) : f8{};
-            sw += wq;
-            s1 += wq * mq1;
-            s2 += wq * mq2;
+            if constexpr (kExponent == 128) {
+                const f8 lumArg = abs8(l0 - luminance8(cq)) * 0.1f;
+                const f8 x = 1.0f - ((n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2]);
+                wq[t] = (depthArg + lumArg) * -1.44269504088896341f + normalLog2Power128(x);
+                facing[t] = x < 1.0f;
+            } else {
+                const f8 lumArg = abs8(l0 - luminance8(cq)) / 10.0f;
+                const f8 dotN = (n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2];
+                wq[t] = normalPower<kExponent>(dotN, int(s.phiNormal)) *
+                        expNonPositive8(-(depthArg + lumArg));
+                facing[t] = ~i8{};
+            }
+        }
+        if constexpr (kExponent == 128) {
+            exp2NonPositiveRows(wq, 5, -1);
+            exp2NonPositiveRows(wq + 5, 2, -1);
+        }
+        for (int dx = -3; dx <= 3; ++dx) {
+            const int t = dx + 3;
+            // A tap without a sample, or facing away, adds exactly nothing, as in the reference
+            // (exp2NonPositiveRows' floor, 2^-126, would otherwise make a centre whose normal is
+            // 0 the plain mean of its window, where the reference keeps its own moments).
+            const i8 sampled = loadBytes(f.length + i + long(dy) * w + dx, 8) != 0;
+            const f8 weight = sampled & facing[t] ? wq[t] : f8{};
+            sw += weight;
+            s1 += weight * mq1[t];
+            s2 += weight * mq2[t];
         }
     }
     const i8 some = sw > 0.0f;
