@@ -102,9 +102,9 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                     qs[t] = q;
                     u[t] = arg * -1.44269504088896341f + log2Tap[d];
                     if constexpr (kExponent == 128) {
-                        const V nx = 1.0f - nx0 * load(a.nx + q) - ny0 * load(a.ny + q) -
-                                     nz0 * load(a.nz + q);
-                        u[t] += normalLog2Power128(nx);
+                        const V away = 1.0f - nx0 * load(a.nx + q) - ny0 * load(a.ny + q) -
+                                       nz0 * load(a.nz + q);
+                        u[t] += normalLog2Power128(away);
                     } else {
                         // A tap without a sample, whose normal planes hold 0, weighs 0, as the
                         // reference's skip.

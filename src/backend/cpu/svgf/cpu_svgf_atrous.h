@@ -2,9 +2,10 @@
 // AVX-512 path) over planar copies of the colour, variance, luminance and guides, each row
 // padded by an apron whose mask is zero, so that a tap past the row's ends needs no bounds test.
 // Same taps, order and feedback as the reference (filters/svgf/svgf_kernels.h); rounded
-// differently, within the conformance tolerance: a polynomial exponential, fused multiply-adds,
-// phiDepth folded into the gradient, and the luminance and depth terms multiplied by
-// reciprocals (the depth term's shared by a tap and its mirror).
+// differently, within the conformance tolerance: each tap's weight one power of two of its
+// terms' logarithms (the default normal exponent's by a series, at least 2^-126 where the
+// reference's is 0), fused multiply-adds, phiDepth folded into the gradient, and the luminance
+// and depth terms multiplied by reciprocals (the depth term's shared by a tap and its mirror).
 #pragma once
 #include "core/parallel.h"
 #include "filters/svgf/svgf_passes.h"

@@ -36,9 +36,9 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
             const f8 depthArg = abs8(z0 - load8(f.depth + q)) / (s.phiDepth * slope + 1e-6f);
             if constexpr (kExponent == 128) {
                 const f8 lumArg = abs8(l0 - luminance8(cq)) * 0.1f;
-                const f8 x = 1.0f - ((n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2]);
-                wq[t] = (depthArg + lumArg) * -1.44269504088896341f + normalLog2Power128(x);
-                facing[t] = x < 1.0f;
+                const f8 away = 1.0f - ((n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2]);
+                wq[t] = (depthArg + lumArg) * -1.44269504088896341f + normalLog2Power128(away);
+                facing[t] = away < 1.0f;
             } else {
                 const f8 lumArg = abs8(l0 - luminance8(cq)) / 10.0f;
                 const f8 dotN = (n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2];
