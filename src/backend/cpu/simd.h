@@ -396,6 +396,8 @@ BMFR_SIMD_INLINE f8 min8(f8 a, f8 b) {
 BMFR_SIMD_INLINE f8 max8(f8 a, f8 b) {
     return maxOf(a, b);
 }
+/// log2(e), for exponentials taken as powers of two.
+constexpr float kLog2E = 1.44269504088896341f;
 /// The bounds of exp8 below: expf turns subnormal under the first; the second is Cephes'.
 constexpr float kExpLow = -87.33654f, kExpHigh = 88.37626f;
 
@@ -407,7 +409,7 @@ template <class V> BMFR_SIMD_INLINE V expInRange(V x) {
     // low mantissa bits hold n + 127, the exponent bits of 2^n, for the shift below. (Cephes
     // floors x / ln 2 + 1/2: the same n except within a rounding of a half.)
     constexpr float kShift = 12582912.0f + 127.0f;
-    const V t = x * 1.44269504088896341f + kShift;
+    const V t = x * kLog2E + kShift;
     const V n = t - kShift;
     const V r = (x - n * 0.693359375f) - n * -2.12194440e-4f;
     V p = 1.9875691500e-4f * r + 1.3981999507e-3f;
@@ -456,7 +458,7 @@ BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
     return maxOf(a, b);
 }
 #endif
-/// 2^u per lane of u[0 .. n) (n <= 5), in place, u[skip] left alone; u <= 0 (not NaN; -inf
+/// 2^u per lane of u[0 .. n) (n <= 8), in place, u[skip] left alone; u <= 0 (not NaN; -inf
 /// included), clamped at -126, so that the result is at least 2^-126. 2^round(u) times a
 /// degree-5 polynomial of u - round(u) (relative error below 2.4e-7 there); each step taken for
 /// every vector in turn, so that the n dependency chains interleave. Sixteen lanes (the AVX-512
@@ -466,8 +468,8 @@ BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
 template <class V> BMFR_SIMD_INLINE void exp2NonPositiveRows(V* u, int n, int skip) {
     constexpr bool kScalef = BMFR_SIMD_F16C && kLanesOf<V> == 16;
     constexpr float kShift = 12582912.0f + 127.0f;
-    V rounded[5], p[5];
-#pragma GCC unroll 5
+    V rounded[8], p[8];
+#pragma GCC unroll 8
     for (int t = 0; t < n; ++t) {
         if (t == skip) continue;
         if constexpr (kScalef) {
@@ -482,15 +484,15 @@ template <class V> BMFR_SIMD_INLINE void exp2NonPositiveRows(V* u, int n, int sk
     }
     constexpr float c[6] = {1.000000119f,    6.931469440e-1f, 2.402212024e-1f,
                             5.550713092e-2f, 9.675540961e-3f, 1.327647129e-3f};
-#pragma GCC unroll 5
+#pragma GCC unroll 8
     for (int t = 0; t < n; ++t)
         if (t != skip) p[t] = c[5] * u[t] + c[4];
 #pragma GCC unroll 4
     for (int k = 3; k >= 0; --k)
-#pragma GCC unroll 5
+#pragma GCC unroll 8
         for (int t = 0; t < n; ++t)
             if (t != skip) p[t] = p[t] * u[t] + c[k];
-#pragma GCC unroll 5
+#pragma GCC unroll 8
     for (int t = 0; t < n; ++t) {
         if (t == skip) continue;
         if constexpr (kScalef) {

@@ -145,12 +145,8 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
     const int w = f.width;
     for (int t = 0; t < count; ++t) {
         if (prefetch && t + kPrefetchTaps < count) {
-            const int py = y + dy[t + kPrefetchTaps];
-            const long pj = long(py < 0           ? 0
-                                 : py >= f.height ? f.height - 1
-                                                  : py) *
-                                w +
-                            x + dx[t + kPrefetchTaps];
+            const int py = std::clamp(y + dy[t + kPrefetchTaps], 0, f.height - 1);
+            const long pj = long(py) * w + x + dx[t + kPrefetchTaps];
             const float* buffers[3] = {f.position, f.normal, src};
             for (const float* b : buffers) {
                 __builtin_prefetch(b + 3 * pj);

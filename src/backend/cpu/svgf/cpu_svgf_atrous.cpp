@@ -100,7 +100,7 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                         absOf(z0 - load(a.depth + q)) * inverseSlope[d < half ? d : 2 * half - d];
                     const V arg = depthArg + absOf(l0 - load(a.in[4] + q)) * inverseLum;
                     qs[t] = q;
-                    u[t] = arg * -1.44269504088896341f + log2Tap[d];
+                    u[t] = arg * -kLog2E + log2Tap[d];
                     if constexpr (kExponent == 128) {
                         const V away = 1.0f - nx0 * load(a.nx + q) - ny0 * load(a.ny + q) -
                                        nz0 * load(a.nz + q);

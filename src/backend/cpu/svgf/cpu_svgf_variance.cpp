@@ -37,7 +37,7 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
             if constexpr (kExponent == 128) {
                 const f8 lumArg = abs8(l0 - luminance8(cq)) * 0.1f;
                 const f8 away = 1.0f - ((n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2]);
-                wq[t] = (depthArg + lumArg) * -1.44269504088896341f + normalLog2Power128(away);
+                wq[t] = (depthArg + lumArg) * -kLog2E + normalLog2Power128(away);
                 facing[t] = away < 1.0f;
             } else {
                 const f8 lumArg = abs8(l0 - luminance8(cq)) / 10.0f;
@@ -47,10 +47,7 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
                 facing[t] = ~i8{};
             }
         }
-        if constexpr (kExponent == 128) {
-            exp2NonPositiveRows(wq, 5, -1);
-            exp2NonPositiveRows(wq + 5, 2, -1);
-        }
+        if constexpr (kExponent == 128) exp2NonPositiveRows(wq, 7, -1);
         for (int dx = -3; dx <= 3; ++dx) {
             const int t = dx + 3;
             // A tap without a sample, or facing away, adds exactly nothing, as in the reference
