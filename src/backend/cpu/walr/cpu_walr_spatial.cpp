@@ -108,10 +108,9 @@ struct BlockTaps {
     int steps[8][8];
 };
 
-BMFR_SIMD_DISPATCH(void, traceBlock,
-                   (const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int x, int y,
-                    BlockTaps& out, long& skipped),
-                   (g, e, l, x, y, out, skipped)) {
+template <cpu::Isa kIsa>
+BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int x,
+                                 int y, BlockTaps& out, long& skipped) {
     const long o = long(y) * e.rowStride + x;
     const float *px = e.plane(0), *py = e.plane(1), *pz = e.plane(2);
     const f8 p[3] = {load8(px + o), load8(py + o), load8(pz + o)};
@@ -202,16 +201,28 @@ BMFR_SIMD_DISPATCH(void, traceBlock,
         if (!g.tracing || !g.replacement) continue;
         const i8 replaced = inside & ~kept & (edge > 1);
         if (!anyLane(replaced)) continue;
+        int replacedStep[8] = {};
+        int deepest = 0; // the largest step before `first` that a replacement reads
         for (int lane = 0; lane < 8; ++lane) {
             if (replaced[lane]) {
                 const int kr = replacementStep(
                     replacementHash(i + lane, l.frame, l.iteration, tap, l.seed), edge[lane]);
-                int unused = 0;
-                // Steps traced by an earlier iteration are traced again for this one lane.
-                out.weight[tap][lane] = kr >= first ? running[kr][lane]
-                                                    : tracedWeight(g, edgeCentre(g, i + lane),
-                                                                   x + lane, y, ux, uy, kr, unused);
-                out.steps[tap][lane] = kr;
+                replacedStep[lane] = kr;
+                if (kr < first && kr > deepest) deepest = kr;
+            }
+        }
+        // Steps traced by an earlier iteration, traced again for the lanes that read them (their
+        // running minima go where this iteration's trace, which starts at `first`, left none).
+        f8 early = splat8(1.0f);
+        for (int k = 1; k <= deepest; ++k) {
+            const f8 w = weightAt(k);
+            early = w < early ? w : early;
+            running[k] = early;
+        }
+        for (int lane = 0; lane < 8; ++lane) {
+            if (replaced[lane]) {
+                out.weight[tap][lane] = running[replacedStep[lane]][lane];
+                out.steps[tap][lane] = replacedStep[lane];
             }
         }
     }
@@ -220,9 +231,9 @@ BMFR_SIMD_DISPATCH(void, traceBlock,
 /// The averages of one pixel from its traced taps, its 16 interleaved floats (14 averages and 2
 /// unused) as one vector on the AVX-512 path and two elsewhere (GCC splits a 64-byte vector
 /// through memory on AVX2: measured 1.9x the instructions).
-BMFR_SIMD_DISPATCH(void, gatherPixel,
-                   (const EdgeGuide& g, const WalrLevel& l, const BlockTaps& t, int lane, long i),
-                   (g, l, t, lane, i)) {
+template <cpu::Isa kIsa>
+BMFR_SIMD_INLINE void gatherPixel(const WalrLevel& l, const BlockTaps& t, const long (&along)[8],
+                                  int lane, long i) {
     using V = std::conditional_t<kIsa == Isa::Avx512, f32x16, f8>;
     constexpr int kParts = 16 / kLanesOf<V>, kLanes = kLanesOf<V>;
     float total = l.weightIn ? l.weightIn[i] : 1.0f;
@@ -231,14 +242,30 @@ BMFR_SIMD_DISPATCH(void, gatherPixel,
     for (int tap = 0; tap < 8; ++tap) {
         const float wt = t.weight[tap][lane];
         if (!(wt > 0)) continue;
-        const int k = t.steps[tap][lane];
-        const long j = i + long(k * walrTapY(tap)) * g.width + k * walrTapX(tap);
+        const long j = i + t.steps[tap][lane] * along[tap];
         const float w = l.weightIn ? wt * l.weightIn[j] : wt;
         for (int p = 0; p < kParts; ++p) sum[p] += w * loadVector<V>(l.in + 16 * j + kLanes * p);
         total += w;
     }
     for (int p = 0; p < kParts; ++p) storeVector(l.out + 16 * i + kLanes * p, sum[p] / total);
     if (l.weightOut) l.weightOut[i] = total;
+}
+
+/// Trace and gather rows y0 .. y1 - 1 of one iteration, eight pixels at a time.
+BMFR_SIMD_DISPATCH(void, atrousRows,
+                   (const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int y0, int y1,
+                    long& skipped),
+                   (g, e, l, y0, y1, skipped)) {
+    long along[8]; // pixels from one step along each tap direction to the next
+    for (int tap = 0; tap < 8; ++tap) along[tap] = long(walrTapY(tap)) * g.width + walrTapX(tap);
+    BlockTaps taps;
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < g.width; x += 8) {
+            traceBlock<kIsa>(g, e, l, x, y, taps, skipped);
+            const int count = g.width - x < 8 ? g.width - x : 8;
+            for (int lane = 0; lane < count; ++lane)
+                gatherPixel<kIsa>(l, taps, along, lane, long(y) * g.width + x + lane);
+        }
 }
 
 /// choleskyClamped, choleskySolve and the prediction of walrPredict<float>, eight pixels wide.
@@ -298,15 +325,8 @@ void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e, co
     // Plain row order: columns of single blocks (so that vertical steps revisit cached rows)
     // measured 1.5x slower, and bands cut into strips no faster.
     pool.parallelFor(g.height, 2, [&](long y0, long y1) {
-        BlockTaps taps;
         long skipped = 0;
-        for (int y = int(y0); y < int(y1); ++y)
-            for (int x = 0; x < g.width; x += 8) {
-                traceBlock(g, e, l, x, y, taps, skipped);
-                const int count = g.width - x < 8 ? g.width - x : 8;
-                for (int lane = 0; lane < count; ++lane)
-                    gatherPixel(g, l, taps, lane, long(y) * g.width + x + lane);
-            }
+        atrousRows(g, e, l, int(y0), int(y1), skipped);
         e.skippedTaps += skipped;
     });
 }
