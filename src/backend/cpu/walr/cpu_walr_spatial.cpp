@@ -126,6 +126,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
     f8 running[kMaxStep + 1]; // the traced minimum after k steps, for replacements
     for (int tap = 0; tap < 8; ++tap) {
         const int ux = walrTapX(tap), uy = walrTapY(tap), ey = y + step * uy;
+        const long along = uy * e.rowStride + ux; // plane floats from one step to the next
         const i8 endX = laneX + step * ux;
         const i8 inside = (laneX < g.width) & (endX >= 0) & (endX < g.width);
         store8(out.weight[tap], f8{});
@@ -134,7 +135,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
         // Each lane's plane distance at step k, as edgeWeight computes it (padding keeps the
         // loads in bounds), and the largest coordinate of its offset from the centre.
         auto distanceAt = [&](int k, f8* offset) __attribute__((always_inline)) {
-            const long q = o + long(k * uy) * e.rowStride + k * ux;
+            const long q = o + k * along;
             const f8 d0 = load8(px + q) - p[0], d1 = load8(py + q) - p[1],
                      d2 = load8(pz + q) - p[2];
             const f8 dd = n[0] * d0 + n[1] * d1 + n[2] * d2;
@@ -175,20 +176,22 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
                 m = load8(stateMin);
                 std::memcpy(&edge, stateEdge, sizeof edge);
             }
-            // Steps k0 .. k1; false once no lane can change (past the first zero m stays 0, so
-            // the test for that can wait a few steps).
-            auto traceSteps = [&](int k0, int k1) __attribute__((always_inline)) {
-                for (int k = k0; k <= k1; ++k) {
+            // Steps first .. step. Past a lane's first zero m stays 0, so the count of steps
+            // with m > 0 finds that zero, and the test that every lane has met one can wait a
+            // few steps.
+            auto traceSteps = [&]() __attribute__((always_inline)) {
+                i8 positive{}; // minus that count
+                for (int k = first; k <= step; ++k) {
                     const f8 w = weightAt(k);
                     m = w < m ? w : m;
                     running[k] = m;
-                    edge = (edge == 0) & (m <= 0.0f) ? i8{} + k : edge;
-                    if (((k - k0) & 3) == 3 && !anyLane(inside & (m > 0.0f))) return false;
+                    positive += m > 0.0f;
+                    if (((k - first) & 3) == 3 && !anyLane(inside & (m > 0.0f))) break;
                 }
-                return true;
+                edge = (edge == 0) & (m <= 0.0f) ? first - positive : edge;
             };
             if (e.chordLength != step || anyLane(inside & (m > 0.0f) & ~flatTap()))
-                traceSteps(first, step);
+                traceSteps();
             else
                 ++skipped;
             store8(stateMin, m);
