@@ -111,7 +111,17 @@ struct BlockTaps {
 template <cpu::Isa kIsa>
 BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int x,
                                  int y, BlockTaps& out, long& skipped) {
-    const long o = long(y) * e.rowStride + x;
+    // Read once: the stores below (memcpy and memset among them) might otherwise alias them.
+    const long rowStride = e.rowStride, planeSize = e.planeSize;
+    const int width = g.width, height = g.height, step = l.step;
+    const int first = l.iteration > 0 ? step / 3 + 1 : 1; // traced by the last iteration
+    const bool tracing = g.tracing, replacement = g.replacement;
+    const bool chordReady = e.chordLength == step;
+    const long blockState = (long(y) * e.blocksPerRow + x / 8) * 64;
+    float* const blockMin = e.tracedMin.data() + blockState;
+    int32_t* const blockEdge = e.tracedEdge.data() + blockState;
+    const float* const chords = e.chordBounds(0); // direction d's at + d * planeSize
+    const long o = long(y) * rowStride + x;
     const float *px = e.plane(0), *py = e.plane(1), *pz = e.plane(2);
     const f8 p[3] = {load8(px + o), load8(py + o), load8(pz + o)};
     const f8 n[3] = {load8(e.plane(3) + o), load8(e.plane(4) + o), load8(e.plane(5) + o)};
@@ -122,16 +132,15 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
     const f8 normalSum = abs8(n[0]) + abs8(n[1]) + abs8(n[2]);
     const f8 flatBelow = a * (1.0f - kChordSlack);
     const i8 laneX = i8{0, 1, 2, 3, 4, 5, 6, 7} + x;
-    const int step = l.step;
     f8 running[kMaxStep + 1]; // the traced minimum after k steps, for replacements
     for (int tap = 0; tap < 8; ++tap) {
         const int ux = walrTapX(tap), uy = walrTapY(tap), ey = y + step * uy;
-        const long along = uy * e.rowStride + ux; // plane floats from one step to the next
+        const long along = uy * rowStride + ux; // plane floats from one step to the next
         const i8 endX = laneX + step * ux;
-        const i8 inside = (laneX < g.width) & (endX >= 0) & (endX < g.width);
+        const i8 inside = (laneX < width) & (endX >= 0) & (endX < width);
         store8(out.weight[tap], f8{});
         std::memset(out.steps[tap], 0, sizeof out.steps[tap]);
-        if (ey < 0 || ey >= g.height || !anyLane(inside)) continue;
+        if (ey < 0 || ey >= height || !anyLane(inside)) continue;
         // Each lane's plane distance at step k, as edgeWeight computes it (padding keeps the
         // loads in bounds), and the largest coordinate of its offset from the centre.
         auto distanceAt = [&](int k, f8* offset) __attribute__((always_inline)) {
@@ -153,8 +162,8 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
         auto flatTap = [&]() __attribute__((always_inline)) {
             // Taps 0 to 3 run backwards along the segments of taps 7 to 4 from their ends.
             const int back = tap < 4 ? step : 0;
-            const long at = long(y + back * uy) * 4 * e.planeSize + x + back * ux;
-            const float* bounds = e.chordBounds(tap < 4 ? 3 - tap : tap - 4) + at;
+            const long at = long(y + back * uy) * 4 * planeSize + x + back * ux;
+            const float* bounds = chords + (tap < 4 ? 3 - tap : tap - 4) * planeSize + at;
             __builtin_prefetch(bounds + 32); // four blocks on: measured 5% off the whole filter
             const f8 bound = load8(bounds);
             f8 offset;
@@ -164,12 +173,10 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
         };
         f8 m = splat8(1.0f);
         i8 edge{};
-        const long i = long(y) * g.width + x;
-        const long state = ((long(y) * e.blocksPerRow + x / 8) * 8 + tap) * 8;
-        float* stateMin = e.tracedMin.data() + state;
-        int32_t* stateEdge = e.tracedEdge.data() + state;
-        const int first = l.iteration > 0 ? step / 3 + 1 : 1; // traced by the last iteration
-        if (!g.tracing) {
+        const long i = long(y) * width + x;
+        float* const stateMin = blockMin + 8 * tap;
+        int32_t* const stateEdge = blockEdge + 8 * tap;
+        if (!tracing) {
             m = weightAt(step);
         } else {
             if (first > 1) {
@@ -190,7 +197,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
                 }
                 edge = (edge == 0) & (m <= 0.0f) ? first - positive : edge;
             };
-            if (e.chordLength != step || anyLane(inside & (m > 0.0f) & ~flatTap()))
+            if (!chordReady || anyLane(inside & (m > 0.0f) & ~flatTap()))
                 traceSteps();
             else
                 ++skipped;
@@ -201,7 +208,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
         store8(out.weight[tap], kept ? m : f8{});
         const i8 steps = kept ? i8{} + step : i8{};
         std::memcpy(out.steps[tap], &steps, sizeof steps);
-        if (!g.tracing || !g.replacement) continue;
+        if (!tracing || !replacement) continue;
         const i8 replaced = inside & ~kept & (edge > 1);
         if (!anyLane(replaced)) continue;
         int replacedStep[8] = {};
