@@ -56,10 +56,11 @@ struct WalrRun {
 };
 
 /// WALR's spatial filter through the kernels: T iterations, then the solve; with `eightWide`,
-/// the CPU backend's interleaved iterations and solve instead of the scalar kernels on planes.
+/// the CPU backend's interleaved iterations and solve instead of the scalar kernels on planes;
+/// with `half`, half averages between iterations.
 WalrRun runWalr(const WalrGBuffer& f, const EdgeGuide& g, int iterations, bool keepW = false,
                 float eps = 1e-4f, uint32_t frame = 0, bool eightWide = false,
-                long* skippedTaps = nullptr) {
+                long* skippedTaps = nullptr, bool half = false) {
     const long n = f.size();
     const AverageLayout layout = eightWide ? AverageLayout{1, 16} : AverageLayout{n, 1};
     std::vector<float> a(size_t(16 * n)), b(a.size());
@@ -79,6 +80,7 @@ WalrRun runWalr(const WalrGBuffer& f, const EdgeGuide& g, int iterations, bool k
         l.weightIn = keepW && t > 0 ? wa.data() : nullptr;
         l.weightOut = keepW ? wb.data() : nullptr;
         l.frame = frame;
+        l.halfIn = half && t > 0, l.halfOut = half && t < iterations - 1;
         if (eightWide)
             cpu::walrAtrousIteration(pool, g, planes, l);
         else
@@ -411,17 +413,20 @@ TEST(Walr, EightWideIterationsMatchTheScalarKernelBitForBit) {
         store3(f.nrm.data(), i, normalize(Vec3{0.01f * float(x % 7), 0.0f, 1.0f}));
         store3(f.sig.data(), i, {rnd(uint32_t(i), 20), rnd(uint32_t(i), 21), rnd(uint32_t(i), 22)});
     }
-    for (bool keepW : {false, true})
-        for (bool tracing : {true, false}) {
-            const EdgeGuide g = f.guide(tracing, true);
-            const WalrRun a = runWalr(f, g, 4, keepW, 1e-4f, 3, false);
-            const WalrRun b = runWalr(f, g, 4, keepW, 1e-4f, 3, true);
-            for (size_t k = 0; k < a.means.size(); ++k) {
-                ASSERT_EQ(a.means[k], b.means[k])
-                    << k << " keepW " << keepW << " tracing " << tracing;
-                ASSERT_EQ(a.out[k], b.out[k]) << k << " keepW " << keepW << " tracing " << tracing;
+    for (bool half : {false, true})
+        for (bool keepW : {false, true})
+            for (bool tracing : {true, false}) {
+                const EdgeGuide g = f.guide(tracing, true);
+                const WalrRun a = runWalr(f, g, 4, keepW, 1e-4f, 3, false, nullptr, half);
+                const WalrRun b = runWalr(f, g, 4, keepW, 1e-4f, 3, true, nullptr, half);
+                const std::string what = std::string(half ? "half" : "float") + " keepW " +
+                                         std::to_string(keepW) + " tracing " +
+                                         std::to_string(tracing);
+                for (size_t k = 0; k < a.means.size(); ++k) {
+                    ASSERT_EQ(a.means[k], b.means[k]) << k << " " << what;
+                    ASSERT_EQ(a.out[k], b.out[k]) << k << " " << what;
+                }
             }
-        }
 }
 
 TEST(Walr, VarianceClipLeavesAHistoryInsideTheBoxAlone) {
@@ -562,8 +567,13 @@ TEST(Walr, CpuBackendGivesTheReferenceBits) {
         for (float& v : f.diffuseIndirect.pixels) v *= 0.5f;
     }
     frames[2].color.pixels[333] = NAN;
-    for (const SettingValues& extra : std::vector<SettingValues>{
-             {}, {{"historyTest", "world"}}, {{"signal", "diffuse-indirect"}}}) {
+    // At this size T is 1 by default; three iterations pass two levels through half averages.
+    for (const SettingValues& extra :
+         std::vector<SettingValues>{{},
+                                    {{"historyTest", "world"}},
+                                    {{"signal", "diffuse-indirect"}},
+                                    {{"iterations", "3"}},
+                                    {{"iterations", "3"}, {"halfAverages", "false"}}}) {
         SettingValues cpuValues = extra, refValues = extra;
         cpuValues.push_back({"backend", "cpu"});
         refValues.push_back({"backend", "reference"});

@@ -48,6 +48,7 @@ const FilterCase kFilters[] = {
     {"walr",
      {{"REFWLR over a 9x9 window", {{"solver", "refwlr"}, {"iterations", "2"}}},
       {"three iterations", {{"iterations", "3"}}},
+      {"three iterations, float averages", {{"iterations", "3"}, {"halfAverages", "false"}}},
       {"the world-space history test", {{"historyTest", "world"}}}}},
     {"mara2017",
      {{"the paper's first frames (no cumulative start)", {{"cumulativeStart", "false"}}},

@@ -43,6 +43,7 @@ struct WalrSettings : TemporalSettings {
     float edgeNear = 0.005f;        ///< plane distance where the weight starts to fall, x depth
     float edgeFar = 0.02f;          ///< plane distance where the weight reaches 0, x depth
     float pivotEpsilon = 1e-4f;     ///< Cholesky pivot floor of the two normal features
+    bool halfAverages = true;       ///< averages pass between iterations as halves (the paper's)
     float preAlpha = 0.2f;          ///< preprocess minimum new-frame weight
     float depthTolerance = 0.02f;   ///< depth test: relative view-depth difference
     WalrHistoryTest historyTest = WalrHistoryTest::Depth; ///< the preprocess's history test

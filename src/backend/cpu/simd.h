@@ -168,6 +168,23 @@ BMFR_SIMD_INLINE void store8(F16cHalf* p, f8 v) {
     asm("vcvtps2ph $4, %1, %0" : "=x"(h) : "x"(v));
     std::memcpy(p, &h, sizeof h);
 }
+/// load8 and store8 of sixteen lanes, one conversion each, for the AVX-512 path only.
+typedef int16_t s16x16 __attribute__((vector_size(32)));
+BMFR_SIMD_INLINE f32x16 load16(const F16cHalf* p) {
+    s16x16 h;
+    std::memcpy(&h, p, sizeof h);
+    f32x16 v;
+    asm("vcvtph2ps %1, %0" : "=v"(v) : "vm"(h));
+    return v;
+}
+BMFR_SIMD_INLINE void store16(F16cHalf* p, f32x16 v) {
+    f32x16 big{};
+    for (int l = 0; l < 16; ++l) big[l] = 65504.0f;
+    v = v > big ? big : (v < -big ? -big : v);
+    s16x16 h;
+    asm("vcvtps2ph $4, %1, %0" : "=vm"(h) : "v"(v));
+    std::memcpy(p, &h, sizeof h);
+}
 #endif
 /// The half type a body compiled for `isa` stores.
 template <cpu::Isa isa>

@@ -3,6 +3,7 @@
 // iteration t averages a 3x3 of taps at spacing 3^t, so after T iterations every pixel of the
 // 3^T x 3^T window has been averaged exactly once. BMFR_HD over planes of one channel each.
 #pragma once
+#include "core/half.h"
 #include "filters/walr/cholesky3.h"
 #include "filters/walr/edge_tracing.h"
 
@@ -39,6 +40,9 @@ struct WalrLevel {
     AverageLayout layout;
     int iteration = 0; ///< t: taps at spacing 3^t
     int step = 1;
+    /// Half averages (WalrSettings::halfAverages): the output rounded through half
+    /// (roundToHalf), and on the CPU backend input and output stored as 16 halves per pixel.
+    bool halfIn = false, halfOut = false;
     uint32_t frame = 0, seed = 0;
 };
 
@@ -67,7 +71,10 @@ BMFR_HD void walrAtrousPixel(const EdgeGuide& g, const WalrLevel& l, int x, int 
         for (int k = 0; k < kWalrAverages; ++k) sum[k] += w * l.in[l.layout.at(k, j)];
         total += w;
     }
-    for (int k = 0; k < kWalrAverages; ++k) l.out[l.layout.at(k, i)] = sum[k] / total;
+    for (int k = 0; k < kWalrAverages; ++k) {
+        const float v = sum[k] / total;
+        l.out[l.layout.at(k, i)] = l.halfOut ? roundToHalf(v) : v;
+    }
     if (l.weightOut) l.weightOut[i] = total;
 }
 

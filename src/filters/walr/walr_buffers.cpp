@@ -62,6 +62,10 @@ WalrLevel WalrBuffers::level(const WalrPassContext& ctx, int t, bool keepWeights
     for (int k = 0; k < t; ++k) l.step *= 3;
     l.frame = uint32_t(ctx.history.frameIndex);
     l.seed = ctx.settings.seed;
+    // Level 0 comes from the preprocess and the last level goes to the solve, as floats.
+    const int last = walrIterations(ctx.settings, ctx.history.width, ctx.history.height) - 1;
+    l.halfIn = ctx.settings.halfAverages && t > 0;
+    l.halfOut = ctx.settings.halfAverages && t < last;
     return l;
 }
 

@@ -63,8 +63,14 @@ SettingsTable<S> ownSettings() {
          "plane distance from which a tap has weight 0 (linear ramp from edgeNear)",
          BMFR_FIELD(S, edgeFar)},
         {"pivotEpsilon", "walr-pivot-epsilon", "", {0, 1},
-         "Cholesky pivot floor of the normal features (in [0, 1]): a ridge on flat directions",
+         "Cholesky pivot floor of the normal features (in [-0.5, 0.5]): a ridge on flat "
+         "directions",
          BMFR_FIELD(S, pivotEpsilon)},
+        {"halfAverages", "walr-half-averages", "", {},
+         "the a-trous averages pass from one iteration to the next as half floats (saturated at "
+         "65504), as the paper's FP16 averages: half the bytes each iteration reads and writes; "
+         "the last level, which the solve reads, stays float. False: float averages",
+         BMFR_FIELD(S, halfAverages)},
         {"preAlpha", "walr-pre-alpha", "", {0, 1, true},
          "preprocess minimum new-frame weight (cumulative average before it)",
          BMFR_FIELD(S, preAlpha)},

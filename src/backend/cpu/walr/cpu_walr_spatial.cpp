@@ -240,24 +240,57 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
 
 /// The averages of one pixel from its traced taps, its 16 interleaved floats (14 averages and 2
 /// unused) as one vector on the AVX-512 path and two elsewhere (GCC splits a 64-byte vector
-/// through memory on AVX2: measured 1.9x the instructions).
+/// through memory on AVX2: measured 1.9x the instructions). With halfIn or halfOut the input or
+/// output holds 16 halves per pixel instead, converted eight at a time.
 template <cpu::Isa kIsa>
 BMFR_SIMD_INLINE void gatherPixel(const WalrLevel& l, const BlockTaps& t, const long (&along)[8],
                                   int lane, long i) {
     using V = std::conditional_t<kIsa == Isa::Avx512, f32x16, f8>;
+    using H = HalfOf<kIsa>;
     constexpr int kParts = 16 / kLanesOf<V>, kLanes = kLanesOf<V>;
+    constexpr bool kSixteenHalves = kParts == 1 && std::is_same_v<H, F16cHalf>;
+    auto load = [&](long j, V* v) __attribute__((always_inline)) {
+        if (l.halfIn) {
+            const H* h = reinterpret_cast<const H*>(l.in) + 16 * j;
+            if constexpr (kSixteenHalves) {
+                v[0] = load16(h);
+            } else if constexpr (kParts == 1) {
+                v[0] = __builtin_shufflevector(load8(h), load8(h + 8), 0, 1, 2, 3, 4, 5, 6, 7, 8, 9,
+                                               10, 11, 12, 13, 14, 15);
+            } else {
+                v[0] = load8(h), v[1] = load8(h + 8);
+            }
+        } else {
+            for (int p = 0; p < kParts; ++p) v[p] = loadVector<V>(l.in + 16 * j + kLanes * p);
+        }
+    };
     float total = l.weightIn ? l.weightIn[i] : 1.0f;
-    V sum[kParts];
-    for (int p = 0; p < kParts; ++p) sum[p] = total * loadVector<V>(l.in + 16 * i + kLanes * p);
+    V sum[kParts], v[kParts];
+    load(i, v);
+    for (int p = 0; p < kParts; ++p) sum[p] = total * v[p];
     for (int tap = 0; tap < 8; ++tap) {
         const float wt = t.weight[tap][lane];
         if (!(wt > 0)) continue;
         const long j = i + t.steps[tap][lane] * along[tap];
         const float w = l.weightIn ? wt * l.weightIn[j] : wt;
-        for (int p = 0; p < kParts; ++p) sum[p] += w * loadVector<V>(l.in + 16 * j + kLanes * p);
+        load(j, v);
+        for (int p = 0; p < kParts; ++p) sum[p] += w * v[p];
         total += w;
     }
-    for (int p = 0; p < kParts; ++p) storeVector(l.out + 16 * i + kLanes * p, sum[p] / total);
+    for (int p = 0; p < kParts; ++p) sum[p] = sum[p] / total;
+    if (l.halfOut) {
+        H* h = reinterpret_cast<H*>(l.out) + 16 * i;
+        if constexpr (kSixteenHalves) {
+            store16(h, sum[0]);
+        } else if constexpr (kParts == 1) {
+            store8(h, __builtin_shufflevector(sum[0], sum[0], 0, 1, 2, 3, 4, 5, 6, 7));
+            store8(h + 8, __builtin_shufflevector(sum[0], sum[0], 8, 9, 10, 11, 12, 13, 14, 15));
+        } else {
+            store8(h, sum[0]), store8(h + 8, sum[1]);
+        }
+    } else {
+        for (int p = 0; p < kParts; ++p) storeVector(l.out + 16 * i + kLanes * p, sum[p]);
+    }
     if (l.weightOut) l.weightOut[i] = total;
 }
 
