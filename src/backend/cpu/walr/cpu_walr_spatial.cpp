@@ -241,7 +241,8 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
 /// The averages of one pixel from its traced taps, its 16 interleaved floats (14 averages and 2
 /// unused) as one vector on the AVX-512 path and two elsewhere (GCC splits a 64-byte vector
 /// through memory on AVX2: measured 1.9x the instructions). With halfIn or halfOut the input or
-/// output holds 16 halves per pixel instead, converted eight at a time.
+/// output holds 16 halves per pixel instead, converted sixteen at a time on the AVX-512 path and
+/// eight elsewhere.
 template <cpu::Isa kIsa>
 BMFR_SIMD_INLINE void gatherPixel(const WalrLevel& l, const BlockTaps& t, const long (&along)[8],
                                   int lane, long i) {

@@ -1,7 +1,8 @@
 // The CPU backend's WALR spatial filter: edge tracing eight pixels at a time over padded planes
-// of positions and normals, then each pixel's 14 averages gathered as one cache line per tap,
-// and the per-pixel solve eight pixels at a time. Mirrors walrAtrousPixel and walrSolvePixel
-// (filters/walr/atrous_averages.h) bit for bit, on averages interleaved 16 floats per pixel.
+// of positions and normals, then each pixel's 14 averages gathered as one cache line per tap
+// (half of one with half averages), and the per-pixel solve eight pixels at a time. Mirrors
+// walrAtrousPixel and walrSolvePixel (filters/walr/atrous_averages.h) bit for bit, on averages
+// interleaved 16 floats (or halves) per pixel.
 //
 // The trace skips taps whose steps provably all weigh 1: the segment from each pixel along each
 // forward tap direction (4 to 7; taps 0 to 3 run along them backwards) has a bound on how far its
