@@ -110,10 +110,13 @@ typedef uint16_t u16x8 __attribute__((vector_size(16)));
 typedef uint32_t u32x8 __attribute__((vector_size(32)));
 
 /// Each lane clamped to [-65504, 65504], the finite halves (see roundToHalf, core/half.h).
-BMFR_SIMD_INLINE f8 saturateToHalf8(f8 v) {
-    f8 big{};
-    for (int l = 0; l < 8; ++l) big[l] = 65504.0f;
+template <class V> BMFR_SIMD_INLINE V saturateToHalf(V v) {
+    V big{};
+    for (int l = 0; l < kLanesOf<V>; ++l) big[l] = 65504.0f;
     return v > big ? big : (v < -big ? -big : v);
+}
+BMFR_SIMD_INLINE f8 saturateToHalf8(f8 v) {
+    return saturateToHalf(v);
 }
 
 /// Eight halves as floats, exactly (normal, subnormal and zero halves; a half plane holds no
@@ -153,37 +156,30 @@ struct F16cHalf {
 };
 typedef int16_t s16x8 __attribute__((vector_size(16)));
 #if BMFR_SIMD_F16C
-BMFR_SIMD_INLINE f8 load8(const F16cHalf* p) {
-    s16x8 h;
-    std::memcpy(&h, p, sizeof h);
-    f8 v;
-    asm("vcvtph2ps %1, %0" : "=x"(v) : "x"(h));
-    return v;
-}
-/// The same as store8(_Float16*, f8): saturate, then round to nearest even (imm 4: MXCSR's
-/// rounding, which bmfr never changes from nearest even).
-BMFR_SIMD_INLINE void store8(F16cHalf* p, f8 v) {
-    v = saturateToHalf8(v);
-    s16x8 h;
-    asm("vcvtps2ph $4, %1, %0" : "=x"(h) : "x"(v));
-    std::memcpy(p, &h, sizeof h);
-}
-/// load8 and store8 of sixteen lanes, one conversion each, for the AVX-512 path only.
 typedef int16_t s16x16 __attribute__((vector_size(32)));
-BMFR_SIMD_INLINE f32x16 load16(const F16cHalf* p) {
-    s16x16 h;
+template <class V> using HalvesOf = std::conditional_t<sizeof(V) == sizeof(f8), s16x8, s16x16>;
+/// The lanes of V as halves, to floats: eight (the AVX2 and AVX-512 paths) or sixteen (the
+/// AVX-512 path only).
+template <class V> BMFR_SIMD_INLINE V loadHalves(const F16cHalf* p) {
+    HalvesOf<V> h;
     std::memcpy(&h, p, sizeof h);
-    f32x16 v;
+    V v;
     asm("vcvtph2ps %1, %0" : "=v"(v) : "vm"(h));
     return v;
 }
-BMFR_SIMD_INLINE void store16(F16cHalf* p, f32x16 v) {
-    f32x16 big{};
-    for (int l = 0; l < 16; ++l) big[l] = 65504.0f;
-    v = v > big ? big : (v < -big ? -big : v);
-    s16x16 h;
+/// The same as store8(_Float16*, f8), eight or sixteen lanes: saturate, then round to nearest
+/// even (imm 4: MXCSR's rounding, which bmfr never changes from nearest even).
+template <class V> BMFR_SIMD_INLINE void storeHalves(F16cHalf* p, V v) {
+    v = saturateToHalf(v);
+    HalvesOf<V> h;
     asm("vcvtps2ph $4, %1, %0" : "=vm"(h) : "v"(v));
     std::memcpy(p, &h, sizeof h);
+}
+BMFR_SIMD_INLINE f8 load8(const F16cHalf* p) {
+    return loadHalves<f8>(p);
+}
+BMFR_SIMD_INLINE void store8(F16cHalf* p, f8 v) {
+    storeHalves(p, v);
 }
 #endif
 /// The half type a body compiled for `isa` stores.

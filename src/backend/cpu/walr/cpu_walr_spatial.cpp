@@ -254,7 +254,7 @@ BMFR_SIMD_INLINE void gatherPixel(const WalrLevel& l, const BlockTaps& t, const 
         if (l.halfIn) {
             const H* h = reinterpret_cast<const H*>(l.in) + 16 * j;
             if constexpr (kSixteenHalves) {
-                v[0] = load16(h);
+                v[0] = loadHalves<V>(h);
             } else if constexpr (kParts == 1) {
                 v[0] = __builtin_shufflevector(load8(h), load8(h + 8), 0, 1, 2, 3, 4, 5, 6, 7, 8, 9,
                                                10, 11, 12, 13, 14, 15);
@@ -282,7 +282,7 @@ BMFR_SIMD_INLINE void gatherPixel(const WalrLevel& l, const BlockTaps& t, const 
     if (l.halfOut) {
         H* h = reinterpret_cast<H*>(l.out) + 16 * i;
         if constexpr (kSixteenHalves) {
-            store16(h, sum[0]);
+            storeHalves(h, sum[0]);
         } else if constexpr (kParts == 1) {
             store8(h, __builtin_shufflevector(sum[0], sum[0], 0, 1, 2, 3, 4, 5, 6, 7));
             store8(h + 8, __builtin_shufflevector(sum[0], sum[0], 8, 9, 10, 11, 12, 13, 14, 15));
