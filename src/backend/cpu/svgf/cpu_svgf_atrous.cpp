@@ -41,6 +41,15 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
     for (long y = y0; y < y1; ++y)
         for (int x = 0; x < a.width; x += kLanes) {
             const long c = y * a.pitch + x;
+            // The planes a pixel reads first, 128 floats ahead: its gradient, the variance
+            // prefilter's next row and the taps' leading row. Together with the taps' rows they
+            // are more streams than the hardware prefetcher follows.
+            const long ahead = c + 128, lead = ahead + long(r) * step * a.pitch;
+            for (const float* p :
+                 {a.gradX + ahead, a.gradY + ahead, a.mask + ahead + a.pitch,
+                  a.in[3] + ahead + a.pitch, a.depth + lead, a.nx + lead, a.ny + lead, a.nz + lead})
+                __builtin_prefetch(p);
+            for (const float* p : a.in) __builtin_prefetch(p + lead);
             // 3x3 Gaussian prefilter of the variance, over pixels with a sample.
             V gv{}, gw{};
             for (int dy = -1; dy <= 1; ++dy) {
