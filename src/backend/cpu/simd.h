@@ -473,12 +473,15 @@ BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
 #endif
 /// 2^u per lane of u[0 .. n) (n <= 8), in place, u[skip] left alone; u <= 0 (not NaN; -inf
 /// included), clamped at -126, so that the result is at least 2^-126. 2^round(u) times a
-/// degree-5 polynomial of u - round(u) (relative error below 2.4e-7 there); each step taken for
-/// every vector in turn, so that the n dependency chains interleave. Sixteen lanes (the AVX-512
-/// path) round with vrndscaleps and scale with vscalefps (inline assembly, as F16cHalf's):
-/// nine instructions where expNonPositive takes seventeen; eight lanes round by adding
-/// 1.5 2^23 + 127, whose low mantissa bits are then 2^round(u)'s exponent bits (eleven).
-template <class V> BMFR_SIMD_INLINE void exp2NonPositiveRows(V* u, int n, int skip) {
+/// polynomial of u - round(u) of degree kDegree: 5 (relative error below 2.4e-7 there) or 3
+/// (below 7.5e-5, two multiply-adds fewer); each step taken for every vector in turn, so that
+/// the n dependency chains interleave. Sixteen lanes (the AVX-512 path) round with vrndscaleps
+/// and scale with vscalefps (inline assembly, as F16cHalf's): nine instructions at degree 5
+/// where expNonPositive takes seventeen; eight lanes round by adding 1.5 2^23 + 127, whose low
+/// mantissa bits are then 2^round(u)'s exponent bits (eleven).
+template <int kDegree = 5, class V>
+BMFR_SIMD_INLINE void exp2NonPositiveRows(V* u, int n, int skip) {
+    static_assert(kDegree == 3 || kDegree == 5);
     constexpr bool kScalef = BMFR_SIMD_F16C && kLanesOf<V> == 16;
     constexpr float kShift = 12582912.0f + 127.0f;
     V rounded[8], p[8];
@@ -495,13 +498,17 @@ template <class V> BMFR_SIMD_INLINE void exp2NonPositiveRows(V* u, int n, int sk
             u[t] -= rounded[t] - kShift;
         }
     }
-    constexpr float c[6] = {1.000000119f,    6.931469440e-1f, 2.402212024e-1f,
-                            5.550713092e-2f, 9.675540961e-3f, 1.327647129e-3f};
+    // Relative minimax fits of 2^f on [-1/2, 1/2], lowest power first.
+    static constexpr float c5[6] = {1.000000119f,    6.931469440e-1f, 2.402212024e-1f,
+                                    5.550713092e-2f, 9.675540961e-3f, 1.327647129e-3f};
+    static constexpr float c3[4] = {9.999281168e-1f, 6.932609677e-1f, 2.426107526e-1f,
+                                    5.517140776e-2f};
+    constexpr const float* c = kDegree == 5 ? c5 : c3;
 #pragma GCC unroll 8
     for (int t = 0; t < n; ++t)
-        if (t != skip) p[t] = c[5] * u[t] + c[4];
+        if (t != skip) p[t] = c[kDegree] * u[t] + c[kDegree - 1];
 #pragma GCC unroll 4
-    for (int k = 3; k >= 0; --k)
+    for (int k = kDegree - 2; k >= 0; --k)
 #pragma GCC unroll 8
         for (int t = 0; t < n; ++t)
             if (t != skip) p[t] = p[t] * u[t] + c[k];

@@ -65,7 +65,7 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             const V variance = gw > zero ? gv / gw : zero;
             V sd = maxOf(variance, zero);
             for (int l = 0; l < kLanes; ++l) sd[l] = std::sqrt(sd[l]);
-            const V inverseLum = 1.0f / (a.phiLuminance * sd + 1e-10f);
+            const V inverseLum = -kLog2E / (a.phiLuminance * sd + 1e-10f);
             const V nx0 = load(a.nx + c), ny0 = load(a.ny + c), nz0 = load(a.nz + c);
             const V z0 = load(a.depth + c), l0 = load(a.in[4] + c);
             const V gx0 = a.phiDepth * load(a.gradX + c), gy0 = a.phiDepth * load(a.gradY + c);
@@ -83,8 +83,9 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             // |ky| <= 2, so scaling the gradient by the step first rounds nothing, and the taps
             // unrolled take kx and ky as constants.
             const V gxs = gx0 * float(step), gys = gy0 * float(step);
-            // 1 / (|slope| + 1e-6) per direction, the taps numbered row by row: tap d and its
-            // mirror (-kx, -ky), numbered 2 half - d, share it.
+            // -log2(e) / (|slope| + 1e-6) per direction (the luminance term's reciprocal also
+            // carries -log2(e), so that a term is one multiply-add into the exponent), the taps
+            // numbered row by row: tap d and its mirror (-kx, -ky), numbered 2 half - d, share it.
             V inverseSlope[12];
 #pragma GCC unroll 12
             for (int d = 0; d < half; ++d) {
@@ -92,7 +93,7 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                 const V slope = kx == 0   ? gys * float(ky)
                                 : ky == 0 ? gxs * float(kx)
                                           : gxs * float(kx) + gys * float(ky);
-                inverseSlope[d] = 1.0f / (absOf(slope) + 1e-6f);
+                inverseSlope[d] = -kLog2E / (absOf(slope) + 1e-6f);
             }
 #pragma GCC unroll 5
             for (int ky = -r; ky <= r; ++ky) {
@@ -105,15 +106,15 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                     if (kx == 0 && ky == 0) continue;
                     const long q = c + long(ky) * step * a.pitch + long(kx) * step;
                     const int d = (ky + r) * side + kx + r, t = kx + r;
-                    const V depthArg =
-                        absOf(z0 - load(a.depth + q)) * inverseSlope[d < half ? d : 2 * half - d];
-                    const V arg = depthArg + absOf(l0 - load(a.in[4] + q)) * inverseLum;
+                    const V depthTerm =
+                        absOf(z0 - load(a.depth + q)) * inverseSlope[d < half ? d : 2 * half - d] +
+                        log2Tap[d];
                     qs[t] = q;
-                    u[t] = arg * -kLog2E + log2Tap[d];
+                    u[t] = absOf(l0 - load(a.in[4] + q)) * inverseLum + depthTerm;
                     if constexpr (kExponent == 128) {
                         const V away = 1.0f - nx0 * load(a.nx + q) - ny0 * load(a.ny + q) -
                                        nz0 * load(a.nz + q);
-                        u[t] += normalLog2Power128(away);
+                        u[t] = normalLog2Power128(away) + u[t];
                     } else {
                         // A tap without a sample, whose normal planes hold 0, weighs 0, as the
                         // reference's skip.
@@ -123,7 +124,7 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                     }
                 }
                 const int skip = ky == 0 ? r : -1;
-                exp2NonPositiveRows(u, side, skip);
+                exp2NonPositiveRows<3>(u, side, skip);
 #pragma GCC unroll 5
                 for (int t = 0; t < side; ++t) {
                     if (t == skip) continue;
