@@ -16,6 +16,7 @@ struct LevelArgs {
     const float *nx, *ny, *nz, *depth, *gradX, *gradY, *mask;
     const float* in[5]; ///< R, G, B, variance, luminance
     float* out[5];
+    float* history; ///< the RGB also packed (3 floats per pixel, rows `width` apart), or null
     long pitch;
     int width, height, radius, step, normalExponent;
     float phiDepth, phiLuminance;
@@ -137,6 +138,11 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             const int n = std::min(kLanes, a.width - x);
             for (int k = 0; k < 4; ++k) storeFirstLanes(a.out[k] + c, out[k], n);
             storeFirstLanes(a.out[4] + c, luminanceOf(out), n);
+            if (a.history) {
+                float* packed = a.history + 3 * (y * a.width + x);
+                for (int l = 0; l < n; ++l)
+                    for (int k = 0; k < 3; ++k) packed[3 * l + k] = out[k][l];
+            }
         }
 }
 
@@ -163,7 +169,7 @@ void CpuAtrous::reserve(int w, int h, const SvgfSettings& s) {
 }
 
 int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& g,
-                   float* const filtered[2], float* colorHistory) {
+                   const float* first, float* colorHistory) {
     const int w = g.width, h = g.height;
     reserve(w, h, s);
     const long pitch = pitch_;
@@ -181,8 +187,8 @@ int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& g
                 plane(GradX)[p] = g.depthGradient[2 * i];
                 plane(GradY)[p] = g.depthGradient[2 * i + 1];
                 plane(Mask)[p] = sampled ? 1.0f : 0.0f;
-                for (int k = 0; k < 4; ++k) plane(Colour + k)[p] = filtered[0][4 * i + k];
-                const float* rgb = filtered[0] + 4 * i;
+                for (int k = 0; k < 4; ++k) plane(Colour + k)[p] = first[4 * i + k];
+                const float* rgb = first + 4 * i;
                 plane(Colour + 4)[p] = luminance({rgb[0], rgb[1], rgb[2]});
             }
     });
@@ -195,6 +201,7 @@ int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& g
                 plane(Mask),
                 {},
                 {},
+                nullptr,
                 pitch,
                 w,
                 h,
@@ -203,29 +210,24 @@ int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& g
                 int(s.phiNormal),
                 s.phiDepth,
                 s.phiLuminance};
-    auto colour = [this](int set, int k) { return plane(Colour + 5 * set + k); };
-    const int last = runAtrousLevels(
+    // The step-1 level also writes the colour history (runAtrousLevels' keep then has nothing
+    // left to copy).
+    return runAtrousLevels(
         s,
         [&](int from, int to, int step) {
-            for (int k = 0; k < 5; ++k) a.in[k] = colour(from, k), a.out[k] = colour(to, k);
+            for (int k = 0; k < 5; ++k) a.in[k] = level(from, k), a.out[k] = levelPlane(to, k);
             a.step = step;
+            a.history = step == 1 ? colorHistory : nullptr;
             pool.parallelFor(h, 2, [&](long y0, long y1) { atrousRows(a, y0, y1); });
         },
-        [&](int k) {
-            pool.parallelFor(h, 8, [&](long y0, long y1) {
-                for (long y = y0; y < y1; ++y)
-                    for (int x = 0; x < w; ++x)
-                        for (int ch = 0; ch < 3; ++ch)
-                            colorHistory[3 * (y * w + x) + ch] = colour(k, ch)[y * pitch + x];
-            });
-        });
-    pool.parallelFor(h, 8, [&](long y0, long y1) {
-        for (long y = y0; y < y1; ++y)
-            for (int x = 0; x < w; ++x)
-                for (int ch = 0; ch < 4; ++ch)
-                    filtered[last][4 * (y * w + x) + ch] = colour(last, ch)[y * pitch + x];
-    });
-    return last;
+        [](int) {});
+}
+
+void CpuAtrous::copyLevel(int set, float* rgbv) const {
+    for (long y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x)
+            for (int k = 0; k < 4; ++k)
+                rgbv[4 * (y * width_ + x) + k] = level(set, k)[y * pitch_ + x];
 }
 
 } // namespace bmfr::cpu

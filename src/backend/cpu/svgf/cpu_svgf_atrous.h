@@ -19,10 +19,18 @@ class CpuAtrous {
     void reserve(int w, int h, const SvgfSettings& s);
     /// The levels from `first` (RGB + variance, 4 floats per pixel) with `guides`' normal,
     /// depth, gradient and history length. Writes the step-1 level's RGB to `colorHistory`
-    /// (3 floats per pixel) and the last level to filtered[returned index], as the reference's
-    /// runAtrousLevels does with filtered[0] = first.
-    int run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& guides,
-            float* const filtered[2], float* colorHistory);
+    /// (3 floats per pixel), as the reference's runAtrousLevels; returns the set (0 or 1) that
+    /// holds the last level.
+    int run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& guides, const float* first,
+            float* colorHistory);
+    /// Channel k (R, G, B, variance, luminance) of set `set`'s level, at (0, 0) of its image;
+    /// rows are pitch() floats apart.
+    const float* level(int set, int k) const {
+        return planes_.data() + long(Colour + 5 * set + k) * planeFloats_ + apron_;
+    }
+    long pitch() const { return pitch_; }
+    /// Set `set`'s level as RGB + variance, 4 floats per pixel (the debug buffers' copy).
+    void copyLevel(int set, float* rgbv) const;
 
   private:
     /// Colour + 5 s + k: ping-pong set s's R, G, B, variance and luminance (k = 0 .. 4).
@@ -32,6 +40,7 @@ class CpuAtrous {
     std::vector<float> planes_;
 
     float* plane(int k) { return planes_.data() + long(k) * planeFloats_ + apron_; }
+    float* levelPlane(int set, int k) { return plane(Colour + 5 * set + k); }
 };
 
 } // namespace bmfr::cpu

@@ -1,18 +1,38 @@
-// The CPU backend's SVGF: the reference's re-modulation, with eight-wide accumulation
-// (cpu_svgf_accumulate.h), variance estimate (cpu_svgf_variance.h), a-trous levels
-// (cpu_svgf_atrous.h) and the TAA shared with BMFR.
+// The CPU backend's SVGF: eight-wide accumulation (cpu_svgf_accumulate.h), variance estimate
+// (cpu_svgf_variance.h), a-trous levels (cpu_svgf_atrous.h) and re-modulation from the last
+// level's planes, and the TAA shared with BMFR.
 #include "backend/backend_registry.h"
 #include "backend/cpu/cpu_taa.h"
+#include "backend/cpu/modulation8.h"
 #include "backend/cpu/svgf/cpu_svgf_accumulate.h"
 #include "backend/cpu/svgf/cpu_svgf_atrous.h"
 #include "backend/cpu/svgf/cpu_svgf_variance.h"
 #include "backend/cpu/svgf/cpu_svgf_weights.h"
 #include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/stopwatch.h"
+#include <algorithm>
 
 namespace bmfr::cpu {
 
 namespace {
+
+/// reference::svgfRemodulate's pixels from the last level's R, G and B planes (rows `pitch`
+/// floats apart), eight at a time, bit for bit.
+BMFR_SIMD_DISPATCH(void, remodulateRows,
+                   (const float* const rgb[3], long pitch, const InputPlanes& in,
+                    float albedoEpsilon, int width, float* out, long y0, long y1),
+                   (rgb, pitch, in, albedoEpsilon, width, out, y0, y1)) {
+    using namespace simd;
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < width; x += 8) {
+            const int n = std::min(8, width - x);
+            const long i = y * width + x;
+            f8 c[3];
+            for (int k = 0; k < 3; ++k) c[k] = loadFirst(rgb[k] + y * pitch + x, n);
+            remodulate8(c, in, i, n, true, albedoEpsilon);
+            storeXyz8(out + 3 * i, n, c);
+        }
+}
 
 class CpuSvgfPasses final : public HostSvgfPasses {
   public:
@@ -28,15 +48,22 @@ class CpuSvgfPasses final : public HostSvgfPasses {
                                                  : reference::svgfVariancePixels);
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
-        if (cpuNormalPowerSupports(ctx.settings)) {
-            float* const filtered[2] = {buffers.filtered[0].data(), buffers.filtered[1].data()};
+        levelsInPlanes_ = cpuNormalPowerSupports(ctx.settings);
+        if (levelsInPlanes_) {
             buffers.outputLevel =
-                atrous_.run(ctx.pool, ctx.settings, reference::atrousGuides(ctx, buffers), filtered,
-                            buffers.color[h.cur].data());
+                atrous_.run(ctx.pool, ctx.settings, reference::atrousGuides(ctx, buffers),
+                            buffers.filtered[0].data(), buffers.color[h.cur].data());
+            const float* const last[3] = {atrous_.level(buffers.outputLevel, 0),
+                                          atrous_.level(buffers.outputLevel, 1),
+                                          atrous_.level(buffers.outputLevel, 2)};
+            ctx.pool.parallelFor(h.height, 8, [&](long y0, long y1) {
+                remodulateRows(last, atrous_.pitch(), ctx.input, ctx.settings.albedoEpsilon,
+                               h.width, buffers.remodulated.data(), y0, y1);
+            });
         } else {
             reference::svgfAtrousLevels(ctx, buffers);
+            reference::svgfRemodulate(ctx, buffers);
         }
-        reference::svgfRemodulate(ctx, buffers);
         times.add("atrous", clock.lap());
         temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
                              buffers.previousPixel.data(), taaScratch_.data(),
@@ -48,9 +75,16 @@ class CpuSvgfPasses final : public HostSvgfPasses {
         return counters;
     }
 
+    void captureDebug(const TemporalHistory& h) override {
+        if (levelsInPlanes_)
+            atrous_.copyLevel(buffers.outputLevel, buffers.filtered[buffers.outputLevel].data());
+        HostSvgfPasses::captureDebug(h);
+    }
+
   private:
     std::vector<float> taaScratch_;
     CpuAtrous atrous_;
+    bool levelsInPlanes_ = false; ///< the last level is in atrous_'s planes, not in filtered[]
 };
 
 } // namespace
