@@ -51,7 +51,9 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         const int r = f.maxRadius, w = f.width, hgt = f.height;
         const long n = long(w) * hgt;
         stage5_.resize(size_t(n));
-        for (long i = 0; i < n; ++i) stage5_[size_t(i)] = maraStage5Confidence(f, i);
+        ctx.pool.parallelFor(hgt, 8, [&](long y0, long y1) {
+            for (long i = y0 * w; i < y1 * w; ++i) stage5_[size_t(i)] = maraStage5Confidence(f, i);
+        });
         const int longest = longestRun(w, hgt, r);
         const size_t perThread = 2 * size_t(longest);
         scratch_.resize(perThread * size_t(ctx.pool.threadCount()));
