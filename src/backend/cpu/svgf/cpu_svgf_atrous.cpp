@@ -168,30 +168,23 @@ void CpuAtrous::reserve(int w, int h, const SvgfSettings& s) {
     planes_.assign(size_t(planeFloats_) * Count + 2 * size_t(apron), 0.0f);
 }
 
-int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& g,
-                   const float* first, float* colorHistory) {
-    const int w = g.width, h = g.height;
+SvgfFirstLevel CpuAtrous::firstLevel(int w, int h, const SvgfSettings& s) {
     reserve(w, h, s);
+    return {
+        plane(Nx),
+        plane(Ny),
+        plane(Nz),
+        plane(Depth),
+        plane(GradX),
+        plane(GradY),
+        plane(Mask),
+        {levelPlane(0, 0), levelPlane(0, 1), levelPlane(0, 2), levelPlane(0, 3), levelPlane(0, 4)},
+        pitch_};
+}
+
+int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, float* colorHistory) {
+    const int w = width_, h = height_;
     const long pitch = pitch_;
-    pool.parallelFor(h, 8, [&](long y0, long y1) {
-        for (long y = y0; y < y1; ++y)
-            for (int x = 0; x < w; ++x) {
-                const long i = y * w + x, p = y * pitch + x;
-                // A pixel without a sample gets normal 0, so that its weight as a tap is 0
-                // (the mask then serves the variance's prefilter alone).
-                const bool sampled = g.length[i] > 0;
-                plane(Nx)[p] = sampled ? g.normal[3 * i] : 0.0f;
-                plane(Ny)[p] = sampled ? g.normal[3 * i + 1] : 0.0f;
-                plane(Nz)[p] = sampled ? g.normal[3 * i + 2] : 0.0f;
-                plane(Depth)[p] = g.depth[i];
-                plane(GradX)[p] = g.depthGradient[2 * i];
-                plane(GradY)[p] = g.depthGradient[2 * i + 1];
-                plane(Mask)[p] = sampled ? 1.0f : 0.0f;
-                for (int k = 0; k < 4; ++k) plane(Colour + k)[p] = first[4 * i + k];
-                const float* rgb = first + 4 * i;
-                plane(Colour + 4)[p] = luminance({rgb[0], rgb[1], rgb[2]});
-            }
-    });
     LevelArgs a{plane(Nx),
                 plane(Ny),
                 plane(Nz),

@@ -1,5 +1,6 @@
 // The CPU backend's SVGF a-trous levels: eight pixels of a row at a time (sixteen on the
-// AVX-512 path) over planar copies of the colour, variance, luminance and guides, each row
+// AVX-512 path) over planes of the colour, variance, luminance and guides (which the variance
+// estimate writes: cpu_svgf_variance.h), each row
 // padded by an apron whose mask is zero, so that a tap past the row's ends needs no bounds test.
 // Same taps, order and feedback as the reference (filters/svgf/svgf_kernels.h); rounded
 // differently, within the conformance tolerance: each tap's weight one power of two of its
@@ -7,6 +8,7 @@
 // reference's is 0), fused multiply-adds, phiDepth folded into the gradient, and the luminance
 // and depth terms multiplied by reciprocals (the depth term's shared by a tap and its mirror).
 #pragma once
+#include "backend/cpu/svgf/cpu_svgf_variance.h"
 #include "core/parallel.h"
 #include "filters/svgf/svgf_passes.h"
 #include <vector>
@@ -17,12 +19,13 @@ class CpuAtrous {
   public:
     /// Sizes the planes for a w x h frame with these settings (run does it when they change).
     void reserve(int w, int h, const SvgfSettings& s);
-    /// The levels from `first` (RGB + variance, 4 floats per pixel) with `guides`' normal,
-    /// depth, gradient and history length. Writes the step-1 level's RGB to `colorHistory`
+    /// Sizes the planes for a w x h frame and returns the first level's, for the variance
+    /// estimate to fill (svgfVarianceRows).
+    SvgfFirstLevel firstLevel(int w, int h, const SvgfSettings& s);
+    /// The levels from the first, once filled. Writes the step-1 level's RGB to `colorHistory`
     /// (3 floats per pixel), as the reference's runAtrousLevels; returns the set (0 or 1) that
     /// holds the last level.
-    int run(ThreadPool& pool, const SvgfSettings& s, const AtrousLevel& guides, const float* first,
-            float* colorHistory);
+    int run(ThreadPool& pool, const SvgfSettings& s, float* colorHistory);
     /// Channel k (R, G, B, variance, luminance) of set `set`'s level, at (0, 0) of its image;
     /// rows are pitch() floats apart.
     const float* level(int set, int k) const {

@@ -42,36 +42,39 @@ class CpuSvgfPasses final : public HostSvgfPasses {
         atrous_.reserve(w, h, s);
     }
     PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
-        const PassCounters counters = reference::svgfAccumulateAndVariance(
-            ctx, buffers, times, svgfAccumulateRows,
-            cpuNormalPowerSupports(ctx.settings) ? svgfVarianceRows
-                                                 : reference::svgfVariancePixels);
         const TemporalHistory& h = ctx.history;
-        Stopwatch clock;
         levelsInPlanes_ = cpuNormalPowerSupports(ctx.settings);
-        if (levelsInPlanes_) {
-            buffers.outputLevel =
-                atrous_.run(ctx.pool, ctx.settings, reference::atrousGuides(ctx, buffers),
-                            buffers.filtered[0].data(), buffers.color[h.cur].data());
-            const float* const last[3] = {atrous_.level(buffers.outputLevel, 0),
-                                          atrous_.level(buffers.outputLevel, 1),
-                                          atrous_.level(buffers.outputLevel, 2)};
-            ctx.pool.parallelFor(h.height, 8, [&](long y0, long y1) {
-                remodulateRows(last, atrous_.pitch(), ctx.input, ctx.settings.albedoEpsilon,
-                               h.width, buffers.remodulated.data(), y0, y1);
-            });
-        } else {
+        if (!levelsInPlanes_) { // the reference's variance estimate and levels
+            const PassCounters counters = reference::svgfAccumulateAndVariance(
+                ctx, buffers, times, svgfAccumulateRows, reference::svgfVariancePixels);
+            Stopwatch clock;
             reference::svgfAtrousLevels(ctx, buffers);
             reference::svgfRemodulate(ctx, buffers);
+            times.add("atrous", clock.lap());
+            taa(ctx, times);
+            return counters;
         }
+        const PassCounters counters =
+            reference::svgfAccumulate(ctx, buffers, times, svgfAccumulateRows);
+        Stopwatch clock;
+        // The variance estimate writes the levels' first planes (and their guides).
+        const SvgfFrame f = buffers.frame(ctx);
+        const SvgfFirstLevel first = atrous_.firstLevel(h.width, h.height, ctx.settings);
+        ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {
+            svgfVarianceRows(f, ctx.settings, y0, y1, buffers.filtered[0].data(),
+                             buffers.variance.data(), &first);
+        });
+        times.add("variance", clock.lap());
+        buffers.outputLevel = atrous_.run(ctx.pool, ctx.settings, buffers.color[h.cur].data());
+        const float* const last[3] = {atrous_.level(buffers.outputLevel, 0),
+                                      atrous_.level(buffers.outputLevel, 1),
+                                      atrous_.level(buffers.outputLevel, 2)};
+        ctx.pool.parallelFor(h.height, 8, [&](long y0, long y1) {
+            remodulateRows(last, atrous_.pitch(), ctx.input, ctx.settings.albedoEpsilon, h.width,
+                           buffers.remodulated.data(), y0, y1);
+        });
         times.add("atrous", clock.lap());
-        temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
-                             buffers.previousPixel.data(), taaScratch_.data(),
-                             buffers.output[h.cur].data(), h.width, h.height,
-                             taaBlend(ctx.settings), ctx.settings.taa && h.hasHistory(),
-                             ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr,
-                             taaSpaceOf(ctx.settings));
-        times.add("taa", clock.lap());
+        taa(ctx, times);
         return counters;
     }
 
@@ -82,6 +85,18 @@ class CpuSvgfPasses final : public HostSvgfPasses {
     }
 
   private:
+    void taa(const SvgfPassContext& ctx, StageTimes& times) {
+        const TemporalHistory& h = ctx.history;
+        Stopwatch clock;
+        temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
+                             buffers.previousPixel.data(), taaScratch_.data(),
+                             buffers.output[h.cur].data(), h.width, h.height,
+                             taaBlend(ctx.settings), ctx.settings.taa && h.hasHistory(),
+                             ctx.settings.taaSameSurface ? buffers.accept.data() : nullptr,
+                             taaSpaceOf(ctx.settings));
+        times.add("taa", clock.lap());
+    }
+
     std::vector<float> taaScratch_;
     CpuAtrous atrous_;
     bool levelsInPlanes_ = false; ///< the last level is in atrous_'s planes, not in filtered[]

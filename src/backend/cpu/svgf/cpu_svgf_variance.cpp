@@ -65,9 +65,30 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
     m2 = some ? s2 / sw : m2;
 }
 
+/// The guides and the result of n <= 8 pixels from i (column x of row y) into the first level.
+BMFR_SIMD_INLINE void storeFirstLevel(const SvgfFrame& f, const SvgfFirstLevel& level, long i,
+                                      long y, int x, int n, const f8 c[3], f8 variance) {
+    const long p = y * level.pitch + x;
+    const i8 sampled = loadBytes(f.length + i, n) != 0;
+    f8 normal[3], gx, gy;
+    loadXyz8(f.normal + 3 * i, n, normal);
+    loadXy8(f.depthGradient + 2 * i, n, gx, gy);
+    storeFirst(level.nx + p, sampled ? normal[0] : f8{}, n);
+    storeFirst(level.ny + p, sampled ? normal[1] : f8{}, n);
+    storeFirst(level.nz + p, sampled ? normal[2] : f8{}, n);
+    storeFirst(level.depth + p, loadFirst(f.depth + i, n), n);
+    storeFirst(level.gradX + p, gx, n);
+    storeFirst(level.gradY + p, gy, n);
+    storeFirst(level.mask + p, sampled ? splat8(1.0f) : f8{}, n);
+    for (int k = 0; k < 3; ++k) storeFirst(level.colour[k] + p, c[k], n);
+    storeFirst(level.colour[3] + p, variance, n);
+    storeFirst(level.colour[4] + p, luminance8(c), n);
+}
+
 template <int kExponent>
 BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1,
-                                     float* filtered, float* varianceOut) {
+                                     float* filtered, float* varianceOut,
+                                     const SvgfFirstLevel* level) {
     const int w = f.width;
     const f8 limit = splat8(float(s.spatialVarianceFrames));
     for (long y = y0; y < y1; ++y)
@@ -80,6 +101,14 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, 
             if (anyLane(estimate) && !inside) { // taps past a side: the reference's pixels
                 for (int l = 0; l < n; ++l)
                     svgfVariancePixel(f, s, x + l, int(y), filtered, varianceOut);
+                if (level) {
+                    f8 c[3] = {}, variance{};
+                    for (int l = 0; l < n; ++l) {
+                        for (int k = 0; k < 3; ++k) c[k][l] = filtered[4 * (i + l) + k];
+                        variance[l] = filtered[4 * (i + l) + 3];
+                    }
+                    storeFirstLevel(f, *level, i, y, x, n, c, variance);
+                }
                 continue;
             }
             f8 c[3], m1, m2;
@@ -94,31 +123,35 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, 
                 variance = estimate ? boosted : variance;
             }
             variance = variance > 0.0f ? variance : f8{}; // std::fmax(variance, 0)
+            storeFirst(varianceOut + i, variance, n);
+            if (level) {
+                storeFirstLevel(f, *level, i, y, x, n, c, variance);
+                continue;
+            }
             float out[32];
             for (int l = 0; l < 8; ++l) {
                 out[4 * l] = c[0][l], out[4 * l + 1] = c[1][l], out[4 * l + 2] = c[2][l];
                 out[4 * l + 3] = variance[l];
             }
             std::memcpy(filtered + 4 * i, out, sizeof(float) * 4 * size_t(n));
-            storeFirst(varianceOut + i, variance, n);
         }
 }
 
 BMFR_SIMD_DISPATCH(void, varianceRows,
                    (const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
-                    float* variance),
-                   (f, s, y0, y1, filtered, variance)) {
+                    float* variance, const SvgfFirstLevel* level),
+                   (f, s, y0, y1, filtered, variance, level)) {
     if (s.phiNormal == 128.0f)
-        varianceRowsOf<128>(f, s, y0, y1, filtered, variance);
+        varianceRowsOf<128>(f, s, y0, y1, filtered, variance, level);
     else
-        varianceRowsOf<0>(f, s, y0, y1, filtered, variance);
+        varianceRowsOf<0>(f, s, y0, y1, filtered, variance, level);
 }
 
 } // namespace
 
 void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
-                      float* variance) {
-    varianceRows(f, s, y0, y1, filtered, variance);
+                      float* variance, const SvgfFirstLevel* level) {
+    varianceRows(f, s, y0, y1, filtered, variance, level);
 }
 
 } // namespace bmfr::cpu

@@ -8,9 +8,19 @@
 
 namespace bmfr::cpu {
 
+/// The a-trous levels' first planes (CpuAtrous, cpu_svgf_atrous.h), rows `pitch` floats apart:
+/// the guides (normal, 0 without a sample; depth; its gradient; 1 with a sample, else 0), and
+/// the colour, variance and luminance.
+struct SvgfFirstLevel {
+    float *nx, *ny, *nz, *depth, *gradX, *gradY, *mask;
+    float* colour[5];
+    long pitch;
+};
+
 /// svgfVariancePixel over the rows [y0, y1), for settings that cpuNormalPowerSupports
-/// (cpu_svgf_weights.h).
+/// (cpu_svgf_weights.h). With `level`, its planes get the result (and the guides) instead of
+/// `filtered`, which then serves as scratch.
 void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
-                      float* variance);
+                      float* variance, const SvgfFirstLevel* level = nullptr);
 
 } // namespace bmfr::cpu

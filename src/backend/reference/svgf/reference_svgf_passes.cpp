@@ -20,10 +20,8 @@ void svgfVariancePixels(const SvgfFrame& f, const SvgfSettings& s, long y0, long
         for (int x = 0; x < f.width; ++x) svgfVariancePixel(f, s, x, int(y), filtered, variance);
 }
 
-PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
-                                       StageTimes& times, SvgfAccumulateRows rows,
-                                       SvgfVarianceRows varianceRows) {
-    const SvgfSettings& s = ctx.settings;
+PassCounters svgfAccumulate(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times,
+                            SvgfAccumulateRows rows) {
     const TemporalHistory& h = ctx.history;
     const int w = h.width;
     const SvgfFrame f = b.frame(ctx);
@@ -34,11 +32,20 @@ PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& 
     const int64_t discarded =
         countDiscarded(ctx.pool, f.accept, b.accept.pixelCount(), h.hasHistory());
     times.add("accumulate", clock.lap());
-    ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {
-        varianceRows(f, s, y0, y1, b.filtered[0].data(), b.variance.data());
+    return {nonFinite.load(), discarded};
+}
+
+PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
+                                       StageTimes& times, SvgfAccumulateRows rows,
+                                       SvgfVarianceRows varianceRows) {
+    const PassCounters counters = svgfAccumulate(ctx, b, times, rows);
+    const SvgfFrame f = b.frame(ctx);
+    Stopwatch clock;
+    ctx.pool.parallelFor(ctx.history.height, 4, [&](long y0, long y1) {
+        varianceRows(f, ctx.settings, y0, y1, b.filtered[0].data(), b.variance.data());
     });
     times.add("variance", clock.lap());
-    return {nonFinite.load(), discarded};
+    return counters;
 }
 
 AtrousLevel atrousGuides(const SvgfPassContext& ctx, SvgfBuffers& b) {
