@@ -104,16 +104,21 @@ BMFR_HD void svgfAccumulatePixel(const SvgfFrame& f, long i, int64_t& bad) {
 }
 
 /// Screen-space depth gradient of pixel (x, y) by central differences (one-sided at the border).
-BMFR_HD void svgfDepthGradientPixel(const SvgfFrame& f, int x, int y) {
+BMFR_HD Vec2 svgfDepthGradient(const SvgfFrame& f, int x, int y) {
     const int w = f.width, h = f.height;
     const int xl = x > 0 ? x - 1 : x, xr = x + 1 < w ? x + 1 : x;
     const int yu = y > 0 ? y - 1 : y, yd = y + 1 < h ? y + 1 : y;
     const float* z = f.depth;
-    const long i = long(y) * w + x;
-    f.depthGradient[2 * i] =
-        xr > xl ? (z[long(y) * w + xr] - z[long(y) * w + xl]) / float(xr - xl) : 0.0f;
-    f.depthGradient[2 * i + 1] =
-        yd > yu ? (z[long(yd) * w + x] - z[long(yu) * w + x]) / float(yd - yu) : 0.0f;
+    return {xr > xl ? (z[long(y) * w + xr] - z[long(y) * w + xl]) / float(xr - xl) : 0.0f,
+            yd > yu ? (z[long(yd) * w + x] - z[long(yu) * w + x]) / float(yd - yu) : 0.0f};
+}
+
+/// svgfDepthGradient of pixel (x, y) into f.depthGradient.
+BMFR_HD void svgfDepthGradientPixel(const SvgfFrame& f, int x, int y) {
+    const long i = long(y) * f.width + x;
+    const Vec2 g = svgfDepthGradient(f, x, y);
+    f.depthGradient[2 * i] = g.x;
+    f.depthGradient[2 * i + 1] = g.y;
 }
 
 /// Variance of pixel (x, y) from its moments, or a 7x7 bilateral estimate while its history is

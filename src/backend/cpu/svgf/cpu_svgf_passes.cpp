@@ -55,9 +55,10 @@ class CpuSvgfPasses final : public HostSvgfPasses {
             return counters;
         }
         const PassCounters counters =
-            reference::svgfAccumulate(ctx, buffers, times, svgfAccumulateRows);
+            reference::svgfAccumulate(ctx, buffers, times, svgfAccumulateRows, false);
         Stopwatch clock;
-        // The variance estimate writes the levels' first planes (and their guides).
+        // The variance estimate writes the levels' first planes (and their guides, the depth
+        // gradient made there).
         const SvgfFrame f = buffers.frame(ctx);
         const SvgfFirstLevel first = atrous_.firstLevel(h.width, h.height, ctx.settings);
         ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {

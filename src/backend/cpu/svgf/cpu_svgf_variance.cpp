@@ -9,14 +9,31 @@ using namespace simd;
 
 namespace {
 
-/// The 7x7 estimate's moments of eight pixels from i, every tap inside the row.
+/// svgfDepthGradient of n <= 8 pixels from column x of row y: eight wide away from the image's
+/// sides, pixel by pixel at them.
+BMFR_SIMD_INLINE void depthGradient8(const SvgfFrame& f, long y, int x, int n, f8& gx, f8& gy) {
+    const int w = f.width;
+    const float* z = f.depth + y * w + x;
+    if (x >= 1 && x + 9 <= w && y >= 1 && y + 1 < f.height) {
+        gx = (load8(z + 1) - load8(z - 1)) / 2.0f;
+        gy = (load8(z + w) - load8(z - w)) / 2.0f;
+        return;
+    }
+    gx = gy = f8{};
+    for (int l = 0; l < n; ++l) {
+        const Vec2 g = svgfDepthGradient(f, x + l, int(y));
+        gx[l] = g.x, gy[l] = g.y;
+    }
+}
+
+/// The 7x7 estimate's moments of eight pixels from i, every tap inside the row; gx and gy are
+/// their depth gradient.
 template <int kExponent>
 BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s, int y, long i,
-                                       const f8 centre[3], f8& m1, f8& m2) {
+                                       const f8 centre[3], f8 gx, f8 gy, f8& m1, f8& m2) {
     const int w = f.width;
-    f8 n0[3], gx, gy;
+    f8 n0[3];
     deinterleave3(f.normal + 3 * i, n0[0], n0[1], n0[2]);
-    loadXy8(f.depthGradient + 2 * i, 8, gx, gy);
     const f8 z0 = load8(f.depth + i), l0 = luminance8(centre);
     f8 sw{}, s1{}, s2{};
     for (int dy = -3; dy <= 3; ++dy) {
@@ -67,12 +84,12 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
 
 /// The guides and the result of n <= 8 pixels from i (column x of row y) into the first level.
 BMFR_SIMD_INLINE void storeFirstLevel(const SvgfFrame& f, const SvgfFirstLevel& level, long i,
-                                      long y, int x, int n, const f8 c[3], f8 variance) {
+                                      long y, int x, int n, const f8 c[3], f8 variance, f8 gx,
+                                      f8 gy) {
     const long p = y * level.pitch + x;
     const i8 sampled = loadBytes(f.length + i, n) != 0;
-    f8 normal[3], gx, gy;
+    f8 normal[3];
     loadXyz8(f.normal + 3 * i, n, normal);
-    loadXy8(f.depthGradient + 2 * i, n, gx, gy);
     storeFirst(level.nx + p, sampled ? normal[0] : f8{}, n);
     storeFirst(level.ny + p, sampled ? normal[1] : f8{}, n);
     storeFirst(level.nz + p, sampled ? normal[2] : f8{}, n);
@@ -98,7 +115,14 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, 
             const f8 length = __builtin_convertvector(loadBytes(f.length + i, n), f8);
             const i8 estimate = (length > 0.0f) & (length < limit);
             const bool inside = x >= 3 && x + 8 + 3 <= w;
+            // With the level planes the gradient is made here (svgfAccumulate left it).
+            f8 gx, gy;
+            if (level)
+                depthGradient8(f, y, x, n, gx, gy);
+            else
+                loadXy8(f.depthGradient + 2 * i, n, gx, gy);
             if (anyLane(estimate) && !inside) { // taps past a side: the reference's pixels
+                if (level) storeXy8(f.depthGradient + 2 * i, n, gx, gy); // which they read
                 for (int l = 0; l < n; ++l)
                     svgfVariancePixel(f, s, x + l, int(y), filtered, varianceOut);
                 if (level) {
@@ -107,7 +131,7 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, 
                         for (int k = 0; k < 3; ++k) c[k][l] = filtered[4 * (i + l) + k];
                         variance[l] = filtered[4 * (i + l) + 3];
                     }
-                    storeFirstLevel(f, *level, i, y, x, n, c, variance);
+                    storeFirstLevel(f, *level, i, y, x, n, c, variance, gx, gy);
                 }
                 continue;
             }
@@ -117,7 +141,7 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, 
             f8 variance = m2 - m1 * m1;
             if (anyLane(estimate)) {
                 f8 e1 = m1, e2 = m2;
-                bilateralMoments<kExponent>(f, s, int(y), i, c, e1, e2);
+                bilateralMoments<kExponent>(f, s, int(y), i, c, gx, gy, e1, e2);
                 // Boost the uncertain estimate of short histories (as the authors' code).
                 const f8 boosted = (e2 - e1 * e1) * 4.0f / (estimate ? length : splat8(1.0f));
                 variance = estimate ? boosted : variance;
@@ -125,7 +149,7 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, 
             variance = variance > 0.0f ? variance : f8{}; // std::fmax(variance, 0)
             storeFirst(varianceOut + i, variance, n);
             if (level) {
-                storeFirstLevel(f, *level, i, y, x, n, c, variance);
+                storeFirstLevel(f, *level, i, y, x, n, c, variance, gx, gy);
                 continue;
             }
             float out[32];

@@ -18,8 +18,10 @@ struct SvgfFirstLevel {
 };
 
 /// svgfVariancePixel over the rows [y0, y1), for settings that cpuNormalPowerSupports
-/// (cpu_svgf_weights.h). With `level`, its planes get the result (and the guides) instead of
-/// `filtered`, which then serves as scratch.
+/// (cpu_svgf_weights.h). With `level`, its planes get the result and the guides instead of
+/// `filtered`, which then serves as scratch, and the depth gradient is made from f.depth
+/// (svgfDepthGradient; svgfAccumulate without it), not read from f.depthGradient, which holds
+/// it only where the reference's pixels needed it.
 void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
                       float* variance, const SvgfFirstLevel* level = nullptr);
 

@@ -21,14 +21,16 @@ void svgfVariancePixels(const SvgfFrame& f, const SvgfSettings& s, long y0, long
 }
 
 PassCounters svgfAccumulate(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times,
-                            SvgfAccumulateRows rows) {
+                            SvgfAccumulateRows rows, bool depthGradient) {
     const TemporalHistory& h = ctx.history;
     const int w = h.width;
     const SvgfFrame f = b.frame(ctx);
     Stopwatch clock;
     std::atomic<int64_t> nonFinite{0};
     ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) { nonFinite += rows(f, y0, y1); });
-    ctx.pool.forEachPixel(w, h.height, 4, [&](int x, int y) { svgfDepthGradientPixel(f, x, y); });
+    if (depthGradient)
+        ctx.pool.forEachPixel(w, h.height, 4,
+                              [&](int x, int y) { svgfDepthGradientPixel(f, x, y); });
     const int64_t discarded =
         countDiscarded(ctx.pool, f.accept, b.accept.pixelCount(), h.hasHistory());
     times.add("accumulate", clock.lap());

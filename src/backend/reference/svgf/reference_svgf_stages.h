@@ -16,10 +16,11 @@ void svgfVariancePixels(const SvgfFrame& f, const SvgfSettings& s, long y0, long
 using SvgfVarianceRows = void (*)(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1,
                                   float* filtered, float* variance);
 
-/// Accumulation (`rows` over every row) and depth gradient ("accumulate"). Returns the
-/// non-finite and discarded counts.
+/// Accumulation (`rows` over every row) and, with `depthGradient`, the depth gradient
+/// ("accumulate"). Returns the non-finite and discarded counts.
 PassCounters svgfAccumulate(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times,
-                            SvgfAccumulateRows rows = svgfAccumulatePixels);
+                            SvgfAccumulateRows rows = svgfAccumulatePixels,
+                            bool depthGradient = true);
 /// svgfAccumulate, then the variance estimate (`varianceRows`, "variance") into b.filtered[0].
 PassCounters svgfAccumulateAndVariance(const SvgfPassContext& ctx, SvgfBuffers& b,
                                        StageTimes& times,
