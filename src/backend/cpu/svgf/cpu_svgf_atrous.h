@@ -1,7 +1,7 @@
 // The CPU backend's SVGF a-trous levels: eight pixels of a row at a time (sixteen on the
 // AVX-512 path) over planes of the colour, variance, luminance and guides (which the variance
-// estimate writes: cpu_svgf_variance.h), each row
-// padded by an apron whose mask is zero, so that a tap past the row's ends needs no bounds test.
+// estimate writes: cpu_svgf_variance.h), each row padded by an apron whose mask is zero, so
+// that a tap past the row's ends needs no bounds test.
 // Same taps, order and feedback as the reference (filters/svgf/svgf_kernels.h); rounded
 // differently, within the conformance tolerance: each tap's weight one power of two of its
 // terms' logarithms (the default normal exponent's by a series, at least 2^-126 where the
@@ -17,7 +17,8 @@ namespace bmfr::cpu {
 
 class CpuAtrous {
   public:
-    /// Sizes the planes for a w x h frame with these settings (run does it when they change).
+    /// Sizes the planes for a w x h frame with these settings (firstLevel does it when they
+    /// change).
     void reserve(int w, int h, const SvgfSettings& s);
     /// Sizes the planes for a w x h frame and returns the first level's, for the variance
     /// estimate to fill (svgfVarianceRows).
