@@ -17,6 +17,7 @@ struct LevelArgs {
     const float* in[5]; ///< R, G, B, variance, luminance
     float* out[5];
     float* history; ///< the RGB also packed (3 floats per pixel, rows `width` apart), or null
+    bool last;      ///< the last level: its variance and luminance have no reader
     long pitch;
     int width, height, radius, step, normalExponent;
     float phiDepth, phiLuminance;
@@ -26,8 +27,9 @@ struct LevelArgs {
 /// defaults: the taps unrolled, their constants folded); 0 reads them from `a`. V is eight or
 /// sixteen lanes. Each tap's weight is one power of two: the tap's, the edge terms' and (for
 /// the default exponent) the normal's logarithms added. A row of taps is weighed together and
-/// then added, tap by tap, so that their exponentials' chains interleave.
-template <class V, int kExponent, int kRadius>
+/// then added, tap by tap, so that their exponentials' chains interleave. kLast leaves out the
+/// variance and luminance (LevelArgs::last).
+template <class V, int kExponent, int kRadius, bool kLast>
 BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
     constexpr int kLanes = kLanesOf<V>;
     const auto load = loadVector<V>;
@@ -77,7 +79,7 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             auto add = [&] [[gnu::always_inline]] (V wgt, long q) {
                 sumR += wgt * load(a.in[0] + q), sumG += wgt * load(a.in[1] + q);
                 sumB += wgt * load(a.in[2] + q);
-                sumV += wgt * wgt * load(a.in[3] + q);
+                if constexpr (!kLast) sumV += wgt * wgt * load(a.in[3] + q);
                 sumW += wgt;
             };
             // The slope along a tap, (kx gx0 + ky gy0) step: step is a power of two and |kx|,
@@ -136,8 +138,8 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             const V out[4] = {sampled ? sumR / sumW : r0, sampled ? sumG / sumW : g0,
                               sampled ? sumB / sumW : b0, sampled ? sumV / (sumW * sumW) : v0};
             const int n = std::min(kLanes, a.width - x);
-            for (int k = 0; k < 4; ++k) storeFirstLanes(a.out[k] + c, out[k], n);
-            storeFirstLanes(a.out[4] + c, luminanceOf(out), n);
+            for (int k = 0; k < (kLast ? 3 : 4); ++k) storeFirstLanes(a.out[k] + c, out[k], n);
+            if constexpr (!kLast) storeFirstLanes(a.out[4] + c, luminanceOf(out), n);
             if (a.history) {
                 float* packed = a.history + 3 * (y * a.width + x);
                 for (int l = 0; l < n; ++l)
@@ -148,10 +150,12 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
 
 BMFR_SIMD_DISPATCH(void, atrousRows, (const LevelArgs& a, long y0, long y1), (a, y0, y1)) {
     using V = std::conditional_t<kIsa == Isa::Avx512, f32x16, f8>;
-    if (a.normalExponent == 128 && a.radius == 2)
-        atrousRowsOf<V, 128, 2>(a, y0, y1);
+    if (a.normalExponent == 128 && a.radius == 2 && a.last)
+        atrousRowsOf<V, 128, 2, true>(a, y0, y1);
+    else if (a.normalExponent == 128 && a.radius == 2)
+        atrousRowsOf<V, 128, 2, false>(a, y0, y1);
     else
-        atrousRowsOf<V, 0, 0>(a, y0, y1);
+        atrousRowsOf<V, 0, 0, false>(a, y0, y1);
 }
 
 } // namespace
@@ -195,6 +199,7 @@ int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, float* colorHistory)
                 {},
                 {},
                 nullptr,
+                false,
                 pitch,
                 w,
                 h,
@@ -205,12 +210,14 @@ int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, float* colorHistory)
                 s.phiLuminance};
     // The step-1 level also writes the colour history (runAtrousLevels' keep then has nothing
     // left to copy).
+    int levels = 0;
     return runAtrousLevels(
         s,
         [&](int from, int to, int step) {
             for (int k = 0; k < 5; ++k) a.in[k] = level(from, k), a.out[k] = levelPlane(to, k);
             a.step = step;
             a.history = step == 1 ? colorHistory : nullptr;
+            a.last = ++levels == s.iterations;
             pool.parallelFor(h, 2, [&](long y0, long y1) { atrousRows(a, y0, y1); });
         },
         [](int) {});

@@ -33,7 +33,8 @@ class CpuAtrous {
         return planes_.data() + long(Colour + 5 * set + k) * planeFloats_ + apron_;
     }
     long pitch() const { return pitch_; }
-    /// Set `set`'s level as RGB + variance, 4 floats per pixel (the debug buffers' copy).
+    /// Set `set`'s level as RGB + variance, 4 floats per pixel (the debug buffers' copy; the
+    /// last level's variance is not made, and its channel holds an earlier level's).
     void copyLevel(int set, float* rgbv) const;
 
   private:
