@@ -202,9 +202,18 @@ BMFR_SIMD_INLINE void tapXyz(const Taps8& t, const float* records, int k, simd::
 
 /// Tap k of the eight lanes from packed xy records (2 floats per pixel).
 BMFR_SIMD_INLINE void tapXy(const Taps8& t, const float* records, int k, simd::f8& x, simd::f8& y) {
+    if (t.coherent) {
+        const float* p = records + 2 * t.at[k];
+        simd::loadXy8(p, 8, x, y);
+        if (!t.split) return;
+        simd::f8 nextX, nextY;
+        simd::loadXy8(p + 2, 8, nextX, nextY);
+        x = t.upper ? nextX : x, y = t.upper ? nextY : y;
+        return;
+    }
     float lanes[2][8];
     for (int l = 0; l < 8; ++l) {
-        const long j = t.coherent ? t.at[k] + l + (t.split && t.upper[l] ? 1 : 0) : t.index[k][l];
+        const long j = t.index[k][l];
         lanes[0][l] = records[2 * j], lanes[1][l] = records[2 * j + 1];
     }
     x = simd::load8(lanes[0]), y = simd::load8(lanes[1]);
