@@ -194,7 +194,7 @@ TEST(Svgf, CpuVarianceEstimateMatchesTheReference) {
     }
     SvgfFrame f;
     f.width = w, f.height = h;
-    f.integrated = integrated.data(), f.integratedMoments = moments.data();
+    f.integrated = integrated.data(), f.moments = moments.data();
     f.normal = normal.data(), f.depth = depth.data(), f.depthGradient = gradient.data();
     f.length = length.data();
     for (float phiNormal : {128.0f, 32.0f})

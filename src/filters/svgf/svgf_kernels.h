@@ -25,14 +25,14 @@ struct SvgfFrame {
     const float *prevNormal = nullptr, *prevPosition = nullptr, *prevColor = nullptr;
     const float* prevMoments = nullptr; ///< 2: luminance, luminance squared
     const uint8_t* prevLength = nullptr;
-    float *normal = nullptr, *position = nullptr, *color = nullptr, *moments = nullptr;
+    float *normal = nullptr, *position = nullptr, *color = nullptr;
+    float* moments = nullptr;  ///< 2: this frame's accumulated moments (the variance reads them)
     uint8_t* length = nullptr; ///< 0 = no sample yet (fewer than 1 spp)
     // This frame.
-    float* integrated = nullptr;        ///< accumulated colour before filtering
-    float* integratedMoments = nullptr; ///< 2
-    float* depth = nullptr;             ///< clip-space w of the first hit
-    float* depthGradient = nullptr;     ///< 2: screen-space dz/dx, dz/dy
-    float* previousPixel = nullptr;     ///< 2
+    float* integrated = nullptr;    ///< accumulated colour before filtering
+    float* depth = nullptr;         ///< clip-space w of the first hit
+    float* depthGradient = nullptr; ///< 2: screen-space dz/dx, dz/dy
+    float* previousPixel = nullptr; ///< 2
     uint8_t* accept = nullptr;
 };
 
@@ -95,8 +95,6 @@ BMFR_HD void svgfAccumulatePixel(const SvgfFrame& f, long i, int64_t& bad) {
         length = total > 0 ? nextHistoryLength(samples) : 1;
     }
     store3(f.integrated, i, color);
-    f.integratedMoments[2 * i] = m1;
-    f.integratedMoments[2 * i + 1] = m2;
     f.length[i] = length;
     store3(f.color, i, color); // replaced by the feedback level later
     f.moments[2 * i] = m1;
@@ -131,7 +129,7 @@ BMFR_HD void svgfVariancePixel(const SvgfFrame& f, const SvgfSettings& s, int x,
     float* out = filtered + 4 * i;
     const Vec3 c = load3(f.integrated, i);
     out[0] = c.x, out[1] = c.y, out[2] = c.z;
-    float m1 = f.integratedMoments[2 * i], m2 = f.integratedMoments[2 * i + 1];
+    float m1 = f.moments[2 * i], m2 = f.moments[2 * i + 1];
     float variance = m2 - m1 * m1;
     if (len[i] > 0 && len[i] < s.spatialVarianceFrames) {
         // Too little history: a 7x7 bilateral estimate of the moments instead.
@@ -150,8 +148,8 @@ BMFR_HD void svgfVariancePixel(const SvgfFrame& f, const SvgfSettings& s, int x,
                     normalWeight(n0, load3(f.normal, j), s.phiNormal) *
                     std::exp(-std::fabs(l0 - luminance(load3(f.integrated, j))) / 10.0f);
                 sw += wq;
-                s1 += wq * f.integratedMoments[2 * j];
-                s2 += wq * f.integratedMoments[2 * j + 1];
+                s1 += wq * f.moments[2 * j];
+                s2 += wq * f.moments[2 * j + 1];
             }
         if (sw > 0) {
             m1 = s1 / sw;

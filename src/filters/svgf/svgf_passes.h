@@ -20,7 +20,7 @@ template <class F, class U> struct SvgfImages {
     U historyLength[2];       ///< 0 = no sample yet (fewer than 1 spp)
     F output[2];              ///< final output (TAA history), 24 floats of padding
     // This frame.
-    F integrated, integratedMoments, depth, depthGradient;
+    F integrated, depth, depthGradient;
     F variance;      ///< estimate before filtering (debug view)
     F filtered[2];   ///< a-trous ping-pong: RGB colour + variance
     F previousPixel; ///< 2 channels, shared with TAA
@@ -33,7 +33,7 @@ template <class F, class U> struct SvgfImages {
             moments[k].resize(w, h, 2), historyLength[k].resize(w, h, 1);
             output[k].resize(w, h, 3, 24), filtered[k].resize(w, h, 4);
         }
-        integrated.resize(w, h, 3), integratedMoments.resize(w, h, 2), depth.resize(w, h, 1);
+        integrated.resize(w, h, 3), depth.resize(w, h, 1);
         depthGradient.resize(w, h, 2), variance.resize(w, h, 1), previousPixel.resize(w, h, 2);
         accept.resize(w, h, 1), remodulated.resize(w, h, 3);
     }
@@ -56,7 +56,7 @@ template <class F, class U> struct SvgfImages {
         f.normal = normal[cur].data(), f.position = position[cur].data();
         f.color = color[cur].data(), f.moments = moments[cur].data();
         f.length = historyLength[cur].data();
-        f.integrated = integrated.data(), f.integratedMoments = integratedMoments.data();
+        f.integrated = integrated.data();
         f.depth = depth.data(), f.depthGradient = depthGradient.data();
         f.previousPixel = previousPixel.data(), f.accept = accept.data();
         return f;

@@ -77,7 +77,6 @@ BMFR_SIMD_INLINE void accumulateGroup(const SvgfFrame& f, int x, int y, int n, i
     storeXyz8(f.integrated + 3 * i, n, color);
     // f.color, which the reference also fills here, is left to the step-1 level's feedback:
     // every run of levels has one (runAtrousLevels), so the store would always be overwritten.
-    storeXy8(f.integratedMoments + 2 * i, n, m1, m2);
     storeXy8(f.moments + 2 * i, n, m1, m2);
     storeBytes(f.length + i, __builtin_convertvector(length, i8), n);
 }

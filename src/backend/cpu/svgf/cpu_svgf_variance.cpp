@@ -48,7 +48,7 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
             f8 nq[3], cq[3];
             deinterleave3(f.normal + 3 * q, nq[0], nq[1], nq[2]);
             deinterleave3(f.integrated + 3 * q, cq[0], cq[1], cq[2]);
-            loadXy8(f.integratedMoments + 2 * q, 8, mq1[t], mq2[t]);
+            loadXy8(f.moments + 2 * q, 8, mq1[t], mq2[t]);
             const f8 slope = abs8(gx * float(dx) + gy * float(dy));
             const f8 depthArg = abs8(z0 - load8(f.depth + q)) / (s.phiDepth * slope + 1e-6f);
             if constexpr (kExponent == 128) {
@@ -137,7 +137,7 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, 
             }
             f8 c[3], m1, m2;
             loadXyz8(f.integrated + 3 * i, n, c);
-            loadXy8(f.integratedMoments + 2 * i, n, m1, m2);
+            loadXy8(f.moments + 2 * i, n, m1, m2);
             f8 variance = m2 - m1 * m1;
             if (anyLane(estimate)) {
                 f8 e1 = m1, e2 = m2;
