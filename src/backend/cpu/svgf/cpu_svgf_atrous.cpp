@@ -135,8 +135,11 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
                 }
             }
             const IntOf<V> sampled = load(a.mask + c) > zero;
-            const V out[4] = {sampled ? sumR / sumW : r0, sampled ? sumG / sumW : g0,
-                              sampled ? sumB / sumW : b0, sampled ? sumV / (sumW * sumW) : v0};
+            // One division for the four normalisations.
+            const V inverseW = 1.0f / sumW;
+            const V out[4] = {sampled ? sumR * inverseW : r0, sampled ? sumG * inverseW : g0,
+                              sampled ? sumB * inverseW : b0,
+                              sampled ? sumV * (inverseW * inverseW) : v0};
             const int n = std::min(kLanes, a.width - x);
             for (int k = 0; k < (kLast ? 3 : 4); ++k) storeFirstLanes(a.out[k] + c, out[k], n);
             if constexpr (!kLast) storeFirstLanes(a.out[4] + c, luminanceOf(out), n);

@@ -5,8 +5,9 @@
 // Same taps, order and feedback as the reference (filters/svgf/svgf_kernels.h); rounded
 // differently, within the conformance tolerance: each tap's weight one power of two of its
 // terms' logarithms (the default normal exponent's by a series, at least 2^-126 where the
-// reference's is 0), fused multiply-adds, phiDepth folded into the gradient, and the luminance
-// and depth terms multiplied by reciprocals (the depth term's shared by a tap and its mirror).
+// reference's is 0), fused multiply-adds, phiDepth folded into the gradient, the luminance and
+// depth terms multiplied by reciprocals (the depth term's shared by a tap and its mirror), and
+// the sums by the reciprocal of the weights' sum.
 #pragma once
 #include "backend/cpu/svgf/cpu_svgf_variance.h"
 #include "core/parallel.h"
