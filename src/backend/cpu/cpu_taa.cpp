@@ -1,5 +1,6 @@
 #include "backend/cpu/cpu_taa.h"
 #include "backend/cpu/taa_rows.h"
+#include <cstring>
 
 namespace bmfr::cpu {
 
@@ -59,7 +60,10 @@ size_t taaScratchFloats(int width, int height) {
 void temporalAntiAliasing(ThreadPool& pool, const float* current, const float* history,
                           const float* previousPixel, float* scratch, float* out, int w, int h,
                           TaaBlend blend, bool enabled, const uint8_t* accept, TaaSpace space) {
-    if (!enabled) space = TaaSpace::Linear;
+    if (!enabled) { // the current frame as it is (the passes below would copy it too)
+        std::memcpy(out, current, sizeof(float) * 3 * size_t(w) * size_t(h));
+        return;
+    }
     pool.parallelFor(h, 8, [&](long y0, long y1) {
         resolveRows(current, previousPixel, scratch, w, space, y0, y1);
     });
