@@ -177,6 +177,10 @@ void CpuAtrous::reserve(int w, int h, const SvgfSettings& s) {
 
 SvgfFirstLevel CpuAtrous::firstLevel(int w, int h, const SvgfSettings& s) {
     reserve(w, h, s);
+    return firstPlanes();
+}
+
+SvgfFirstLevel CpuAtrous::firstPlanes() {
     return {
         plane(Nx),
         plane(Ny),
@@ -192,13 +196,14 @@ SvgfFirstLevel CpuAtrous::firstLevel(int w, int h, const SvgfSettings& s) {
 int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, float* colorHistory) {
     const int w = width_, h = height_;
     const long pitch = pitch_;
-    LevelArgs a{plane(Nx),
-                plane(Ny),
-                plane(Nz),
-                plane(Depth),
-                plane(GradX),
-                plane(GradY),
-                plane(Mask),
+    const SvgfFirstLevel g = firstPlanes(); // the guides
+    LevelArgs a{g.nx,
+                g.ny,
+                g.nz,
+                g.depth,
+                g.gradX,
+                g.gradY,
+                g.mask,
                 {},
                 {},
                 nullptr,

@@ -47,6 +47,7 @@ class CpuAtrous {
 
     float* plane(int k) { return planes_.data() + long(k) * planeFloats_ + apron_; }
     float* levelPlane(int set, int k) { return plane(Colour + 5 * set + k); }
+    SvgfFirstLevel firstPlanes(); ///< the first level's planes and the guides, as sized
 };
 
 } // namespace bmfr::cpu
