@@ -46,18 +46,45 @@ float referenceTaa(const EdgeFrame& f, const uint8_t* accept, TaaSpace space, Ta
     return taaPixel(a, 1, 1).y;
 }
 
-float cpuTaa(const EdgeFrame& f, const uint8_t* accept, TaaSpace space, TaaBlend blend) {
+float cpuTaaOf(const EdgeFrame& f, const cpu::TaaCurrent& current, const uint8_t* accept,
+               TaaSpace space, TaaBlend blend) {
     ThreadPool pool(1);
     std::vector<float> scratch(cpu::taaScratchFloats(f.w, f.h)), out(f.current.size());
-    cpu::temporalAntiAliasing(pool, f.current.data(), f.history.data(), f.previousPixel.data(),
+    cpu::temporalAntiAliasing(pool, current, f.history.data(), f.previousPixel.data(),
                               scratch.data(), out.data(), f.w, f.h, blend, true, accept, space);
     return out[3 * (f.w + 1) + 1];
+}
+
+float cpuTaa(const EdgeFrame& f, const uint8_t* accept, TaaSpace space, TaaBlend blend) {
+    cpu::TaaCurrent current;
+    current.rgb = f.current.data();
+    return cpuTaaOf(f, current, accept, space, blend);
+}
+
+// The current frame as SVGF's last level: demodulated planes (twice the colour, rows 8 floats
+// apart) that the TAA multiplies by the albedo, 0.5, as it reads them: the same frame, exactly.
+float cpuTaaFromPlanes(const EdgeFrame& f, const uint8_t* accept, TaaSpace space, TaaBlend blend) {
+    constexpr long kPitch = 8;
+    std::vector<float> planes(3 * kPitch * f.h), albedo(f.current.size(), 0.5f);
+    cpu::TaaCurrent current;
+    for (int k = 0; k < 3; ++k) {
+        current.planes[k] = planes.data() + k * kPitch * f.h;
+        for (int i = 0; i < f.w * f.h; ++i)
+            planes[size_t(k * kPitch * f.h + i / f.w * kPitch + i % f.w)] =
+                2 * f.current[3 * i + k];
+    }
+    InputPlanes in;
+    in.albedo = albedo.data();
+    current.pitch = kPitch;
+    current.in = &in;
+    current.albedoEpsilon = 1e-3f;
+    return cpuTaaOf(f, current, accept, space, blend);
 }
 
 TEST(Taa, HistoryFromAllTapsOrOnlyTheSameSurfaceMatchesHandValues) {
     const EdgeFrame f;
     std::vector<uint8_t> all(size_t(f.w * f.h), 15), first(all.size(), 1), none(all.size(), 0);
-    for (auto taa : {referenceTaa, cpuTaa}) {
+    for (auto taa : {referenceTaa, cpuTaa, cpuTaaFromPlanes}) {
         EXPECT_NEAR(taa(f, nullptr, TaaSpace::Linear, {0.2f}), kAllTaps, 1e-6f);
         EXPECT_NEAR(taa(f, all.data(), TaaSpace::Linear, {0.2f}), kAllTaps, 1e-6f);
         EXPECT_NEAR(taa(f, first.data(), TaaSpace::Linear, {0.2f}), kSameSurface, 1e-6f);

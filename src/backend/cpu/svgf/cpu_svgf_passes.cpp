@@ -1,9 +1,8 @@
 // The CPU backend's SVGF: eight-wide accumulation (cpu_svgf_accumulate.h), variance estimate
-// (cpu_svgf_variance.h), a-trous levels (cpu_svgf_atrous.h) and re-modulation from the last
-// level's planes, and the TAA shared with BMFR.
+// (cpu_svgf_variance.h), a-trous levels (cpu_svgf_atrous.h), and the TAA shared with BMFR,
+// which re-modulates the last level's planes as it reads them.
 #include "backend/backend_registry.h"
 #include "backend/cpu/cpu_taa.h"
-#include "backend/cpu/modulation8.h"
 #include "backend/cpu/svgf/cpu_svgf_accumulate.h"
 #include "backend/cpu/svgf/cpu_svgf_atrous.h"
 #include "backend/cpu/svgf/cpu_svgf_variance.h"
@@ -15,24 +14,6 @@
 namespace bmfr::cpu {
 
 namespace {
-
-/// reference::svgfRemodulate's pixels from the last level's R, G and B planes (rows `pitch`
-/// floats apart), eight at a time, bit for bit.
-BMFR_SIMD_DISPATCH(void, remodulateRows,
-                   (const float* const rgb[3], long pitch, const InputPlanes& in,
-                    float albedoEpsilon, int width, float* out, long y0, long y1),
-                   (rgb, pitch, in, albedoEpsilon, width, out, y0, y1)) {
-    using namespace simd;
-    for (long y = y0; y < y1; ++y)
-        for (int x = 0; x < width; x += 8) {
-            const int n = std::min(8, width - x);
-            const long i = y * width + x;
-            f8 c[3];
-            for (int k = 0; k < 3; ++k) c[k] = loadFirst(rgb[k] + y * pitch + x, n);
-            remodulate8(c, in, i, n, true, albedoEpsilon);
-            storeXyz8(out + 3 * i, n, c);
-        }
-}
 
 class CpuSvgfPasses final : public HostSvgfPasses {
   public:
@@ -51,7 +32,9 @@ class CpuSvgfPasses final : public HostSvgfPasses {
             reference::svgfAtrousLevels(ctx, buffers);
             reference::svgfRemodulate(ctx, buffers);
             times.add("atrous", clock.lap());
-            taa(ctx, times);
+            TaaCurrent current;
+            current.rgb = buffers.remodulated.data();
+            taa(ctx, current, times);
             return counters;
         }
         const PassCounters counters =
@@ -67,15 +50,13 @@ class CpuSvgfPasses final : public HostSvgfPasses {
         });
         times.add("variance", clock.lap());
         buffers.outputLevel = atrous_.run(ctx.pool, ctx.settings, buffers.color[h.cur].data());
-        const float* const last[3] = {atrous_.level(buffers.outputLevel, 0),
-                                      atrous_.level(buffers.outputLevel, 1),
-                                      atrous_.level(buffers.outputLevel, 2)};
-        ctx.pool.parallelFor(h.height, 8, [&](long y0, long y1) {
-            remodulateRows(last, atrous_.pitch(), ctx.input, ctx.settings.albedoEpsilon, h.width,
-                           buffers.remodulated.data(), y0, y1);
-        });
         times.add("atrous", clock.lap());
-        taa(ctx, times);
+        TaaCurrent current; // the last level, re-modulated as the TAA reads it
+        for (int k = 0; k < 3; ++k) current.planes[k] = atrous_.level(buffers.outputLevel, k);
+        current.pitch = atrous_.pitch();
+        current.in = &ctx.input;
+        current.albedoEpsilon = ctx.settings.albedoEpsilon;
+        taa(ctx, current, times);
         return counters;
     }
 
@@ -86,10 +67,10 @@ class CpuSvgfPasses final : public HostSvgfPasses {
     }
 
   private:
-    void taa(const SvgfPassContext& ctx, StageTimes& times) {
+    void taa(const SvgfPassContext& ctx, const TaaCurrent& current, StageTimes& times) {
         const TemporalHistory& h = ctx.history;
         Stopwatch clock;
-        temporalAntiAliasing(ctx.pool, buffers.remodulated.data(), buffers.output[1 - h.cur].data(),
+        temporalAntiAliasing(ctx.pool, current, buffers.output[1 - h.cur].data(),
                              buffers.previousPixel.data(), taaScratch_.data(),
                              buffers.output[h.cur].data(), h.width, h.height,
                              taaBlend(ctx.settings), ctx.settings.taa && h.hasHistory(),
