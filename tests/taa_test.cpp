@@ -49,7 +49,7 @@ float referenceTaa(const EdgeFrame& f, const uint8_t* accept, TaaSpace space, Ta
 float cpuTaaOf(const EdgeFrame& f, const cpu::TaaCurrent& current, const uint8_t* accept,
                TaaSpace space, TaaBlend blend) {
     ThreadPool pool(1);
-    std::vector<float> scratch(cpu::taaScratchFloats(f.w, f.h)), out(f.current.size());
+    std::vector<float> scratch(cpu::taaScratchFloats(f.w, 1)), out(f.current.size());
     cpu::temporalAntiAliasing(pool, current, f.history.data(), f.previousPixel.data(),
                               scratch.data(), out.data(), f.w, f.h, blend, true, accept, space);
     return out[3 * (f.w + 1) + 1];

@@ -10,11 +10,6 @@ using namespace simd;
 
 namespace {
 
-// Per image row: a resolved row, then the row's previous pixel as two planes.
-size_t rowFloats(int w) {
-    return ResolvedRows::rowFloats(w) + 2 * ResolvedRows::pitch(w);
-}
-
 /// The current frame's n <= 8 pixels from column x of row y (pixel i).
 BMFR_SIMD_INLINE void loadCurrent8(const TaaCurrent& current, long y, int x, long i, int n,
                                    f8 c[3]) {
@@ -36,47 +31,58 @@ BMFR_SIMD_DISPATCH(void, copyRows, (const TaaCurrent& current, float* out, int w
         }
 }
 
-BMFR_SIMD_DISPATCH(void, resolveRows,
-                   (const TaaCurrent& current, const float* previousPixel, float* scratch, int w,
-                    TaaSpace space, long y0, long y1),
-                   (current, previousPixel, scratch, w, space, y0, y1)) {
+/// Image row y of the current frame into a resolved row, in TAA's space.
+BMFR_SIMD_INLINE void resolveRow(const TaaCurrent& current, int w, TaaSpace space, long y,
+                                 float* row) {
     const size_t pitch = ResolvedRows::pitch(w);
+    for (int x = 0; x < w; x += 8) {
+        f8 c[3];
+        loadCurrent8(current, y, x, y * w + x, std::min(8, w - x), c);
+        storeResolved8(row, pitch, x, c, space);
+    }
+    finishResolvedRow(row, pitch, w);
+}
+
+// A thread's scratch: three resolved rows (a ring: rows y - 1, y and y + 1), then row y's
+// previous pixel as two planes.
+size_t threadFloats(int w) {
+    return 3 * ResolvedRows::rowFloats(w) + 2 * ResolvedRows::pitch(w);
+}
+
+constexpr long kRowsPerTask = 32;
+
+/// TAA of rows [y0, y1). Each row is resolved a row ahead of the TAA; the halo rows either side
+/// of the band, which a neighbouring task resolves too, are made again, not shared.
+BMFR_SIMD_DISPATCH(void, taaRows,
+                   (const TaaCurrent& current, const float* previousPixel, const float* history,
+                    float* scratch, float* out, int w, int h, TaaBlend blend, const uint8_t* accept,
+                    TaaSpace space, long y0, long y1),
+                   (current, previousPixel, history, scratch, out, w, h, blend, accept, space, y0,
+                    y1)) {
+    const size_t pitch = ResolvedRows::pitch(w);
+    auto row = [&](long y) { return scratch + size_t(y % 3) * ResolvedRows::rowFloats(w); };
+    float* previous = scratch + 3 * ResolvedRows::rowFloats(w);
+    long next = y0 > 0 ? y0 - 1 : y0;
     for (long y = y0; y < y1; ++y) {
-        float* row = scratch + size_t(y) * rowFloats(w);
-        float* previous = row + ResolvedRows::rowFloats(w);
+        for (const long last = y + 1 < h ? y + 1 : y; next <= last; ++next)
+            resolveRow(current, w, space, next, row(next));
         for (int x = 0; x < w; x += 8) {
-            const int n = std::min(8, w - x);
-            const long i = y * w + x;
-            f8 c[3], px, py;
-            loadCurrent8(current, y, x, i, n, c);
-            storeResolved8(row, pitch, x, c, space);
-            loadXy8(previousPixel + 2 * i, n, px, py);
+            f8 px, py;
+            loadXy8(previousPixel + 2 * (y * w + x), std::min(8, w - x), px, py);
             store8(previous + x, px);
             store8(previous + pitch + x, py);
         }
-        finishResolvedRow(row, pitch, w);
-    }
-}
-
-BMFR_SIMD_DISPATCH(void, taaRows,
-                   (const float* history, float* scratch, float* out, int w, int h, TaaBlend blend,
-                    bool enabled, const uint8_t* accept, TaaSpace space, long y0, long y1),
-                   (history, scratch, out, w, h, blend, enabled, accept, space, y0, y1)) {
-    const size_t pitch = ResolvedRows::pitch(w), stride = rowFloats(w);
-    for (long y = y0; y < y1; ++y) {
-        const float* mid = scratch + size_t(y) * stride;
-        const float* up = y > 0 ? mid - stride : mid;
-        const float* down = y + 1 < h ? mid + stride : mid;
-        const float* previous = mid + ResolvedRows::rowFloats(w);
-        taaRow(up, mid, down, pitch, previous, previous + pitch, history, out + 3 * y * w, w, h,
-               blend, enabled, accept ? accept + y * w : nullptr, space);
+        const float* mid = row(y);
+        taaRow(y > 0 ? row(y - 1) : mid, mid, y + 1 < h ? row(y + 1) : mid, pitch, previous,
+               previous + pitch, history, out + 3 * y * w, w, h, blend, true,
+               accept ? accept + y * w : nullptr, space);
     }
 }
 
 } // namespace
 
-size_t taaScratchFloats(int width, int height) {
-    return size_t(height) * rowFloats(width);
+size_t taaScratchFloats(int width, int threads) {
+    return size_t(threads) * threadFloats(width);
 }
 
 void temporalAntiAliasing(ThreadPool& pool, const TaaCurrent& current, const float* history,
@@ -90,11 +96,12 @@ void temporalAntiAliasing(ThreadPool& pool, const TaaCurrent& current, const flo
         pool.parallelFor(h, 8, [&](long y0, long y1) { copyRows(current, out, w, y0, y1); });
         return;
     }
-    pool.parallelFor(h, 8, [&](long y0, long y1) {
-        resolveRows(current, previousPixel, scratch, w, space, y0, y1);
-    });
-    pool.parallelFor(h, 8, [&](long y0, long y1) {
-        taaRows(history, scratch, out, w, h, blend, enabled, accept, space, y0, y1);
+    const long tasks = (h + kRowsPerTask - 1) / kRowsPerTask;
+    pool.parallelFor(tasks, 1, [&](long k0, long k1) {
+        float* own = scratch + size_t(ThreadPool::currentThreadIndex()) * threadFloats(w);
+        for (long k = k0; k < k1; ++k)
+            taaRows(current, previousPixel, history, own, out, w, h, blend, accept, space,
+                    k * kRowsPerTask, std::min<long>(h, (k + 1) * kRowsPerTask));
     });
 }
 

@@ -19,13 +19,14 @@ struct TaaCurrent {
     float albedoEpsilon = 0.0f; ///< remodulate's guard (temporal/modulation.h)
 };
 
-/// Floats of scratch temporalAntiAliasing needs for a width x height image.
-size_t taaScratchFloats(int width, int height);
+/// Floats of scratch temporalAntiAliasing needs for images `width` pixels wide on a pool of
+/// `threads` workers.
+size_t taaScratchFloats(int width, int threads);
 
 /// TAA with a 3x3 YCoCg neighbourhood clamp (Karis 2014, the authors' variant) and bilinear
 /// history at `previousPixel` (2 floats per pixel), `blend` weighing the current frame.
-/// `history` and `out` hold 3 floats per pixel. `scratch` holds taaScratchFloats(width, height)
-/// floats. With enabled = false, `out` gets `current`. `accept` (accept masks, or null)
+/// `history` and `out` hold 3 floats per pixel. `scratch` holds taaScratchFloats(width, the pool's
+/// threads) floats. With enabled = false, `out` gets `current`. `accept` (accept masks, or null)
 /// restricts the history to the accepted taps (TaaInputs::accept); `space` is where it blends
 /// (TaaInputs::space).
 void temporalAntiAliasing(ThreadPool& pool, const TaaCurrent& current, const float* history,

@@ -19,7 +19,7 @@ class CpuSvgfPasses final : public HostSvgfPasses {
   public:
     void allocate(int w, int h, const SvgfSettings& s, int threads) override {
         HostSvgfPasses::allocate(w, h, s, threads);
-        taaScratch_.assign(taaScratchFloats(w, h), 0.0f);
+        taaScratch_.assign(taaScratchFloats(w, threads), 0.0f);
         atrous_.reserve(w, h, s);
     }
     PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
