@@ -23,6 +23,15 @@ struct LevelArgs {
     float phiDepth, phiLuminance;
 };
 
+/// Lanes [h, h + 8) of v, for h = 0 or (with sixteen lanes) 8.
+template <class V> BMFR_SIMD_INLINE f8 eightLanes(V v, int h) {
+    if constexpr (kLanesOf<V> == 8)
+        return v;
+    else
+        return h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7)
+                      : __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+
 /// kExponent and kRadius > 0 fix the normal exponent and the kernel radius at compile time (the
 /// defaults: the taps unrolled, their constants folded); 0 reads them from `a`. V is eight or
 /// sixteen lanes. Each tap's weight is one power of two: the tap's, the edge terms' and (for
@@ -145,8 +154,12 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
             if constexpr (!kLast) storeFirstLanes(a.out[4] + c, luminanceOf(out), n);
             if (a.history) {
                 float* packed = a.history + 3 * (y * a.width + x);
-                for (int l = 0; l < n; ++l)
-                    for (int k = 0; k < 3; ++k) packed[3 * l + k] = out[k][l];
+                for (int h = 0; h < kLanes; h += 8) { // eight lanes at a time
+                    if (h >= n) break;
+                    const f8 rgb[3] = {eightLanes(out[0], h), eightLanes(out[1], h),
+                                       eightLanes(out[2], h)};
+                    storeXyz8(packed + 3 * h, std::min(8, n - h), rgb);
+                }
             }
         }
 }
