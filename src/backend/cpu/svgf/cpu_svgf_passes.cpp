@@ -41,12 +41,14 @@ class CpuSvgfPasses final : public HostSvgfPasses {
             reference::svgfAccumulate(ctx, buffers, times, svgfAccumulateRows, false);
         Stopwatch clock;
         // The variance estimate writes the levels' first planes (and their guides, the depth
-        // gradient made there).
+        // gradient made there); its 7x7 estimate reads them.
         const SvgfFrame f = buffers.frame(ctx);
         const SvgfFirstLevel first = atrous_.firstLevel(h.width, h.height, ctx.settings);
+        ctx.pool.parallelFor(h.height, 4,
+                             [&](long y0, long y1) { svgfFirstLevelRows(f, first, y0, y1); });
         ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {
-            svgfVarianceRows(f, ctx.settings, y0, y1, buffers.filtered[0].data(),
-                             buffers.variance.data(), &first);
+            svgfVarianceRows(f, ctx.settings, first, y0, y1, buffers.filtered[0].data(),
+                             buffers.variance.data());
         });
         times.add("variance", clock.lap());
         buffers.outputLevel = atrous_.run(ctx.pool, ctx.settings, buffers.color[h.cur].data());

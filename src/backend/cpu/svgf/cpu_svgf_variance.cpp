@@ -26,15 +26,17 @@ BMFR_SIMD_INLINE void depthGradient8(const SvgfFrame& f, long y, int x, int n, f
     }
 }
 
-/// The 7x7 estimate's moments of eight pixels from i, every tap inside the row; gx and gy are
-/// their depth gradient.
+/// The 7x7 estimate's moments of eight pixels from column x of row y (pixel i), every tap
+/// inside the row, from the first level's planes (their normal is 0 and mask 0 without a
+/// sample); gx and gy are their depth gradient.
 template <int kExponent>
-BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s, int y, long i,
-                                       const f8 centre[3], f8 gx, f8 gy, f8& m1, f8& m2) {
+BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s,
+                                       const SvgfFirstLevel& level, long y, int x, long i, f8 gx,
+                                       f8 gy, f8& m1, f8& m2) {
     const int w = f.width;
-    f8 n0[3];
-    deinterleave3(f.normal + 3 * i, n0[0], n0[1], n0[2]);
-    const f8 z0 = load8(f.depth + i), l0 = luminance8(centre);
+    const long p = y * level.pitch + x;
+    const f8 n0[3] = {load8(level.nx + p), load8(level.ny + p), load8(level.nz + p)};
+    const f8 z0 = load8(level.depth + p), l0 = load8(level.colour[4] + p);
     f8 sw{}, s1{}, s2{};
     for (int dy = -3; dy <= 3; ++dy) {
         if (y + dy < 0 || y + dy >= f.height) continue;
@@ -44,20 +46,19 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
         i8 facing[7]; // n0 . nq > 0: the reference's normal weight is 0 elsewhere
         for (int dx = -3; dx <= 3; ++dx) {
             const int t = dx + 3;
-            const long q = i + long(dy) * w + dx;
-            f8 nq[3], cq[3];
-            deinterleave3(f.normal + 3 * q, nq[0], nq[1], nq[2]);
-            deinterleave3(f.integrated + 3 * q, cq[0], cq[1], cq[2]);
-            loadXy8(f.moments + 2 * q, 8, mq1[t], mq2[t]);
+            const long q = p + dy * level.pitch + dx;
+            const f8 nq[3] = {load8(level.nx + q), load8(level.ny + q), load8(level.nz + q)};
+            loadXy8(f.moments + 2 * (i + long(dy) * w + dx), 8, mq1[t], mq2[t]);
             const f8 slope = abs8(gx * float(dx) + gy * float(dy));
-            const f8 depthArg = abs8(z0 - load8(f.depth + q)) / (s.phiDepth * slope + 1e-6f);
+            const f8 depthArg = abs8(z0 - load8(level.depth + q)) / (s.phiDepth * slope + 1e-6f);
+            const f8 lq = load8(level.colour[4] + q);
             if constexpr (kExponent == 128) {
-                const f8 lumArg = abs8(l0 - luminance8(cq)) * 0.1f;
+                const f8 lumArg = abs8(l0 - lq) * 0.1f;
                 const f8 away = 1.0f - ((n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2]);
                 wq[t] = (depthArg + lumArg) * -kLog2E + normalLog2Power128(away);
                 facing[t] = away < 1.0f;
             } else {
-                const f8 lumArg = abs8(l0 - luminance8(cq)) / 10.0f;
+                const f8 lumArg = abs8(l0 - lq) / 10.0f;
                 const f8 dotN = (n0[0] * nq[0] + n0[1] * nq[1]) + n0[2] * nq[2];
                 wq[t] = normalPower<kExponent>(dotN, int(s.phiNormal)) *
                         expNonPositive8(-(depthArg + lumArg));
@@ -70,7 +71,7 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
             // A tap without a sample, or facing away, adds exactly nothing, as in the reference
             // (exp2NonPositiveRows' floor, 2^-126, would otherwise make a centre whose normal is
             // 0 the plain mean of its window, where the reference keeps its own moments).
-            const i8 sampled = loadBytes(f.length + i + long(dy) * w + dx, 8) != 0;
+            const i8 sampled = load8(level.mask + p + dy * level.pitch + dx) > 0.0f;
             const f8 weight = sampled & facing[t] ? wq[t] : f8{};
             sw += weight;
             s1 += weight * mq1[t];
@@ -82,100 +83,98 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
     m2 = some ? s2 / sw : m2;
 }
 
-/// The guides and the result of n <= 8 pixels from i (column x of row y) into the first level.
-BMFR_SIMD_INLINE void storeFirstLevel(const SvgfFrame& f, const SvgfFirstLevel& level, long i,
-                                      long y, int x, int n, const f8 c[3], f8 variance, f8 gx,
-                                      f8 gy) {
-    const long p = y * level.pitch + x;
-    const i8 sampled = loadBytes(f.length + i, n) != 0;
-    f8 normal[3];
-    loadXyz8(f.normal + 3 * i, n, normal);
-    storeFirst(level.nx + p, sampled ? normal[0] : f8{}, n);
-    storeFirst(level.ny + p, sampled ? normal[1] : f8{}, n);
-    storeFirst(level.nz + p, sampled ? normal[2] : f8{}, n);
-    storeFirst(level.depth + p, loadFirst(f.depth + i, n), n);
-    storeFirst(level.gradX + p, gx, n);
-    storeFirst(level.gradY + p, gy, n);
-    storeFirst(level.mask + p, sampled ? splat8(1.0f) : f8{}, n);
-    for (int k = 0; k < 3; ++k) storeFirst(level.colour[k] + p, c[k], n);
-    storeFirst(level.colour[3] + p, variance, n);
-    storeFirst(level.colour[4] + p, luminance8(c), n);
+/// Whether eight pixels from column x of a row w wide have every 7x7 tap inside the row.
+inline bool tapsInside(int x, int w) {
+    return x >= 3 && x + 8 + 3 <= w;
+}
+
+/// The first level but its variance, over rows [y0, y1): the guides, the colour and its
+/// luminance. The depth gradient also goes to f.depthGradient where the reference's pixels
+/// read it (the groups at a row's sides).
+BMFR_SIMD_DISPATCH(void, firstLevelRows,
+                   (const SvgfFrame& f, const SvgfFirstLevel& level, long y0, long y1),
+                   (f, level, y0, y1)) {
+    const int w = f.width;
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < w; x += 8) {
+            const int n = std::min(8, w - x);
+            const long i = y * w + x, p = y * level.pitch + x;
+            f8 gx, gy;
+            depthGradient8(f, y, x, n, gx, gy);
+            if (!tapsInside(x, w)) storeXy8(f.depthGradient + 2 * i, n, gx, gy);
+            const i8 sampled = loadBytes(f.length + i, n) != 0;
+            f8 normal[3], c[3];
+            loadXyz8(f.normal + 3 * i, n, normal);
+            storeFirst(level.nx + p, sampled ? normal[0] : f8{}, n);
+            storeFirst(level.ny + p, sampled ? normal[1] : f8{}, n);
+            storeFirst(level.nz + p, sampled ? normal[2] : f8{}, n);
+            storeFirst(level.depth + p, loadFirst(f.depth + i, n), n);
+            storeFirst(level.gradX + p, gx, n);
+            storeFirst(level.gradY + p, gy, n);
+            storeFirst(level.mask + p, sampled ? splat8(1.0f) : f8{}, n);
+            loadXyz8(f.integrated + 3 * i, n, c);
+            for (int k = 0; k < 3; ++k) storeFirst(level.colour[k] + p, c[k], n);
+            storeFirst(level.colour[4] + p, luminance8(c), n);
+        }
 }
 
 template <int kExponent>
-BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1,
-                                     float* filtered, float* varianceOut,
-                                     const SvgfFirstLevel* level) {
+BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s,
+                                     const SvgfFirstLevel& level, long y0, long y1, float* scratch,
+                                     float* varianceOut) {
     const int w = f.width;
     const f8 limit = splat8(float(s.spatialVarianceFrames));
     for (long y = y0; y < y1; ++y)
         for (int x = 0; x < w; x += 8) {
             const int n = std::min(8, w - x);
-            const long i = y * w + x;
+            const long i = y * w + x, p = y * level.pitch + x;
             const f8 length = __builtin_convertvector(loadBytes(f.length + i, n), f8);
             const i8 estimate = (length > 0.0f) & (length < limit);
-            const bool inside = x >= 3 && x + 8 + 3 <= w;
-            // With the level planes the gradient is made here (svgfAccumulate left it).
-            f8 gx, gy;
-            if (level)
-                depthGradient8(f, y, x, n, gx, gy);
-            else
-                loadXy8(f.depthGradient + 2 * i, n, gx, gy);
-            if (anyLane(estimate) && !inside) { // taps past a side: the reference's pixels
-                if (level) storeXy8(f.depthGradient + 2 * i, n, gx, gy); // which they read
-                for (int l = 0; l < n; ++l)
-                    svgfVariancePixel(f, s, x + l, int(y), filtered, varianceOut);
-                if (level) {
-                    f8 c[3] = {}, variance{};
-                    for (int l = 0; l < n; ++l) {
-                        for (int k = 0; k < 3; ++k) c[k][l] = filtered[4 * (i + l) + k];
-                        variance[l] = filtered[4 * (i + l) + 3];
-                    }
-                    storeFirstLevel(f, *level, i, y, x, n, c, variance, gx, gy);
+            f8 variance{};
+            if (anyLane(estimate) && !tapsInside(x, w)) { // taps past a side: the reference's
+                for (int l = 0; l < n; ++l) {
+                    svgfVariancePixel(f, s, x + l, int(y), scratch, varianceOut);
+                    variance[l] = varianceOut[i + l];
                 }
+                storeFirst(level.colour[3] + p, variance, n);
                 continue;
             }
-            f8 c[3], m1, m2;
-            loadXyz8(f.integrated + 3 * i, n, c);
+            f8 m1, m2;
             loadXy8(f.moments + 2 * i, n, m1, m2);
-            f8 variance = m2 - m1 * m1;
+            variance = m2 - m1 * m1;
             if (anyLane(estimate)) {
                 f8 e1 = m1, e2 = m2;
-                bilateralMoments<kExponent>(f, s, int(y), i, c, gx, gy, e1, e2);
+                bilateralMoments<kExponent>(f, s, level, y, x, i, load8(level.gradX + p),
+                                            load8(level.gradY + p), e1, e2);
                 // Boost the uncertain estimate of short histories (as the authors' code).
                 const f8 boosted = (e2 - e1 * e1) * 4.0f / (estimate ? length : splat8(1.0f));
                 variance = estimate ? boosted : variance;
             }
             variance = variance > 0.0f ? variance : f8{}; // std::fmax(variance, 0)
             storeFirst(varianceOut + i, variance, n);
-            if (level) {
-                storeFirstLevel(f, *level, i, y, x, n, c, variance, gx, gy);
-                continue;
-            }
-            float out[32];
-            for (int l = 0; l < 8; ++l) {
-                out[4 * l] = c[0][l], out[4 * l + 1] = c[1][l], out[4 * l + 2] = c[2][l];
-                out[4 * l + 3] = variance[l];
-            }
-            std::memcpy(filtered + 4 * i, out, sizeof(float) * 4 * size_t(n));
+            storeFirst(level.colour[3] + p, variance, n);
         }
 }
 
 BMFR_SIMD_DISPATCH(void, varianceRows,
-                   (const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
-                    float* variance, const SvgfFirstLevel* level),
-                   (f, s, y0, y1, filtered, variance, level)) {
+                   (const SvgfFrame& f, const SvgfSettings& s, const SvgfFirstLevel& level, long y0,
+                    long y1, float* scratch, float* variance),
+                   (f, s, level, y0, y1, scratch, variance)) {
     if (s.phiNormal == 128.0f)
-        varianceRowsOf<128>(f, s, y0, y1, filtered, variance, level);
+        varianceRowsOf<128>(f, s, level, y0, y1, scratch, variance);
     else
-        varianceRowsOf<0>(f, s, y0, y1, filtered, variance, level);
+        varianceRowsOf<0>(f, s, level, y0, y1, scratch, variance);
 }
 
 } // namespace
 
-void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
-                      float* variance, const SvgfFirstLevel* level) {
-    varianceRows(f, s, y0, y1, filtered, variance, level);
+void svgfFirstLevelRows(const SvgfFrame& f, const SvgfFirstLevel& level, long y0, long y1) {
+    firstLevelRows(f, level, y0, y1);
+}
+
+void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, const SvgfFirstLevel& level,
+                      long y0, long y1, float* scratch, float* variance) {
+    varianceRows(f, s, level, y0, y1, scratch, variance);
 }
 
 } // namespace bmfr::cpu

@@ -1,8 +1,9 @@
 // SVGF's variance estimate on the CPU backend: svgfVariancePixel (filters/svgf/svgf_kernels.h)
-// eight pixels at a time. Pixels with a long enough history take their moments' variance, bit
-// for bit; the 7x7 bilateral estimate of short histories runs eight wide with one polynomial
-// exponential per tap for the depth and luminance weights (rounded differently from the
-// reference, within the conformance tolerance), and pixel by pixel within 3 of the sides.
+// eight pixels at a time, into the a-trous levels' first planes. Pixels with a long enough
+// history take their moments' variance, bit for bit; the 7x7 bilateral estimate of short
+// histories runs eight wide over the first level's planes with one polynomial exponential per
+// tap for the depth and luminance weights (rounded differently from the reference, within the
+// conformance tolerance), and pixel by pixel within 3 of the sides.
 #pragma once
 #include "filters/svgf/svgf_kernels.h"
 
@@ -17,12 +18,17 @@ struct SvgfFirstLevel {
     long pitch;
 };
 
-/// svgfVariancePixel over the rows [y0, y1), for settings that cpuNormalPowerSupports
-/// (cpu_svgf_weights.h). With `level`, its planes get the result and the guides instead of
-/// `filtered`, which then serves as scratch, and the depth gradient is made from f.depth
-/// (svgfDepthGradient; svgfAccumulate without it), not read from f.depthGradient, which holds
-/// it only where the reference's pixels needed it.
-void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, long y0, long y1, float* filtered,
-                      float* variance, const SvgfFirstLevel* level = nullptr);
+/// The first level's planes but the variance over rows [y0, y1): the guides, with the depth
+/// gradient made from f.depth (svgfDepthGradient; svgfAccumulate without it), and the colour
+/// and its luminance. f.depthGradient gets the gradient only where svgfVarianceRows' pixels by
+/// the reference read it.
+void svgfFirstLevelRows(const SvgfFrame& f, const SvgfFirstLevel& level, long y0, long y1);
+
+/// svgfVariancePixel's variance over rows [y0, y1) into the first level's variance plane and
+/// `variance` (one float per pixel), for settings that cpuNormalPowerSupports
+/// (cpu_svgf_weights.h), once svgfFirstLevelRows has made every row of the first level (the
+/// 7x7 estimate reads its planes). `scratch` holds 4 floats per pixel.
+void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, const SvgfFirstLevel& level,
+                      long y0, long y1, float* scratch, float* variance);
 
 } // namespace bmfr::cpu
