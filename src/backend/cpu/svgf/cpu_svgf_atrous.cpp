@@ -39,7 +39,7 @@ template <class V> BMFR_SIMD_INLINE f8 eightLanes(V v, int h) {
 /// then added, tap by tap, so that their exponentials' chains interleave. kLast leaves out the
 /// variance and luminance (LevelArgs::last).
 template <class V, int kExponent, int kRadius, bool kLast>
-BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
+BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1, long stride) {
     constexpr int kLanes = kLanesOf<V>;
     const auto load = loadVector<V>;
     const int r = kRadius > 0 ? kRadius : a.radius, step = a.step;
@@ -50,7 +50,7 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
     float log2Tap[25];
     for (int d = 0; d < side * side; ++d)
         log2Tap[d] = std::log2(atrousTap(r, d % side - r) * atrousTap(r, d / side - r) / centre);
-    for (long y = y0; y < y1; ++y)
+    for (long y = y0; y < y1; y += stride)
         for (int x = 0; x < a.width; x += kLanes) {
             const long c = y * a.pitch + x;
             // The planes a pixel reads first, 128 floats ahead: its gradient, the variance
@@ -164,15 +164,21 @@ BMFR_SIMD_INLINE void atrousRowsOf(const LevelArgs& a, long y0, long y1) {
         }
 }
 
-BMFR_SIMD_DISPATCH(void, atrousRows, (const LevelArgs& a, long y0, long y1), (a, y0, y1)) {
+/// Rows y0, y0 + stride, ... below y1.
+BMFR_SIMD_DISPATCH(void, atrousRows, (const LevelArgs& a, long y0, long y1, long stride),
+                   (a, y0, y1, stride)) {
     using V = std::conditional_t<kIsa == Isa::Avx512, f32x16, f8>;
     if (a.normalExponent == 128 && a.radius == 2 && a.last)
-        atrousRowsOf<V, 128, 2, true>(a, y0, y1);
+        atrousRowsOf<V, 128, 2, true>(a, y0, y1, stride);
     else if (a.normalExponent == 128 && a.radius == 2)
-        atrousRowsOf<V, 128, 2, false>(a, y0, y1);
+        atrousRowsOf<V, 128, 2, false>(a, y0, y1, stride);
     else
-        atrousRowsOf<V, 0, 0, false>(a, y0, y1);
+        atrousRowsOf<V, 0, 0, false>(a, y0, y1, stride);
 }
+
+/// Rows of one residue modulo `step`, taken in order, share all but one of their taps' rows;
+/// a task takes kPhaseRows of them.
+constexpr long kPhaseRows = 16;
 
 } // namespace
 
@@ -239,7 +245,15 @@ int CpuAtrous::run(ThreadPool& pool, const SvgfSettings& s, float* colorHistory)
             a.step = step;
             a.history = step == 1 ? colorHistory : nullptr;
             a.last = ++levels == s.iterations;
-            pool.parallelFor(h, 2, [&](long y0, long y1) { atrousRows(a, y0, y1); });
+            // Each task is a run of rows step apart, so that the taps' rows stay in cache from
+            // one row to the next whatever the step.
+            const long span = kPhaseRows * step, runs = (h + span - 1) / span;
+            pool.parallelFor(runs * step, 1, [&](long k0, long k1) {
+                for (long k = k0; k < k1; ++k) {
+                    const long y0 = k / step * span + k % step;
+                    atrousRows(a, y0, std::min<long>(h, y0 + span), step);
+                }
+            });
         },
         [](int) {});
 }
