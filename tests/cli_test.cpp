@@ -406,7 +406,8 @@ TEST(Cli, SettingsDocTableIsTheGeneratedOne) {
 namespace {
 
 std::vector<float> pixelsOf(const fs::path& p) {
-    return bmfr::readExr(p.string(), 3).pixels;
+    const bmfr::ImageF image = bmfr::readExr(p.string(), 3);
+    return {image.pixels.begin(), image.pixels.end()};
 }
 
 TEST(Cli, QualityIsTheDefaultAndFaithfulSetsThePapersValuesBack) {

@@ -43,7 +43,7 @@ Scores score(bool half, const std::vector<FrameData>& frames, int first,
         }
         previous = std::move(out);
     }
-    sc.last = previous.pixels;
+    sc.last.assign(previous.pixels.begin(), previous.pixels.end());
     return sc;
 }
 

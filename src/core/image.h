@@ -1,5 +1,6 @@
 // Owning interleaved float/byte images; allocated once, reused every frame.
 #pragma once
+#include "core/staggered_allocator.h"
 #include <bmfr/frame.h>
 #include <cstddef>
 #include <cstdint>
@@ -9,7 +10,7 @@ namespace bmfr {
 
 template <typename T> struct Image {
     int width = 0, height = 0, channels = 0;
-    std::vector<T> pixels;
+    std::vector<T, StaggeredAllocator<T>> pixels; ///< each image at its own cache lines
 
     Image() = default;
     Image(int w, int h, int c) { resize(w, h, c); }

@@ -1,6 +1,7 @@
 #include "backend/cpu/svgf/cpu_svgf_atrous.h"
 #include "backend/cpu/simd.h"
 #include "backend/cpu/svgf/cpu_svgf_weights.h"
+#include "core/staggered_allocator.h"
 #include <algorithm>
 #include <cmath>
 
@@ -189,10 +190,7 @@ void CpuAtrous::reserve(int w, int h, const SvgfSettings& s) {
     if (w == width_ && h == height_ && apron == apron_) return;
     width_ = w, height_ = h, apron_ = apron;
     pitch_ = (w + 15) / 16 * 16 + 2L * apron;
-    // Planes a whole number of 4 KiB pages apart would put a pixel's value in every plane in
-    // one cache set (and make a store to one plane stall loads from the others, 4K aliasing):
-    // each plane starts three cache lines further into the page than the one before.
-    planeFloats_ = (pitch_ * h + 1023) / 1024 * 1024 + 48;
+    planeFloats_ = long(staggeredPlaneFloats(size_t(pitch_ * h)));
     // Zeros: the aprons' mask stays 0 (no sample) and their colour finite.
     planes_.assign(size_t(planeFloats_) * Count + 2 * size_t(apron), 0.0f);
 }
