@@ -284,6 +284,24 @@ BMFR_SIMD_INLINE void loadXyz8(const float* p, int n, f8 out[3]) {
     std::memcpy(staged, p, sizeof(float) * 3 * size_t(n));
     deinterleave3(staged, out[0], out[1], out[2]);
 }
+/// out[k] lane l = in[l] lane k: an 8x8 transpose in three rounds of two-vector shuffles.
+BMFR_SIMD_INLINE void transpose8(const f8 in[8], f8 out[8]) {
+    f8 a[8], b[8];
+    for (int j = 0; j < 8; j += 2) {
+        a[j] = __builtin_shuffle(in[j], in[j + 1], i8{0, 8, 2, 10, 4, 12, 6, 14});
+        a[j + 1] = __builtin_shuffle(in[j], in[j + 1], i8{1, 9, 3, 11, 5, 13, 7, 15});
+    }
+    for (int j = 0; j < 8; j += 4)
+        for (int k = 0; k < 2; ++k) {
+            b[j + k] = __builtin_shuffle(a[j + k], a[j + k + 2], i8{0, 1, 8, 9, 4, 5, 12, 13});
+            b[j + k + 2] =
+                __builtin_shuffle(a[j + k], a[j + k + 2], i8{2, 3, 10, 11, 6, 7, 14, 15});
+        }
+    for (int k = 0; k < 4; ++k) {
+        out[k] = __builtin_shuffle(b[k], b[k + 4], i8{0, 1, 2, 3, 8, 9, 10, 11});
+        out[k + 4] = __builtin_shuffle(b[k], b[k + 4], i8{4, 5, 6, 7, 12, 13, 14, 15});
+    }
+}
 /// The first n (1 to 8) packed xy records (motion vectors); lanes n to 7 read as 0.
 BMFR_SIMD_INLINE void loadXy8(const float* p, int n, f8& x, f8& y) {
     f8 a, b;

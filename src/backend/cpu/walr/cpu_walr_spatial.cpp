@@ -317,13 +317,23 @@ BMFR_SIMD_DISPATCH(void, solveBlock,
                    (const float* averages, const float* features, float eps, long i, int count,
                     float* out),
                    (averages, features, eps, i, count, out)) {
-    f8 a[kWalrAverages], fx{}, fy{};
-    for (int lane = 0; lane < count; ++lane) {
-        for (int k = 0; k < kWalrAverages; ++k) a[k][lane] = averages[16 * (i + lane) + k];
-        fx[lane] = features[2 * (i + lane)], fy[lane] = features[2 * (i + lane) + 1];
+    f8 a[16], fx{}, fy{};
+    if (count == 8) { // the eight pixels' 16 floats each, transposed
+        for (int half = 0; half < 2; ++half) {
+            f8 rows[8];
+            for (int lane = 0; lane < 8; ++lane)
+                rows[lane] = load8(averages + 16 * (i + lane) + 8 * half);
+            transpose8(rows, a + 8 * half);
+        }
+        loadXy8(features + 2 * i, 8, fx, fy);
+    } else {
+        for (int lane = 0; lane < count; ++lane) {
+            for (int k = 0; k < kWalrAverages; ++k) a[k][lane] = averages[16 * (i + lane) + k];
+            fx[lane] = features[2 * (i + lane)], fy[lane] = features[2 * (i + lane) + 1];
+        }
+        for (int lane = count; lane < 8; ++lane)
+            for (int k = 0; k < kWalrAverages; ++k) a[k][lane] = k == 2 || k == 4 ? 1.0f : 0.0f;
     }
-    for (int lane = count; lane < 8; ++lane)
-        for (int k = 0; k < kWalrAverages; ++k) a[k][lane] = k == 2 || k == 4 ? 1.0f : 0.0f;
     auto root = [](f8 v) {
         for (int lane = 0; lane < 8; ++lane) v[lane] = std::sqrt(v[lane]);
         return v;
