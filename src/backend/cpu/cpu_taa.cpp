@@ -49,10 +49,7 @@ size_t threadFloats(int w) {
     return 3 * ResolvedRows::rowFloats(w) + 2 * ResolvedRows::pitch(w);
 }
 
-constexpr long kRowsPerTask = 32;
-
-/// TAA of rows [y0, y1). Each row is resolved a row ahead of the TAA; the halo rows either side
-/// of the band, which a neighbouring task resolves too, are made again, not shared.
+/// TAA of rows [y0, y1) (ringRows, with the halo rows).
 BMFR_SIMD_DISPATCH(void, taaRows,
                    (const TaaCurrent& current, const float* previousPixel, const float* history,
                     float* scratch, float* out, int w, int h, TaaBlend blend, const uint8_t* accept,
@@ -60,23 +57,20 @@ BMFR_SIMD_DISPATCH(void, taaRows,
                    (current, previousPixel, history, scratch, out, w, h, blend, accept, space, y0,
                     y1)) {
     const size_t pitch = ResolvedRows::pitch(w);
-    auto row = [&](long y) { return scratch + size_t(y % 3) * ResolvedRows::rowFloats(w); };
     float* previous = scratch + 3 * ResolvedRows::rowFloats(w);
-    long next = y0 > 0 ? y0 - 1 : y0;
-    for (long y = y0; y < y1; ++y) {
-        for (const long last = y + 1 < h ? y + 1 : y; next <= last; ++next)
-            resolveRow(current, w, space, next, row(next));
-        for (int x = 0; x < w; x += 8) {
-            f8 px, py;
-            loadXy8(previousPixel + 2 * (y * w + x), std::min(8, w - x), px, py);
-            store8(previous + x, px);
-            store8(previous + pitch + x, py);
-        }
-        const float* mid = row(y);
-        taaRow(y > 0 ? row(y - 1) : mid, mid, y + 1 < h ? row(y + 1) : mid, pitch, previous,
-               previous + pitch, history, out + 3 * y * w, w, h, blend, true,
-               accept ? accept + y * w : nullptr, space);
-    }
+    ringRows(
+        scratch, w, h, y0, y1, true,
+        [&] [[gnu::always_inline]] (long y, float* row) { resolveRow(current, w, space, y, row); },
+        [&] [[gnu::always_inline]] (long y, const float* up, const float* mid, const float* down) {
+            for (int x = 0; x < w; x += 8) {
+                f8 px, py;
+                loadXy8(previousPixel + 2 * (y * w + x), std::min(8, w - x), px, py);
+                store8(previous + x, px);
+                store8(previous + pitch + x, py);
+            }
+            taaRow(up, mid, down, pitch, previous, previous + pitch, history, out + 3 * y * w, w, h,
+                   blend, true, accept ? accept + y * w : nullptr, space);
+        });
 }
 
 } // namespace
@@ -96,12 +90,12 @@ void temporalAntiAliasing(ThreadPool& pool, const TaaCurrent& current, const flo
         pool.parallelFor(h, 8, [&](long y0, long y1) { copyRows(current, out, w, y0, y1); });
         return;
     }
-    const long tasks = (h + kRowsPerTask - 1) / kRowsPerTask;
+    const long tasks = (h + kRingRowsPerTask - 1) / kRingRowsPerTask;
     pool.parallelFor(tasks, 1, [&](long k0, long k1) {
         float* own = scratch + size_t(ThreadPool::currentThreadIndex()) * threadFloats(w);
         for (long k = k0; k < k1; ++k)
             taaRows(current, previousPixel, history, own, out, w, h, blend, accept, space,
-                    k * kRowsPerTask, std::min<long>(h, (k + 1) * kRowsPerTask));
+                    k * kRingRowsPerTask, std::min<long>(h, (k + 1) * kRingRowsPerTask));
     });
 }
 

@@ -284,6 +284,14 @@ BMFR_SIMD_INLINE void loadXyz8(const float* p, int n, f8 out[3]) {
     std::memcpy(staged, p, sizeof(float) * 3 * size_t(n));
     deinterleave3(staged, out[0], out[1], out[2]);
 }
+/// Lanes [h, h + 8) of v, for h = 0 or (with sixteen lanes) 8.
+template <class V> BMFR_SIMD_INLINE f8 eightLanes(V v, int h) {
+    if constexpr (kLanesOf<V> == 8)
+        return v;
+    else
+        return h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7)
+                      : __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
+}
 /// out[k] lane l = in[l] lane k: an 8x8 transpose in three rounds of two-vector shuffles.
 BMFR_SIMD_INLINE void transpose8(const f8 in[8], f8 out[8]) {
     f8 a[8], b[8];

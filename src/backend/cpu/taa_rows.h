@@ -63,6 +63,32 @@ BMFR_SIMD_INLINE void finishResolvedRow(float* row, size_t pitch, int width) {
     }
 }
 
+/// Rows per task of a banded TAA pass (ringRows): each band resolves its halo rows again.
+inline constexpr long kRingRowsPerTask = 32;
+
+/// Rows [y0, y1) of an image h rows high through a ring of three resolved rows (`ring` holds
+/// 3 ResolvedRows::rowFloats(w) floats): resolve(y, row) fills image row y's resolved row a
+/// row ahead of taa(y, up, mid, down), which gets rows y - 1, y and y + 1 (the nearest inside
+/// one past the image's edge). With `halo` the rows either side of the band are resolved too
+/// (a neighbouring band makes them again, not shared); without, only the band's own rows, and
+/// `up` at the band's first row is stale (for a TAA that only copies). Callers inside a
+/// BMFR_SIMD_DISPATCH body pass [[gnu::always_inline]] lambdas: a lambda does not inherit the
+/// body's target, so one compiled out of line would run the baseline instructions.
+template <class Resolve, class Taa>
+BMFR_SIMD_INLINE void ringRows(float* ring, int w, long h, long y0, long y1, bool halo,
+                               Resolve&& resolve, Taa&& taa) {
+    auto row = [&] [[gnu::always_inline]] (long y) {
+        return ring + size_t(y % 3) * ResolvedRows::rowFloats(w);
+    };
+    long next = halo && y0 > 0 ? y0 - 1 : y0;
+    for (long y = y0; y < y1; ++y) {
+        const long last = y + 1 < h && (halo || y + 1 < y1) ? y + 1 : y;
+        for (; next <= last; ++next) resolve(next, row(next));
+        const float* mid = row(y);
+        taa(y, y > 0 ? row(y - 1) : mid, mid, y + 1 < h ? row(y + 1) : mid);
+    }
+}
+
 /// taaCurrentWeight(blend, bilinearBlur(weight)) (temporal/taa.h) of eight pixels.
 BMFR_SIMD_INLINE simd::f8 currentWeight8(TaaBlend blend, const simd::f8 weight[4]) {
     using namespace simd;

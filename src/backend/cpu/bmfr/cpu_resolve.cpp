@@ -92,8 +92,6 @@ BMFR_SIMD_INLINE void phase3Row(const FrameArgs& a, const FramePlanes<T>& pl, lo
     finishResolvedRow(row, pitch, w);
 }
 
-constexpr int kRowsPerTask = 32;
-
 BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, float* ring),
                    (a, y0, y1, ring)) {
     const int w = a.t.width, h = a.t.height;
@@ -101,24 +99,23 @@ BMFR_SIMD_DISPATCH(void, resolveRows, (const FrameArgs& a, long y0, long y1, flo
     const bool taa = a.s.taa && a.t.hasHistory();
     const float* history = a.b.output[1 - a.t.cur].data();
     float* out = a.b.output[a.t.cur].data();
-    auto row = [&](long y) { return ring + size_t(y % 3) * ResolvedRows::rowFloats(w); };
     auto rows = [&] [[gnu::always_inline]] (const auto& pl) {
         const uint8_t* accept = a.filter.on() ? pl.resolvedAccept : pl.accept;
         // Phase III runs a row ahead of the TAA (and a halo row each side of [y0, y1) under
         // TAA), from one call site: each inlined copy of it is a large share of this file's
         // compile.
-        long next = taa && y0 > 0 ? y0 - 1 : y0;
-        for (long y = y0; y < y1; ++y) {
-            const long last = y + 1 < h && (taa || y + 1 < y1) ? y + 1 : y;
-            for (; next <= last; ++next) phase3Row(a, pl, next, next >= y0 && next < y1, row(next));
-            const float* mid = row(y);
-            const float* up = y > 0 ? row(y - 1) : mid;
-            const float* down = y + 1 < h ? row(y + 1) : mid;
-            taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w, pl.previousPixel[1] + y * w,
-                   history, out + 3 * y * w, w, h, taaBlend(a.s), taa,
-                   a.s.taaSameSurface ? accept + y * w : nullptr,
-                   taa ? taaSpaceOf(a.s) : TaaSpace::Linear);
-        }
+        ringRows(
+            ring, w, h, y0, y1, taa,
+            [&] [[gnu::always_inline]] (long y, float* row) {
+                phase3Row(a, pl, y, y >= y0 && y < y1, row);
+            },
+            [&] [[gnu::always_inline]] (long y, const float* up, const float* mid,
+                                        const float* down) {
+                taaRow(up, mid, down, pitch, pl.previousPixel[0] + y * w,
+                       pl.previousPixel[1] + y * w, history, out + 3 * y * w, w, h, taaBlend(a.s),
+                       taa, a.s.taaSameSurface ? accept + y * w : nullptr,
+                       taa ? taaSpaceOf(a.s) : TaaSpace::Linear);
+            });
     };
     withFramePlanes<kIsa>(a.b, a.t.cur, a.s.halfHistory, rows);
 }
@@ -169,11 +166,11 @@ void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
 
 void resolve(const BmfrPassContext& ctx, Buffers& b, const TapFilter& filter) {
     const FrameArgs a{ctx.settings, ctx.input, ctx.history, b, filter};
-    const long h = ctx.history.height, tasks = (h + kRowsPerTask - 1) / kRowsPerTask;
+    const long h = ctx.history.height, tasks = (h + kRingRowsPerTask - 1) / kRingRowsPerTask;
     ctx.pool.parallelFor(tasks, 1, [&](long k0, long k1) {
         float* ring = b.scratch[size_t(ThreadPool::currentThreadIndex())].rows.data();
         for (long k = k0; k < k1; ++k)
-            resolveRows(a, k * kRowsPerTask, std::min(h, (k + 1) * kRowsPerTask), ring);
+            resolveRows(a, k * kRingRowsPerTask, std::min(h, (k + 1) * kRingRowsPerTask), ring);
     });
 }
 

@@ -24,15 +24,6 @@ struct LevelArgs {
     float phiDepth, phiLuminance;
 };
 
-/// Lanes [h, h + 8) of v, for h = 0 or (with sixteen lanes) 8.
-template <class V> BMFR_SIMD_INLINE f8 eightLanes(V v, int h) {
-    if constexpr (kLanesOf<V> == 8)
-        return v;
-    else
-        return h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7)
-                      : __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
-}
-
 /// kExponent and kRadius > 0 fix the normal exponent and the kernel radius at compile time (the
 /// defaults: the taps unrolled, their constants folded); 0 reads them from `a`. V is eight or
 /// sixteen lanes. Each tap's weight is one power of two: the tap's, the edge terms' and (for

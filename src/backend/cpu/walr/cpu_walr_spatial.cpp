@@ -284,8 +284,8 @@ BMFR_SIMD_INLINE void gatherPixel(const WalrLevel& l, const BlockTaps& t, const 
         if constexpr (kSixteenHalves) {
             storeHalves(h, sum[0]);
         } else if constexpr (kParts == 1) {
-            store8(h, __builtin_shufflevector(sum[0], sum[0], 0, 1, 2, 3, 4, 5, 6, 7));
-            store8(h + 8, __builtin_shufflevector(sum[0], sum[0], 8, 9, 10, 11, 12, 13, 14, 15));
+            store8(h, eightLanes(sum[0], 0));
+            store8(h + 8, eightLanes(sum[0], 8));
         } else {
             store8(h, sum[0]), store8(h + 8, sum[1]);
         }
