@@ -73,6 +73,11 @@ WalrRun runWalr(const WalrGBuffer& f, const EdgeGuide& g, int iterations, bool k
     ThreadPool pool(2);
     cpu::EdgePlanes planes;
     if (eightWide) planes.fill(pool, g);
+    // A stepped trace's state, for the scalar kernel.
+    std::vector<float> traceMin(size_t(8 * n));
+    std::vector<int32_t> traceZero(traceMin.size());
+    std::vector<uint8_t> traceFlat[2] = {std::vector<uint8_t>(traceMin.size()),
+                                         std::vector<uint8_t>(traceMin.size())};
     int step = 1;
     for (int t = 0; t < iterations; ++t, step *= 3) {
         WalrLevel l;
@@ -81,6 +86,8 @@ WalrRun runWalr(const WalrGBuffer& f, const EdgeGuide& g, int iterations, bool k
         l.weightOut = keepW ? wb.data() : nullptr;
         l.frame = frame;
         l.halfIn = half && t > 0, l.halfOut = half && t < iterations - 1;
+        l.trace = {traceMin.data(), traceZero.data(), traceFlat[(t + 1) % 2].data(),
+                   traceFlat[t % 2].data(), n};
         if (eightWide)
             cpu::walrAtrousIteration(pool, g, planes, l);
         else
@@ -254,8 +261,10 @@ TEST(Walr, W7EdgeTracingStopsLeaksPastAThinOccluder) {
         const float v = x > strip ? 1.0f : 0.0f;
         store3(f.sig.data(), i, {v, v, v});
     }
-    auto leak = [&](bool tracing) {
-        const WalrRun r = runWalr(f, f.guide(tracing, true), 4);
+    auto leak = [&](bool tracing, float stepFraction = 0, bool eightWide = false) {
+        EdgeGuide g = f.guide(tracing, true);
+        g.stepFraction = stepFraction;
+        const WalrRun r = runWalr(f, g, 4, false, 1e-4f, 0, eightWide);
         float worst = 0;
         for (long i = 0; i < f.size(); ++i)
             if (i % f.w < strip) worst = std::fmax(worst, r.out[size_t(3 * i)]);
@@ -263,6 +272,36 @@ TEST(Walr, W7EdgeTracingStopsLeaksPastAThinOccluder) {
     };
     EXPECT_EQ(leak(true), 0.0f);
     EXPECT_GT(leak(false), 0.2f);
+    // A stepped trace skips no edge that the last iteration's trace from where a stretch begins
+    // saw: the strip stops every tap here too.
+    for (float stepFraction : {0.5f, 1.0f})
+        for (bool eightWide : {false, true})
+            EXPECT_EQ(leak(true, stepFraction, eightWide), 0.0f) << stepFraction << eightWide;
+}
+
+// A stepped trace whose skips are all 0 (a share of 0.01 of runs of at most 27 steps) tests every
+// step, and carries its minimum and first zero from one iteration to the next, so it gives the
+// exact trace's bits, replacements included, on the scalar kernel and eight wide.
+TEST(Walr, SteppedTraceThatSkipsNothingIsTheExactTrace) {
+    WalrGBuffer f(150, 90);
+    varyFeatures(f);
+    for (long i = 0; i < f.size(); ++i) {
+        const int x = int(i % f.w), y = int(i / f.w);
+        const bool raised = x > 60 && x < 80 && y > 30 && y < 60;
+        const float z = 10.0f + 0.6f * std::sin(float(x) / 40.0f) * std::cos(float(y) / 30.0f) -
+                        (raised ? 1.0f : 0.0f);
+        f.setPosition(i, {float(x) * 0.01f, float(y) * 0.01f, z});
+        store3(f.nrm.data(), i, normalize(Vec3{0.01f * float(x % 5), 0.0f, 1.0f}));
+        store3(f.sig.data(), i, {rnd(uint32_t(i), 40), rnd(uint32_t(i), 41), 0.5f});
+    }
+    const WalrRun exact = runWalr(f, f.guide(), 4, false, 1e-4f, 2);
+    EdgeGuide g = f.guide();
+    g.stepFraction = 0.01f;
+    for (bool eightWide : {false, true}) {
+        const WalrRun stepped = runWalr(f, g, 4, false, 1e-4f, 2, eightWide);
+        for (size_t k = 0; k < exact.out.size(); ++k)
+            ASSERT_EQ(exact.out[k], stepped.out[k]) << k << " eight wide " << eightWide;
+    }
 }
 
 // W8: the pivot-clamped Cholesky with three right-hand sides solves XX + diag(delta) exactly,
@@ -415,13 +454,14 @@ TEST(Walr, EightWideIterationsMatchTheScalarKernelBitForBit) {
     }
     for (bool half : {false, true})
         for (bool keepW : {false, true})
-            for (bool tracing : {true, false}) {
-                const EdgeGuide g = f.guide(tracing, true);
+            for (float stepFraction : {-1.0f, 0.0f, 0.5f, 1.0f}) { // -1: no tracing
+                EdgeGuide g = f.guide(stepFraction >= 0, true);
+                g.stepFraction = stepFraction > 0 ? stepFraction : 0.0f;
                 const WalrRun a = runWalr(f, g, 4, keepW, 1e-4f, 3, false, nullptr, half);
                 const WalrRun b = runWalr(f, g, 4, keepW, 1e-4f, 3, true, nullptr, half);
                 const std::string what = std::string(half ? "half" : "float") + " keepW " +
-                                         std::to_string(keepW) + " tracing " +
-                                         std::to_string(tracing);
+                                         std::to_string(keepW) + " step " +
+                                         std::to_string(stepFraction);
                 for (size_t k = 0; k < a.means.size(); ++k) {
                     ASSERT_EQ(a.means[k], b.means[k]) << k << " " << what;
                     ASSERT_EQ(a.out[k], b.out[k]) << k << " " << what;
@@ -573,7 +613,8 @@ TEST(Walr, CpuBackendGivesTheReferenceBits) {
                                     {{"historyTest", "world"}},
                                     {{"signal", "diffuse-indirect"}},
                                     {{"iterations", "3"}},
-                                    {{"iterations", "3"}, {"halfAverages", "false"}}}) {
+                                    {{"iterations", "3"}, {"halfAverages", "false"}},
+                                    {{"iterations", "4"}, {"edgeStep", "0.5"}}}) {
         SettingValues cpuValues = extra, refValues = extra;
         cpuValues.push_back({"backend", "cpu"});
         refValues.push_back({"backend", "reference"});

@@ -49,6 +49,7 @@ const FilterCase kFilters[] = {
      {{"REFWLR over a 9x9 window", {{"solver", "refwlr"}, {"iterations", "2"}}},
       {"three iterations", {{"iterations", "3"}}},
       {"three iterations, float averages", {{"iterations", "3"}, {"halfAverages", "false"}}},
+      {"four iterations, the stepped trace", {{"iterations", "4"}, {"edgeStep", "1"}}},
       {"the world-space history test", {{"historyTest", "world"}}}}},
     {"mara2017",
      {{"the paper's first frames (no cumulative start)", {{"cumulativeStart", "false"}}},

@@ -39,6 +39,7 @@ struct WalrSettings : TemporalSettings {
     int iterations = 0; ///< a-trous iterations T (tap spacing 3^t, window 3^T); 0 = by image size
     bool edgeTracing = true;        ///< test every pixel on a tap's segment, not only its end
     bool averageReplacement = true; ///< a discarded tap takes an average before the edge
+    float edgeStep = 0.0f;          ///< stepped tracing: share of a flat run skipped; 0 = exact
     bool sampleWeights = false;     ///< keep the sample-count weights W (the paper drops them)
     float edgeNear = 0.005f;        ///< plane distance where the weight starts to fall, x depth
     float edgeFar = 0.02f;          ///< plane distance where the weight reaches 0, x depth

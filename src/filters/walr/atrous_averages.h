@@ -44,6 +44,9 @@ struct WalrLevel {
     /// (roundToHalf), and on the CPU backend input and output stored as 16 halves per pixel.
     bool halfIn = false, halfOut = false;
     uint32_t frame = 0, seed = 0;
+    /// Stepped tracing's state (EdgeGuide::stepFraction > 0), in the reference backend's
+    /// layout; the CPU backend keeps its own.
+    SteppedTrace trace;
 };
 
 /// The 8 tap directions in the order every backend sums them.
@@ -63,8 +66,11 @@ BMFR_HD void walrAtrousPixel(const EdgeGuide& g, const WalrLevel& l, int x, int 
     for (int k = 0; k < kWalrAverages; ++k) sum[k] = total * l.in[l.layout.at(k, i)];
     for (int tap = 0; tap < 8; ++tap) {
         const int ux = walrTapX(tap), uy = walrTapY(tap);
-        const TracedTap t = traceTap(g, c, x, y, ux, uy, l.step,
-                                     replacementHash(i, l.frame, l.iteration, tap, l.seed));
+        const uint32_t hash = replacementHash(i, l.frame, l.iteration, tap, l.seed);
+        const TracedTap t =
+            g.tracing && g.stepFraction > 0
+                ? traceTapStepped(g, c, l.trace, i, tap, x, y, ux, uy, l.iteration, l.step, hash)
+                : traceTap(g, c, x, y, ux, uy, l.step, hash);
         if (!(t.weight > 0)) continue;
         const long j = long(y + t.steps * uy) * g.width + x + t.steps * ux;
         const float w = l.weightIn ? t.weight * l.weightIn[j] : t.weight;

@@ -47,6 +47,7 @@ EdgeGuide WalrBuffers::guide(const WalrPassContext& ctx) const {
     g.width = ctx.history.width, g.height = ctx.history.height;
     g.nearFraction = s.edgeNear, g.farFraction = s.edgeFar;
     g.tracing = s.edgeTracing, g.replacement = s.averageReplacement;
+    g.stepFraction = s.edgeStep;
     return g;
 }
 

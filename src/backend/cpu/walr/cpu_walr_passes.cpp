@@ -12,10 +12,10 @@ namespace {
 
 class CpuWalrPasses final : public reference::HostWalrPipeline {
   public:
-    void allocate(int w, int h, const WalrSettings&, int) override {
+    void allocate(int w, int h, const WalrSettings& s, int) override {
         buffers.interleaved = true;
         buffers.allocate(w, h);
-        planes_.allocate(w, h);
+        planes_.allocate(w, h, s.edgeTracing && s.edgeStep > 0);
     }
 
   protected:

@@ -8,7 +8,7 @@ namespace bmfr::cpu {
 
 using namespace simd;
 
-void EdgePlanes::allocate(int width, int height) {
+void EdgePlanes::allocate(int width, int height, bool stepped) {
     // The seven planes' rows interleaved (row y of plane k at (7 y + k) * planeSize): a trace
     // step's three position loads then fall within one small stretch of memory.
     planeSize = width + 2 * kPad;
@@ -21,10 +21,15 @@ void EdgePlanes::allocate(int width, int height) {
     tracedMin.resize(size_t(64 * blocksPerRow * height));
     tracedEdge.resize(tracedMin.size());
     for (std::vector<float>& b : chordBound) b.resize(size_t(4 * planeSize * height));
+    if (stepped)
+        for (std::vector<uint8_t>* runs : {&flatRuns, &shortestRuns})
+            if (runs->size() != size_t(8 * planeSize * height))
+                runs->assign(size_t(8 * planeSize * height), 255);
 }
 
 void EdgePlanes::fill(ThreadPool& pool, const EdgeGuide& g) {
-    allocate(g.width, g.height);
+    allocate(g.width, g.height, g.tracing && g.stepFraction > 0);
+    for (int run = 0; run < 256; ++run) skipOf[run] = skipOverRun(g.stepFraction, run);
     chordLength = 0;
     skippedTaps = 0;
     pool.parallelFor(g.height, 16, [&](long y0, long y1) {
@@ -101,6 +106,33 @@ BMFR_SIMD_DISPATCH(void, chordBoundRows,
         }
 }
 
+/// shortestRuns from flatRuns for rows y0 .. y1 - 1: the smallest of each eight in a row, 32
+/// at a time.
+BMFR_SIMD_DISPATCH(void, shortestRunRows, (EdgePlanes & e, long y0, long y1), (e, y0, y1)) {
+    typedef uint8_t u8x32 __attribute__((vector_size(32)));
+    const long size = e.planeSize, runs = 8 * size * y0, end = 8 * size * y1;
+    const uint8_t* in = e.flatRuns.data();
+    uint8_t* out = e.shortestRuns.data();
+    for (long row = runs; row < end; row += size) {
+        // The last 7 columns keep their 255: no run starting there is read.
+        long c = 0;
+        for (; c + 32 + 7 <= size; c += 32) {
+            u8x32 m, v;
+            std::memcpy(&m, in + row + c, sizeof m);
+            for (int j = 1; j < kTraceRun; ++j) {
+                std::memcpy(&v, in + row + c + j, sizeof v);
+                m = v < m ? v : m;
+            }
+            std::memcpy(out + row + c, &m, sizeof m);
+        }
+        for (; c + 7 < size; ++c) {
+            uint8_t m = in[row + c];
+            for (int j = 1; j < kTraceRun; ++j) m = in[row + c + j] < m ? in[row + c + j] : m;
+            out[row + c] = m;
+        }
+    }
+}
+
 /// The traced taps of eight pixels (x .. x + 7, y): weight and steps per tap and lane, as
 /// traceTap gives them (weight 0 = dropped).
 struct BlockTaps {
@@ -108,7 +140,9 @@ struct BlockTaps {
     int steps[8][8];
 };
 
-template <cpu::Isa kIsa>
+/// kStepped: stepped tracing (its own instantiation, since its code in the exact trace's loop
+/// measured 8% off the whole spatial filter).
+template <cpu::Isa kIsa, bool kStepped>
 BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int x,
                                  int y, BlockTaps& out, long& skipped) {
     // Read once: the stores below (memcpy and memset among them) might otherwise alias them.
@@ -117,6 +151,11 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
     const int first = l.iteration > 0 ? step / 3 + 1 : 1; // traced by the last iteration
     const bool tracing = g.tracing, replacement = g.replacement;
     const bool chordReady = e.chordLength == step;
+    // Stepped tracing: the lanes' runs, carried and written back; the last iteration's shortest.
+    constexpr bool stepping = kStepped;
+    const long runRow = 8 * planeSize;
+    uint8_t* const runs = stepping ? e.flatRun(0) + y * runRow + x : nullptr;
+    const uint8_t* const shortest = stepping && l.iteration > 0 ? e.shortestRun(0) : nullptr;
     const long blockState = (long(y) * e.blocksPerRow + x / 8) * 64;
     float* const blockMin = e.tracedMin.data() + blockState;
     int32_t* const blockEdge = e.tracedEdge.data() + blockState;
@@ -132,15 +171,21 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
     const f8 normalSum = abs8(n[0]) + abs8(n[1]) + abs8(n[2]);
     const f8 flatBelow = a * (1.0f - kChordSlack);
     const i8 laneX = i8{0, 1, 2, 3, 4, 5, 6, 7} + x;
+    const i8 exists = laneX < width;
     f8 running[kMaxStep + 1]; // the traced minimum after k steps, for replacements
     for (int tap = 0; tap < 8; ++tap) {
         const int ux = walrTapX(tap), uy = walrTapY(tap), ey = y + step * uy;
         const long along = uy * rowStride + ux; // plane floats from one step to the next
+        const long along8 = uy * runRow + ux;   // the same in the run planes
         const i8 endX = laneX + step * ux;
         const i8 inside = (laneX < width) & (endX >= 0) & (endX < width);
         store8(out.weight[tap], f8{});
         std::memset(out.steps[tap], 0, sizeof out.steps[tap]);
-        if (ey < 0 || ey >= height || !anyLane(inside)) continue;
+        if (ey < 0 || ey >= height || !anyLane(inside)) {
+            if constexpr (stepping)
+                storeBytes(runs + tap * planeSize, exists ? i8{} : i8{} + 255, 8);
+            continue;
+        }
         // Each lane's plane distance at step k, as edgeWeight computes it (padding keeps the
         // loads in bounds), and the largest coordinate of its offset from the centre.
         auto distanceAt = [&](int k, f8* offset) __attribute__((always_inline)) {
@@ -176,13 +221,55 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
         const long i = long(y) * width + x;
         float* const stateMin = blockMin + 8 * tap;
         int32_t* const stateEdge = blockEdge + 8 * tap;
-        if (!tracing) {
-            m = weightAt(step);
-        } else {
+        auto loadTrace = [&]() __attribute__((always_inline)) {
             if (first > 1) {
                 m = load8(stateMin);
                 std::memcpy(&edge, stateEdge, sizeof edge);
             }
+        };
+        auto storeTrace = [&]() __attribute__((always_inline)) {
+            store8(stateMin, m);
+            std::memcpy(stateEdge, &edge, sizeof edge);
+        };
+        // steppedTrace, eight lanes on one schedule: the skips are the run's.
+        auto steppedSteps = [&](i8 & flat) __attribute__((always_inline)) {
+            int evaluated = 0;
+            auto stepOn = [&](int k) __attribute__((always_inline)) {
+                const f8 w = weightAt(k);
+                m = w < m ? w : m;
+                const i8 at = i8{} + k;
+                edge = (edge == 0) & (m <= 0.0f) ? at : edge;
+                flat = m >= 1.0f ? at : flat;
+                return (++evaluated & 3) != 0 || anyLane(inside & (m > 0.0f));
+            };
+            if (!shortest) {
+                for (int k = 1; k <= step; ++k)
+                    if (!stepOn(k)) return;
+                return;
+            }
+            const int third = step / 3;
+            const uint8_t* ahead = shortest + tap * planeSize + y * runRow + x;
+            __builtin_prefetch(ahead + third * along8 + 64); // rows away: eight blocks on
+            __builtin_prefetch(ahead + 2 * third * along8 + 64);
+            const int skip[2] = {e.skipOf[ahead[third * along8]],
+                                 e.skipOf[ahead[2 * third * along8]]};
+            for (int j = 0; j < 2; ++j) {
+                const int anchor = (j + 1) * third;
+                const int from = anchor + 1 + skip[j];
+                for (int k = from < step ? from : step; k <= anchor + third; ++k)
+                    if (!stepOn(k)) return;
+            }
+        };
+        if (!tracing) {
+            m = weightAt(step);
+        } else if constexpr (stepping) {
+            loadTrace();
+            i8 flat = first > 1 ? loadBytes(runs + tap * planeSize, 8) : i8{};
+            if (anyLane(inside & (m > 0.0f))) steppedSteps(flat);
+            storeTrace();
+            storeBytes(runs + tap * planeSize, exists ? (inside ? flat : i8{}) : i8{} + 255, 8);
+        } else {
+            loadTrace();
             // Steps first .. step. Past a lane's first zero m stays 0, so the count of steps
             // with m > 0 finds that zero, and the test that every lane has met one can wait a
             // few steps.
@@ -201,8 +288,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
                 traceSteps();
             else
                 ++skipped;
-            store8(stateMin, m);
-            std::memcpy(stateEdge, &edge, sizeof edge);
+            storeTrace();
         }
         const i8 kept = inside & (m > 0.0f);
         store8(out.weight[tap], kept ? m : f8{});
@@ -218,11 +304,12 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
                 const int kr = replacementStep(
                     replacementHash(i + lane, l.frame, l.iteration, tap, l.seed), edge[lane]);
                 replacedStep[lane] = kr;
-                if (kr < first && kr > deepest) deepest = kr;
+                if ((stepping || kr < first) && kr > deepest) deepest = kr;
             }
         }
         // Steps traced by an earlier iteration, traced again for the lanes that read them (their
-        // running minima go where this iteration's trace, which starts at `first`, left none).
+        // running minima go where this iteration's trace, which starts at `first`, left none);
+        // with stepped tracing every step a replacement reads, since a stepped trace skips some.
         f8 early = splat8(1.0f);
         for (int k = 1; k <= deepest; ++k) {
             const f8 w = weightAt(k);
@@ -303,13 +390,19 @@ BMFR_SIMD_DISPATCH(void, atrousRows,
     long along[8]; // pixels from one step along each tap direction to the next
     for (int tap = 0; tap < 8; ++tap) along[tap] = long(walrTapY(tap)) * g.width + walrTapX(tap);
     BlockTaps taps;
-    for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < g.width; x += 8) {
-            traceBlock<kIsa>(g, e, l, x, y, taps, skipped);
-            const int count = g.width - x < 8 ? g.width - x : 8;
-            for (int lane = 0; lane < count; ++lane)
-                gatherPixel<kIsa>(l, taps, along, lane, long(y) * g.width + x + lane);
-        }
+    auto rows = [&](auto stepped) __attribute__((always_inline)) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < g.width; x += 8) {
+                traceBlock<kIsa, decltype(stepped)::value>(g, e, l, x, y, taps, skipped);
+                const int count = g.width - x < 8 ? g.width - x : 8;
+                for (int lane = 0; lane < count; ++lane)
+                    gatherPixel<kIsa>(l, taps, along, lane, long(y) * g.width + x + lane);
+            }
+    };
+    if (g.tracing && g.stepFraction > 0)
+        rows(std::true_type{});
+    else
+        rows(std::false_type{});
 }
 
 /// choleskyClamped, choleskySolve and the prediction of walrPredict<float>, eight pixels wide.
@@ -373,8 +466,14 @@ void EdgePlanes::buildChordBounds(ThreadPool& pool, const EdgeGuide& g) {
     chordLength = 3 * length;
 }
 
+void EdgePlanes::buildShortestRuns(ThreadPool& pool, int height) {
+    pool.parallelFor(height, 8, [&](long y0, long y1) { shortestRunRows(*this, y0, y1); });
+}
+
 void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l) {
-    if (g.tracing && l.iteration >= 2)
+    const bool stepping = g.tracing && g.stepFraction > 0;
+    if (stepping && l.iteration > 0) e.buildShortestRuns(pool, g.height);
+    if (g.tracing && !(g.stepFraction > 0) && l.iteration >= 2)
         while (e.chordLength < l.step) e.buildChordBounds(pool, g);
     // Plain row order: columns of single blocks (so that vertical steps revisit cached rows)
     // measured 1.5x slower, and bands cut into strips no faster.

@@ -11,6 +11,10 @@
 // from step 9 on. Along the chord the plane distance is linear, so the end's distance plus the
 // bound (with a margin for rounding) below the ramp's start mean no pixel of the segment can
 // lower the traced minimum.
+//
+// The stepped trace (EdgeGuide::stepFraction) builds no chord bounds: each block's eight lanes
+// skip what the shortest of their flat runs allows (steppedTrace), read from planes of runs
+// that each iteration writes and the next reads as runs of eight (shortestRuns).
 #pragma once
 #include "core/parallel.h"
 #include "filters/walr/atrous_averages.h"
@@ -35,6 +39,11 @@ struct EdgePlanes {
     std::vector<float> chordBound[2];
     int chordLength = 0; ///< the segments' length in chordBound[chordLevel]; 0 = none yet
     int chordLevel = 0;
+    /// Stepped tracing's flat runs (SteppedTrace::flat) and, from them, each run of eight
+    /// pixels' shortest (traceSkip's), [row][direction][padded column], 255 in the padding;
+    /// sized on first use. A block's trace reads its own runs before it writes them.
+    std::vector<uint8_t> flatRuns, shortestRuns;
+    int skipOf[256] = {}; ///< skipOverRun of each run, for this frame's fraction
     /// Taps of eight pixels whose steps the chord bounds let the trace skip, since fill.
     std::atomic<long> skippedTaps{0};
     long rowStride = 0; ///< floats from one row of a plane to the next
@@ -45,11 +54,17 @@ struct EdgePlanes {
     const float* chordBounds(int d) const {
         return chordBound[chordLevel].data() + d * planeSize + kPad;
     }
-    /// Sizes the planes for a width x height guide (fill does too, when they are not).
-    void allocate(int width, int height);
+    /// The flat runs along tap direction d at row 0, column 0; the same of shortestRuns.
+    uint8_t* flatRun(int d) { return flatRuns.data() + d * planeSize + kPad; }
+    const uint8_t* shortestRun(int d) const { return shortestRuns.data() + d * planeSize + kPad; }
+    /// Sizes the planes for a width x height guide, with the flat runs when `stepped` (fill
+    /// does too, when they are not).
+    void allocate(int width, int height, bool stepped);
     void fill(ThreadPool& pool, const EdgeGuide& g);
     /// Builds the chord bounds of length 3 L from those of length L (3 from none).
     void buildChordBounds(ThreadPool& pool, const EdgeGuide& g);
+    /// Builds shortestRuns from flatRuns, after an iteration's trace.
+    void buildShortestRuns(ThreadPool& pool, int height);
 };
 
 /// One a-trous iteration (walrAtrousPixel) over the whole image; level.layout must be

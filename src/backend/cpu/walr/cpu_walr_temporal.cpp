@@ -209,8 +209,19 @@ BMFR_SIMD_INLINE void accumulateGroup(const WalrFrame& f, int x, int y, int n, f
     f8 a[kWalrAverages] = {fx, fy, fx * fx, fx * fy, fy * fy};
     for (int c = 0; c < 3; ++c)
         a[5 + 3 * c] = acc[c], a[6 + 3 * c] = acc[c] * fx, a[7 + 3 * c] = acc[c] * fy;
-    for (int l = 0; l < n; ++l)
-        for (int k = 0; k < kWalrAverages; ++k) averages[16 * (i + l) + k] = a[k][l];
+    if (n < 8) {
+        for (int l = 0; l < n; ++l)
+            for (int k = 0; k < kWalrAverages; ++k) averages[16 * (i + l) + k] = a[k][l];
+        return;
+    }
+    // Each pixel's 16 floats (the last two unused, written 0) as two 8x8 transposes: 16 vector
+    // stores, not 112 scalar ones.
+    const f8 high[8] = {a[8], a[9], a[10], a[11], a[12], a[13], f8{}, f8{}};
+    f8 rows[8];
+    transpose8(a, rows);
+    for (int l = 0; l < 8; ++l) store8(averages + 16 * (i + l), rows[l]);
+    transpose8(high, rows);
+    for (int l = 0; l < 8; ++l) store8(averages + 16 * (i + l) + 8, rows[l]);
 }
 
 /// walrPostPixel of the n <= 8 pixels from column x of row y.
