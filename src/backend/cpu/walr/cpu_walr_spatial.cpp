@@ -20,7 +20,7 @@ void EdgePlanes::allocate(int width, int height, bool stepped) {
     blocksPerRow = (width + 7) / 8;
     tracedMin.resize(size_t(64 * blocksPerRow * height));
     tracedEdge.resize(tracedMin.size());
-    for (std::vector<float>& b : chordBound) b.resize(size_t(4 * planeSize * height));
+    for (std::vector<uint16_t>& b : chordBound) b.resize(size_t(4 * planeSize * height));
     if (stepped)
         for (std::vector<uint8_t>* runs : {&flatRuns, &shortestRuns})
             if (runs->size() != size_t(8 * planeSize * height))
@@ -58,9 +58,32 @@ BMFR_SIMD_INLINE f8 largest3(const f8 v[3]) {
     return max8(abs8(v[0]), max8(abs8(v[1]), abs8(v[2])));
 }
 
+/// Eight non-negative floats as halves no smaller (F16C's rounding up; on the baseline path
+/// the nearest half, one step up where it fell below), and back.
+template <cpu::Isa kIsa> BMFR_SIMD_INLINE void storeBounds(uint16_t* p, f8 v) {
+    using H = HalfOf<kIsa>;
+    if constexpr (std::is_same_v<H, F16cHalf>) {
+        s16x8 h;
+        asm("vcvtps2ph $2, %1, %0" : "=vm"(h) : "v"(v));
+        std::memcpy(p, &h, sizeof h);
+    } else {
+        v = v > 65504.0f ? splat8(__builtin_inff()) : v;
+        _Float16 h[8];
+        store8(h, v);
+        const i8 below = load8(h) < v;
+        u16x8 bits;
+        std::memcpy(&bits, h, sizeof bits);
+        bits -= __builtin_convertvector(below, u16x8); // a true lane is -1
+        std::memcpy(p, &bits, sizeof bits);
+    }
+}
+template <cpu::Isa kIsa> BMFR_SIMD_INLINE f8 loadBounds(const uint16_t* p) {
+    return load8(reinterpret_cast<const HalfOf<kIsa>*>(p));
+}
+
 BMFR_SIMD_DISPATCH(void, chordBoundRows,
-                   (const EdgeGuide& g, const EdgePlanes& e, int length, const float* below,
-                    float* out, long y0, long y1),
+                   (const EdgeGuide& g, const EdgePlanes& e, int length, const uint16_t* below,
+                    uint16_t* out, long y0, long y1),
                    (g, e, length, below, out, y0, y1)) {
     const long chordRow = 4 * e.planeSize;
     const float* p[3] = {e.plane(0), e.plane(1), e.plane(2)};
@@ -70,11 +93,11 @@ BMFR_SIMD_DISPATCH(void, chordBoundRows,
             const i8 laneX = i8{0, 1, 2, 3, 4, 5, 6, 7} + x;
             for (int d = 0; d < 4; ++d) {
                 const int ux = walrTapX(4 + d), uy = walrTapY(4 + d), span = 3 * length;
-                float* dst = out + d * e.planeSize + EdgePlanes::kPad + y * chordRow + x;
+                uint16_t* dst = out + d * e.planeSize + EdgePlanes::kPad + y * chordRow + x;
                 const i8 endX = laneX + span * ux;
                 const i8 valid = (laneX < g.width) & (endX >= 0) & (endX < g.width);
                 if (y + span * uy >= g.height || !anyLane(valid)) {
-                    store8(dst, splat8(__builtin_inff()));
+                    storeBounds<kIsa>(dst, splat8(__builtin_inff()));
                     continue;
                 }
                 // The positions at 0, L, 2 L and 3 L along the segment.
@@ -95,13 +118,14 @@ BMFR_SIMD_DISPATCH(void, chordBoundRows,
                 if (below) { // each third's own bound plus its chord's distance from the whole's
                     const long b = d * e.planeSize + EdgePlanes::kPad + y * chordRow + x;
                     const long along = long(length) * (uy * chordRow + ux);
-                    bound = max8(load8(below + b) + a1, max8(load8(below + b + along) + bound,
-                                                             load8(below + b + 2 * along) + a2));
+                    bound = max8(loadBounds<kIsa>(below + b) + a1,
+                                 max8(loadBounds<kIsa>(below + b + along) + bound,
+                                      loadBounds<kIsa>(below + b + 2 * along) + a2));
                 }
                 const f8 magnitude =
                     largest3(r[0]) + largest3(r[1]) + largest3(r[2]) + largest3(r[3]) + bound;
                 bound = bound + kChordSlack * magnitude;
-                store8(dst, valid ? bound : splat8(__builtin_inff()));
+                storeBounds<kIsa>(dst, valid ? bound : splat8(__builtin_inff()));
             }
         }
 }
@@ -159,7 +183,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
     const long blockState = (long(y) * e.blocksPerRow + x / 8) * 64;
     float* const blockMin = e.tracedMin.data() + blockState;
     int32_t* const blockEdge = e.tracedEdge.data() + blockState;
-    const float* const chords = e.chordBounds(0); // direction d's at + d * planeSize
+    const uint16_t* const chords = e.chordBounds(0); // direction d's at + d * planeSize
     const long o = long(y) * rowStride + x;
     const float *px = e.plane(0), *py = e.plane(1), *pz = e.plane(2);
     const f8 p[3] = {load8(px + o), load8(py + o), load8(pz + o)};
@@ -208,9 +232,9 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
             // Taps 0 to 3 run backwards along the segments of taps 7 to 4 from their ends.
             const int back = tap < 4 ? step : 0;
             const long at = long(y + back * uy) * 4 * planeSize + x + back * ux;
-            const float* bounds = chords + (tap < 4 ? 3 - tap : tap - 4) * planeSize + at;
+            const uint16_t* bounds = chords + (tap < 4 ? 3 - tap : tap - 4) * planeSize + at;
             __builtin_prefetch(bounds + 32); // four blocks on: measured 5% off the whole filter
-            const f8 bound = load8(bounds);
+            const f8 bound = loadBounds<kIsa>(bounds);
             f8 offset;
             const f8 reach = distanceAt(step, &offset) + normalSum * bound;
             const f8 slack = kChordSlack * normalSum * (offset + bound);
@@ -457,8 +481,8 @@ BMFR_SIMD_DISPATCH(void, solveBlock,
 void EdgePlanes::buildChordBounds(ThreadPool& pool, const EdgeGuide& g) {
     const int below = chordLength;
     const int level = below ? 1 - chordLevel : chordLevel;
-    const float* from = below ? chordBound[chordLevel].data() : nullptr;
-    float* to = chordBound[level].data();
+    const uint16_t* from = below ? chordBound[chordLevel].data() : nullptr;
+    uint16_t* to = chordBound[level].data();
     const int length = below ? below : 1;
     pool.parallelFor(g.height, 4,
                      [&](long y0, long y1) { chordBoundRows(g, *this, length, from, to, y0, y1); });

@@ -35,8 +35,10 @@ struct EdgePlanes {
     std::vector<float> tracedMin; ///< [row][block of 8 pixels][direction][lane]
     std::vector<int32_t> tracedEdge;
     /// [level parity][row][forward direction][padded column]: the largest distance (in each
-    /// coordinate) of a segment's positions from its chord; +inf where it leaves the image.
-    std::vector<float> chordBound[2];
+    /// coordinate) of a segment's positions from its chord; +inf where it leaves the image. As
+    /// halves rounded up: a larger bound only skips less, and they are most of the bytes that
+    /// building them moves.
+    std::vector<uint16_t> chordBound[2];
     int chordLength = 0; ///< the segments' length in chordBound[chordLevel]; 0 = none yet
     int chordLevel = 0;
     /// Stepped tracing's flat runs (SteppedTrace::flat) and, from them, each run of eight
@@ -51,7 +53,7 @@ struct EdgePlanes {
     long blocksPerRow = 0;
     const float* plane(int k) const { return planes.data() + k * planeSize + kPad; }
     /// The chord bounds along tap 4 + d's direction (walrTapX, walrTapY) at row 0, column 0.
-    const float* chordBounds(int d) const {
+    const uint16_t* chordBounds(int d) const {
         return chordBound[chordLevel].data() + d * planeSize + kPad;
     }
     /// The flat runs along tap direction d at row 0, column 0; the same of shortestRuns.
