@@ -1,6 +1,6 @@
-// The CPU backend's Mara 2017: the reference stages, except the input pass and stages 3 and 8,
-// eight pixels at a time (cpu_mara_temporal.h), and stage 5, whose two 1D min passes
-// over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
+// The CPU backend's Mara 2017: the reference stages, except the input pass, stages 3 and 8 and
+// the composition, eight pixels at a time (cpu_mara_temporal.h), and stage 5, whose two 1D min
+// passes over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
 // comparisons per pixel whatever R, with the same minima bit for bit; and stages 4, 6 and 7
 // (cpu_mara_rows.h) and 9 and 10 (cpu_mara_glossy.h), eight pixels at a time.
 #include "backend/backend_registry.h"
@@ -40,6 +40,10 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         ctx.pool.parallelFor(f.height, 4,
                              [&](long y0, long y1) { maraMatteTemporalRows(f, y0, y1); });
         return nonFinite.load();
+    }
+
+    void compose(const MaraPassContext& ctx, const MaraFrame& f) override {
+        ctx.pool.parallelFor(f.height, 8, [&](long y0, long y1) { maraComposeRows(f, y0, y1); });
     }
 
     void glossyTemporal(const MaraPassContext& ctx, const MaraFrame& f) override {

@@ -1,4 +1,5 @@
 #include "backend/cpu/mara2017/cpu_mara_temporal.h"
+#include "backend/cpu/modulation8.h"
 #include "backend/cpu/pixel_input8.h"
 #include "backend/cpu/reproject8.h"
 #include <algorithm>
@@ -198,6 +199,60 @@ BMFR_SIMD_INLINE void glossyGroup(const MaraFrame& f, int x, int y, int n) {
     storeXyz8(f.glossyHistory + 3 * i, n, t);
 }
 
+/// maraComposePixel of the n <= 8 pixels from i, in its order of operations.
+BMFR_SIMD_INLINE void composeGroup(const MaraFrame& f, long i, int n) {
+    f8 m[3];
+    loadXyz8(f.matteOut + 3 * i, n, m);
+    if (!f.factored) {
+        remodulate8(m, f.in, i, n, true, f.modes.albedoEpsilon);
+        storeXyz8(f.composed + 3 * i, n, m);
+        return;
+    }
+    int64_t unused = 0; // counted in maraInputPixel
+    auto finiteOf = [&](const float* plane, f8 v[3]) __attribute__((always_inline)) {
+        if (plane) {
+            loadXyz8(plane + 3 * i, n, v);
+            finiteOrZero8(v, unused);
+        } else {
+            v[0] = v[1] = v[2] = f8{};
+        }
+    };
+    f8 albedo[3], direct[3], emission[3], g[3] = {}, fresnel[3] = {};
+    finiteOf(f.in.albedo, albedo);
+    for (f8& v : albedo) v = max8(v, f8{}); // vmax(albedo, 0): its comparison, b when a < b
+    if (f.in.specularF0) {
+        f8 p[3], nrm[3], f0[3];
+        loadXyz8(f.position + 3 * i, n, p);
+        loadXyz8(f.normal + 3 * i, n, nrm);
+        const f8 v[3] = {f.eye.x - p[0], f.eye.y - p[1], f.eye.z - p[2]};
+        f8 len = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        for (int l = 0; l < 8; ++l) len[l] = __builtin_sqrtf(len[l]);
+        const f8 d = nrm[0] * v[0] + nrm[1] * v[1] + nrm[2] * v[2];
+        const f8 cosine = len > 0.0f ? abs8(d) / len : splat8(1.0f);
+        finiteOf(f.in.specularF0, f0);
+        for (f8& c : f0) c = max8(c, f8{});
+        // maraFresnel
+        const f8 clamped = cosine > 0.0f ? (cosine < 1.0f ? cosine : splat8(1.0f)) : f8{};
+        const f8 mm = 1.0f - clamped, m2 = mm * mm, k = m2 * m2 * mm;
+        for (int c = 0; c < 3; ++c) fresnel[c] = f0[c] + k * (1.0f - f0[c]);
+    }
+    if (f.glossy) loadXyz8(f.glossyOut + 3 * i, n, g);
+    finiteOf(f.in.directLight, direct);
+    finiteOf(f.in.emission, emission);
+    f8 out[3];
+    for (int c = 0; c < 3; ++c) { // maraCompose
+        const f8 one = 1.0f - fresnel[c];
+        out[c] = direct[c] + one * one * albedo[c] * m[c] + fresnel[c] * g[c] + emission[c];
+    }
+    storeXyz8(f.composed + 3 * i, n, out);
+}
+
+BMFR_SIMD_DISPATCH(void, composeRows, (const MaraFrame& f, long y0, long y1), (f, y0, y1)) {
+    for (long y = y0; y < y1; ++y)
+        for (int x = 0; x < f.width; x += 8)
+            composeGroup(f, y * f.width + x, std::min(8, f.width - x));
+}
+
 BMFR_SIMD_DISPATCH(void, glossyRows, (const MaraFrame& f, long y0, long y1), (f, y0, y1)) {
     for (long y = y0; y < y1; ++y)
         for (int x = 0; x < f.width; x += 8) glossyGroup(f, x, int(y), std::min(8, f.width - x));
@@ -229,6 +284,10 @@ void maraMatteTemporalRows(const MaraFrame& f, long y0, long y1) {
 
 void maraGlossyTemporalRows(const MaraFrame& f, long y0, long y1) {
     glossyRows(f, y0, y1);
+}
+
+void maraComposeRows(const MaraFrame& f, long y0, long y1) {
+    composeRows(f, y0, y1);
 }
 
 } // namespace bmfr::cpu

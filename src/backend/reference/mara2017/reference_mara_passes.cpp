@@ -54,6 +54,12 @@ void HostMaraPipeline::glossyBilateral(const MaraPassContext& ctx, const MaraFra
     });
 }
 
+void HostMaraPipeline::compose(const MaraPassContext& ctx, const MaraFrame& f) {
+    ctx.pool.parallelFor(f.height, 8, [&](long y0, long y1) {
+        for (long i = y0 * f.width; i < y1 * f.width; ++i) maraComposePixel(f, i);
+    });
+}
+
 PassCounters HostMaraPipeline::run(const MaraPassContext& ctx, StageTimes& times) {
     const Mara2017Settings& s = ctx.settings;
     const TemporalHistory& h = ctx.history;
@@ -80,11 +86,15 @@ PassCounters HostMaraPipeline::run(const MaraPassContext& ctx, StageTimes& times
         glossyBilateral(ctx, f);
         times.add("glossy bilateral", clock.lap());
     }
-    ctx.pool.parallelFor(f.height, 8, [&](long y0, long y1) {
-        for (long i = y0 * f.width; i < y1 * f.width; ++i) maraComposePixel(f, i);
-    });
-    taaPass(ctx.pool, buffers.taaInputs(ctx), buffers.ycocg.data(), buffers.output[h.cur].data(),
-            s.taa && h.hasHistory());
+    if (s.taa && h.hasHistory()) {
+        compose(ctx, f);
+        taaPass(ctx.pool, buffers.taaInputs(ctx), buffers.ycocg.data(),
+                buffers.output[h.cur].data(), true);
+    } else { // straight into the output, not through a copy
+        MaraFrame out = f;
+        out.composed = buffers.output[h.cur].data();
+        compose(ctx, out);
+    }
     times.add("compose", clock.lap());
     return {bad, discarded};
 }

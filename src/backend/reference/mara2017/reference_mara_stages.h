@@ -28,6 +28,8 @@ class HostMaraPipeline : public HostPasses<Mara2017Settings, MaraBuffers> {
     virtual void glossyTemporal(const MaraPassContext& ctx, const MaraFrame& f);
     /// Stages 9 and 10 from f.glossyTemporal into f.glossyOut.
     virtual void glossyBilateral(const MaraPassContext& ctx, const MaraFrame& f);
+    /// The composition into f.composed.
+    virtual void compose(const MaraPassContext& ctx, const MaraFrame& f);
 };
 
 } // namespace bmfr::reference
