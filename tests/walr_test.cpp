@@ -4,6 +4,7 @@
 #include "backend/cpu/walr/cpu_walr_spatial.h"
 #include "core/hash.h"
 #include "filters/walr/refwlr.h"
+#include "filters/walr/walr_passes.h"
 #include "filters/walr/walr_temporal_kernels.h"
 #include "metrics/basic_metrics.h"
 #include "render/scene_description.h"
@@ -73,11 +74,8 @@ WalrRun runWalr(const WalrGBuffer& f, const EdgeGuide& g, int iterations, bool k
     ThreadPool pool(2);
     cpu::EdgePlanes planes;
     if (eightWide) planes.fill(pool, g);
-    // A stepped trace's state, for the scalar kernel.
-    std::vector<float> traceMin(size_t(8 * n));
-    std::vector<int32_t> traceZero(traceMin.size());
-    std::vector<uint8_t> traceFlat[2] = {std::vector<uint8_t>(traceMin.size()),
-                                         std::vector<uint8_t>(traceMin.size())};
+    SteppedTraceBuffers trace; // for the scalar kernel
+    trace.resize(n);
     int step = 1;
     for (int t = 0; t < iterations; ++t, step *= 3) {
         WalrLevel l;
@@ -86,8 +84,7 @@ WalrRun runWalr(const WalrGBuffer& f, const EdgeGuide& g, int iterations, bool k
         l.weightOut = keepW ? wb.data() : nullptr;
         l.frame = frame;
         l.halfIn = half && t > 0, l.halfOut = half && t < iterations - 1;
-        l.trace = {traceMin.data(), traceZero.data(), traceFlat[(t + 1) % 2].data(),
-                   traceFlat[t % 2].data(), n};
+        l.trace = trace.at(t);
         if (eightWide)
             cpu::walrAtrousIteration(pool, g, planes, l);
         else

@@ -44,7 +44,7 @@ struct WalrLevel {
     /// (roundToHalf), and on the CPU backend input and output stored as 16 halves per pixel.
     bool halfIn = false, halfOut = false;
     uint32_t frame = 0, seed = 0;
-    /// Stepped tracing's state (EdgeGuide::stepFraction > 0), in the reference backend's
+    /// Stepped tracing's state (EdgeGuide::stepped), in the reference backend's
     /// layout; the CPU backend keeps its own.
     SteppedTrace trace;
 };
@@ -67,10 +67,9 @@ BMFR_HD void walrAtrousPixel(const EdgeGuide& g, const WalrLevel& l, int x, int 
     for (int tap = 0; tap < 8; ++tap) {
         const int ux = walrTapX(tap), uy = walrTapY(tap);
         const uint32_t hash = replacementHash(i, l.frame, l.iteration, tap, l.seed);
-        const TracedTap t =
-            g.tracing && g.stepFraction > 0
-                ? traceTapStepped(g, c, l.trace, i, tap, x, y, ux, uy, l.iteration, l.step, hash)
-                : traceTap(g, c, x, y, ux, uy, l.step, hash);
+        const TracedTap t = g.stepped() ? traceTapStepped(g, c, l.trace, i, tap, x, y, ux, uy,
+                                                          l.iteration, l.step, hash)
+                                        : traceTap(g, c, x, y, ux, uy, l.step, hash);
         if (!(t.weight > 0)) continue;
         const long j = long(y + t.steps * uy) * g.width + x + t.steps * ux;
         const float w = l.weightIn ? t.weight * l.weightIn[j] : t.weight;

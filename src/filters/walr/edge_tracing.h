@@ -21,6 +21,8 @@ struct EdgeGuide {
     /// Stepped tracing (WalrSettings::edgeStep; with tracing, when > 0): the share of the flat
     /// run found ahead by the last iteration that a step skips. 0 = every pixel.
     float stepFraction = 0;
+    /// Whether the trace steps (stepFraction above 0, with tracing).
+    BMFR_HD bool stepped() const { return tracing && stepFraction > 0; }
 };
 
 /// The centre's plane and ramp: weight 1 below distance a, 0 from b, linear between.

@@ -6,10 +6,34 @@
 #include "filters/walr/walr_temporal_kernels.h"
 #include <bmfr/filters/walr_filter.h>
 #include <memory>
+#include <vector>
 
 namespace bmfr {
 
 using WalrPassContext = PassContext<WalrSettings>;
+
+/// Whether the settings step the edge trace (EdgeGuide::stepped).
+inline bool walrSteppedTrace(const WalrSettings& s) {
+    return s.edgeTracing && s.edgeStep > 0;
+}
+
+/// The host memory behind SteppedTrace: each iteration's view reads the last one's flat runs.
+struct SteppedTraceBuffers {
+    std::vector<float> min;
+    std::vector<int32_t> firstZero;
+    std::vector<uint8_t> flat[2];
+    long pixels = 0;
+    /// Sized for `pixels` pixels (0: none).
+    void resize(long n) {
+        pixels = n;
+        min.resize(size_t(8 * n)), firstZero.resize(size_t(8 * n));
+        for (std::vector<uint8_t>& f : flat) f.resize(size_t(8 * n));
+    }
+    SteppedTrace at(int iteration) {
+        return {min.data(), firstZero.data(), flat[(iteration + 1) % 2].data(),
+                flat[iteration % 2].data(), pixels};
+    }
+};
 
 /// WALR's per-pixel buffers in host memory: the history (double-buffered) and this frame's.
 struct WalrBuffers {

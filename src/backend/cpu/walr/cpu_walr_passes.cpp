@@ -15,7 +15,7 @@ class CpuWalrPasses final : public reference::HostWalrPipeline {
     void allocate(int w, int h, const WalrSettings& s, int) override {
         buffers.interleaved = true;
         buffers.allocate(w, h);
-        planes_.allocate(w, h, s.edgeTracing && s.edgeStep > 0);
+        planes_.allocate(w, h, walrSteppedTrace(s));
     }
 
   protected:

@@ -28,7 +28,7 @@ void EdgePlanes::allocate(int width, int height, bool stepped) {
 }
 
 void EdgePlanes::fill(ThreadPool& pool, const EdgeGuide& g) {
-    allocate(g.width, g.height, g.tracing && g.stepFraction > 0);
+    allocate(g.width, g.height, g.stepped());
     for (int run = 0; run < 256; ++run) skipOf[run] = skipOverRun(g.stepFraction, run);
     chordLength = 0;
     skippedTaps = 0;
@@ -423,7 +423,7 @@ BMFR_SIMD_DISPATCH(void, atrousRows,
                     gatherPixel<kIsa>(l, taps, along, lane, long(y) * g.width + x + lane);
             }
     };
-    if (g.tracing && g.stepFraction > 0)
+    if (g.stepped())
         rows(std::true_type{});
     else
         rows(std::false_type{});
@@ -495,9 +495,8 @@ void EdgePlanes::buildShortestRuns(ThreadPool& pool, int height) {
 }
 
 void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l) {
-    const bool stepping = g.tracing && g.stepFraction > 0;
-    if (stepping && l.iteration > 0) e.buildShortestRuns(pool, g.height);
-    if (g.tracing && !(g.stepFraction > 0) && l.iteration >= 2)
+    if (g.stepped() && l.iteration > 0) e.buildShortestRuns(pool, g.height);
+    if (g.tracing && !g.stepped() && l.iteration >= 2)
         while (e.chordLength < l.step) e.buildChordBounds(pool, g);
     // Plain row order: columns of single blocks (so that vertical steps revisit cached rows)
     // measured 1.5x slower, and bands cut into strips no faster.

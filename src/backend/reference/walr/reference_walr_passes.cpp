@@ -4,7 +4,6 @@
 #include "core/stopwatch.h"
 #include "filters/walr/refwlr.h"
 #include <atomic>
-#include <vector>
 
 namespace bmfr::reference {
 
@@ -77,10 +76,7 @@ class ReferenceWalrPasses final : public HostWalrPipeline {
   public:
     void allocate(int w, int h, const WalrSettings& s, int threads) override {
         HostWalrPipeline::allocate(w, h, s, threads);
-        const bool stepped = s.edgeTracing && s.edgeStep > 0;
-        const size_t n = stepped ? size_t(8 * long(w) * h) : 0;
-        traceMin_.resize(n), traceZero_.resize(n);
-        for (std::vector<uint8_t>& f : traceFlat_) f.resize(n);
+        trace_.resize(walrSteppedTrace(s) ? long(w) * h : 0);
     }
 
   protected:
@@ -88,12 +84,9 @@ class ReferenceWalrPasses final : public HostWalrPipeline {
         const WalrSettings& s = ctx.settings;
         const EdgeGuide g = buffers.guide(ctx);
         const int iterations = walrIterations(s, g.width, g.height);
-        const bool stepped = g.tracing && g.stepFraction > 0;
         for (int t = 0; t < iterations; ++t) {
             WalrLevel l = buffers.level(ctx, t, s.sampleWeights);
-            if (stepped)
-                l.trace = {traceMin_.data(), traceZero_.data(), traceFlat_[(t + 1) % 2].data(),
-                           traceFlat_[t % 2].data(), long(g.width) * g.height};
+            if (g.stepped()) l.trace = trace_.at(t);
             ctx.pool.forEachPixel(g.width, g.height, 2,
                                   [&](int x, int y) { walrAtrousPixel(g, l, x, y); });
         }
@@ -102,10 +95,7 @@ class ReferenceWalrPasses final : public HostWalrPipeline {
     }
 
   private:
-    // Stepped tracing's state (SteppedTrace), sized by allocate.
-    std::vector<float> traceMin_;
-    std::vector<int32_t> traceZero_;
-    std::vector<uint8_t> traceFlat_[2];
+    SteppedTraceBuffers trace_; ///< sized by allocate
 };
 
 } // namespace
