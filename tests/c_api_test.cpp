@@ -397,5 +397,30 @@ TEST(CApiDevice, ACudaDeviceWithoutAGpuIsUnsupportedHardware) {
     EXPECT_EQ(got, cpp);
 }
 
+TEST(CApiDevice, OnlyACudaDeviceTakesAGpuBeforeItsCommit) {
+    const char* message = nullptr;
+    BMFRDevice cpu = bmfrNewDevice(BMFR_DEVICE_TYPE_CPU);
+    bmfrSetDeviceInt(cpu, "cudaDevice", 1);
+    EXPECT_EQ(bmfrGetDeviceError(cpu, &message), BMFR_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(message, "'cudaDevice' is for a BMFR_DEVICE_TYPE_CUDA device");
+    EXPECT_EQ(bmfrGetDeviceInt(cpu, "cudaDevice"), 0);
+    bmfrReleaseDevice(cpu);
+
+    BMFRDevice gpu = bmfrNewDevice(BMFR_DEVICE_TYPE_CUDA);
+    bmfrSetDeviceInt(gpu, "cudaDevice", -1);
+    EXPECT_EQ(bmfrGetDeviceError(gpu, &message), BMFR_ERROR_INVALID_ARGUMENT);
+    EXPECT_STREQ(message, "cudaDevice -1 is below 0");
+    bmfrSetDeviceInt(gpu, "cudaDevice", 1000);
+    EXPECT_EQ(bmfrGetDeviceError(gpu, &message), BMFR_ERROR_NONE);
+    EXPECT_EQ(bmfrGetDeviceInt(gpu, "cudaDevice"), 1000);
+    // No machine has GPU 1000: the commit says so, as the C++ API does.
+    bmfrCommitDevice(gpu);
+    EXPECT_EQ(bmfrGetDeviceError(gpu, &message), BMFR_ERROR_UNSUPPORTED_HARDWARE);
+    const std::string got = message ? message : "";
+    EXPECT_EQ(got, testing::errorOf([] { Device d(Backend::Cuda, 0, 1000); }));
+    EXPECT_NE(got.find("no CUDA device"), std::string::npos) << got;
+    bmfrReleaseDevice(gpu);
+}
+
 } // namespace
 } // namespace bmfr

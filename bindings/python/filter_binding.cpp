@@ -70,7 +70,8 @@ using RunLock = std::shared_ptr<std::mutex>;
 
 class PyDevice {
   public:
-    PyDevice(const std::string& backend, int threads) : device_(backendNamed(backend), threads) {}
+    PyDevice(const std::string& backend, int threads, int cudaDevice)
+        : device_(backendNamed(backend), threads, cudaDevice) {}
     const Device& device() const { return device_; }
     const RunLock& lock() const { return lock_; }
     void reserve(int width, int height) {
@@ -80,7 +81,11 @@ class PyDevice {
     }
     std::string repr() const {
         return "bmfr.Device(backend='" + std::string(backendName(device_.backend())) +
-               "', threads=" + std::to_string(device_.threadCount()) + ")";
+               "', threads=" + std::to_string(device_.threadCount()) +
+               (device_.backend() == Backend::Cuda
+                    ? ", cuda_device=" + std::to_string(device_.cudaDevice())
+                    : std::string()) +
+               ")";
     }
 
   private:
@@ -301,11 +306,12 @@ class PyFilter {
 void bindFilter(py::module_& m) {
     py::class_<PyDevice>(m, "Device", R"(Where filters run and the worker threads they share.
 
-Device(backend="cpu", threads=0): backend cpu, reference or cuda; threads 0 = all cores. Filters
-made with Filter(name, device=d) share its threads. reserve(width, height) sizes the buffers of
+Device(backend="cpu", threads=0, cuda_device=0): backend cpu, reference or cuda; threads 0 = all
+cores; cuda_device the cuda backend's GPU (as CUDA numbers them). Filters made with
+Filter(name, device=d) share its threads. reserve(width, height) sizes the buffers of
 filters made afterwards, so that their first frame allocates nothing.)")
-        .def(py::init<const std::string&, int>(), py::arg("backend") = "cpu",
-             py::arg("threads") = 0)
+        .def(py::init<const std::string&, int, int>(), py::arg("backend") = "cpu",
+             py::arg("threads") = 0, py::arg("cuda_device") = 0)
         .def("reserve", &PyDevice::reserve, py::arg("width"), py::arg("height"))
         .def("__repr__", &PyDevice::repr);
 

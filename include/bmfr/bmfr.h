@@ -61,7 +61,9 @@ typedef struct BMFRDeviceImpl* BMFRDevice;
 typedef struct BMFRFilterImpl* BMFRFilter;
 
 /* Devices. A new device takes settings until committed: int "threads" (worker threads, 0 = all
- * cores, [0, 1024], default 0). Read-only ints: "type", "threads", "versionMajor",
+ * cores, [0, 1024], default 0) and, for BMFR_DEVICE_TYPE_CUDA, int "cudaDevice" (the GPU, as
+ * cudaSetDevice numbers them, default 0; current only while the library works, the caller's
+ * restored after). Read-only ints: "type", "threads", "cudaDevice", "versionMajor",
  * "versionMinor", "versionPatch". A NULL device in any call is an error reported to the thread's
  * own slot, which bmfrGetDeviceError(NULL, ...) reads. */
 BMFR_API BMFRDevice bmfrNewDevice(BMFRDeviceType type) BMFR_NOEXCEPT;

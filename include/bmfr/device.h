@@ -12,9 +12,11 @@ namespace bmfr {
 
 class BMFR_API Device {
   public:
-    /// `threads`: worker threads, 0 = all cores. Throws bmfr::Error when `backend` is not
-    /// built into this library or has no device.
-    explicit Device(Backend backend = Backend::Cpu, int threads = 0);
+    /// `threads`: worker threads, 0 = all cores. `cudaDevice`: Backend::Cuda's GPU, numbered as
+    /// cudaSetDevice numbers them (0 for the other backends); the library makes it current only
+    /// while it works and then restores the caller's. Throws bmfr::Error when `backend` is not
+    /// built into this library or has no such device.
+    explicit Device(Backend backend = Backend::Cpu, int threads = 0, int cudaDevice = 0);
     ~Device();
     /// Copies share the threads and the reservation.
     Device(const Device&);
@@ -22,6 +24,7 @@ class BMFR_API Device {
 
     Backend backend() const;
     int threadCount() const;
+    int cudaDevice() const;
     /// Makes filter `name` ("bmfr", "svgf", ...) on this device, with its defaults overridden
     /// by `values` (as bmfr::makeFilter; the backend and threads are the device's, so giving
     /// either is an error). Filters of one device run one at a time: not thread-safe together.

@@ -39,9 +39,9 @@ template <class S>
 constexpr bool kOnCuda = std::is_same_v<S, BmfrSettings> || std::is_same_v<S, SvgfSettings>;
 } // namespace
 
-void requireBackend(Backend b) {
+void requireBackend(Backend b, int cudaDevice) {
     if (b == Backend::Cpu) cpu::activeIsa();
-    if (b == Backend::Cuda) cuda::requireDevice();
+    if (b == Backend::Cuda) cuda::requireDevice(cudaDevice);
 }
 
 template <class S> void requireRuns(Backend b, const char* filter) {
@@ -53,11 +53,12 @@ template <class S> void requireRuns(Backend b, const char* filter) {
     }
 }
 
-template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const char* filter) {
+template <class S>
+std::unique_ptr<PassesFor<S>> makePasses(Backend b, const char* filter, int cudaDevice) {
     // Errors when the filter is made, not inside a pass: a filter the backend does not run, a
     // bad BMFR_CPU_ISA, "no CUDA device: ..." (in a build without CUDA too).
     requireRuns<S>(b, filter);
-    requireBackend(b);
+    requireBackend(b, cudaDevice);
     switch (b) {
     case Backend::Reference:
         return reference::makePasses<S>();
@@ -65,7 +66,7 @@ template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const cha
         return cpu::makePasses<S>();
     case Backend::Cuda:
 #if defined(BMFR_HAVE_CUDA)
-        if constexpr (kOnCuda<S>) return cuda::makePasses<S>();
+        if constexpr (kOnCuda<S>) return cuda::makePasses<S>(cudaDevice);
 #endif
         break;
     }
@@ -73,13 +74,16 @@ template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, const cha
 }
 
 template void requireRuns<BmfrSettings>(Backend, const char*);
-template std::unique_ptr<PassesFor<BmfrSettings>> makePasses<BmfrSettings>(Backend, const char*);
+template std::unique_ptr<PassesFor<BmfrSettings>> makePasses<BmfrSettings>(Backend, const char*,
+                                                                           int);
 template void requireRuns<SvgfSettings>(Backend, const char*);
-template std::unique_ptr<PassesFor<SvgfSettings>> makePasses<SvgfSettings>(Backend, const char*);
+template std::unique_ptr<PassesFor<SvgfSettings>> makePasses<SvgfSettings>(Backend, const char*,
+                                                                           int);
 template void requireRuns<WalrSettings>(Backend, const char*);
-template std::unique_ptr<PassesFor<WalrSettings>> makePasses<WalrSettings>(Backend, const char*);
+template std::unique_ptr<PassesFor<WalrSettings>> makePasses<WalrSettings>(Backend, const char*,
+                                                                           int);
 template void requireRuns<Mara2017Settings>(Backend, const char*);
-template std::unique_ptr<PassesFor<Mara2017Settings>> makePasses<Mara2017Settings>(Backend,
-                                                                                   const char*);
+template std::unique_ptr<PassesFor<Mara2017Settings>>
+makePasses<Mara2017Settings>(Backend, const char*, int);
 
 } // namespace bmfr

@@ -16,18 +16,21 @@ namespace cpu {
 template <class S> std::unique_ptr<PassesFor<S>> makePasses();
 } // namespace cpu
 namespace cuda {
-template <class S> std::unique_ptr<PassesFor<S>> makePasses();
+/// Made with `device` current; every call of the passes makes it current again.
+template <class S> std::unique_ptr<PassesFor<S>> makePasses(int device);
 } // namespace cuda
 
-/// Throws bmfr::Error when `backend` cannot run here: not built into this library, no CUDA device,
-/// or a BMFR_CPU_ISA this processor lacks.
-void requireBackend(Backend backend);
+/// Throws bmfr::Error when `backend` cannot run here: not built into this library, no CUDA device
+/// `cudaDevice`, or a BMFR_CPU_ISA this processor lacks.
+void requireBackend(Backend backend, int cudaDevice = 0);
 
 /// Throws bmfr::Error when `backend` does not run filter `filter` (settings S).
 template <class S> void requireRuns(Backend backend, const char* filter);
 
-/// The passes of filter `filter` (settings S) on `backend`. Throws bmfr::Error when the backend
-/// is not built into this library, has no device, or does not run this filter.
-template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend backend, const char* filter);
+/// The passes of filter `filter` (settings S) on `backend` (on GPU `cudaDevice` for cuda). Throws
+/// bmfr::Error when the backend is not built into this library, has no such device, or does not
+/// run this filter.
+template <class S>
+std::unique_ptr<PassesFor<S>> makePasses(Backend backend, const char* filter, int cudaDevice = 0);
 
 } // namespace bmfr

@@ -25,6 +25,7 @@ struct BMFRDeviceImpl {
     std::atomic<int> references{1};
     bmfr::Backend backend = bmfr::Backend::Cpu;
     int threads = 0;
+    int cudaDevice = 0;                 ///< the cuda type's GPU
     std::optional<bmfr::Device> device; ///< made at commit
 
     std::mutex errorMutex;

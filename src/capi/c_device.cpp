@@ -128,13 +128,24 @@ void bmfrSetDeviceInt(BMFRDevice device, const char* name, int value) noexcept {
     guard(device, 0, [&] {
         requireDevice(device);
         requireName(name);
-        if (std::strcmp(name, "threads") != 0)
+        const std::string key = name;
+        if (key != "threads" && key != "cudaDevice")
             throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
-                               std::string("unknown device setting '") + name +
-                                   "' (the device takes 'threads')"};
+                               "unknown device setting '" + key +
+                                   "' (the device takes 'threads' and 'cudaDevice')"};
         if (device->device)
             throw BMFRApiError{BMFR_ERROR_INVALID_OPERATION,
-                               "'threads' is set before bmfrCommitDevice, not after"};
+                               "'" + key + "' is set before bmfrCommitDevice, not after"};
+        if (key == "cudaDevice") {
+            if (device->backend != bmfr::Backend::Cuda)
+                throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
+                                   "'cudaDevice' is for a BMFR_DEVICE_TYPE_CUDA device"};
+            if (value < 0)
+                throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
+                                   "cudaDevice " + std::to_string(value) + " is below 0"};
+            device->cudaDevice = value;
+            return 0;
+        }
         if (value < 0 || value > 1024)
             throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
                                "threads " + std::to_string(value) + " is outside [0, 1024]"};
@@ -160,13 +171,14 @@ int bmfrGetDeviceInt(BMFRDevice device, const char* name) noexcept {
         }
         if (key == "threads")
             return device->device ? device->device->threadCount() : device->threads;
+        if (key == "cudaDevice") return device->cudaDevice;
         if (key == "versionMajor") return BMFR_VERSION_MAJOR;
         if (key == "versionMinor") return BMFR_VERSION_MINOR;
         if (key == "versionPatch") return BMFR_VERSION_PATCH;
         throw BMFRApiError{BMFR_ERROR_INVALID_ARGUMENT,
                            "unknown device parameter '" + key +
-                               "' (expected type, threads, versionMajor, versionMinor or "
-                               "versionPatch)"};
+                               "' (expected type, threads, cudaDevice, versionMajor, "
+                               "versionMinor or versionPatch)"};
     });
 }
 
@@ -206,7 +218,7 @@ void bmfrCommitDevice(BMFRDevice device) noexcept {
         requireDevice(device);
         if (device->device) return 0; // committed already: nothing changed since
         try {
-            device->device.emplace(device->backend, device->threads);
+            device->device.emplace(device->backend, device->threads, device->cudaDevice);
         } catch (const bmfr::Error& e) {
             throw BMFRApiError{BMFR_ERROR_UNSUPPORTED_HARDWARE, e.what()};
         }

@@ -5,11 +5,18 @@
 
 namespace bmfr {
 
-Device::Device(Backend backend, int threads) : state_(std::make_shared<State>()) {
+Device::Device(Backend backend, int threads, int cudaDevice) : state_(std::make_shared<State>()) {
     if (threads < 0 || threads > 1024)
         throw Error("threads " + std::to_string(threads) + " is outside [0, 1024]");
-    requireBackend(backend); // its errors when the device is made, not when a filter is
+    if (cudaDevice != 0 && backend != Backend::Cuda)
+        throw Error("cudaDevice " + std::to_string(cudaDevice) +
+                    " is the cuda backend's; this "
+                    "device's backend is " +
+                    backendName(backend));
+    // Its errors when the device is made, not when a filter is.
+    requireBackend(backend, cudaDevice);
     state_->backend = backend;
+    state_->cudaDevice = cudaDevice;
     state_->pool = std::make_shared<ThreadPool>(threads);
 }
 Device::~Device() = default;
@@ -21,6 +28,9 @@ Backend Device::backend() const {
 }
 int Device::threadCount() const {
     return state_->pool->threadCount();
+}
+int Device::cudaDevice() const {
+    return state_->cudaDevice;
 }
 void Device::reserve(int maxWidth, int maxHeight) {
     if (maxWidth == 0 && maxHeight == 0) { // drops the reservation

@@ -9,6 +9,7 @@ namespace bmfr {
 struct Device::State {
     Backend backend = Backend::Cpu;
     std::shared_ptr<ThreadPool> pool;
+    int cudaDevice = 0; ///< Backend::Cuda's GPU
     int reservedWidth = 0, reservedHeight = 0;
 };
 

@@ -19,7 +19,7 @@ std::unique_ptr<FrameLoop> frameLoop(const char* name, const S& settings, const 
         throw Error(std::string("the ") + name + " settings say backend " +
                     backendName(settings.backend) + ", the device is " + backendName(d.backend));
     auto core = std::make_unique<FilterCore<S, Hooks>>(
-        name, settings, makePasses<S>(settings.backend, name), d.pool);
+        name, settings, makePasses<S>(settings.backend, name, d.cudaDevice), d.pool);
     if (d.reservedWidth > 0) core->reserve(d.reservedWidth, d.reservedHeight);
     return core;
 }

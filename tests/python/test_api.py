@@ -142,6 +142,8 @@ def test_presets_devices_and_repr(objects):
     assert np.array_equal(on_device, bmfr.Filter("svgf", threads=2).denoise_frame(frame))
     with pytest.raises(TypeError, match="backend= or device=, not both"):
         bmfr.Filter("svgf", backend="cpu", device=device)
+    with pytest.raises(bmfr.Error, match="cudaDevice 1 is the cuda backend's"):
+        bmfr.Device("cpu", cuda_device=1)
 
 
 def test_inputs_and_a_warning_for_a_missing_one(objects):

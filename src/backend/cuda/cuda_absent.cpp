@@ -14,12 +14,22 @@ namespace {
 bool built() {
     return false;
 }
-void requireDevice() {
+void requireDevice(int) {
     absent();
 }
-std::string deviceName() {
+std::string deviceName(int) {
     absent();
 }
+int deviceCount() {
+    absent();
+}
+int currentDevice() {
+    absent();
+}
+DeviceScope::DeviceScope(int) {
+    absent();
+}
+DeviceScope::~DeviceScope() = default;
 double copyFloorMs(double, int) {
     absent();
 }

@@ -28,6 +28,22 @@ void Stream::synchronize() const {
     check(cudaStreamSynchronize(s_), "cudaStreamSynchronize");
 }
 
+namespace {
+thread_local const AllocationStream* tAllocation = nullptr;
+} // namespace
+
+AllocationStream::AllocationStream(cudaStream_t stream) : outer_(tAllocation), stream_(stream) {
+    tAllocation = this;
+}
+AllocationStream::~AllocationStream() {
+    tAllocation = outer_;
+}
+cudaStream_t AllocationStream::current() {
+    if (!tAllocation)
+        throw Error("internal error: a device allocation outside an AllocationStream");
+    return tAllocation->stream_;
+}
+
 bool built() {
     return true;
 }
@@ -41,12 +57,12 @@ bool driverInstalled() {
 }
 } // namespace
 
-void requireDevice() {
-    // The answer cannot change within a process; ask the driver once.
+void requireDevice(int device) {
+    // The driver's answer cannot change within a process; ask it once.
     static std::once_flag once;
     static std::string why;
+    static int count = 0;
     std::call_once(once, [] {
-        int count = 0;
         const cudaError_t e = cudaGetDeviceCount(&count);
         if (e == cudaErrorInsufficientDriver && !driverInstalled())
             why = "no NVIDIA driver is installed (libcuda.so.1 cannot be loaded)";
@@ -54,20 +70,40 @@ void requireDevice() {
             why = std::string(cudaGetErrorString(e)) + " (" + cudaGetErrorName(e) + ")";
         else if (count == 0)
             why = "the driver reports no CUDA-capable device";
-        else {
-            const cudaError_t s = cudaSetDevice(0);
-            if (s != cudaSuccess)
-                why = std::string("device 0 is unusable: ") + cudaGetErrorString(s);
-        }
     });
     if (!why.empty()) throw Error("no CUDA device: " + why + " (use --backend cpu or reference)");
-    check(cudaSetDevice(0), "cudaSetDevice");
+    if (device < 0 || device >= count)
+        throw Error("no CUDA device " + std::to_string(device) + ": the driver reports " +
+                    std::to_string(count) + " (numbered from 0)");
 }
 
-std::string deviceName() {
+int deviceCount() {
     requireDevice();
+    int count = 0;
+    check(cudaGetDeviceCount(&count), "cudaGetDeviceCount");
+    return count;
+}
+int currentDevice() {
+    int device = 0;
+    check(cudaGetDevice(&device), "cudaGetDevice");
+    return device;
+}
+
+DeviceScope::DeviceScope(int device) {
+    int current = 0;
+    check(cudaGetDevice(&current), "cudaGetDevice");
+    if (current == device) return;
+    check(cudaSetDevice(device), "cudaSetDevice");
+    previous_ = current;
+}
+DeviceScope::~DeviceScope() {
+    if (previous_ >= 0) cudaSetDevice(previous_);
+}
+
+std::string deviceName(int device) {
+    requireDevice(device);
     cudaDeviceProp p{};
-    check(cudaGetDeviceProperties(&p, 0), "cudaGetDeviceProperties");
+    check(cudaGetDeviceProperties(&p, device), "cudaGetDeviceProperties");
     char buf[384];
     std::snprintf(buf, sizeof buf, "%s (sm_%d%d, %d SMs, %.1f GiB)", p.name, p.major, p.minor,
                   p.multiProcessorCount, double(p.totalGlobalMem) / (1024.0 * 1024.0 * 1024.0));
@@ -78,10 +114,12 @@ double copyFloorMs(double bytes, int repeats) {
     requireDevice();
     // A copy reads and writes: half the bytes each way moves `bytes` in all.
     const size_t n = std::max<size_t>(size_t(bytes / 2.0), 1);
-    DeviceArray<unsigned char> a, b;
-    a.resize(n), b.resize(n);
-    check(cudaDeviceSynchronize(), "allocation");
     Stream stream;
+    DeviceArray<unsigned char> a, b;
+    {
+        const AllocationStream on(stream.get());
+        a.resize(n), b.resize(n);
+    }
     cudaEvent_t start, stop;
     check(cudaEventCreate(&start), "cudaEventCreate");
     check(cudaEventCreate(&stop), "cudaEventCreate");

@@ -9,13 +9,30 @@ namespace bmfr::cuda {
 
 /// True when this library was built with the CUDA backend.
 bool built();
-/// Throws bmfr::Error "no CUDA device: ..." unless a usable device exists, and makes device 0
-/// current. Cheap after the first call.
-void requireDevice();
-/// The current device, as "NVIDIA H200 (sm_90, 132 SMs, 140.4 GiB)".
-std::string deviceName();
-/// The memory floor of `bytes` on this GPU: milliseconds a device-to-device copy of that many
-/// bytes takes (median of `repeats` timed copies after one warm-up, CUDA events).
+/// Throws bmfr::Error "no CUDA device: ..." unless device `device` (as cudaSetDevice counts)
+/// exists and is usable. Leaves the current device as it was. Cheap after the first call.
+void requireDevice(int device = 0);
+/// Device `device`, as "NVIDIA H200 (sm_90, 132 SMs, 140.4 GiB)".
+std::string deviceName(int device = 0);
+
+/// The devices the driver reports, and the calling thread's current one (for the tests).
+int deviceCount();
+int currentDevice();
+
+/// Makes device `device` current for the scope's life and then restores the caller's, so that
+/// the library never leaves an engine's thread on another device (rmm's cuda_set_device_raii).
+class DeviceScope {
+  public:
+    explicit DeviceScope(int device);
+    ~DeviceScope();
+    DeviceScope(const DeviceScope&) = delete;
+    DeviceScope& operator=(const DeviceScope&) = delete;
+
+  private:
+    int previous_ = -1; ///< the caller's device, or -1 when it was already `device`
+};
+/// The memory floor of `bytes` on the current GPU: milliseconds a device-to-device copy of that
+/// many bytes takes (median of `repeats` timed copies after one warm-up, CUDA events).
 double copyFloorMs(double bytes, int repeats = 9);
 /// Writes the packed RGB device image `from` into the device image `to` (3 or 4 channels, any
 /// row stride; a fourth channel is left as it was), ordered on `stream` (a cudaStream_t, or null

@@ -1,29 +1,64 @@
-// What the CUDA backend's passes of every filter share: a frame in device memory is read in
-// place and a host one uploaded (DeviceFrame::begin, inside the passes), and the result is
-// written from device memory into the caller's view.
+// What the CUDA backend's passes of every filter share: they run on one GPU, made current for
+// each call and the caller's device restored after; a frame in device memory is read in place
+// and a host one uploaded (DeviceFrame::begin, inside the passes), and the result is written
+// from device memory into the caller's view.
 #pragma once
 #include "backend/cuda/cuda_device.h"
 #include "filters/filter_passes.h"
+#include <optional>
 
 namespace bmfr::cuda {
 
 template <class S> class CudaPasses : public PassesFor<S> {
   public:
-    CudaPasses() { requireDevice(); }
-    bool readsDeviceMemory() const override { return true; }
+    /// Constructed with `device` current (cuda::makePasses).
+    explicit CudaPasses(int device) : device_(device) {}
+
+    void allocate(int w, int h, const S& settings, int threads) final {
+        const DeviceScope on(device_);
+        allocateOnDevice(w, h, settings, threads);
+    }
+    PassCounters run(const PassContext<S>& ctx, StageTimes& times) final {
+        const DeviceScope on(device_);
+        return runOnDevice(ctx, times);
+    }
+    void captureDebug(const TemporalHistory& history) final {
+        const DeviceScope on(device_);
+        captureDebugOnDevice(history);
+    }
+    bool readsDeviceMemory() const final { return true; }
     /// Only the size: the passes stage the frame themselves, on their stream.
-    const InputPlanes& stage(const FrameInput& frame) override {
+    const InputPlanes& stage(const FrameInput& frame) final {
         planes_ = InputPlanes{};
         planes_.width = frame.color.width;
         planes_.height = frame.color.height;
         return planes_;
     }
-    void write(const ImageView& result, const MutableImageView& out, void* stream) override {
+    void write(const ImageView& result, const MutableImageView& out, void* stream) final {
+        const DeviceScope on(device_);
         writeResult(result, out, stream);
     }
 
+  protected:
+    virtual void allocateOnDevice(int w, int h, const S& settings, int threads) = 0;
+    virtual PassCounters runOnDevice(const PassContext<S>& ctx, StageTimes& times) = 0;
+    virtual void captureDebugOnDevice(const TemporalHistory& history) = 0;
+    int device() const { return device_; }
+    /// The first statement of a derived destructor: the derived class's members are then freed
+    /// with this GPU current, and this base's destruction, which comes after, restores the
+    /// caller's device.
+    void leaveOnDevice() { leaving_.emplace(device_); }
+
   private:
+    int device_;
     InputPlanes planes_;
+    std::optional<DeviceScope> leaving_;
 };
+
+/// The passes of settings S on GPU `device`, made with it current.
+template <class S, class Passes> std::unique_ptr<PassesFor<S>> makeOnDevice(int device) {
+    const DeviceScope on(device);
+    return std::make_unique<Passes>(device);
+}
 
 } // namespace bmfr::cuda

@@ -12,7 +12,25 @@ namespace bmfr::cuda {
 /// Throws bmfr::Error "CUDA error in <what>: <message>" unless `e` is cudaSuccess.
 void check(cudaError_t e, const char* what);
 
-/// An owning device array of T, zeroed when (re)allocated.
+/// Orders the device allocations made in its scope, on this thread, on `stream`:
+/// DeviceArray::resize frees, allocates and zeroes in that stream's order (cudaMallocAsync), so
+/// the work queued there after it sees zeroed memory, and no other stream or the host waits.
+class AllocationStream {
+  public:
+    explicit AllocationStream(cudaStream_t stream);
+    ~AllocationStream();
+    AllocationStream(const AllocationStream&) = delete;
+    AllocationStream& operator=(const AllocationStream&) = delete;
+    /// The innermost scope's stream; throws bmfr::Error outside any scope.
+    static cudaStream_t current();
+
+  private:
+    const AllocationStream* outer_;
+    cudaStream_t stream_;
+};
+
+/// An owning device array of T, zeroed when (re)allocated, in the order of the current
+/// AllocationStream. Freed with cudaFree: its owner destroys it after the GPU's last use.
 template <typename T> class DeviceArray {
   public:
     DeviceArray() = default;
@@ -22,10 +40,12 @@ template <typename T> class DeviceArray {
     ~DeviceArray() { cudaFree(p_); }
     void resize(size_t n) {
         if (n == n_ && p_) return;
-        cudaFree(p_);
+        const cudaStream_t s = AllocationStream::current();
+        const size_t bytes = (n ? n : 1) * sizeof(T);
+        if (p_) check(cudaFreeAsync(p_, s), "cudaFreeAsync");
         p_ = nullptr, n_ = 0;
-        check(cudaMalloc(reinterpret_cast<void**>(&p_), (n ? n : 1) * sizeof(T)), "cudaMalloc");
-        check(cudaMemset(p_, 0, (n ? n : 1) * sizeof(T)), "cudaMemset");
+        check(cudaMallocAsync(reinterpret_cast<void**>(&p_), bytes, s), "cudaMallocAsync");
+        check(cudaMemsetAsync(p_, 0, bytes, s), "cudaMemsetAsync");
         n_ = n;
     }
     T* data() { return p_; }

@@ -2,7 +2,8 @@
 // caller's, for device buffers, or the passes' own), order the frame after the previous one on
 // the device, stage the input, time the stages with events, and end the frame: with one
 // synchronisation, or with none on the caller's stream, whose times and counts are then read
-// once a later frame finds them done.
+// once a later frame finds them done. A passes class declares its DeviceFrame after its
+// buffers: destroyed first, it waits for the last frame, so the buffers outlive its work.
 #pragma once
 #include "backend/cuda/device_input.h"
 #include "backend/cuda/stage_events.h"
@@ -18,6 +19,16 @@ class DeviceFrame {
     DeviceFrame(const DeviceFrame&) = delete;
     DeviceFrame& operator=(const DeviceFrame&) = delete;
 
+    /// Runs `allocate(stream)`, whose device allocations (AllocationStream) and uploads go on
+    /// `stream`, ordered after the previous frame and before the next, with no waiting.
+    template <class F> void allocate(F&& allocate) {
+        check(cudaStreamWaitEvent(own_.get(), end_, 0), "cudaStreamWaitEvent");
+        {
+            const AllocationStream on(own_.get());
+            allocate(own_.get());
+        }
+        check(cudaEventRecord(end_, own_.get()), "cudaEventRecord");
+    }
     /// Starts a frame: stages its input (the "upload" stage) and returns the device planes.
     const InputPlanes& begin(const FrameInput& frame);
     /// The stream this frame runs on.
@@ -41,7 +52,7 @@ class DeviceFrame {
     bool onDevice_ = false, deferred_ = false;
     StageEvents events_;
     DeviceInput input_;
-    cudaEvent_t end_ = nullptr;                ///< the previous frame's last work
+    cudaEvent_t end_ = nullptr;                ///< the previous frame's (or allocation's) last work
     unsigned long long* hostCounts_ = nullptr; ///< pinned, written by the stream
     bool pending_ = false;                     ///< a deferred frame's stats are still to be read
     StageTimes previousTimes_;

@@ -32,6 +32,7 @@ const float* DeviceInput::plane(const ImageView& v, int channels, int slot, int 
 }
 
 const InputPlanes& DeviceInput::stage(const FrameInput& frame, cudaStream_t stream) {
+    const AllocationStream on(stream); // the frame's stream waited for the previous frame
     device_ = stagePlanes(frame, [&](const ImageView& v, int channels, int slot, int first) {
         return plane(v, channels, slot, first, stream);
     });

@@ -43,38 +43,41 @@ struct HostCopies {
 
 class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
   public:
-    void allocate(int w, int h, const BmfrSettings& s, int) override {
-        Buffers& b = b_;
-        for (int k = 0; k < 2; ++k) {
-            b.normal[k].resize(w, h, 3), b.position[k].resize(w, h, 3);
-            b.accumulatedNoisy[k].resize(w, h, 3), b.accumulatedFitted[k].resize(w, h, 3);
-            b.output[k].resize(w, h, 3), b.historyLength[k].resize(w, h, 1);
-            b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
-            b.lit[k].resize(s.visibilityTaps ? w : 0, s.visibilityTaps ? h : 0, 1);
-            host_.output[k].resize(w, h, 3);
-        }
-        b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
-        b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
-        b.remodulated.resize(w, h, 3), b.ycocg.resize(w, h, 3), b.acceptMask.resize(w, h, 1);
-        b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
-        b.changeTiles.resize(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0);
-        const int W = s.blockSize * s.blockSize, M = int(s.features.size());
-        b.noise.resize(size_t(M) * size_t(W));
-        b.features.resize(size_t(M));
-        check(cudaMemcpy(b.features.data(), s.features.data(), size_t(M) * sizeof(Feature),
-                         cudaMemcpyHostToDevice),
-              "feature upload");
-        b.counters.resize(DeviceFrame::kCounters);
-        plan_ = planFit(M, s.blockSize);
-        const BlockGrid most = makeBlockGrid(w, h, s.blockSize, 0);
-        b.fitScratch.resize(plan_.matrixInShared ? 0
-                                                 : plan_.matrixFloats * size_t(most.blockCount()));
-        // The zeroing and the feature copy ran on the legacy stream, which the passes'
-        // non-blocking stream does not wait for.
-        check(cudaDeviceSynchronize(), "allocation");
+    using CudaPasses::CudaPasses;
+    ~CudaBmfrPasses() override { leaveOnDevice(); }
+
+    void allocateOnDevice(int w, int h, const BmfrSettings& s, int) override {
+        frame_.allocate([&](cudaStream_t st) {
+            Buffers& b = b_;
+            for (int k = 0; k < 2; ++k) {
+                b.normal[k].resize(w, h, 3), b.position[k].resize(w, h, 3);
+                b.accumulatedNoisy[k].resize(w, h, 3), b.accumulatedFitted[k].resize(w, h, 3);
+                b.output[k].resize(w, h, 3), b.historyLength[k].resize(w, h, 1);
+                b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
+                b.lit[k].resize(s.visibilityTaps ? w : 0, s.visibilityTaps ? h : 0, 1);
+                host_.output[k].resize(w, h, 3);
+            }
+            b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
+            b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
+            b.remodulated.resize(w, h, 3), b.ycocg.resize(w, h, 3), b.acceptMask.resize(w, h, 1);
+            b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
+            b.changeTiles.resize(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0);
+            const int W = s.blockSize * s.blockSize, M = int(s.features.size());
+            b.noise.resize(size_t(M) * size_t(W));
+            b.features.resize(size_t(M));
+            // From pageable memory: staged before the call returns.
+            check(cudaMemcpyAsync(b.features.data(), s.features.data(), size_t(M) * sizeof(Feature),
+                                  cudaMemcpyHostToDevice, st),
+                  "feature upload");
+            b.counters.resize(DeviceFrame::kCounters);
+            plan_ = planFit(M, s.blockSize);
+            const BlockGrid most = makeBlockGrid(w, h, s.blockSize, 0);
+            b.fitScratch.resize(
+                plan_.matrixInShared ? 0 : plan_.matrixFloats * size_t(most.blockCount()));
+        });
     }
 
-    PassCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
+    PassCounters runOnDevice(const BmfrPassContext& ctx, StageTimes& times) override {
         const BmfrSettings& s = ctx.settings;
         const TemporalHistory& t = ctx.history;
         const int cur = t.cur, prev = 1 - cur;
@@ -141,7 +144,7 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
         return frame_.onDevice() ? deviceView(b_.output[slot]) : view(host_.output[slot]);
     }
 
-    void captureDebug(const TemporalHistory& t) override {
+    void captureDebugOnDevice(const TemporalHistory& t) override {
         const cudaStream_t st = frame_.get();
         b_.accumulatedNoisy[t.cur].download(host_.noisy, st);
         b_.fitted.download(host_.fitted, st);
@@ -158,16 +161,16 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
     }
 
   private:
-    DeviceFrame frame_;
     Buffers b_;
     HostCopies host_;
     FitPlan plan_;
+    DeviceFrame frame_; ///< last (device_frame.h)
 };
 
 } // namespace
 
-template <> std::unique_ptr<BmfrPasses> makePasses<BmfrSettings>() {
-    return std::make_unique<CudaBmfrPasses>();
+template <> std::unique_ptr<BmfrPasses> makePasses<BmfrSettings>(int device) {
+    return makeOnDevice<BmfrSettings, CudaBmfrPasses>(device);
 }
 
 } // namespace bmfr::cuda

@@ -61,10 +61,15 @@ FitPlan planFit(int featureCount, int blockSize) {
     check(cudaGetDevice(&device), "cudaGetDevice");
     check(cudaDeviceGetAttribute(&optin, cudaDevAttrMaxSharedMemoryPerBlockOptin, device),
           "cudaDeviceGetAttribute");
-    p.matrixInShared = fixed + p.matrixFloats * sizeof(float) <= size_t(optin);
+    cudaFuncAttributes kernel{};
+    check(cudaFuncGetAttributes(&kernel, fitKernel), "cudaFuncGetAttributes");
+    const int most = optin - int(kernel.sharedSizeBytes); // dynamic shared memory, at most
+    p.matrixInShared = fixed + p.matrixFloats * sizeof(float) <= size_t(most);
     p.sharedBytes = fixed + (p.matrixInShared ? p.matrixFloats * sizeof(float) : 0);
-    check(cudaFuncSetAttribute(fitKernel, cudaFuncAttributeMaxDynamicSharedMemorySize,
-                               int(p.sharedBytes)),
+    // The attribute is the kernel's on this device, for the whole process, not this filter's:
+    // set to one plan's need, it would fail the launches of another filter that needs more.
+    // The device's largest fits every plan, and it only permits, so all set the same value.
+    check(cudaFuncSetAttribute(fitKernel, cudaFuncAttributeMaxDynamicSharedMemorySize, most),
           "cudaFuncSetAttribute");
     return p;
 }

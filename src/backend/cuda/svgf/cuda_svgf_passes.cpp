@@ -15,16 +15,19 @@ namespace {
 
 class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
   public:
-    void allocate(int w, int h, const SvgfSettings&, int) override {
-        b_.allocate(w, h);
-        ycocg_.resize(w, h, 3);
-        counters_.resize(DeviceFrame::kCounters);
+    using CudaPasses::CudaPasses;
+    ~CudaSvgfPasses() override { leaveOnDevice(); }
+
+    void allocateOnDevice(int w, int h, const SvgfSettings&, int) override {
+        frame_.allocate([&](cudaStream_t) {
+            b_.allocate(w, h);
+            ycocg_.resize(w, h, 3);
+            counters_.resize(DeviceFrame::kCounters);
+        });
         for (ImageF& o : output_) o.resize(w, h, 3);
-        // The zeroing ran on the legacy stream, which the passes' stream does not wait for.
-        check(cudaDeviceSynchronize(), "allocation");
     }
 
-    PassCounters run(const SvgfPassContext& ctx, StageTimes& times) override {
+    PassCounters runOnDevice(const SvgfPassContext& ctx, StageTimes& times) override {
         const SvgfSettings& s = ctx.settings;
         const TemporalHistory& h = ctx.history;
         const InputPlanes& in = frame_.begin(ctx.frame);
@@ -73,12 +76,13 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
     /// On the host, brought there only when asked for: most callers never look at it.
     ImageView variance() const override {
         if (frame_.onDevice()) return deviceView(b_.variance);
+        const DeviceScope on(device());
         b_.variance.download(variance_, frame_.get());
         frame_.synchronize();
         return view(variance_);
     }
 
-    void captureDebug(const TemporalHistory& h) override {
+    void captureDebugOnDevice(const TemporalHistory& h) override {
         const int cur = h.cur;
         const cudaStream_t st = frame_.get();
         b_.integrated.download(debug_.integrated, st);
@@ -98,7 +102,6 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
     }
 
   private:
-    DeviceFrame frame_;
     SvgfImages<DeviceImageF, DeviceImageU8> b_;
     DeviceImageF ycocg_;
     DeviceArray<unsigned long long> counters_;
@@ -110,12 +113,13 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
     struct {
         ImageF integrated, finalLevel, historyLengthF, acceptF;
     } debug_;
+    DeviceFrame frame_; ///< last (device_frame.h)
 };
 
 } // namespace
 
-template <> std::unique_ptr<SvgfPasses> makePasses<SvgfSettings>() {
-    return std::make_unique<CudaSvgfPasses>();
+template <> std::unique_ptr<SvgfPasses> makePasses<SvgfSettings>(int device) {
+    return makeOnDevice<SvgfSettings, CudaSvgfPasses>(device);
 }
 
 } // namespace bmfr::cuda
