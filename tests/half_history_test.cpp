@@ -3,8 +3,11 @@
 // temporal error by at most 1%, on the procedural truth and on path-traced sequences, with and
 // without an emission buffer (the original dataset layout has none, so its emitters pass
 // through the fit as huge demodulated values that the half planes saturate).
+#include "backend/reference/bmfr/reference_bmfr_passes.h"
 #include "core/half.h"
 #include "core/image.h"
+#include "filters/bmfr/bmfr_hooks.h"
+#include "filters/filter_core.h"
 #include "metrics/basic_metrics.h"
 #include "path_traced_box.h"
 #include "synth/procedural_scene.h"
@@ -91,6 +94,43 @@ TEST(HalfHistory, PathTracedBoxKeepsItsQualityWithAndWithoutAnEmissionBuffer) {
         in.emission = {};
         return in;
     });
+}
+
+std::vector<float> floatsOf(const ImageView& v) {
+    return std::vector<float>(v.data, v.data + size_t(v.width) * v.height * v.channels);
+}
+
+// The CUDA backend keeps the rounded planes as Half; the reference, as floats holding the same
+// values. One set of kernels reads and writes both, so both give the same bits: the output and
+// phase I's and the fit's debug views, every frame, with the emitter exclusion (no emission
+// buffer), the visibility taps and the second grid of the defaults, and without the fit.
+TEST(HalfHistory, HalfPlanesGiveTheFloatPlanesBits) {
+    const std::vector<FrameData> frames = test::pathTracedBox(64, 48, 8, 5, 0.03f, 64);
+    for (int variant = 0; variant < 3; ++variant) {
+        SCOPED_TRACE(variant);
+        BmfrSettings s;
+        s.backend = Backend::Reference, s.threads = 2;
+        s.stages.fitting = variant != 2;
+        BmfrDenoiser floats(s);
+        FilterCore<BmfrSettings, BmfrHooks> halves(
+            "bmfr", s, reference::makeBmfrPassesStoringHalves(), std::make_shared<ThreadPool>(2));
+        floats.setDebugOutputs(true);
+        halves.setDebugOutputs(true);
+        for (size_t i = 0; i < frames.size(); ++i) {
+            FrameInput in = frames[i].input();
+            if (variant == 1) in.emission = {};
+            EXPECT_EQ(floatsOf(halves.denoise(in)), floatsOf(floats.denoise(in))) << "frame " << i;
+            EXPECT_EQ(floatsOf(halves.debug().accumulatedNoisy),
+                      floatsOf(floats.debug().accumulatedNoisy))
+                << i;
+            EXPECT_EQ(floatsOf(halves.debug().fitted), floatsOf(floats.debug().fitted)) << i;
+        }
+    }
+    BmfrSettings full;
+    full.backend = Backend::Reference, full.halfHistory = false;
+    FilterCore<BmfrSettings, BmfrHooks> wrong(
+        "bmfr", full, reference::makeBmfrPassesStoringHalves(), std::make_shared<ThreadPool>(1));
+    EXPECT_THROW(wrong.denoise(frames[0].input()), Error);
 }
 
 } // namespace

@@ -3,11 +3,11 @@
 #pragma once
 #include "core/host_device.h"
 #include "core/vec.h"
+#include <cstdint>
 #if defined(__CUDACC__)
 #include <cuda_fp16.h>
 #else
 #include <bit>
-#include <cstdint>
 #endif
 
 namespace bmfr {
@@ -72,5 +72,38 @@ inline uint16_t floatToHalfBits(float x) {
     return uint16_t(sign | (exponent << 10) | ((u >> 13) & 0x3ffu));
 }
 #endif
+
+/// A history value stored in 16 bits (IEEE half): what a plane of Half holds under
+/// BmfrSettings::halfHistory on a backend that keeps the bytes it moves (CUDA). Stored from x it
+/// holds roundToHalf(x), so a kernel reads back the float that a float plane holding
+/// roundToHalf(x) gives: one kernel, either storage, the same bits.
+struct Half {
+    uint16_t bits;
+    BMFR_HD explicit Half(float x) {
+        x = x < -kHalfMax ? -kHalfMax : (x > kHalfMax ? kHalfMax : x);
+#if defined(__CUDACC__)
+        bits = __half_as_ushort(__float2half_rn(x));
+#else
+        bits = floatToHalfBits(x);
+#endif
+    }
+    Half() = default;
+    BMFR_HD operator float() const {
+#if defined(__CUDACC__)
+        return __half2float(__ushort_as_half(bits));
+#else
+        return halfBitsToFloat(bits);
+#endif
+    }
+};
+
+BMFR_HD Vec3 load3(const Half* p, long i) {
+    return {float(p[3 * i]), float(p[3 * i + 1]), float(p[3 * i + 2])};
+}
+BMFR_HD void store3(Half* p, long i, Vec3 v) {
+    p[3 * i] = Half(v.x);
+    p[3 * i + 1] = Half(v.y);
+    p[3 * i + 2] = Half(v.z);
+}
 
 } // namespace bmfr

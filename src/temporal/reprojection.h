@@ -91,8 +91,10 @@ struct DiscardLimits {
 
 /// Tests each tap of the previous frame against the current surface (p, n): inside the image,
 /// squared position distance and squared normal distance below the limits. Returns the mask.
+/// The normals are floats, or halves (core/half.h) where a history keeps them so.
+template <class N>
 BMFR_HD uint8_t acceptTaps(const BilinearFootprint& f, Vec3 p, Vec3 n, const float* prevPositions,
-                           const float* prevNormals, int width, int height,
+                           const N* prevNormals, int width, int height,
                            const DiscardLimits& limits) {
     uint8_t accept = 0;
     for (int t = 0; t < 4; ++t) {

@@ -56,6 +56,10 @@ void DeviceFrame::finish(const unsigned long long* deviceCounters, StageTimes& t
     for (int k = 0; k < kCounters; ++k) counts[k] = hostCounts_[k];
 }
 
+void DeviceFrame::waitForLastFrame() const {
+    check(cudaEventSynchronize(end_), "cudaEventSynchronize");
+}
+
 void DeviceFrame::synchronize() const {
     check(cudaStreamSynchronize(current_), "cudaStreamSynchronize");
 }

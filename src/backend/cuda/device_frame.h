@@ -45,6 +45,9 @@ class DeviceFrame {
                 unsigned long long* counts);
     /// Waits for the frame's stream (debug downloads).
     void synchronize() const;
+    /// Waits for the last frame's (or allocation's) work, wherever it ran: before buffers it
+    /// used are freed outside the stream order.
+    void waitForLastFrame() const;
 
   private:
     Stream own_;

@@ -16,8 +16,9 @@
 namespace bmfr {
 
 /// Phase I's buffers for one frame: packed images of the backend's (3 floats per pixel unless
-/// said), `prev*` from the previous frame's slot.
-struct NoisyAccumulation {
+/// said), `prev*` from the previous frame's slot. H is how the history planes that halfHistory
+/// rounds are stored: float, or Half where halfHistory is on and the bytes matter (CUDA).
+template <class H> struct NoisyAccumulationOf {
     InputPlanes in;
     InputModes modes;
     PreviousFrame previous;
@@ -26,13 +27,13 @@ struct NoisyAccumulation {
     bool accumulate = true;  ///< StageSwitches::firstAccumulation
     bool halfHistory = true; ///< BmfrSettings::halfHistory: normals and colour stored as half
     int width = 0, height = 0;
-    float* normal = nullptr; ///< sanitised features, for the next frame's discard test
+    H* normal = nullptr; ///< sanitised features, for the next frame's discard test
     float* position = nullptr;
-    const float* prevNormal = nullptr;
+    const H* prevNormal = nullptr;
     const float* prevPosition = nullptr;
-    const float* prevNoisy = nullptr;
+    const H* prevNoisy = nullptr;
     const uint8_t* prevLength = nullptr;
-    float* noisy = nullptr;         ///< accumulated demodulated colour
+    H* noisy = nullptr;             ///< accumulated demodulated colour
     uint8_t* length = nullptr;      ///< history length, 1..255
     float* previousPixel = nullptr; ///< 2 floats: continuous pixel in the previous frame
     uint8_t* accept = nullptr;      ///< accepted taps, bit i = tap i
@@ -48,9 +49,11 @@ struct NoisyAccumulation {
     const float* visibility = nullptr;
     const uint8_t* prevLit = nullptr;
 };
+using NoisyAccumulation = NoisyAccumulationOf<float>;
 
 /// Phase I of pixel i. Returns true when the pixel had a history and lost all of it.
-BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& bad) {
+template <class H>
+BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulationOf<H>& a, long i, int64_t& bad) {
     const PixelInput px = readPixel(a.in, i, a.modes, bad);
     const Vec3 n = px.normal, p = px.position;
     Vec3 c = px.color;
@@ -101,8 +104,8 @@ BMFR_HD bool accumulateNoisyPixel(const NoisyAccumulation& a, long i, int64_t& b
     return prev.valid && accept == 0;
 }
 
-/// Phase III's buffers for one frame.
-struct FittedAccumulation {
+/// Phase III's buffers for one frame (H as in NoisyAccumulationOf).
+template <class H> struct FittedAccumulationOf {
     InputPlanes in;
     bool accumulate = true; ///< a history exists and StageSwitches::secondAccumulation
     bool remodulate = true; ///< demodulated on input (by us or by the renderer)
@@ -111,17 +114,18 @@ struct FittedAccumulation {
     bool halfHistory = true; ///< BmfrSettings::halfHistory: the history stored as half
     int width = 0;
     const float* fitted = nullptr;
-    const float* prevAccumulated = nullptr;
+    const H* prevAccumulated = nullptr;
     const float* previousPixel = nullptr; ///< phase I's
     const uint8_t* accept = nullptr;      ///< phase I's
     const uint8_t* length = nullptr;      ///< phase I's
-    float* accumulated = nullptr;         ///< the next frame's history (demodulated)
+    H* accumulated = nullptr;             ///< the next frame's history (demodulated)
     const float* changeTiles = nullptr;   ///< BmfrSettings::adaptiveHistory: tileHistoryChange's
 };
+using FittedAccumulation = FittedAccumulationOf<float>;
 
 /// Phase III of pixel i, with phase I's reprojection and discard decisions (no second test).
 /// Stores the history and returns the re-modulated colour with the emission added, for TAA.
-BMFR_HD Vec3 accumulateFittedPixel(const FittedAccumulation& a, long i) {
+template <class H> BMFR_HD Vec3 accumulateFittedPixel(const FittedAccumulationOf<H>& a, long i) {
     Vec3 c = load3(a.fitted, i);
     const uint8_t accept = a.accept[i];
     if (a.accumulate && accept) {

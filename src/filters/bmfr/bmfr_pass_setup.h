@@ -7,16 +7,23 @@
 #include "filters/bmfr/accumulation_kernels.h"
 #include "filters/bmfr/bmfr_passes.h"
 #include "filters/bmfr/fitting_kernel.h"
+#include <type_traits>
+#include <utility>
 
 namespace bmfr {
 
+/// How Buffers stores the history planes that halfHistory rounds: float or Half.
+template <class Buffers>
+using HistoryStorage = std::remove_pointer_t<decltype(std::declval<Buffers&>().normal[0].data())>;
+
 /// Phase I of this frame, reading the input from `in` (host or device planes).
 template <class Buffers>
-NoisyAccumulation noisyAccumulation(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b) {
+NoisyAccumulationOf<HistoryStorage<Buffers>> noisyAccumulation(const BmfrPassContext& ctx,
+                                                               const InputPlanes& in, Buffers& b) {
     const BmfrSettings& s = ctx.settings;
     const TemporalHistory& t = ctx.history;
     const int cur = t.cur, prev = 1 - t.cur;
-    NoisyAccumulation a;
+    NoisyAccumulationOf<HistoryStorage<Buffers>> a;
     a.in = in;
     a.modes = inputModes(s);
     a.previous = t.previous;
@@ -43,11 +50,12 @@ NoisyAccumulation noisyAccumulation(const BmfrPassContext& ctx, const InputPlane
 
 /// The fit of this frame, given the backend's copies of the features and of the noise.
 template <class Buffers>
-BlockFit blockFit(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b,
-                  const Feature* features, const float* noise) {
+BlockFitOf<HistoryStorage<Buffers>> blockFit(const BmfrPassContext& ctx, const InputPlanes& in,
+                                             Buffers& b, const Feature* features,
+                                             const float* noise) {
     const BmfrSettings& s = ctx.settings;
     const TemporalHistory& t = ctx.history;
-    BlockFit a;
+    BlockFitOf<HistoryStorage<Buffers>> a;
     a.grid = makeBlockGrid(t.width, t.height, s.blockSize, t.frameIndex);
     a.features = features, a.featureCount = int(s.features.size());
     a.noise = noise;
@@ -69,11 +77,11 @@ BlockFit blockFit(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b,
 
 /// Phase III of this frame, with phase I's decisions.
 template <class Buffers>
-FittedAccumulation fittedAccumulation(const BmfrPassContext& ctx, const InputPlanes& in,
-                                      Buffers& b) {
+FittedAccumulationOf<HistoryStorage<Buffers>>
+fittedAccumulation(const BmfrPassContext& ctx, const InputPlanes& in, Buffers& b) {
     const BmfrSettings& s = ctx.settings;
     const TemporalHistory& t = ctx.history;
-    FittedAccumulation a;
+    FittedAccumulationOf<HistoryStorage<Buffers>> a;
     a.in = in;
     a.accumulate = t.hasHistory() && s.stages.secondAccumulation;
     a.remodulate = s.stages.demodulate || s.colorIsDemodulated;

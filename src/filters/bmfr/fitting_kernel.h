@@ -93,21 +93,23 @@ inline EmitterExclusion emitterExclusion(const BmfrSettings& s, const InputPlane
     return {s.excludeEmitters && in.emission == nullptr, s.emitterRatio, inputModes(s), bits};
 }
 
-/// One frame's fit: its sources and output are packed images (3 floats per pixel).
-struct BlockFit {
+/// One frame's fit: its sources and output are packed images (3 values per pixel), the normals
+/// and phase I's colour stored as H (NoisyAccumulationOf).
+template <class H> struct BlockFitOf {
     BlockGrid grid;
     const Feature* features = nullptr;
     int featureCount = 0;
     const float* noise = nullptr; ///< featureCount x blockPixels regularisation noise
-    const float* normal = nullptr;
+    const H* normal = nullptr;
     const float* position = nullptr;
-    const float* color = nullptr; ///< phase I output
-    InputPlanes in;               ///< for the extra feature buffers
-    float* fitted = nullptr;      ///< the block writes the pixels it owns
+    const H* color = nullptr; ///< phase I output
+    InputPlanes in;           ///< for the extra feature buffers
+    float* fitted = nullptr;  ///< the block writes the pixels it owns
     EmitterExclusion emitters;
     bool clampFireflies = false;     ///< BmfrSettings::clampFireflies
     const uint8_t* length = nullptr; ///< phase I's history lengths, which fade the clamp
 };
+using BlockFit = BlockFitOf<float>;
 
 /// fireflyFadeLength of pixel k of block (bx, by) of `g` (mirrored in at the border), with
 /// lengthAt(i) the history length of image pixel i in the backend's storage.
@@ -120,7 +122,7 @@ BMFR_HD float blockFadeLength(const BlockGrid& g, const EmitterExclusion& e, int
 }
 
 /// blockFadeLength from the fit's own history lengths.
-BMFR_HD float blockFadeLength(const BlockFit& a, int bx, int by, int k) {
+template <class H> BMFR_HD float blockFadeLength(const BlockFitOf<H>& a, int bx, int by, int k) {
     return blockFadeLength(a.grid, a.emitters, bx, by, k, [&](long i) { return a.length[i]; });
 }
 
@@ -167,7 +169,8 @@ BMFR_HD int excludeEmitterRows(const BlockGrid& g, const InputPlanes& in, const 
 
 /// Gathers block (bx, by) as structure-of-arrays, mirroring the image in at the border, and
 /// marks the pixels it owns.
-BMFR_HD void gatherBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& sc) {
+template <class H>
+BMFR_HD void gatherBlock(const BlockFitOf<H>& a, int bx, int by, const BlockFitScratch& sc) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B, M = a.featureCount;
     float* n[3] = {sc.sources, sc.sources + W, sc.sources + 2 * W};
@@ -200,8 +203,9 @@ BMFR_HD void gatherBlock(const BlockFit& a, int bx, int by, const BlockFitScratc
 
 /// Fits block (bx, by). `solve(columns, M, rows, coeffs)` is a Householder solver with
 /// solveHouseholder's contract (the backend picks its build of it).
-template <typename Solve>
-BMFR_HD void fitBlock(const BlockFit& a, int bx, int by, const BlockFitScratch& sc, Solve&& solve) {
+template <class H, typename Solve>
+BMFR_HD void fitBlock(const BlockFitOf<H>& a, int bx, int by, const BlockFitScratch& sc,
+                      Solve&& solve) {
     const int W = a.grid.blockSize * a.grid.blockSize, M = a.featureCount;
     gatherBlock(a, bx, by, sc);
     for (int f = 0; f < M; ++f) {

@@ -69,13 +69,13 @@ BMFR_HD void teamReduce(const Team& team, float* partial, int count, Op op) {
 struct TeamPixel {
     long idx;
     float n[3], p[3];
-    BMFR_HD TeamPixel(const BlockFit& a, long i) : idx(i) {
+    template <class H> BMFR_HD TeamPixel(const BlockFitOf<H>& a, long i) : idx(i) {
         for (int c = 0; c < 3; ++c) n[c] = a.normal[3 * i + c], p[c] = a.position[3 * i + c];
     }
 };
 
 /// Feature f of a pixel, unscaled (gatherBlock and buildFeatureColumns, per pixel).
-BMFR_HD float teamFeature(const BlockFit& a, int f, const TeamPixel& px) {
+template <class H> BMFR_HD float teamFeature(const BlockFitOf<H>& a, int f, const TeamPixel& px) {
     const Feature& feat = a.features[f];
     if (feat.source == FeatureSource::Extra) {
         const float v = a.in.extras[feat.extraIndex][px.idx];
@@ -143,8 +143,8 @@ BMFR_HD void teamMaskStage(const Team& team, uint8_t* mask, uint8_t* next, int W
 }
 
 /// clampFireflies for a team: the threshold on one thread, the stages pixel-parallel.
-template <class Team>
-BMFR_HD void teamClampFireflies(const Team& team, const BlockFit& a, int bx, int by, float* A,
+template <class Team, class H>
+BMFR_HD void teamClampFireflies(const Team& team, const BlockFitOf<H>& a, int bx, int by, float* A,
                                 int M, const TeamFitMemory& mem) {
     const int B = a.grid.blockSize, W = B * B, T = team.size();
     TeamFitState& st = *mem.state;
@@ -169,8 +169,8 @@ BMFR_HD void teamClampFireflies(const Team& team, const BlockFit& a, int bx, int
 
 /// excludeEmitterRows for a team: the mask's stages pixel-parallel (the histogram on one thread),
 /// then the excluded rows of the M + 3 columns of `A` zeroed.
-template <class Team>
-BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by, float* A,
+template <class Team, class H>
+BMFR_HD void teamEmitterMask(const Team& team, const BlockFitOf<H>& a, int bx, int by, float* A,
                              const TeamFitMemory& mem) {
     const BlockGrid& g = a.grid;
     const int B = g.blockSize, W = B * B, M = a.featureCount, T = team.size();
@@ -208,8 +208,8 @@ BMFR_HD void teamEmitterMask(const Team& team, const BlockFit& a, int bx, int by
 }
 
 /// Fits block (bx, by) with `team`: fitBlock's result, with the QR's sums in tree order.
-template <class Team>
-BMFR_HD void fitBlockTeam(const Team& team, const BlockFit& a, int bx, int by,
+template <class Team, class H>
+BMFR_HD void fitBlockTeam(const Team& team, const BlockFitOf<H>& a, int bx, int by,
                           const TeamFitMemory& mem) {
     const BlockGrid& g = a.grid;
     const int W = g.blockSize * g.blockSize, M = a.featureCount, T = team.size();

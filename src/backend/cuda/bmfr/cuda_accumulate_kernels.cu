@@ -10,7 +10,8 @@
 namespace bmfr::cuda {
 
 namespace {
-__global__ void accumulateNoisyKernel(NoisyAccumulation a, unsigned long long* counters) {
+template <class H>
+__global__ void accumulateNoisyKernel(NoisyAccumulationOf<H> a, unsigned long long* counters) {
     const long i = pixelIndex();
     if (i >= long(a.width) * a.height) return;
     int64_t bad = 0;
@@ -18,7 +19,8 @@ __global__ void accumulateNoisyKernel(NoisyAccumulation a, unsigned long long* c
     countIf(&counters[0], bad);
     countIf(&counters[1], lost ? 1 : 0);
 }
-__global__ void accumulateFittedKernel(FittedAccumulation a, float* out, long n) {
+template <class H>
+__global__ void accumulateFittedKernel(FittedAccumulationOf<H> a, float* out, long n) {
     const long i = pixelIndex();
     if (i < n) store3(out, i, accumulateFittedPixel(a, i));
 }
@@ -35,6 +37,10 @@ __global__ void sameLitTapsKernel(uint8_t* accept, const float* pp, const float*
     if (i < n)
         accept[i] =
             sameLitTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, visibility, prevLit, lit, i, width);
+}
+__global__ void widenKernel(const Half* from, float* to, long n) {
+    const long i = pixelIndex();
+    if (i < n) to[i] = float(from[i]);
 }
 __global__ void blendSecondFitKernel(float* fitted, const float* second, const uint8_t* length,
                                      long n) {
@@ -61,17 +67,35 @@ __global__ void noiseKernel(float* noise, const Feature* features, int M, int W,
 }
 } // namespace
 
-void launchAccumulateNoisy(const NoisyAccumulation& a, unsigned long long* counters,
+template <class H>
+void launchAccumulateNoisy(const NoisyAccumulationOf<H>& a, unsigned long long* counters,
                            cudaStream_t stream) {
     const long n = long(a.width) * a.height;
-    accumulateNoisyKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(a, counters);
+    accumulateNoisyKernel<H><<<pixelBlocks(n), kPixelThreads, 0, stream>>>(a, counters);
     check(cudaGetLastError(), "phase I kernel");
 }
 
-void launchAccumulateFitted(const FittedAccumulation& a, float* out, cudaStream_t stream) {
+template <class H>
+void launchAccumulateFitted(const FittedAccumulationOf<H>& a, float* out, cudaStream_t stream) {
     const long n = long(a.width) * a.in.height;
-    accumulateFittedKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(a, out, n);
+    accumulateFittedKernel<H><<<pixelBlocks(n), kPixelThreads, 0, stream>>>(a, out, n);
     check(cudaGetLastError(), "phase III kernel");
+}
+
+template void launchAccumulateNoisy(const NoisyAccumulationOf<float>&, unsigned long long*,
+                                    cudaStream_t);
+template void launchAccumulateNoisy(const NoisyAccumulationOf<Half>&, unsigned long long*,
+                                    cudaStream_t);
+template void launchAccumulateFitted(const FittedAccumulationOf<float>&, float*, cudaStream_t);
+template void launchAccumulateFitted(const FittedAccumulationOf<Half>&, float*, cudaStream_t);
+
+void launchToFloat(const float* from, float* to, long n, cudaStream_t stream) {
+    check(cudaMemcpyAsync(to, from, size_t(n) * sizeof(float), cudaMemcpyDeviceToDevice, stream),
+          "float copy");
+}
+void launchToFloat(const Half* from, float* to, long n, cudaStream_t stream) {
+    widenKernel<<<pixelBlocks(n), kPixelThreads, 0, stream>>>(from, to, n);
+    check(cudaGetLastError(), "half widening kernel");
 }
 
 void launchSameEmitterTaps(uint8_t* accept, const float* previousPixel, const uint8_t* prevEmitter,

@@ -1,6 +1,7 @@
 // The CUDA backend's BMFR kernels, as launches host C++ can call: phase I and phase III one
 // thread per pixel over the shared BMFR_HD kernels, the regularisation noise, and the
-// block-cooperative fit (cooperative_fit.h), one CUDA block per regression block.
+// block-cooperative fit (cooperative_fit.h), one CUDA block per regression block. Those that
+// touch the history take it as float or, under halfHistory, as Half (H).
 #pragma once
 #include "filters/bmfr/accumulation_kernels.h"
 #include "filters/bmfr/fitting_kernel.h"
@@ -10,10 +11,15 @@
 namespace bmfr::cuda {
 
 /// counters[0] += non-finite input values, counters[1] += pixels that lost their history.
-void launchAccumulateNoisy(const NoisyAccumulation& a, unsigned long long* counters,
+template <class H>
+void launchAccumulateNoisy(const NoisyAccumulationOf<H>& a, unsigned long long* counters,
                            cudaStream_t stream);
 /// out (3 floats per pixel) = phase III's re-modulated colour, before TAA.
-void launchAccumulateFitted(const FittedAccumulation& a, float* out, cudaStream_t stream);
+template <class H>
+void launchAccumulateFitted(const FittedAccumulationOf<H>& a, float* out, cudaStream_t stream);
+/// to[i] = from[i] as float, i < n (the fit's output without a fit).
+void launchToFloat(const float* from, float* to, long n, cudaStream_t stream);
+void launchToFloat(const Half* from, float* to, long n, cudaStream_t stream);
 /// accept[i] = sameEmitterTaps(...): no history across an emitter's edge (excludeEmitters).
 void launchSameEmitterTaps(uint8_t* accept, const float* previousPixel, const uint8_t* prevEmitter,
                            const uint8_t* emitter, int width, int height, cudaStream_t stream);
@@ -44,7 +50,8 @@ struct FitPlan {
 FitPlan planFit(int featureCount, int blockSize);
 /// Fits every block of a.grid; `scratch` holds matrixFloats per block when !matrixInShared.
 /// With `poorOnly` (history lengths), only the blocks owning a history-poor pixel.
-void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream,
-                     const uint8_t* poorOnly = nullptr);
+template <class H>
+void launchFitBlocks(const BlockFitOf<H>& a, const FitPlan& plan, float* scratch,
+                     cudaStream_t stream, const uint8_t* poorOnly = nullptr);
 
 } // namespace bmfr::cuda

@@ -1,8 +1,9 @@
 // The CUDA backend's BMFR: the reference backend's stages as kernels on one stream, the
-// history and every intermediate kept on the device between frames. Per frame: the input is
-// staged (uploaded, or read in place from device memory), phase I, the noise and the
-// block-cooperative fit, phase III and TAA run, and the output (for host frames) and two
-// counters come down, with at most one synchronisation (device_frame.h).
+// history and every intermediate kept on the device between frames (as halves, the planes
+// halfHistory rounds). Per frame: the input is staged (uploaded, or read in place from device
+// memory), phase I, the noise and the block-cooperative fit, phase III and TAA run, and the
+// output (for host frames) and two counters come down, with at most one synchronisation
+// (device_frame.h).
 #include "backend/backend_registry.h"
 #include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
 #include "backend/cuda/cuda_device.h"
@@ -12,14 +13,20 @@
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/second_grid.h"
 #include "filters/bmfr/visibility_taps.h"
+#include <algorithm>
+#include <type_traits>
+#include <variant>
 
 namespace bmfr::cuda {
 
 namespace {
 
-struct Buffers {
+/// The device images; the history planes that halfHistory rounds stored as H (float, or Half
+/// under halfHistory: half the bytes each frame moves through them).
+template <class H> struct Buffers {
     // History, [slot].
-    DeviceImageF normal[2], position[2], accumulatedNoisy[2], accumulatedFitted[2], output[2];
+    DeviceImage<H> normal[2], accumulatedNoisy[2], accumulatedFitted[2];
+    DeviceImageF position[2], output[2];
     DeviceImageU8 historyLength[2];
     DeviceImageU8 emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
     DeviceImageU8 lit[2];     ///< BmfrSettings::visibilityTaps: litClass of each pixel
@@ -38,6 +45,7 @@ struct Buffers {
 struct HostCopies {
     ImageF output[2];
     ImageF noisy, fitted, historyLengthF, acceptF;
+    Image<Half> noisyHalf;
     ImageU8 historyLength, accept;
 };
 
@@ -47,41 +55,73 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
     ~CudaBmfrPasses() override { leaveOnDevice(); }
 
     void allocateOnDevice(int w, int h, const BmfrSettings& s, int) override {
+        if (s.halfHistory != std::holds_alternative<Buffers<Half>>(b_)) {
+            frame_.waitForLastFrame(); // its buffers are freed here
+            if (s.halfHistory)
+                b_.emplace<Buffers<Half>>();
+            else
+                b_.emplace<Buffers<float>>();
+        }
+        for (int k = 0; k < 2; ++k) host_.output[k].resize(w, h, 3);
         frame_.allocate([&](cudaStream_t st) {
-            Buffers& b = b_;
-            for (int k = 0; k < 2; ++k) {
-                b.normal[k].resize(w, h, 3), b.position[k].resize(w, h, 3);
-                b.accumulatedNoisy[k].resize(w, h, 3), b.accumulatedFitted[k].resize(w, h, 3);
-                b.output[k].resize(w, h, 3), b.historyLength[k].resize(w, h, 1);
-                b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
-                b.lit[k].resize(s.visibilityTaps ? w : 0, s.visibilityTaps ? h : 0, 1);
-                host_.output[k].resize(w, h, 3);
-            }
-            b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
-            b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
-            b.remodulated.resize(w, h, 3), b.ycocg.resize(w, h, 3), b.acceptMask.resize(w, h, 1);
-            b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
-            b.changeTiles.resize(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0);
-            const int W = s.blockSize * s.blockSize, M = int(s.features.size());
-            b.noise.resize(size_t(M) * size_t(W));
-            b.features.resize(size_t(M));
-            // From pageable memory: staged before the call returns.
-            check(cudaMemcpyAsync(b.features.data(), s.features.data(), size_t(M) * sizeof(Feature),
-                                  cudaMemcpyHostToDevice, st),
-                  "feature upload");
-            b.counters.resize(DeviceFrame::kCounters);
-            plan_ = planFit(M, s.blockSize);
-            const BlockGrid most = makeBlockGrid(w, h, s.blockSize, 0);
-            b.fitScratch.resize(
-                plan_.matrixInShared ? 0 : plan_.matrixFloats * size_t(most.blockCount()));
+            std::visit([&](auto& b) { allocateBuffers(b, w, h, s, st); }, b_);
         });
     }
 
     PassCounters runOnDevice(const BmfrPassContext& ctx, StageTimes& times) override {
+        return std::visit([&](auto& b) { return runWith(b, ctx, times); }, b_);
+    }
+
+    /// In the memory the frame's buffers were in.
+    ImageView output(int slot) const override {
+        const DeviceImageF& out =
+            std::visit([&](const auto& b) -> const DeviceImageF& { return b.output[slot]; }, b_);
+        return frame_.onDevice() ? deviceView(out) : view(host_.output[slot]);
+    }
+
+    void captureDebugOnDevice(const TemporalHistory& t) override {
+        std::visit([&](auto& b) { captureDebugOf(b, t); }, b_);
+    }
+
+    DebugBuffers debug(const TemporalHistory&) const override {
+        return {view(host_.noisy), view(host_.fitted), view(host_.historyLengthF),
+                view(host_.acceptF)};
+    }
+
+  private:
+    template <class H>
+    void allocateBuffers(Buffers<H>& b, int w, int h, const BmfrSettings& s, cudaStream_t st) {
+        for (int k = 0; k < 2; ++k) {
+            b.normal[k].resize(w, h, 3), b.position[k].resize(w, h, 3);
+            b.accumulatedNoisy[k].resize(w, h, 3), b.accumulatedFitted[k].resize(w, h, 3);
+            b.output[k].resize(w, h, 3), b.historyLength[k].resize(w, h, 1);
+            b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
+            b.lit[k].resize(s.visibilityTaps ? w : 0, s.visibilityTaps ? h : 0, 1);
+        }
+        b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
+        b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
+        b.remodulated.resize(w, h, 3), b.ycocg.resize(w, h, 3), b.acceptMask.resize(w, h, 1);
+        b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
+        b.changeTiles.resize(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0);
+        const int W = s.blockSize * s.blockSize, M = int(s.features.size());
+        b.noise.resize(size_t(M) * size_t(W));
+        b.features.resize(size_t(M));
+        // From pageable memory: staged before the call returns.
+        check(cudaMemcpyAsync(b.features.data(), s.features.data(), size_t(M) * sizeof(Feature),
+                              cudaMemcpyHostToDevice, st),
+              "feature upload");
+        b.counters.resize(DeviceFrame::kCounters);
+        plan_ = planFit(M, s.blockSize);
+        const BlockGrid most = makeBlockGrid(w, h, s.blockSize, 0);
+        b.fitScratch.resize(plan_.matrixInShared ? 0
+                                                 : plan_.matrixFloats * size_t(most.blockCount()));
+    }
+
+    template <class H>
+    PassCounters runWith(Buffers<H>& b, const BmfrPassContext& ctx, StageTimes& times) {
         const BmfrSettings& s = ctx.settings;
         const TemporalHistory& t = ctx.history;
         const int cur = t.cur, prev = 1 - cur;
-        Buffers& b = b_;
         const InputPlanes& in = frame_.begin(ctx.frame);
         const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
         check(cudaMemsetAsync(b.counters.data(), 0, b.counters.bytes(), st), "counter reset");
@@ -93,11 +133,11 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
             const int W = s.blockSize * s.blockSize, M = int(s.features.size());
             launchNoise(b.noise.data(), b.features.data(), M, W, s.seed, uint32_t(t.frameIndex),
                         s.noiseAmplitude, st);
-            const BlockFit fit = blockFit(ctx, in, b, b.features.data(), b.noise.data());
+            const BlockFitOf<H> fit = blockFit(ctx, in, b, b.features.data(), b.noise.data());
             launchFitBlocks(fit, plan_, b.fitScratch.data(), st);
             if (s.secondGrid) {
                 // The shifted grid's blocks that own a history-poor pixel, as the CPU backend.
-                BlockFit second = fit;
+                BlockFitOf<H> second = fit;
                 second.grid = secondGrid(fit.grid);
                 second.fitted = b.fittedSecond.data(), second.emitters.bits = nullptr;
                 launchFitBlocks(second, plan_, b.fitScratch.data(), st,
@@ -110,10 +150,8 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
                                       b.emitter[prev].data(), fit.emitters.bits, t.width, t.height,
                                       st);
         } else {
-            check(cudaMemcpyAsync(b.fitted.data(), b.accumulatedNoisy[cur].data(),
-                                  b.accumulatedNoisy[cur].pixels.bytes(), cudaMemcpyDeviceToDevice,
-                                  st),
-                  "fit copy");
+            launchToFloat(b.accumulatedNoisy[cur].data(), b.fitted.data(),
+                          long(b.fitted.pixels.size()), st);
         }
         if (const float* visibility = in.visibility; s.visibilityTaps && visibility)
             launchSameLitTaps(b.acceptMask.data(), b.previousPixel.data(), visibility,
@@ -139,29 +177,26 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
         return {int64_t(counts[0]), int64_t(counts[1])};
     }
 
-    /// In the memory the frame's buffers were in.
-    ImageView output(int slot) const override {
-        return frame_.onDevice() ? deviceView(b_.output[slot]) : view(host_.output[slot]);
-    }
-
-    void captureDebugOnDevice(const TemporalHistory& t) override {
+    template <class H> void captureDebugOf(Buffers<H>& b, const TemporalHistory& t) {
         const cudaStream_t st = frame_.get();
-        b_.accumulatedNoisy[t.cur].download(host_.noisy, st);
-        b_.fitted.download(host_.fitted, st);
-        b_.historyLength[t.cur].download(host_.historyLength, st);
-        b_.acceptMask.download(host_.accept, st);
+        if constexpr (std::is_same_v<H, float>)
+            b.accumulatedNoisy[t.cur].download(host_.noisy, st);
+        else
+            b.accumulatedNoisy[t.cur].download(host_.noisyHalf, st);
+        b.fitted.download(host_.fitted, st);
+        b.historyLength[t.cur].download(host_.historyLength, st);
+        b.acceptMask.download(host_.accept, st);
         frame_.synchronize();
+        if constexpr (!std::is_same_v<H, float>) {
+            const Image<Half>& half = host_.noisyHalf;
+            host_.noisy.resize(half.width, half.height, half.channels);
+            std::copy(half.pixels.begin(), half.pixels.end(), host_.noisy.data());
+        }
         widenToFloat(host_.historyLength, host_.historyLengthF);
         widenToFloat(host_.accept, host_.acceptF);
     }
 
-    DebugBuffers debug(const TemporalHistory&) const override {
-        return {view(host_.noisy), view(host_.fitted), view(host_.historyLengthF),
-                view(host_.acceptF)};
-    }
-
-  private:
-    Buffers b_;
+    std::variant<Buffers<Half>, Buffers<float>> b_;
     HostCopies host_;
     FitPlan plan_;
     DeviceFrame frame_; ///< last (device_frame.h)

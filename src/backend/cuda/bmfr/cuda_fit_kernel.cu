@@ -12,7 +12,8 @@ namespace {
 /// The fixed part of the team's memory, rounded to keep the float arrays 16-byte aligned.
 constexpr size_t kStateBytes = (sizeof(TeamFitState) + 15) / 16 * 16;
 
-__global__ void fitKernel(BlockFit a, int matrixFloats, bool matrixInShared, int maskBytes,
+template <class H>
+__global__ void fitKernel(BlockFitOf<H> a, int matrixFloats, bool matrixInShared, int maskBytes,
                           float* scratch, const uint8_t* poorOnly) {
     extern __shared__ float4 shared[];
     if (poorOnly) {
@@ -62,24 +63,32 @@ FitPlan planFit(int featureCount, int blockSize) {
     check(cudaDeviceGetAttribute(&optin, cudaDevAttrMaxSharedMemoryPerBlockOptin, device),
           "cudaDeviceGetAttribute");
     cudaFuncAttributes kernel{};
-    check(cudaFuncGetAttributes(&kernel, fitKernel), "cudaFuncGetAttributes");
+    check(cudaFuncGetAttributes(&kernel, fitKernel<float>), "cudaFuncGetAttributes");
     const int most = optin - int(kernel.sharedSizeBytes); // dynamic shared memory, at most
     p.matrixInShared = fixed + p.matrixFloats * sizeof(float) <= size_t(most);
     p.sharedBytes = fixed + (p.matrixInShared ? p.matrixFloats * sizeof(float) : 0);
     // The attribute is the kernel's on this device, for the whole process, not this filter's:
     // set to one plan's need, it would fail the launches of another filter that needs more.
     // The device's largest fits every plan, and it only permits, so all set the same value.
-    check(cudaFuncSetAttribute(fitKernel, cudaFuncAttributeMaxDynamicSharedMemorySize, most),
-          "cudaFuncSetAttribute");
+    for (const void* kernel : {reinterpret_cast<const void*>(fitKernel<float>),
+                               reinterpret_cast<const void*>(fitKernel<Half>)})
+        check(cudaFuncSetAttribute(kernel, cudaFuncAttributeMaxDynamicSharedMemorySize, most),
+              "cudaFuncSetAttribute");
     return p;
 }
 
-void launchFitBlocks(const BlockFit& a, const FitPlan& plan, float* scratch, cudaStream_t stream,
-                     const uint8_t* poorOnly) {
+template <class H>
+void launchFitBlocks(const BlockFitOf<H>& a, const FitPlan& plan, float* scratch,
+                     cudaStream_t stream, const uint8_t* poorOnly) {
     const dim3 grid(unsigned(a.grid.blocksX), unsigned(a.grid.blocksY));
-    fitKernel<<<grid, unsigned(plan.threads), plan.sharedBytes, stream>>>(
+    fitKernel<H><<<grid, unsigned(plan.threads), plan.sharedBytes, stream>>>(
         a, int(plan.matrixFloats), plan.matrixInShared, int(plan.maskBytes), scratch, poorOnly);
     check(cudaGetLastError(), "fit kernel");
 }
+
+template void launchFitBlocks(const BlockFitOf<float>&, const FitPlan&, float*, cudaStream_t,
+                              const uint8_t*);
+template void launchFitBlocks(const BlockFitOf<Half>&, const FitPlan&, float*, cudaStream_t,
+                              const uint8_t*);
 
 } // namespace bmfr::cuda

@@ -1,6 +1,7 @@
 // The reference backend's BMFR: one plain parallel loop per stage over the filter's kernels
 // (filters/bmfr/accumulation_kernels.h, fitting_kernel.h) and the shared TAA. The
 // specification every other backend is held to.
+#include "backend/reference/bmfr/reference_bmfr_passes.h"
 #include "backend/backend_registry.h"
 #include "backend/reference/bmfr/reference_householder.h"
 #include "backend/reference/reference_taa.h"
@@ -10,8 +11,10 @@
 #include "filters/bmfr/bmfr_passes.h"
 #include "filters/bmfr/second_grid.h"
 #include "filters/bmfr/visibility_taps.h"
+#include <algorithm>
 #include <atomic>
-#include <cstring>
+#include <bmfr/error.h>
+#include <type_traits>
 
 namespace bmfr::reference {
 
@@ -29,15 +32,17 @@ struct FitScratch {
     }
 };
 
-/// Plain interleaved images.
-struct Buffers {
+/// Plain interleaved images; the history planes that halfHistory rounds stored as H (float, or
+/// Half as the CUDA backend stores them).
+template <class H> struct Buffers {
     // History, [slot].
-    ImageF normal[2], position[2]; ///< sanitised features (discard tests)
-    ImageF accumulatedNoisy[2];    ///< phase I output, demodulated
+    Image<H> normal[2];            ///< sanitised features (discard tests)
+    ImageF position[2];            ///< sanitised features (discard tests)
+    Image<H> accumulatedNoisy[2];  ///< phase I output, demodulated
     ImageU8 historyLength[2];      ///< phase I sample count, 1..255
     ImageU8 emitter[2];            ///< BmfrSettings::excludeEmitters: the fit's emitter bits
     ImageU8 lit[2];                ///< BmfrSettings::visibilityTaps: litClass of each pixel
-    ImageF accumulatedFitted[2];   ///< phase III accumulation, demodulated
+    Image<H> accumulatedFitted[2]; ///< phase III accumulation, demodulated
     ImageF output[2];              ///< final (TAA) output, linear
     // This frame only.
     ImageF previousPixel;            ///< 2 channels: continuous pixel in the previous frame
@@ -48,15 +53,16 @@ struct Buffers {
     ImageF ycocg;                    ///< TAA scratch
     ImageF historyLengthF;           ///< debug copy of the history length as float
     ImageF acceptMaskF;              ///< debug copy of the accept mask as float
+    ImageF noisyF;                   ///< debug copy of phase I's output as float
     ImageF change;                   ///< adaptiveHistory: recordHistoryChange's 2 channels
     std::vector<float> changeTiles;  ///< adaptiveHistory: storeTileChange's record of each tile
     std::vector<FitScratch> scratch; ///< one per worker thread
     std::vector<float> noise;        ///< this frame's regularisation noise
 };
 
-PassCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
+template <class H> PassCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers<H>& b) {
     const TemporalHistory& t = ctx.history;
-    const NoisyAccumulation a = noisyAccumulation(ctx, ctx.input, b);
+    const NoisyAccumulationOf<H> a = noisyAccumulation(ctx, ctx.input, b);
     std::atomic<int64_t> nonFinite{0}, discarded{0};
     ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
         int64_t bad = 0, lost = 0;
@@ -68,7 +74,7 @@ PassCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers& b) {
 }
 
 /// Every block of a.grid.
-void fitGrid(const BmfrPassContext& ctx, Buffers& b, const BlockFit& a) {
+template <class H> void fitGrid(const BmfrPassContext& ctx, Buffers<H>& b, const BlockFitOf<H>& a) {
     const BlockGrid& g = a.grid;
     const HouseholderSolver solve = householderSolver();
     ctx.pool.parallelFor(g.blockCount(), 1, [&](long b0, long b1) {
@@ -78,21 +84,21 @@ void fitGrid(const BmfrPassContext& ctx, Buffers& b, const BlockFit& a) {
     });
 }
 
-void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
+template <class H> void fitBlocks(const BmfrPassContext& ctx, Buffers<H>& b) {
     const TemporalHistory& t = ctx.history;
     const BmfrSettings& s = ctx.settings;
     if (!s.stages.fitting) {
-        std::memcpy(b.fitted.data(), b.accumulatedNoisy[t.cur].data(),
-                    b.fitted.pixels.size() * sizeof(float));
+        const H* from = b.accumulatedNoisy[t.cur].data();
+        std::copy(from, from + b.fitted.pixels.size(), b.fitted.data());
         return;
     }
     fillRegularisationNoise(s, ctx.history.frameIndex, b.noise);
-    const BlockFit a = blockFit(ctx, ctx.input, b, s.features.data(), b.noise.data());
+    const BlockFitOf<H> a = blockFit(ctx, ctx.input, b, s.features.data(), b.noise.data());
     fitGrid(ctx, b, a);
     if (s.secondGrid) {
         // Every block of the second grid: the spec; the CPU backend fits only those that own a
         // history-poor pixel, which gives the same pixels.
-        BlockFit second = a;
+        BlockFitOf<H> second = a;
         second.grid = secondGrid(a.grid);
         second.fitted = b.fittedSecond.data(), second.emitters.bits = nullptr;
         fitGrid(ctx, b, second);
@@ -118,7 +124,7 @@ void fitBlocks(const BmfrPassContext& ctx, Buffers& b) {
 }
 
 /// sameLitTaps over the accept mask (visibilityTaps, with a visibility buffer).
-void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers& b) {
+template <class H> void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers<H>& b) {
     const TemporalHistory& t = ctx.history;
     const float* visibility = ctx.input.visibility;
     if (!ctx.settings.visibilityTaps || !visibility) return;
@@ -134,7 +140,7 @@ void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Buffers& b) {
 }
 
 /// tileHistoryChange of every tile, stored with storeTileChange (adaptiveHistory).
-void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
+template <class H> void measureHistoryChange(const BmfrPassContext& ctx, Buffers<H>& b) {
     const TemporalHistory& t = ctx.history;
     if (!ctx.settings.adaptiveHistory) return;
     const int tilesX = changeTilesX(t.width);
@@ -149,9 +155,9 @@ void measureHistoryChange(const BmfrPassContext& ctx, Buffers& b) {
     });
 }
 
-void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
+template <class H> void accumulateFitted(const BmfrPassContext& ctx, Buffers<H>& b) {
     const TemporalHistory& t = ctx.history;
-    const FittedAccumulation a = fittedAccumulation(ctx, ctx.input, b);
+    const FittedAccumulationOf<H> a = fittedAccumulation(ctx, ctx.input, b);
     float* out = b.remodulated.data();
     ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
         for (long i = y0 * t.width; i < y1 * t.width; ++i)
@@ -159,10 +165,12 @@ void accumulateFitted(const BmfrPassContext& ctx, Buffers& b) {
     });
 }
 
-class ReferenceBmfrPasses final : public BmfrPasses {
+template <class H> class ReferenceBmfrPasses final : public BmfrPasses {
   public:
     void allocate(int w, int h, const BmfrSettings& s, int threads) override {
-        Buffers& b = b_;
+        if (std::is_same_v<H, Half> && !s.halfHistory)
+            throw Error("internal error: history stored as half without halfHistory");
+        Buffers<H>& b = b_;
         for (int k = 0; k < 2; ++k) {
             b.normal[k].resize(w, h, 3);
             b.position[k].resize(w, h, 3);
@@ -181,6 +189,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
         b.ycocg.resize(w, h, 3);
         b.historyLengthF.resize(w, h, 1);
         b.acceptMaskF.resize(w, h, 1);
+        b.noisyF.resize(std::is_same_v<H, float> ? 0 : w, std::is_same_v<H, float> ? 0 : h, 3);
         b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
         b.changeTiles.assign(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
@@ -199,7 +208,7 @@ class ReferenceBmfrPasses final : public BmfrPasses {
 
     PassCounters run(const BmfrPassContext& ctx, StageTimes& times) override {
         const TemporalHistory& t = ctx.history;
-        Buffers& b = b_;
+        Buffers<H>& b = b_;
         Stopwatch clock;
         const PassCounters counters = accumulateNoisy(ctx, b);
         times.add("accumulate", clock.lap());
@@ -225,21 +234,35 @@ class ReferenceBmfrPasses final : public BmfrPasses {
             b_.historyLengthF.data()[i] = b_.historyLength[t.cur].data()[i];
             b_.acceptMaskF.data()[i] = b_.acceptMask.data()[i];
         }
+        if constexpr (!std::is_same_v<H, float>) {
+            const H* noisy = b_.accumulatedNoisy[t.cur].data();
+            std::copy(noisy, noisy + b_.noisyF.pixels.size(), b_.noisyF.data());
+        }
     }
 
     DebugBuffers debug(const TemporalHistory& t) const override {
-        return {view(b_.accumulatedNoisy[t.cur]), view(b_.fitted), view(b_.historyLengthF),
-                view(b_.acceptMaskF)};
+        const ImageF& noisy = noisyView(t);
+        return {view(noisy), view(b_.fitted), view(b_.historyLengthF), view(b_.acceptMaskF)};
     }
 
   private:
-    Buffers b_;
+    const ImageF& noisyView(const TemporalHistory& t) const {
+        if constexpr (std::is_same_v<H, float>)
+            return b_.accumulatedNoisy[t.cur];
+        else
+            return b_.noisyF;
+    }
+    Buffers<H> b_;
 };
 
 } // namespace
 
 template <> std::unique_ptr<BmfrPasses> makePasses<BmfrSettings>() {
-    return std::make_unique<ReferenceBmfrPasses>();
+    return std::make_unique<ReferenceBmfrPasses<float>>();
+}
+
+std::unique_ptr<BmfrPasses> makeBmfrPassesStoringHalves() {
+    return std::make_unique<ReferenceBmfrPasses<Half>>();
 }
 
 } // namespace bmfr::reference
