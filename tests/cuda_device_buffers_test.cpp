@@ -73,7 +73,7 @@ using CudaDeviceBuffers = NeedsGpu;
 
 TEST_F(CudaDeviceBuffers, SameBitsAsHostBuffersOnEitherStream) {
     const std::vector<FrameData> seq = frames(61, 37, 6);
-    for (const char* name : {"bmfr", "svgf"}) {
+    for (const char* name : {"bmfr", "svgf", "walr"}) {
         SCOPED_TRACE(name);
         auto host = makeFilter(name, {{"backend", "cuda"}});
         auto own = makeFilter(name, {{"backend", "cuda"}});

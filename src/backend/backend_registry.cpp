@@ -36,7 +36,8 @@ std::vector<std::string> compiledBackends() {
 namespace {
 /// The filters the cuda backend runs.
 template <class S>
-constexpr bool kOnCuda = std::is_same_v<S, BmfrSettings> || std::is_same_v<S, SvgfSettings>;
+constexpr bool kOnCuda = std::is_same_v<S, BmfrSettings> || std::is_same_v<S, SvgfSettings> ||
+                         std::is_same_v<S, WalrSettings>;
 } // namespace
 
 void requireBackend(Backend b, int cudaDevice) {
@@ -47,7 +48,7 @@ void requireBackend(Backend b, int cudaDevice) {
 template <class S> void requireRuns(Backend b, const char* filter) {
     if (b == Backend::Cuda && !kOnCuda<S>) {
         const std::string problem = std::string("is not a backend of ") + filter +
-                                    ": the cuda backend runs bmfr and svgf; " + filter +
+                                    ": the cuda backend runs bmfr, svgf and walr; " + filter +
                                     " runs on cpu or reference";
         throw SettingError("setting backend cuda " + problem, "backend", "cuda", problem);
     }

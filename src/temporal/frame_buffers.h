@@ -35,11 +35,15 @@ inline constexpr ChannelRange kRgb{3, 4}, kScalar{1, 1}, kMotion{2, 4};
     X(glossyHitDistance, "glossy_hit_distance", kScalar, 1, false, false)                          \
     X(visibility, "visibility", kScalar, 1, false, false)
 
+/// A FrameInput member. An alias, because nvcc's front end rewrites the plain declaration with
+/// parentheses that the host compiler then warns about.
+using FrameMember = ImageView FrameInput::*;
+
 /// One row of BMFR_FRAME_BUFFERS.
 struct FrameBuffer {
     const char* member; ///< FrameInput's member: "previousPosition"
     const char* file;   ///< in sequence.json, file names, --channel and Python: "previous_position"
-    ImageView FrameInput::*view;
+    FrameMember view;
     ChannelRange channels; ///< what the frame checks accept
     int staged;            ///< channels the passes read, from the first
     bool required;

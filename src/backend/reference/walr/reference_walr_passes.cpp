@@ -1,57 +1,27 @@
-// WALR's reference passes: plain parallel loops over the filter's kernels, one per stage.
+// WALR's reference passes: its stages (filters/walr/walr_stages.h) on the host's threads.
 #include "backend/backend_registry.h"
 #include "backend/reference/walr/reference_walr_stages.h"
 #include "core/stopwatch.h"
-#include "filters/walr/refwlr.h"
-#include <atomic>
+#include "filters/walr/walr_stages.h"
 
 namespace bmfr::reference {
 
 int64_t walrPreprocess(const WalrPassContext& ctx, WalrBuffers& b) {
-    const TemporalHistory& h = ctx.history;
-    const int w = h.width;
-    const WalrFrame f = b.frame(ctx);
-    std::atomic<int64_t> nonFinite{0};
-    ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {
-        int64_t bad = 0;
-        for (long i = y0 * w; i < y1 * w; ++i) walrInputPixel(f, i, bad);
-        nonFinite += bad;
-    });
-    float* level0 = b.averages[0].data();
-    const AverageLayout layout = b.layout();
-    ctx.pool.forEachPixel(w, h.height, 4,
-                          [&](int x, int y) { walrAccumulatePixel(f, x, y, level0, layout); });
-    return nonFinite.load();
+    unsigned long long nonFinite = 0;
+    walrPreprocessStage(HostExecutor{ctx.pool}, ctx, b, FrameCounter{&nonFinite});
+    return int64_t(nonFinite);
 }
 
 void walrSpatialRefwlr(const WalrPassContext& ctx, WalrBuffers& b) {
-    const WalrSettings& s = ctx.settings;
-    const EdgeGuide g = b.guide(ctx);
-    int window = 1;
-    const int iterations = walrIterations(s, g.width, g.height);
-    for (int t = 0; t < iterations; ++t) window *= 3;
-    const float* pre = b.pre[ctx.history.cur].data();
-    ctx.pool.forEachPixel(g.width, g.height, 1, [&](int x, int y) {
-        store3(b.spatial.data(), long(y) * g.width + x,
-               refwlrPixel(g, pre, b.features.data(), window / 2, s.pivotEpsilon, x, y));
-    });
+    walrRefwlrStage(HostExecutor{ctx.pool}, ctx, b);
 }
 
 void walrSolve(const WalrPassContext& ctx, WalrBuffers& b) {
-    const float* planes = b.averages[b.lastAverages].data();
-    const AverageLayout layout = b.layout();
-    const float* f = b.features.data();
-    const float eps = ctx.settings.pivotEpsilon;
-    ctx.pool.parallelFor(ctx.history.height, 8, [&](long y0, long y1) {
-        for (long i = y0 * ctx.history.width; i < y1 * ctx.history.width; ++i)
-            store3(b.spatial.data(), i,
-                   walrSolvePixel(planes, layout, i, {f[2 * i], f[2 * i + 1]}, eps));
-    });
+    walrSolveStage(HostExecutor{ctx.pool}, ctx, b);
 }
 
 void walrPostprocess(const WalrPassContext& ctx, WalrBuffers& b) {
-    const WalrPost p = b.postInputs(ctx);
-    ctx.pool.forEachPixel(p.width, p.height, 4, [&](int x, int y) { walrPostPixel(p, x, y); });
+    walrPostprocessStage(HostExecutor{ctx.pool}, ctx, b);
 }
 
 PassCounters HostWalrPipeline::run(const WalrPassContext& ctx, StageTimes& times) {
@@ -81,16 +51,7 @@ class ReferenceWalrPasses final : public HostWalrPipeline {
 
   protected:
     void atrousAndSolve(const WalrPassContext& ctx) override {
-        const WalrSettings& s = ctx.settings;
-        const EdgeGuide g = buffers.guide(ctx);
-        const int iterations = walrIterations(s, g.width, g.height);
-        for (int t = 0; t < iterations; ++t) {
-            WalrLevel l = buffers.level(ctx, t, s.sampleWeights);
-            if (g.stepped()) l.trace = trace_.at(t);
-            ctx.pool.forEachPixel(g.width, g.height, 2,
-                                  [&](int x, int y) { walrAtrousPixel(g, l, x, y); });
-        }
-        buffers.lastAverages = iterations % 2;
+        walrAtrousStage(HostExecutor{ctx.pool}, ctx, buffers, trace_);
         walrSolve(ctx, buffers);
     }
 

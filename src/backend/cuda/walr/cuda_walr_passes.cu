@@ -1,0 +1,97 @@
+// The CUDA backend's WALR: the reference backend's stages (filters/walr/walr_stages.h) on the
+// CUDA executor, one kernel per loop on one stream, over device-resident buffers. The output
+// (for host frames) and two counters come down, with at most one synchronisation.
+#include "backend/backend_registry.h"
+#include "backend/cuda/cuda_executor.h"
+#include "backend/cuda/cuda_passes.h"
+#include "backend/cuda/device_frame.h"
+#include "filters/walr/walr_stages.h"
+
+namespace bmfr::cuda {
+
+namespace {
+
+class CudaWalrPasses final : public CudaPasses<WalrSettings> {
+  public:
+    using CudaPasses::CudaPasses;
+    ~CudaWalrPasses() override { leaveOnDevice(); }
+
+    void allocateOnDevice(int w, int h, const WalrSettings& s, int) override {
+        frame_.allocate([&](cudaStream_t) {
+            b_.allocate(w, h);
+            trace_.resize(walrSteppedTrace(s) ? long(w) * h : 0);
+            counters_.resize(DeviceFrame::kCounters);
+        });
+        output_.resize(w, h, 3);
+    }
+
+    PassCounters runOnDevice(const WalrPassContext& ctx, StageTimes& times) override {
+        const InputPlanes& in = frame_.begin(ctx.frame);
+        const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
+        check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), st), "counter reset");
+        const WalrPassContext on{ctx.settings, in, ctx.frame, ctx.history, ctx.pool};
+        const CudaExecutor e{st};
+
+        walrPreprocessStage(e, on, b_, FrameCounter{counters_.data()});
+        if (ctx.history.hasHistory()) {
+            const uint8_t* accept = b_.accept.data();
+            const FrameCounter lost{counters_.data() + 1};
+            e.forEachIndex(
+                b_.accept.pixelCount(), BMFR_LAMBDA(long i) { lost.add(!accept[i]); });
+        }
+        frame_.mark("preprocess");
+        if (ctx.settings.solver == WalrSolver::Refwlr) {
+            walrRefwlrStage(e, on, b_);
+        } else {
+            walrAtrousStage(e, on, b_, trace_);
+            walrSolveStage(e, on, b_);
+        }
+        frame_.mark("spatial");
+        walrPostprocessStage(e, on, b_);
+        frame_.mark("postprocess");
+
+        if (!frame_.onDevice()) b_.output.download(output_, st);
+        unsigned long long counts[DeviceFrame::kCounters];
+        frame_.finish(counters_.data(), times, counts);
+        return {int64_t(counts[0]), int64_t(counts[1])};
+    }
+
+    /// In the memory the frame's buffers were in.
+    ImageView output(int) const override {
+        return frame_.onDevice() ? deviceView(b_.output) : view(output_);
+    }
+
+    void captureDebugOnDevice(const TemporalHistory& h) override {
+        const cudaStream_t st = frame_.get();
+        b_.pre[h.cur].download(debug_.pre, st);
+        b_.spatial.download(debug_.spatial, st);
+        b_.count[h.cur].download(count_, st);
+        b_.accept.download(accept_, st);
+        frame_.synchronize();
+        widenToFloat(count_, debug_.countF);
+        widenToFloat(accept_, debug_.acceptF);
+    }
+    DebugBuffers debug(const TemporalHistory&) const override {
+        return {view(debug_.pre), view(debug_.spatial), view(debug_.countF), view(debug_.acceptF)};
+    }
+
+  private:
+    WalrImages<DeviceImageF, DeviceImageU8> b_;
+    SteppedTraceStore<DeviceArray> trace_;
+    DeviceArray<unsigned long long> counters_; ///< non-finite inputs, discarded pixels
+    ImageF output_;
+    ImageU8 count_, accept_;
+    /// The debug views, in the host backends' layout.
+    struct {
+        ImageF pre, spatial, countF, acceptF;
+    } debug_;
+    DeviceFrame frame_; ///< last (device_frame.h)
+};
+
+} // namespace
+
+template <> std::unique_ptr<WalrPasses> makePasses<WalrSettings>(int device) {
+    return makeOnDevice<WalrSettings, CudaWalrPasses>(device);
+}
+
+} // namespace bmfr::cuda
