@@ -340,8 +340,6 @@ TEST(Cli, SettingsComeFromTheFilterTablesAndAreChecked) {
     };
     for (const Bad& b :
          {Bad{"--backend gpu", "unknown backend 'gpu'"},
-          Bad{"--backend cuda --filter mara2017",
-              "the cuda backend runs bmfr, svgf and walr; mara2017 runs on"},
           Bad{"--svgf-iterations 3", "--svgf-iterations is not a setting of the bmfr"},
           Bad{"--set nope=1", "'nope' is not a setting of the bmfr filter"},
           Bad{"--set blockSize", "expected KEY=VALUE"},

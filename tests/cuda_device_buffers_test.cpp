@@ -73,7 +73,7 @@ using CudaDeviceBuffers = NeedsGpu;
 
 TEST_F(CudaDeviceBuffers, SameBitsAsHostBuffersOnEitherStream) {
     const std::vector<FrameData> seq = frames(61, 37, 6);
-    for (const char* name : {"bmfr", "svgf", "walr"}) {
+    for (const char* name : {"bmfr", "svgf", "walr", "mara2017"}) {
         SCOPED_TRACE(name);
         auto host = makeFilter(name, {{"backend", "cuda"}});
         auto own = makeFilter(name, {{"backend", "cuda"}});

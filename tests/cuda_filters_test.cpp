@@ -70,7 +70,7 @@ TEST_F(CudaFilters, BlockSizesThatDifferDenoiseAlternately) {
 TEST_F(CudaFilters, TheCallersDeviceStaysCurrent) {
     const int last = cuda::deviceCount() - 1;
     const std::vector<FrameData> seq = movingObjects(40, 24, 3);
-    for (const char* name : {"bmfr", "svgf", "walr"}) {
+    for (const char* name : {"bmfr", "svgf", "walr", "mara2017"}) {
         SCOPED_TRACE(name);
         const cuda::DeviceScope caller(last);
         Device device(Backend::Cuda, 0, 0);

@@ -33,32 +33,14 @@ std::vector<std::string> compiledBackends() {
     return {"reference", "cpu"};
 }
 
-namespace {
-/// The filters the cuda backend runs.
-template <class S>
-constexpr bool kOnCuda = std::is_same_v<S, BmfrSettings> || std::is_same_v<S, SvgfSettings> ||
-                         std::is_same_v<S, WalrSettings>;
-} // namespace
-
 void requireBackend(Backend b, int cudaDevice) {
     if (b == Backend::Cpu) cpu::activeIsa();
     if (b == Backend::Cuda) cuda::requireDevice(cudaDevice);
 }
 
-template <class S> void requireRuns(Backend b, const char* filter) {
-    if (b == Backend::Cuda && !kOnCuda<S>) {
-        const std::string problem = std::string("is not a backend of ") + filter +
-                                    ": the cuda backend runs bmfr, svgf and walr; " + filter +
-                                    " runs on cpu or reference";
-        throw SettingError("setting backend cuda " + problem, "backend", "cuda", problem);
-    }
-}
-
-template <class S>
-std::unique_ptr<PassesFor<S>> makePasses(Backend b, const char* filter, int cudaDevice) {
-    // Errors when the filter is made, not inside a pass: a filter the backend does not run, a
-    // bad BMFR_CPU_ISA, "no CUDA device: ..." (in a build without CUDA too).
-    requireRuns<S>(b, filter);
+template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend b, int cudaDevice) {
+    // Errors when the filter is made, not inside a pass: a bad BMFR_CPU_ISA, "no CUDA device:
+    // ..." (in a build without CUDA too).
     requireBackend(b, cudaDevice);
     switch (b) {
     case Backend::Reference:
@@ -67,24 +49,16 @@ std::unique_ptr<PassesFor<S>> makePasses(Backend b, const char* filter, int cuda
         return cpu::makePasses<S>();
     case Backend::Cuda:
 #if defined(BMFR_HAVE_CUDA)
-        if constexpr (kOnCuda<S>) return cuda::makePasses<S>(cudaDevice);
+        return cuda::makePasses<S>(cudaDevice);
 #endif
         break;
     }
     throw Error("unknown backend");
 }
 
-template void requireRuns<BmfrSettings>(Backend, const char*);
-template std::unique_ptr<PassesFor<BmfrSettings>> makePasses<BmfrSettings>(Backend, const char*,
-                                                                           int);
-template void requireRuns<SvgfSettings>(Backend, const char*);
-template std::unique_ptr<PassesFor<SvgfSettings>> makePasses<SvgfSettings>(Backend, const char*,
-                                                                           int);
-template void requireRuns<WalrSettings>(Backend, const char*);
-template std::unique_ptr<PassesFor<WalrSettings>> makePasses<WalrSettings>(Backend, const char*,
-                                                                           int);
-template void requireRuns<Mara2017Settings>(Backend, const char*);
-template std::unique_ptr<PassesFor<Mara2017Settings>>
-makePasses<Mara2017Settings>(Backend, const char*, int);
+template std::unique_ptr<PassesFor<BmfrSettings>> makePasses<BmfrSettings>(Backend, int);
+template std::unique_ptr<PassesFor<SvgfSettings>> makePasses<SvgfSettings>(Backend, int);
+template std::unique_ptr<PassesFor<WalrSettings>> makePasses<WalrSettings>(Backend, int);
+template std::unique_ptr<PassesFor<Mara2017Settings>> makePasses<Mara2017Settings>(Backend, int);
 
 } // namespace bmfr

@@ -24,13 +24,8 @@ template <class S> std::unique_ptr<PassesFor<S>> makePasses(int device);
 /// `cudaDevice`, or a BMFR_CPU_ISA this processor lacks.
 void requireBackend(Backend backend, int cudaDevice = 0);
 
-/// Throws bmfr::Error when `backend` does not run filter `filter` (settings S).
-template <class S> void requireRuns(Backend backend, const char* filter);
-
-/// The passes of filter `filter` (settings S) on `backend` (on GPU `cudaDevice` for cuda). Throws
-/// bmfr::Error when the backend is not built into this library, has no such device, or does not
-/// run this filter.
-template <class S>
-std::unique_ptr<PassesFor<S>> makePasses(Backend backend, const char* filter, int cudaDevice = 0);
+/// The passes of the filter with settings S on `backend` (on GPU `cudaDevice` for cuda). Throws
+/// bmfr::Error when the backend is not built into this library or has no such device.
+template <class S> std::unique_ptr<PassesFor<S>> makePasses(Backend backend, int cudaDevice = 0);
 
 } // namespace bmfr

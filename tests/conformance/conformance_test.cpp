@@ -195,10 +195,6 @@ struct Conformance : ::testing::TestWithParam<std::tuple<std::string, std::strin
     void SetUp() override {
         const std::string b = std::get<0>(GetParam());
         if (b == "cuda") {
-            const std::string filter = std::get<1>(GetParam());
-            if (filter == "mara2017")
-                GTEST_SKIP() << "the cuda backend runs bmfr, svgf and walr; " << filter
-                             << " has none";
             try {
                 cuda::requireDevice();
             } catch (const Error& e) {

@@ -158,8 +158,6 @@ def test_settings_errors_are_setting_errors_with_the_python_name():
         bmfr.Filter("bmfr", no_such=1)
     with pytest.raises(ValueError, match="name: unknown filter 'nope'"):
         bmfr.Filter("nope")
-    with pytest.raises(bmfr.Error, match="the cuda backend runs bmfr, svgf and walr; mara2017 runs on"):
-        bmfr.Filter("mara2017", backend="cuda")
     with pytest.raises(TypeError, match="taa: expected a bool"):
         bmfr.Filter("bmfr", taa=[1])
     assert bmfr.Filter("svgf", svgf_iterations=3, taa=False).name == "svgf"

@@ -1,63 +1,47 @@
-// Mara 2017's reference passes: one parallel loop over the stage bodies per stage.
+// Mara 2017's reference passes: its stages (filters/mara2017/mara_stage_loops.h) on the host's
+// threads.
 #include "backend/backend_registry.h"
 #include "backend/reference/mara2017/reference_mara_stages.h"
 #include "backend/reference/reference_taa.h"
 #include "core/stopwatch.h"
+#include "filters/mara2017/mara_stage_loops.h"
 #include <algorithm>
-#include <atomic>
 
 namespace bmfr::reference {
 
 int64_t HostMaraPipeline::matteTemporal(const MaraPassContext& ctx, const MaraFrame& f) {
-    std::atomic<int64_t> nonFinite{0};
-    ctx.pool.parallelFor(f.height, 4, [&](long y0, long y1) {
-        int64_t bad = 0;
-        for (long i = y0 * f.width; i < y1 * f.width; ++i) maraInputPixel(f, i, bad);
-        nonFinite += bad;
-    });
-    ctx.pool.forEachPixel(f.width, f.height, 4,
-                          [&](int x, int y) { maraMatteTemporalPixel(f, x, y); });
-    return nonFinite.load();
+    unsigned long long nonFinite = 0;
+    maraMatteTemporalStage(HostExecutor{ctx.pool}, f, FrameCounter{&nonFinite});
+    return int64_t(nonFinite);
 }
 
 void HostMaraPipeline::preBilateral(const MaraPassContext& ctx, const MaraFrame& f) {
-    ctx.pool.forEachPixel(f.width, f.height, 2,
-                          [&](int x, int y) { maraPreBilateralPixel(f, x, y); });
+    maraPreBilateralStage(HostExecutor{ctx.pool}, f);
 }
 
 void HostMaraPipeline::disocclusion(const MaraPassContext& ctx, const MaraFrame& f) {
-    ctx.pool.forEachPixel(f.width, f.height, 4, [&](int x, int y) { maraRowMinPixel(f, x, y); });
-    ctx.pool.forEachPixel(f.width, f.height, 4, [&](int x, int y) { maraColumnMinPixel(f, x, y); });
+    maraDisocclusionStage(HostExecutor{ctx.pool}, f);
 }
 
 void HostMaraPipeline::median(const MaraPassContext& ctx, const MaraFrame& f) {
-    ctx.pool.forEachPixel(f.width, f.height, 4, [&](int x, int y) { maraMedianPixel(f, x, y); });
+    maraMedianStage(HostExecutor{ctx.pool}, f);
 }
 
 void HostMaraPipeline::matteBilateral(const MaraPassContext& ctx, const MaraFrame& f,
                                       const float* src) {
-    ctx.pool.forEachPixel(f.width, f.height, 2,
-                          [&](int x, int y) { maraFinalBilateralPixel(f, src, x, y); });
+    maraMatteBilateralStage(HostExecutor{ctx.pool}, f, src);
 }
 
 void HostMaraPipeline::glossyTemporal(const MaraPassContext& ctx, const MaraFrame& f) {
-    ctx.pool.forEachPixel(f.width, f.height, 4,
-                          [&](int x, int y) { maraGlossyTemporalPixel(f, x, y); });
+    maraGlossyTemporalStage(HostExecutor{ctx.pool}, f);
 }
 
 void HostMaraPipeline::glossyBilateral(const MaraPassContext& ctx, const MaraFrame& f) {
-    ctx.pool.forEachPixel(f.width, f.height, 4, [&](int x, int y) {
-        maraGlossyPassPixel(f, f.glossyTemporal, f.glossyRow, x, y, 1, 0);
-    });
-    ctx.pool.forEachPixel(f.width, f.height, 4, [&](int x, int y) {
-        maraGlossyPassPixel(f, f.glossyRow, f.glossyOut, x, y, 0, 1);
-    });
+    maraGlossyBilateralStage(HostExecutor{ctx.pool}, f);
 }
 
 void HostMaraPipeline::compose(const MaraPassContext& ctx, const MaraFrame& f) {
-    ctx.pool.parallelFor(f.height, 8, [&](long y0, long y1) {
-        for (long i = y0 * f.width; i < y1 * f.width; ++i) maraComposePixel(f, i);
-    });
+    maraComposeStage(HostExecutor{ctx.pool}, f);
 }
 
 PassCounters HostMaraPipeline::run(const MaraPassContext& ctx, StageTimes& times) {

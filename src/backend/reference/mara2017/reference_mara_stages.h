@@ -9,7 +9,7 @@ class HostMaraPipeline : public HostPasses<Mara2017Settings, MaraBuffers> {
   public:
     void allocate(int w, int h, const Mara2017Settings& s, int threads) override {
         HostPasses::allocate(w, h, s, threads);
-        buffers.reserveTables(s);
+        buffers.tables.reserve(s);
     }
     PassCounters run(const MaraPassContext& ctx, StageTimes& times) final;
 
