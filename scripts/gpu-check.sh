@@ -7,22 +7,25 @@
 #   bash scripts/gpu-check.sh run [STEP ...]  # on the GPU machine, with gpu-carry/ carried
 #                                       # along: writes its logs to $OUT (or gpu-check-out/);
 #                                       # STEPs (tests demo bench bench-quality bench-device
-#                                       # bench-svgf sanitizer ncu) pick some, default all
+#                                       # bench-filters sanitizer ncu) pick some, default all
 #
 # The GPU machine has nvcc, CMake and Python but none of our Debian packages and no network, so
 # the binaries travel with their libraries (Embree, TBB, OpenEXR, fmt, libstdc++ ...), and with
 # this machine's glibc and loader in case that machine's glibc is older than 2.36. What `run`
 # does, each step time-limited:
-#   1. the conformance suite for cuda (bmfr, svgf), device buffers on either stream, and the
+#   1. the conformance suite for cuda (all four filters), device buffers on either stream, two
+#      filters of different block sizes alternating, the caller's device kept, and the
 #      team-fit and Householder tests;
-#   2. cornell-moving rendered, then BMFR (both presets) and SVGF on cuda and on the CPU
-#      backend, each scored against the reference by `bmfr denoise`;
+#   2. cornell-moving rendered with Mara's factored paths, then BMFR (both presets), SVGF, WALR
+#      and Mara 2017 on cuda and on the CPU backend, each scored against the reference by
+#      `bmfr denoise`;
 #   3. `bmfr bench --backend cuda` at 720p, 1080p and 4K beside the CPU backend, the quality
-#      preset beside the faithful one, again with the input in device memory (JSON), and SVGF
-#      at 720p;
-#   4. compute-sanitizer memcheck and racecheck on a small sequence, where it works.
-# The step limits add up to about seven minutes, one device call: run it once with
-# timeout_s=460, read summary.txt, rerun only what failed.
+#      preset beside the faithful one, again with the input in device memory (JSON), and every
+#      filter beside BMFR and the memory floor with device buffers at 720p, 1080p and 4K;
+#   4. compute-sanitizer memcheck and racecheck on a small sequence, every filter, where it
+#      works.
+# The step limits add up to about eight minutes, one device call: run it once with
+# timeout_s=540, read summary.txt, rerun only what failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-run}
@@ -87,22 +90,23 @@ nvidia-smi -L 2>&1 | tee -a "$summary"
 "$bmfr" --version 2>&1 | tee -a "$summary"
 
 step tests 140 "$work/bin/bmfr_tests" \
-    --gtest_filter='AllBackendsAndFilters/Conformance.*/cuda_bmfr:AllBackendsAndFilters/Conformance.*/cuda_svgf:CudaDeviceBuffers.*:TeamFit.*:Householder.*'
+    --gtest_filter='AllBackendsAndFilters/Conformance.*/cuda_*:CudaDeviceBuffers.*:CudaFilters.*:TeamFit.*:Householder.*'
 
 demo=$work/demo
-step demo 90 bash -c "
+step demo 100 bash -c "
     set -e
     '$bmfr' render -o '$demo/input' -s cornell-moving --width 320 --height 240 --frames 16 \
-        --reference-spp 64 --quiet
+        --reference-spp 64 --paths mara --quiet
     for run in 'bmfr cpu faithful' 'bmfr cuda faithful' 'bmfr cpu quality' 'bmfr cuda quality' \
-               'svgf cpu faithful' 'svgf cuda faithful'; do
+               'svgf cpu faithful' 'svgf cuda faithful' 'walr cpu quality' 'walr cuda quality' \
+               'mara2017 cpu quality' 'mara2017 cuda quality'; do
         set -- \$run
         echo \"== \$1 on \$2, \$3 preset\"
         '$bmfr' denoise '$demo/input' -o \"$demo/\$1-\$2-\$3\" --filter \$1 --backend \$2 \
-            --preset \$3 --no-png --overwrite | grep -E 'RMSE|^  (noisy|bmfr|svgf) '
+            --preset \$3 --no-png --overwrite | grep -E 'RMSE|^  (noisy|bmfr|svgf|walr|mara2017) '
     done"
 
-step bench 80 "$bmfr" bench --backend cuda --baseline-backend cpu \
+step bench 60 "$bmfr" bench --backend cuda --baseline-backend cpu \
     --sizes 1280x720,1920x1080,3840x2160
 step bench-quality 40 "$bmfr" bench --backend cuda --preset quality --baseline-backend cuda \
     --sizes 1280x720,1920x1080
@@ -111,15 +115,15 @@ step bench-device 40 bash -c "
         '$bmfr' bench --backend cuda --device-buffers --no-baseline --preset \$p -q \
             --sizes 1280x720,1920x1080,3840x2160 --json
     done"
-step bench-svgf 25 "$bmfr" bench --backend cuda --filter svgf --baseline-backend cpu \
-    --sizes 1280x720
+step bench-filters 60 "$bmfr" bench --backend cuda --filters all --device-buffers \
+    --sizes 1280x720,1920x1080,3840x2160
 
 if command -v compute-sanitizer > /dev/null; then
     small=$work/small
     "$bmfr" synth -o "$small" --width 77 --height 45 --frames 3 --quiet
-    step sanitizer 80 bash -c "
+    step sanitizer 90 bash -c "
         for tool in memcheck racecheck; do
-            for f in bmfr svgf quality; do
+            for f in bmfr svgf walr mara2017 quality; do
                 args=\"--filter \$f\"
                 [ \$f = quality ] && args='--filter bmfr --preset quality'
                 compute-sanitizer --tool \$tool --error-exitcode 9 \
@@ -132,7 +136,7 @@ else
 fi
 # The fit kernel's counters at 720p, both presets (where ncu can read them).
 if command -v ncu > /dev/null; then
-    step ncu 60 bash -c "
+    step ncu 40 bash -c "
         for p in faithful quality; do
             ncu --clock-control none --kernel-name regex:fitKernel --launch-skip 6 \
                 --launch-count 1 --section SpeedOfLight --section Occupancy \

@@ -21,20 +21,20 @@
 namespace bmfr {
 namespace {
 
-struct Scores {
+struct HalfHistoryScores {
     double rmse = 0, temporal = 0;
     std::vector<float> last; ///< the last output frame
 };
 
 /// Mean tone-mapped RMSE against the references over frames [first, n) and mean temporal error
 /// of the output over the same frames.
-Scores score(bool half, const std::vector<FrameData>& frames, int first,
+HalfHistoryScores score(bool half, const std::vector<FrameData>& frames, int first,
              const std::function<FrameInput(const FrameData&)>& input) {
     BmfrSettings s;
     s.halfHistory = half;
     BmfrDenoiser d(s);
     ImageF previous;
-    Scores sc;
+    HalfHistoryScores sc;
     const int n = int(frames.size());
     for (int i = 0; i < n; ++i) {
         const ImageView v = d.denoise(input(frames[size_t(i)]));
@@ -52,7 +52,7 @@ Scores score(bool half, const std::vector<FrameData>& frames, int first,
 
 void expectQualityRule(const std::vector<FrameData>& frames, int first, const char* what,
                        const std::function<FrameInput(const FrameData&)>& input) {
-    const Scores f = score(false, frames, first, input), h = score(true, frames, first, input);
+    const HalfHistoryScores f = score(false, frames, first, input), h = score(true, frames, first, input);
     const double dr = std::fabs(h.rmse - f.rmse) / f.rmse;
     const double dt = std::fabs(h.temporal - f.temporal) / f.temporal;
     std::printf("%s: RMSE %.5f -> %.5f (%+.3f%%), temporal %.5f -> %.5f (%+.3f%%)\n", what, f.rmse,

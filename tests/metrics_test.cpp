@@ -3,6 +3,7 @@
 #include "metrics/basic_metrics.h"
 #include "metrics/flip.h"
 #include "metrics/ssim.h"
+#include <bmfr/error.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>

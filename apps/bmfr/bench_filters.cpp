@@ -38,16 +38,31 @@ nlohmann::json benchFilters(const BenchJob& job, int w, int h,
                          : job.backend == "cuda"
                              ? cuda::copyFloorMs(trafficBytes(w, h, singlePassTraffic()))
                              : 0.0;
+    // With --device-buffers, each frame in device memory (copied there before timing), with
+    // the factorisation (Mara's) and without (the others').
+    DeviceFrames onDevice;
+    std::vector<FrameInput> factored, plain;
+    if (job.deviceBuffers)
+        for (const FrameData& f : frames) {
+            factored.push_back(onDevice.add(f.input()));
+            plain.push_back(onDevice.add(withoutFactorisation(f.input())));
+        }
     for (int i = 0; i < job.warmup + job.frames; ++i) {
         bool back = false;
-        const FrameInput in = frames[size_t(cycledFrame(i, distinct, back))].input();
+        const size_t k = size_t(cycledFrame(i, distinct, back));
+        const FrameInput in = frames[k].input();
         for (Timed& t : timed) {
-            t.filter->denoise(t.name == "mara2017" ? in : withoutFactorisation(in));
+            const bool mara = t.name == "mara2017";
+            if (job.deviceBuffers)
+                t.filter->denoise(mara ? factored[k] : plain[k]);
+            else
+                t.filter->denoise(mara ? in : withoutFactorisation(in));
             if (i >= job.warmup) t.log.add(t.filter->lastStats().times);
         }
         frameDone();
     }
     nlohmann::json r = {{"backend", job.backend}, {"preset", job.preset}, {"frames", job.frames}};
+    if (job.deviceBuffers) r["input"] = "device buffers";
     if (cpu) r["cpu_path"] = cpu::isaName(cpu::activeIsa());
     if (floor > 0) r["single_pass_floor_ms"] = floor;
     double bmfrMs = 0;
@@ -66,6 +81,7 @@ nlohmann::json benchFilters(const BenchJob& job, int w, int h,
 void printFilterTable(const BenchJob& job, const std::string& size, const nlohmann::json& r) {
     std::string how = r.value("cpu_path", "");
     if (!how.empty()) how = " (" + how + " path)";
+    if (r.contains("input")) how += ", input in device buffers";
     fmt::print("{} on {}{}, {} preset, median of {} frames, interleaved:\n", size, job.backend, how,
                job.preset, job.frames);
     fmt::print("  {:<9} {:>9} {:>7} {:>8}   stages (ms)\n", "filter", "ms", "x bmfr", "x floor");

@@ -1,5 +1,6 @@
 #include "bench_inputs.h"
 #include "core/vec.h"
+#include "temporal/frame_buffers.h"
 #include "usage.h"
 #include <algorithm>
 
@@ -11,6 +12,18 @@ std::unique_ptr<Filter> makeFromCommandLine(const std::string& name, const Setti
     } catch (const SettingError& e) {
         throw UsageError(describeForCli(e, name));
     }
+}
+
+FrameInput DeviceFrames::add(FrameInput in) {
+    std::vector<ImageView*> views;
+    for (const FrameBuffer& b : kFrameBuffers) views.push_back(&(in.*b.view));
+    for (ImageView& e : in.extras) views.push_back(&e);
+    for (ImageView* v : views) {
+        if (!v->data) continue;
+        copies_.push_back(std::make_unique<cuda::DeviceImageCopy>(*v));
+        *v = copies_.back()->view();
+    }
+    return in;
 }
 
 int distinctFrames(int w, int h) {

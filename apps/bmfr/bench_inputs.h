@@ -1,6 +1,7 @@
 // What `bmfr bench` measures and feeds its filters: the job, the synthetic frames' helpers, and
 // the all-filters table (bench_filters.cpp).
 #pragma once
+#include "backend/cuda/cuda_device.h"
 #include "io/sequence.h"
 #include <bmfr/bmfr.hpp>
 #include <functional>
@@ -46,6 +47,17 @@ void addFactorisation(FrameData& f);
 
 /// The input without the factorisation (what the other filters are timed on).
 FrameInput withoutFactorisation(FrameInput in);
+
+/// Frames' buffers copied once into CUDA device memory, as an engine hands them over
+/// (--device-buffers); the copies live as long as this.
+class DeviceFrames {
+  public:
+    /// `in` with every buffer replaced by its device copy.
+    FrameInput add(FrameInput in);
+
+  private:
+    std::vector<std::unique_ptr<cuda::DeviceImageCopy>> copies_;
+};
 
 /// Index into `distinct` frames of the i-th frame run: the cycle goes forwards then backwards,
 /// so the camera motion stays continuous. `back` is set on the way back.
