@@ -1,6 +1,6 @@
-// The reference backend's BMFR: one plain parallel loop per stage over the filter's kernels
-// (filters/bmfr/accumulation_kernels.h, fitting_kernel.h) and the shared TAA. The
-// specification every other backend is held to.
+// The reference backend's BMFR: its stages (filters/bmfr/bmfr_stage_loops.h) on the host's
+// threads, the fit block by block (fitting_kernel.h), and the shared TAA. The specification
+// every other backend is held to.
 #include "backend/reference/bmfr/reference_bmfr_passes.h"
 #include "backend/backend_registry.h"
 #include "backend/reference/bmfr/reference_householder.h"
@@ -9,10 +9,8 @@
 #include "core/stopwatch.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/bmfr_passes.h"
-#include "filters/bmfr/second_grid.h"
-#include "filters/bmfr/visibility_taps.h"
+#include "filters/bmfr/bmfr_stage_loops.h"
 #include <algorithm>
-#include <atomic>
 #include <bmfr/error.h>
 #include <type_traits>
 
@@ -61,16 +59,10 @@ template <class H> struct Buffers {
 };
 
 template <class H> PassCounters accumulateNoisy(const BmfrPassContext& ctx, Buffers<H>& b) {
-    const TemporalHistory& t = ctx.history;
-    const NoisyAccumulationOf<H> a = noisyAccumulation(ctx, ctx.input, b);
-    std::atomic<int64_t> nonFinite{0}, discarded{0};
-    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
-        int64_t bad = 0, lost = 0;
-        for (long i = y0 * t.width; i < y1 * t.width; ++i) lost += accumulateNoisyPixel(a, i, bad);
-        nonFinite += bad;
-        discarded += lost;
-    });
-    return {nonFinite.load(), discarded.load()};
+    unsigned long long nonFinite = 0, discarded = 0;
+    bmfrAccumulateNoisyStage(HostExecutor{ctx.pool}, noisyAccumulation(ctx, ctx.input, b),
+                             FrameCounter{&nonFinite}, FrameCounter{&discarded});
+    return {int64_t(nonFinite), int64_t(discarded)};
 }
 
 /// Every block of a.grid.
@@ -87,12 +79,13 @@ template <class H> void fitGrid(const BmfrPassContext& ctx, Buffers<H>& b, const
 template <class H> void fitBlocks(const BmfrPassContext& ctx, Buffers<H>& b) {
     const TemporalHistory& t = ctx.history;
     const BmfrSettings& s = ctx.settings;
+    const HostExecutor e{ctx.pool};
     if (!s.stages.fitting) {
-        const H* from = b.accumulatedNoisy[t.cur].data();
-        std::copy(from, from + b.fitted.pixels.size(), b.fitted.data());
+        bmfrUnfittedStage(e, b.accumulatedNoisy[t.cur].data(), b.fitted.data(),
+                          long(b.fitted.pixels.size()));
         return;
     }
-    fillRegularisationNoise(s, ctx.history.frameIndex, b.noise);
+    fillRegularisationNoise(s, t.frameIndex, b.noise);
     const BlockFitOf<H> a = blockFit(ctx, ctx.input, b, s.features.data(), b.noise.data());
     fitGrid(ctx, b, a);
     if (s.secondGrid) {
@@ -102,25 +95,12 @@ template <class H> void fitBlocks(const BmfrPassContext& ctx, Buffers<H>& b) {
         second.grid = secondGrid(a.grid);
         second.fitted = b.fittedSecond.data(), second.emitters.bits = nullptr;
         fitGrid(ctx, b, second);
-        const uint8_t* length = b.historyLength[t.cur].data();
-        float* f = b.fitted.data();
-        const float* f2 = b.fittedSecond.data();
-        ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
-            for (long i = y0 * t.width; i < y1 * t.width; ++i)
-                if (historyPoor(length[i]))
-                    for (int c = 0; c < 3; ++c)
-                        f[3 * i + c] = blendSecondFit(f[3 * i + c], f2[3 * i + c]);
-        });
+        bmfrBlendSecondFitStage(e, b.fitted.data(), b.fittedSecond.data(),
+                                b.historyLength[t.cur].data(), long(t.width) * t.height);
     }
     if (!a.emitters.on) return;
-    const uint8_t* prevEmitter = b.emitter[1 - t.cur].data();
-    const float* pp = b.previousPixel.data();
-    uint8_t* accept = b.acceptMask.data();
-    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
-        for (long i = y0 * t.width; i < y1 * t.width; ++i)
-            accept[i] = sameEmitterTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, prevEmitter,
-                                        a.emitters.bits[i], t.width);
-    });
+    bmfrSameEmitterTapsStage(e, b.acceptMask.data(), b.previousPixel.data(),
+                             b.emitter[1 - t.cur].data(), a.emitters.bits, t.width, t.height);
 }
 
 /// sameLitTaps over the accept mask (visibilityTaps, with a visibility buffer).
@@ -128,41 +108,23 @@ template <class H> void dropTapsAcrossShadowEdges(const BmfrPassContext& ctx, Bu
     const TemporalHistory& t = ctx.history;
     const float* visibility = ctx.input.visibility;
     if (!ctx.settings.visibilityTaps || !visibility) return;
-    const uint8_t* prevLit = t.hasHistory() ? b.lit[1 - t.cur].data() : nullptr;
-    uint8_t* lit = b.lit[t.cur].data();
-    const float* pp = b.previousPixel.data();
-    uint8_t* accept = b.acceptMask.data();
-    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
-        for (long i = y0 * t.width; i < y1 * t.width; ++i)
-            accept[i] = sameLitTaps(accept[i], {pp[2 * i], pp[2 * i + 1]}, visibility, prevLit, lit,
-                                    i, t.width);
-    });
+    bmfrSameLitTapsStage(HostExecutor{ctx.pool}, b.acceptMask.data(), b.previousPixel.data(),
+                         visibility, t.hasHistory() ? b.lit[1 - t.cur].data() : nullptr,
+                         b.lit[t.cur].data(), t.width, t.height);
 }
 
 /// tileHistoryChange of every tile, stored with storeTileChange (adaptiveHistory).
 template <class H> void measureHistoryChange(const BmfrPassContext& ctx, Buffers<H>& b) {
     const TemporalHistory& t = ctx.history;
-    if (!ctx.settings.adaptiveHistory) return;
-    const int tilesX = changeTilesX(t.width);
-    const long tiles = long(b.changeTiles.size()) / kChangeTileValues;
-    ctx.pool.parallelFor(tiles, 4, [&](long k0, long k1) {
-        for (long k = k0; k < k1; ++k)
-            storeTileChange(b.changeTiles.data(), k,
-                            tileHistoryChange(b.change.data(), b.change.data() + 1, 2, t.width,
-                                              t.height, int(k % tilesX), int(k / tilesX),
-                                              ctx.settings.historyChangeThreshold,
-                                              ctx.settings.historyChangeGain));
-    });
+    const BmfrSettings& s = ctx.settings;
+    if (!s.adaptiveHistory) return;
+    bmfrHistoryChangeStage(HostExecutor{ctx.pool}, b.changeTiles.data(), b.change.data(), t.width,
+                           t.height, s.historyChangeThreshold, s.historyChangeGain);
 }
 
 template <class H> void accumulateFitted(const BmfrPassContext& ctx, Buffers<H>& b) {
-    const TemporalHistory& t = ctx.history;
-    const FittedAccumulationOf<H> a = fittedAccumulation(ctx, ctx.input, b);
-    float* out = b.remodulated.data();
-    ctx.pool.parallelFor(t.height, 4, [&](long y0, long y1) {
-        for (long i = y0 * t.width; i < y1 * t.width; ++i)
-            store3(out, i, accumulateFittedPixel(a, i));
-    });
+    bmfrAccumulateFittedStage(HostExecutor{ctx.pool}, fittedAccumulation(ctx, ctx.input, b),
+                              b.remodulated.data());
 }
 
 template <class H> class ReferenceBmfrPasses final : public BmfrPasses {

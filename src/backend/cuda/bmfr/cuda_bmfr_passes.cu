@@ -1,4 +1,5 @@
-// The CUDA backend's BMFR: the reference backend's stages as kernels on one stream, the
+// The CUDA backend's BMFR: the reference backend's stages (filters/bmfr/bmfr_stage_loops.h) on
+// the CUDA executor and the block-cooperative fit, as kernels on one stream, the
 // history and every intermediate kept on the device between frames (as halves, the planes
 // halfHistory rounds). Per frame: the input is staged (uploaded, or read in place from device
 // memory), phase I, the noise and the block-cooperative fit, phase III and TAA run, and the
@@ -6,13 +7,12 @@
 // (device_frame.h).
 #include "backend/backend_registry.h"
 #include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
-#include "backend/cuda/cuda_device.h"
+#include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
-#include "backend/cuda/cuda_taa.h"
 #include "backend/cuda/device_frame.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
-#include "filters/bmfr/second_grid.h"
-#include "filters/bmfr/visibility_taps.h"
+#include "filters/bmfr/bmfr_stage_loops.h"
+#include "temporal/taa_stage.h"
 #include <algorithm>
 #include <type_traits>
 #include <variant>
@@ -126,13 +126,15 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
         const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
         check(cudaMemsetAsync(b.counters.data(), 0, b.counters.bytes(), st), "counter reset");
 
-        launchAccumulateNoisy(noisyAccumulation(ctx, in, b), b.counters.data(), st);
+        const CudaExecutor e{st};
+        bmfrAccumulateNoisyStage(e, noisyAccumulation(ctx, in, b), FrameCounter{b.counters.data()},
+                                 FrameCounter{b.counters.data() + 1});
         frame_.mark("accumulate");
 
         if (s.stages.fitting) {
             const int W = s.blockSize * s.blockSize, M = int(s.features.size());
-            launchNoise(b.noise.data(), b.features.data(), M, W, s.seed, uint32_t(t.frameIndex),
-                        s.noiseAmplitude, st);
+            bmfrNoiseStage(e, b.noise.data(), b.features.data(), M, W, s.seed,
+                           uint32_t(t.frameIndex), s.noiseAmplitude);
             const BlockFitOf<H> fit = blockFit(ctx, in, b, b.features.data(), b.noise.data());
             launchFitBlocks(fit, plan_, b.fitScratch.data(), st);
             if (s.secondGrid) {
@@ -142,33 +144,33 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
                 second.fitted = b.fittedSecond.data(), second.emitters.bits = nullptr;
                 launchFitBlocks(second, plan_, b.fitScratch.data(), st,
                                 b.historyLength[cur].data());
-                launchBlendSecondFit(b.fitted.data(), b.fittedSecond.data(),
-                                     b.historyLength[cur].data(), long(t.width) * t.height, st);
+                bmfrBlendSecondFitStage(e, b.fitted.data(), b.fittedSecond.data(),
+                                        b.historyLength[cur].data(), long(t.width) * t.height);
             }
             if (fit.emitters.on)
-                launchSameEmitterTaps(b.acceptMask.data(), b.previousPixel.data(),
-                                      b.emitter[prev].data(), fit.emitters.bits, t.width, t.height,
-                                      st);
+                bmfrSameEmitterTapsStage(e, b.acceptMask.data(), b.previousPixel.data(),
+                                         b.emitter[prev].data(), fit.emitters.bits, t.width,
+                                         t.height);
         } else {
-            launchToFloat(b.accumulatedNoisy[cur].data(), b.fitted.data(),
-                          long(b.fitted.pixels.size()), st);
+            bmfrUnfittedStage(e, b.accumulatedNoisy[cur].data(), b.fitted.data(),
+                              long(b.fitted.pixels.size()));
         }
         if (const float* visibility = in.visibility; s.visibilityTaps && visibility)
-            launchSameLitTaps(b.acceptMask.data(), b.previousPixel.data(), visibility,
-                              t.hasHistory() ? b.lit[prev].data() : nullptr, b.lit[cur].data(),
-                              t.width, t.height, st);
+            bmfrSameLitTapsStage(e, b.acceptMask.data(), b.previousPixel.data(), visibility,
+                                 t.hasHistory() ? b.lit[prev].data() : nullptr, b.lit[cur].data(),
+                                 t.width, t.height);
         frame_.mark("fit");
 
         if (s.adaptiveHistory)
-            launchHistoryChange(b.changeTiles.data(), b.change.data(), t.width, t.height,
-                                s.historyChangeThreshold, s.historyChangeGain, st);
-        launchAccumulateFitted(fittedAccumulation(ctx, in, b), b.remodulated.data(), st);
+            bmfrHistoryChangeStage(e, b.changeTiles.data(), b.change.data(), t.width, t.height,
+                                   s.historyChangeThreshold, s.historyChangeGain);
+        bmfrAccumulateFittedStage(e, fittedAccumulation(ctx, in, b), b.remodulated.data());
         frame_.mark("accumulate_fitted");
 
         const TaaInputs taa =
             taaInputs(b.remodulated.data(), b.output[prev].data(), b.previousPixel.data(), t.width,
                       t.height, s, b.acceptMask.data());
-        launchTaa(taa, b.ycocg.data(), b.output[cur].data(), s.taa && t.hasHistory(), st);
+        taaStage(e, taa, b.ycocg.data(), b.output[cur].data(), s.taa && t.hasHistory());
         frame_.mark("taa");
 
         if (!frame_.onDevice()) b.output[cur].download(host_.output[cur], st);
