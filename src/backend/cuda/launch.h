@@ -1,4 +1,4 @@
-// Launch shapes the CUDA backend's per-pixel kernels share.
+// Launch shapes of the CUDA executor's one-dimensional loops.
 #pragma once
 #include "core/host_device.h"
 
@@ -15,10 +15,6 @@ inline unsigned pixelBlocks(long n) {
 /// This thread's pixel of a one-dimensional launch.
 __device__ inline long pixelIndex() {
     return long(blockIdx.x) * blockDim.x + threadIdx.x;
-}
-/// Adds a thread's count to a frame counter only when there is something to add (rare).
-__device__ inline void countIf(unsigned long long* counter, int64_t n) {
-    if (n) atomicAdd(counter, (unsigned long long)n);
 }
 #endif
 

@@ -1,15 +1,15 @@
 // The CUDA backend's Mara 2017: the reference backend's stages
 // (filters/mara2017/mara_stage_loops.h) on the CUDA executor, one kernel per loop on one stream,
-// over device-resident buffers, then the shared CUDA TAA. The frame's spiral and tap tables are
+// over device-resident buffers, then the shared TAA. The frame's spiral and tap tables are
 // built on the host, as the reference builds them, and copied up. The output (for host frames)
 // and two counters come down, with at most one synchronisation.
 #include "backend/backend_registry.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
-#include "backend/cuda/cuda_taa.h"
 #include "backend/cuda/device_frame.h"
 #include "backend/cuda/staged_upload.h"
 #include "filters/mara2017/mara_stage_loops.h"
+#include "temporal/taa_stage.h"
 #include <vector>
 
 namespace bmfr::cuda {
@@ -86,7 +86,7 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
         }
         if (s.taa && h.hasHistory()) {
             maraComposeStage(e, f);
-            launchTaa(b_.taaInputs(on), b_.ycocg.data(), b_.output[h.cur].data(), true, st);
+            taaStage(e, b_.taaInputs(on), b_.ycocg.data(), b_.output[h.cur].data(), true);
         } else { // straight into the output, not through a copy
             MaraFrame out = f;
             out.composed = b_.output[h.cur].data();

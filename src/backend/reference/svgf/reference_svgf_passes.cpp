@@ -1,9 +1,10 @@
-// SVGF's reference passes: plain parallel loops over the filter's kernels, then the shared TAA.
+// SVGF's reference passes: the accumulation and variance by rows (the CPU backend's hooks), the
+// other stages (filters/svgf/svgf_stage_loops.h) on the host's threads, then the shared TAA.
 #include "backend/backend_registry.h"
 #include "backend/reference/reference_taa.h"
 #include "backend/reference/svgf/reference_svgf_stages.h"
 #include "core/stopwatch.h"
-#include "temporal/modulation.h"
+#include "filters/svgf/svgf_stage_loops.h"
 #include <atomic>
 
 namespace bmfr::reference {
@@ -23,14 +24,11 @@ void svgfVariancePixels(const SvgfFrame& f, const SvgfSettings& s, long y0, long
 PassCounters svgfAccumulate(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times,
                             SvgfAccumulateRows rows, bool depthGradient) {
     const TemporalHistory& h = ctx.history;
-    const int w = h.width;
     const SvgfFrame f = b.frame(ctx);
     Stopwatch clock;
     std::atomic<int64_t> nonFinite{0};
     ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) { nonFinite += rows(f, y0, y1); });
-    if (depthGradient)
-        ctx.pool.forEachPixel(w, h.height, 4,
-                              [&](int x, int y) { svgfDepthGradientPixel(f, x, y); });
+    if (depthGradient) svgfDepthGradientStage(HostExecutor{ctx.pool}, f);
     const int64_t discarded =
         countDiscarded(ctx.pool, f.accept, b.accept.pixelCount(), h.hasHistory());
     times.add("accumulate", clock.lap());
@@ -64,30 +62,25 @@ AtrousLevel atrousGuides(const SvgfPassContext& ctx, SvgfBuffers& b) {
 
 void svgfAtrousLevels(const SvgfPassContext& ctx, SvgfBuffers& b) {
     const SvgfSettings& s = ctx.settings;
-    const int w = ctx.history.width, h = ctx.history.height, cur = ctx.history.cur;
+    const int cur = ctx.history.cur;
+    const HostExecutor e{ctx.pool};
     AtrousLevel level = atrousGuides(ctx, b);
     b.outputLevel = runAtrousLevels(
         s,
         [&](int from, int to, int step) {
             level.in = b.filtered[from].data(), level.out = b.filtered[to].data();
             level.step = step;
-            ctx.pool.forEachPixel(w, h, 4, [&](int x, int y) { svgfAtrousPixel(level, s, x, y); });
+            svgfAtrousStage(e, level, s);
         },
         [&](int k) {
-            for (long i = 0; i < b.integrated.pixelCount(); ++i)
-                store3(b.color[cur].data(), i, load3Stride4(b.filtered[k].data(), i));
+            svgfKeepLevelStage(e, b.filtered[k].data(), b.color[cur].data(),
+                               b.integrated.pixelCount());
         });
 }
 
 void svgfRemodulate(const SvgfPassContext& ctx, SvgfBuffers& b) {
-    const int w = ctx.history.width;
-    const float* last = b.filtered[b.outputLevel].data();
-    ctx.pool.parallelFor(ctx.history.height, 8, [&](long y0, long y1) {
-        for (long i = y0 * w; i < y1 * w; ++i)
-            store3(b.remodulated.data(), i,
-                   remodulatePixel(load3Stride4(last, i), ctx.input, i, true,
-                                   ctx.settings.albedoEpsilon));
-    });
+    svgfRemodulateStage(HostExecutor{ctx.pool}, b.filtered[b.outputLevel].data(), ctx.input,
+                        ctx.settings.albedoEpsilon, b.remodulated.data());
 }
 
 PassCounters svgfStagesBeforeTaa(const SvgfPassContext& ctx, SvgfBuffers& b, StageTimes& times) {

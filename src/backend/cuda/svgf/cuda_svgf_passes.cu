@@ -1,13 +1,13 @@
-// The CUDA backend's SVGF: the reference backend's stages (reference_svgf_passes.cpp) as
-// kernels on one stream over device-resident buffers, then the shared CUDA TAA. The output (for
+// The CUDA backend's SVGF: its stages (filters/svgf/svgf_stage_loops.h) and the shared TAA on
+// the CUDA executor, as kernels on one stream over device-resident buffers. The output (for
 // host frames) and the non-finite count come down, with at most one synchronisation.
 #include "backend/backend_registry.h"
-#include "backend/cuda/cuda_device.h"
+#include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
-#include "backend/cuda/cuda_taa.h"
 #include "backend/cuda/device_frame.h"
-#include "backend/cuda/svgf/cuda_svgf_kernels.h"
 #include "filters/svgf/svgf_passes.h"
+#include "filters/svgf/svgf_stage_loops.h"
+#include "temporal/taa_stage.h"
 
 namespace bmfr::cuda {
 
@@ -35,9 +35,12 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
         check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), st), "counter reset");
 
         const SvgfFrame f = b_.frame(ctx, in);
-        launchSvgfAccumulate(f, counters_.data(), st);
+        const CudaExecutor e{st};
+        svgfAccumulateStage(e, f, FrameCounter{counters_.data()},
+                            FrameCounter{counters_.data() + 1});
+        svgfDepthGradientStage(e, f);
         frame_.mark("accumulate");
-        launchSvgfVariance(f, s, b_.filtered[0].data(), b_.variance.data(), st);
+        svgfVarianceStage(e, f, s, b_.filtered[0].data(), b_.variance.data());
         frame_.mark("variance");
         AtrousLevel level{nullptr,         nullptr,  f.normal, f.depth,
                           f.depthGradient, f.length, h.width,  h.height};
@@ -46,21 +49,20 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
             [&](int from, int to, int step) {
                 level.in = b_.filtered[from].data(), level.out = b_.filtered[to].data();
                 level.step = step;
-                launchSvgfAtrous(level, s, st);
+                svgfAtrousStage(e, level, s);
             },
             [&](int k) {
-                launchSvgfKeepLevel(b_.filtered[k].data(), b_.color[h.cur].data(),
-                                    b_.integrated.pixelCount(), st);
+                svgfKeepLevelStage(e, b_.filtered[k].data(), b_.color[h.cur].data(),
+                                   b_.integrated.pixelCount());
             });
         outputLevel_ = src;
-        launchSvgfRemodulate(b_.filtered[src].data(), in, s.albedoEpsilon, b_.remodulated.data(),
-                             st);
+        svgfRemodulateStage(e, b_.filtered[src].data(), in, s.albedoEpsilon, b_.remodulated.data());
         frame_.mark("atrous");
 
         const TaaInputs taa =
             taaInputs(b_.remodulated.data(), b_.output[1 - h.cur].data(), b_.previousPixel.data(),
                       h.width, h.height, s, b_.accept.data());
-        launchTaa(taa, ycocg_.data(), b_.output[h.cur].data(), s.taa && h.hasHistory(), st);
+        taaStage(e, taa, ycocg_.data(), b_.output[h.cur].data(), s.taa && h.hasHistory());
         frame_.mark("taa");
 
         if (!frame_.onDevice()) b_.output[h.cur].download(output_[h.cur], st);
