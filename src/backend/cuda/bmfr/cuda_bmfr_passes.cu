@@ -10,6 +10,7 @@
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
 #include "backend/cuda/device_frame.h"
+#include "filters/bmfr/bmfr_images.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/bmfr_stage_loops.h"
 #include "temporal/taa_stage.h"
@@ -21,20 +22,9 @@ namespace bmfr::cuda {
 
 namespace {
 
-/// The device images; the history planes that halfHistory rounds stored as H (float, or Half
-/// under halfHistory: half the bytes each frame moves through them).
-template <class H> struct Buffers {
-    // History, [slot].
-    DeviceImage<H> normal[2], accumulatedNoisy[2], accumulatedFitted[2];
-    DeviceImageF position[2], output[2];
-    DeviceImageU8 historyLength[2];
-    DeviceImageU8 emitter[2]; ///< BmfrSettings::excludeEmitters: the fit's emitter bits
-    DeviceImageU8 lit[2];     ///< BmfrSettings::visibilityTaps: litClass of each pixel
-    // This frame only.
-    DeviceImageF previousPixel, fitted, remodulated, ycocg;
-    DeviceImageF fittedSecond; ///< BmfrSettings::secondGrid: the shifted grid's fit
-    DeviceImageU8 acceptMask;
-    DeviceImageF change; ///< BmfrSettings::adaptiveHistory: recordHistoryChange's 2 channels
+/// The device images (BmfrImages; the planes halfHistory rounds as halves under it: half the
+/// bytes each frame moves through them), with the fit's inputs and the frame's counters.
+template <class H> struct Buffers : BmfrImages<DeviceImage, H> {
     DeviceArray<float> noise, fitScratch;
     DeviceArray<float> changeTiles; ///< adaptiveHistory: storeTileChange's record of each tile
     DeviceArray<Feature> features;
@@ -91,17 +81,7 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
   private:
     template <class H>
     void allocateBuffers(Buffers<H>& b, int w, int h, const BmfrSettings& s, cudaStream_t st) {
-        for (int k = 0; k < 2; ++k) {
-            b.normal[k].resize(w, h, 3), b.position[k].resize(w, h, 3);
-            b.accumulatedNoisy[k].resize(w, h, 3), b.accumulatedFitted[k].resize(w, h, 3);
-            b.output[k].resize(w, h, 3), b.historyLength[k].resize(w, h, 1);
-            b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
-            b.lit[k].resize(s.visibilityTaps ? w : 0, s.visibilityTaps ? h : 0, 1);
-        }
-        b.previousPixel.resize(w, h, 2), b.fitted.resize(w, h, 3);
-        b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
-        b.remodulated.resize(w, h, 3), b.ycocg.resize(w, h, 3), b.acceptMask.resize(w, h, 1);
-        b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
+        b.allocate(w, h, s);
         b.changeTiles.resize(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0);
         const int W = s.blockSize * s.blockSize, M = int(s.features.size());
         b.noise.resize(size_t(M) * size_t(W));

@@ -7,6 +7,7 @@
 #include "backend/reference/reference_taa.h"
 #include "core/image.h"
 #include "core/stopwatch.h"
+#include "filters/bmfr/bmfr_images.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/bmfr_passes.h"
 #include "filters/bmfr/bmfr_stage_loops.h"
@@ -30,29 +31,11 @@ struct FitScratch {
     }
 };
 
-/// Plain interleaved images; the history planes that halfHistory rounds stored as H (float, or
-/// Half as the CUDA backend stores them).
-template <class H> struct Buffers {
-    // History, [slot].
-    Image<H> normal[2];            ///< sanitised features (discard tests)
-    ImageF position[2];            ///< sanitised features (discard tests)
-    Image<H> accumulatedNoisy[2];  ///< phase I output, demodulated
-    ImageU8 historyLength[2];      ///< phase I sample count, 1..255
-    ImageU8 emitter[2];            ///< BmfrSettings::excludeEmitters: the fit's emitter bits
-    ImageU8 lit[2];                ///< BmfrSettings::visibilityTaps: litClass of each pixel
-    Image<H> accumulatedFitted[2]; ///< phase III accumulation, demodulated
-    ImageF output[2];              ///< final (TAA) output, linear
-    // This frame only.
-    ImageF previousPixel;            ///< 2 channels: continuous pixel in the previous frame
-    ImageU8 acceptMask;              ///< accepted bilinear taps, bit i = tap i
-    ImageF fitted;                   ///< phase II output, demodulated
-    ImageF fittedSecond;             ///< BmfrSettings::secondGrid: the shifted grid's fit
-    ImageF remodulated;              ///< phase III output before TAA
-    ImageF ycocg;                    ///< TAA scratch
+/// Plain interleaved images (BmfrImages), with the fit's scratch and the debug copies.
+template <class H> struct Buffers : BmfrImages<Image, H> {
     ImageF historyLengthF;           ///< debug copy of the history length as float
     ImageF acceptMaskF;              ///< debug copy of the accept mask as float
-    ImageF noisyF;                   ///< debug copy of phase I's output as float
-    ImageF change;                   ///< adaptiveHistory: recordHistoryChange's 2 channels
+    ImageF noisyF;                   ///< debug copy of phase I's output as float (Half history)
     std::vector<float> changeTiles;  ///< adaptiveHistory: storeTileChange's record of each tile
     std::vector<FitScratch> scratch; ///< one per worker thread
     std::vector<float> noise;        ///< this frame's regularisation noise
@@ -133,26 +116,10 @@ template <class H> class ReferenceBmfrPasses final : public BmfrPasses {
         if (std::is_same_v<H, Half> && !s.halfHistory)
             throw Error("internal error: history stored as half without halfHistory");
         Buffers<H>& b = b_;
-        for (int k = 0; k < 2; ++k) {
-            b.normal[k].resize(w, h, 3);
-            b.position[k].resize(w, h, 3);
-            b.accumulatedNoisy[k].resize(w, h, 3);
-            b.historyLength[k].resize(w, h, 1);
-            b.emitter[k].resize(s.excludeEmitters ? w : 0, s.excludeEmitters ? h : 0, 1);
-            b.lit[k].resize(s.visibilityTaps ? w : 0, s.visibilityTaps ? h : 0, 1);
-            b.accumulatedFitted[k].resize(w, h, 3);
-            b.output[k].resize(w, h, 3);
-        }
-        b.previousPixel.resize(w, h, 2);
-        b.acceptMask.resize(w, h, 1);
-        b.fitted.resize(w, h, 3);
-        b.fittedSecond.resize(s.secondGrid ? w : 0, s.secondGrid ? h : 0, 3);
-        b.remodulated.resize(w, h, 3);
-        b.ycocg.resize(w, h, 3);
+        b.allocate(w, h, s);
         b.historyLengthF.resize(w, h, 1);
         b.acceptMaskF.resize(w, h, 1);
         b.noisyF.resize(std::is_same_v<H, float> ? 0 : w, std::is_same_v<H, float> ? 0 : h, 3);
-        b.change.resize(s.adaptiveHistory ? w : 0, s.adaptiveHistory ? h : 0, 2);
         b.changeTiles.assign(s.adaptiveHistory ? size_t(changeTileFloats(w, h)) : 0, 0.0f);
         const size_t W = size_t(s.blockSize) * size_t(s.blockSize), M = s.features.size();
         b.noise.assign(M * W, 0.0f);
