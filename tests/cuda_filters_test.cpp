@@ -3,6 +3,7 @@
 // solo bits, and the library leaves the caller's device current. Reported skipped, with the
 // reason, where there is no GPU; the device checks that need none run everywhere.
 #include "backend/cuda/cuda_device.h"
+#include "path_traced_box.h"
 #include "synth/procedural_scene.h"
 #include <bmfr/bmfr.hpp>
 #include <gtest/gtest.h>
@@ -87,6 +88,20 @@ TEST_F(CudaFilters, TheCallersDeviceStaysCurrent) {
 }
 
 } // namespace
+
+// Without a GPU too. The CUDA passes time the reference backend's stages with events, plus the
+// upload and the download: every filter's stages, Mara's with the glossy passes, leave room for
+// those two in StageTimes, where CUDA's events would otherwise run out.
+TEST(CudaStageTimes, EveryFiltersStagesLeaveRoomForTheTransfers) {
+    const std::vector<FrameData> frames = test::pathTracedBox(24, 16, 2, 5, 0.03f, 0, 4);
+    ASSERT_NE(frames[0].glossyIndirect.data(), nullptr);
+    for (const std::string& name : filterNames()) {
+        SCOPED_TRACE(name);
+        auto f = makeFilter(name, {{"backend", "reference"}});
+        for (const FrameData& frame : frames) (void)f->denoise(frame.input());
+        EXPECT_LE(f->lastStats().times.count + 2, StageTimes::kMaxStages);
+    }
+}
 
 // Without a GPU too: the device's GPU is chosen only for the cuda backend, and never below 0.
 TEST(CudaDeviceChoice, OnlyTheCudaBackendTakesAGpu) {

@@ -121,7 +121,7 @@ struct FrameInput {
 
 /// Per-stage wall time of the last frame, milliseconds; each filter names its own stages.
 struct StageTimes {
-    static constexpr int kMaxStages = 8;
+    static constexpr int kMaxStages = 12;
     const char* name[kMaxStages] = {};
     double ms[kMaxStages] = {};
     int count = 0;

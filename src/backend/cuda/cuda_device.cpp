@@ -3,6 +3,7 @@
 #include "backend/cuda/image_copy.h"
 #include "temporal/input_staging.h"
 #include <algorithm>
+#include <atomic>
 #include <bmfr/error.h>
 #include <cstdio>
 #include <dlfcn.h>
@@ -42,6 +43,20 @@ cudaStream_t AllocationStream::current() {
     if (!tAllocation)
         throw Error("internal error: a device allocation outside an AllocationStream");
     return tAllocation->stream_;
+}
+
+bool streamOrderedAllocation() {
+    // One answer per device, asked once; 64 devices is more than any machine has.
+    static std::atomic<int> known[64] = {}; // 0 unknown, 1 no, 2 yes
+    int device = 0;
+    check(cudaGetDevice(&device), "cudaGetDevice");
+    if (device < 0 || device >= 64) return false;
+    if (const int k = known[device].load(std::memory_order_relaxed)) return k == 2;
+    int pools = 0;
+    check(cudaDeviceGetAttribute(&pools, cudaDevAttrMemoryPoolsSupported, device),
+          "cudaDeviceGetAttribute");
+    known[device].store(pools ? 2 : 1, std::memory_order_relaxed);
+    return pools != 0;
 }
 
 bool built() {

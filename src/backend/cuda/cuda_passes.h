@@ -4,6 +4,7 @@
 // from device memory into the caller's view.
 #pragma once
 #include "backend/cuda/cuda_device.h"
+#include "backend/cuda/device_frame.h"
 #include "filters/filter_passes.h"
 #include <optional>
 
@@ -37,6 +38,8 @@ template <class S> class CudaPasses : public PassesFor<S> {
     void write(const ImageView& result, const MutableImageView& out, void* stream) final {
         const DeviceScope on(device_);
         writeResult(result, out, stream);
+        // On the caller's stream the copy reads the output after the frame's end.
+        if (frame_.onDevice() && stream) frame_.extendLastFrame(static_cast<cudaStream_t>(stream));
     }
 
   protected:
@@ -44,15 +47,27 @@ template <class S> class CudaPasses : public PassesFor<S> {
     virtual PassCounters runOnDevice(const PassContext<S>& ctx, StageTimes& times) = 0;
     virtual void captureDebugOnDevice(const TemporalHistory& history) = 0;
     int device() const { return device_; }
-    /// The first statement of a derived destructor: the derived class's members are then freed
-    /// with this GPU current, and this base's destruction, which comes after, restores the
-    /// caller's device.
-    void leaveOnDevice() { leaving_.emplace(device_); }
+    /// The first statement of a derived destructor: waits for the filter's last work, so that
+    /// the derived class's buffers are then freed after it, with this GPU current; this base's
+    /// destruction, which comes after, restores the caller's device. Never throws (a
+    /// destructor's): at process exit the runtime may already be gone.
+    void leaveOnDevice() noexcept {
+        try {
+            leaving_.emplace(device_);
+            frame_.waitForLastFrame();
+        } catch (...) {
+        }
+    }
+
+  private:
+    std::optional<DeviceScope> leaving_; ///< declared first, so destroyed last: after frame_
+
+  protected:
+    DeviceFrame frame_; ///< the stream, staging and timing of every frame
 
   private:
     int device_;
     InputPlanes planes_;
-    std::optional<DeviceScope> leaving_;
 };
 
 /// The passes of settings S on GPU `device`, made with it current.

@@ -12,6 +12,10 @@ namespace bmfr::cuda {
 /// Throws bmfr::Error "CUDA error in <what>: <message>" unless `e` is cudaSuccess.
 void check(cudaError_t e, const char* what);
 
+/// Whether the current device has stream-ordered allocation (memory pools); without them the
+/// arrays fall back to cudaMalloc and cudaFree, which wait for the device.
+bool streamOrderedAllocation();
+
 /// Orders the device allocations made in its scope, on this thread, on `stream`:
 /// DeviceArray::resize frees, allocates and zeroes in that stream's order (cudaMallocAsync), so
 /// the work queued there after it sees zeroed memory, and no other stream or the host waits.
@@ -42,9 +46,17 @@ template <typename T> class DeviceArray {
         if (n == n_ && p_) return;
         const cudaStream_t s = AllocationStream::current();
         const size_t bytes = (n ? n : 1) * sizeof(T);
-        if (p_) check(cudaFreeAsync(p_, s), "cudaFreeAsync");
-        p_ = nullptr, n_ = 0;
-        check(cudaMallocAsync(reinterpret_cast<void**>(&p_), bytes, s), "cudaMallocAsync");
+        void* p = nullptr;
+        if (streamOrderedAllocation()) {
+            if (p_) check(cudaFreeAsync(p_, s), "cudaFreeAsync");
+            p_ = nullptr, n_ = 0;
+            check(cudaMallocAsync(&p, bytes, s), "cudaMallocAsync");
+        } else { // cudaFree waits for the device
+            if (p_) check(cudaFree(p_), "cudaFree");
+            p_ = nullptr, n_ = 0;
+            check(cudaMalloc(&p, bytes), "cudaMalloc");
+        }
+        p_ = static_cast<T*>(p);
         check(cudaMemsetAsync(p_, 0, bytes, s), "cudaMemsetAsync");
         n_ = n;
     }

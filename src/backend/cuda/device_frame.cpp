@@ -5,6 +5,7 @@ namespace bmfr::cuda {
 
 DeviceFrame::DeviceFrame() {
     check(cudaEventCreateWithFlags(&end_, cudaEventDisableTiming), "cudaEventCreate");
+    check(cudaEventCreateWithFlags(&legacy_, cudaEventDisableTiming), "cudaEventCreate");
     check(cudaMallocHost(reinterpret_cast<void**>(&hostCounts_), sizeof(*hostCounts_) * kCounters),
           "cudaMallocHost");
     current_ = own_.get();
@@ -13,6 +14,7 @@ DeviceFrame::DeviceFrame() {
 DeviceFrame::~DeviceFrame() {
     cudaEventSynchronize(end_); // the last frame's copies into hostCounts_
     cudaEventDestroy(end_);
+    cudaEventDestroy(legacy_);
     cudaFreeHost(hostCounts_);
 }
 
@@ -31,6 +33,12 @@ const InputPlanes& DeviceFrame::begin(const FrameInput& frame) {
     current_ = deferred_ ? static_cast<cudaStream_t>(frame.cudaStream) : own_.get();
     // The history was written on whichever stream ran the previous frame.
     check(cudaStreamWaitEvent(current_, end_, 0), "cudaStreamWaitEvent");
+    if (onDevice_ && !deferred_) {
+        // Device buffers without a stream: the caller may have filled them on the legacy
+        // default stream, which a non-blocking stream is not ordered after.
+        check(cudaEventRecord(legacy_, cudaStreamLegacy), "cudaEventRecord");
+        check(cudaStreamWaitEvent(current_, legacy_, 0), "cudaStreamWaitEvent");
+    }
     events_.begin(current_);
     const InputPlanes& in = input_.stage(frame, current_);
     events_.mark("upload", current_);
@@ -58,6 +66,10 @@ void DeviceFrame::finish(const unsigned long long* deviceCounters, StageTimes& t
 
 void DeviceFrame::waitForLastFrame() const {
     check(cudaEventSynchronize(end_), "cudaEventSynchronize");
+}
+
+void DeviceFrame::extendLastFrame(cudaStream_t stream) {
+    check(cudaEventRecord(end_, stream), "cudaEventRecord");
 }
 
 void DeviceFrame::synchronize() const {

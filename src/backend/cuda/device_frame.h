@@ -2,8 +2,7 @@
 // caller's, for device buffers, or the passes' own), order the frame after the previous one on
 // the device, stage the input, time the stages with events, and end the frame: with one
 // synchronisation, or with none on the caller's stream, whose times and counts are then read
-// once a later frame finds them done. A passes class declares its DeviceFrame after its
-// buffers: destroyed first, it waits for the last frame, so the buffers outlive its work.
+// once a later frame finds them done.
 #pragma once
 #include "backend/cuda/device_input.h"
 #include "backend/cuda/stage_events.h"
@@ -22,6 +21,9 @@ class DeviceFrame {
     /// Runs `allocate(stream)`, whose device allocations (AllocationStream) and uploads go on
     /// `stream`, ordered after the previous frame and before the next, with no waiting.
     template <class F> void allocate(F&& allocate) {
+        // After a frame on the caller's stream, the caller may still be reading its output
+        // there, past end_: a reallocation (a new size, rare) waits for the device instead.
+        if (deferred_) check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
         check(cudaStreamWaitEvent(own_.get(), end_, 0), "cudaStreamWaitEvent");
         {
             const AllocationStream on(own_.get());
@@ -45,6 +47,9 @@ class DeviceFrame {
                 unsigned long long* counts);
     /// Waits for the frame's stream (debug downloads).
     void synchronize() const;
+    /// The last frame's work goes on to `stream`'s work queued so far (the output written into
+    /// the caller's view): the next frame, a reallocation or the destruction waits for it too.
+    void extendLastFrame(cudaStream_t stream);
     /// Waits for the last frame's (or allocation's) work, wherever it ran: before buffers it
     /// used are freed outside the stream order.
     void waitForLastFrame() const;
@@ -56,6 +61,7 @@ class DeviceFrame {
     StageEvents events_;
     DeviceInput input_;
     cudaEvent_t end_ = nullptr;                ///< the previous frame's (or allocation's) last work
+    cudaEvent_t legacy_ = nullptr;             ///< the legacy default stream's work, waited for
     unsigned long long* hostCounts_ = nullptr; ///< pinned, written by the stream
     bool pending_ = false;                     ///< a deferred frame's stats are still to be read
     StageTimes previousTimes_;

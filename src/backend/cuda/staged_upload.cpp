@@ -4,33 +4,36 @@
 
 namespace bmfr::cuda {
 
-StagedUpload::StagedUpload() {
-    for (cudaEvent_t& e : copied_)
-        check(cudaEventCreateWithFlags(&e, cudaEventDisableTiming), "cudaEventCreate");
-}
-
 StagedUpload::~StagedUpload() {
-    for (int k = 0; k < 2; ++k) {
-        cudaEventSynchronize(copied_[k]);
-        cudaEventDestroy(copied_[k]);
-        cudaFreeHost(pinned_[k]);
+    for (Slot& s : slots_) {
+        cudaEventSynchronize(s.copied);
+        cudaEventDestroy(s.copied);
+        cudaFreeHost(s.pinned);
     }
 }
 
 void StagedUpload::copy(void* device, const void* host, size_t bytes, cudaStream_t stream) {
-    const int k = next_;
-    next_ = 1 - next_;
-    // The slot's last copy, two frames ago: long done when frames follow one another.
-    check(cudaEventSynchronize(copied_[k]), "cudaEventSynchronize");
-    if (capacity_[k] < bytes) {
-        check(cudaFreeHost(pinned_[k]), "cudaFreeHost");
-        pinned_[k] = nullptr, capacity_[k] = 0;
-        check(cudaMallocHost(&pinned_[k], bytes), "cudaMallocHost");
-        capacity_[k] = bytes;
+    Slot* free = nullptr;
+    for (Slot& s : slots_)
+        if (cudaEventQuery(s.copied) == cudaSuccess) {
+            free = &s;
+            break;
+        }
+    if (!free) {
+        Slot s;
+        check(cudaEventCreateWithFlags(&s.copied, cudaEventDisableTiming), "cudaEventCreate");
+        slots_.push_back(s);
+        free = &slots_.back();
     }
-    std::memcpy(pinned_[k], host, bytes);
-    check(cudaMemcpyAsync(device, pinned_[k], bytes, cudaMemcpyHostToDevice, stream), "upload");
-    check(cudaEventRecord(copied_[k], stream), "cudaEventRecord");
+    if (free->capacity < bytes) {
+        check(cudaFreeHost(free->pinned), "cudaFreeHost");
+        free->pinned = nullptr, free->capacity = 0;
+        check(cudaMallocHost(&free->pinned, bytes), "cudaMallocHost");
+        free->capacity = bytes;
+    }
+    std::memcpy(free->pinned, host, bytes);
+    check(cudaMemcpyAsync(device, free->pinned, bytes, cudaMemcpyHostToDevice, stream), "upload");
+    check(cudaEventRecord(free->copied, stream), "cudaEventRecord");
 }
 
 } // namespace bmfr::cuda

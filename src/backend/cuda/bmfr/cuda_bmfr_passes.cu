@@ -9,7 +9,6 @@
 #include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
-#include "backend/cuda/device_frame.h"
 #include "filters/bmfr/bmfr_images.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/bmfr_stage_loops.h"
@@ -181,7 +180,6 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
     std::variant<Buffers<Half>, Buffers<float>> b_;
     HostCopies host_;
     FitPlan plan_;
-    DeviceFrame frame_; ///< last (device_frame.h)
 };
 
 } // namespace

@@ -6,7 +6,6 @@
 #include "backend/backend_registry.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
-#include "backend/cuda/device_frame.h"
 #include "backend/cuda/staged_upload.h"
 #include "filters/mara2017/mara_stage_loops.h"
 #include "temporal/taa_stage.h"
@@ -132,7 +131,6 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
     struct {
         ImageF temporal, matteOut, countF, acceptF;
     } debug_;
-    DeviceFrame frame_; ///< last (device_frame.h)
 };
 
 } // namespace

@@ -4,7 +4,6 @@
 #include "backend/backend_registry.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
-#include "backend/cuda/device_frame.h"
 #include "filters/svgf/svgf_passes.h"
 #include "filters/svgf/svgf_stage_loops.h"
 #include "temporal/taa_stage.h"
@@ -115,7 +114,6 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
     struct {
         ImageF integrated, finalLevel, historyLengthF, acceptF;
     } debug_;
-    DeviceFrame frame_; ///< last (device_frame.h)
 };
 
 } // namespace

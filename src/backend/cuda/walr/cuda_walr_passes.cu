@@ -4,7 +4,6 @@
 #include "backend/backend_registry.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
-#include "backend/cuda/device_frame.h"
 #include "filters/walr/walr_stages.h"
 
 namespace bmfr::cuda {
@@ -85,7 +84,6 @@ class CudaWalrPasses final : public CudaPasses<WalrSettings> {
     struct {
         ImageF pre, spatial, countF, acceptF;
     } debug_;
-    DeviceFrame frame_; ///< last (device_frame.h)
 };
 
 } // namespace
