@@ -115,7 +115,9 @@ struct FrameInput {
     /// null for the filter's own stream. On the caller's stream the filter never waits for the
     /// GPU: the output view (device memory) is ready when the stream reaches that point, and
     /// lastStats() then holds the times and counts of the latest earlier frame that had
-    /// finished when this one was queued. Ignored for host buffers.
+    /// finished when this one was queued. The stream must still exist when the filter's next
+    /// frame is given (the filter orders that frame after the work queued on it). Ignored for
+    /// host buffers.
     void* cudaStream = nullptr;
 };
 

@@ -1,6 +1,7 @@
 // The interface every backend implements for every filter: staging the caller's frame, one
 // frame's passes over the backend's own buffers, and writing the result into a caller's view.
 #pragma once
+#include "core/executor.h"
 #include "core/parallel.h"
 #include "temporal/history.h"
 #include "temporal/input_staging.h"
@@ -27,6 +28,14 @@ struct PassCounters {
 
 /// Pixels of an accept mask (bit i = bilinear tap i) that kept no tap, when there was a history.
 int64_t countDiscarded(ThreadPool& pool, const uint8_t* accept, long pixels, bool hasHistory);
+/// countDiscarded on an executor, added to `discarded` (a device backend's count).
+template <class Exec>
+void countDiscarded(const Exec& e, const uint8_t* accept, long pixels, bool hasHistory,
+                    FrameCounter discarded) {
+    if (hasHistory)
+        e.forEachIndex(
+            pixels, BMFR_LAMBDA(long i) { discarded.add(accept[i] == 0 ? 1 : 0); });
+}
 
 /// How a backend reads the caller's frame and writes into the caller's view. The host
 /// backends stage into host planes; a device backend overrides all three.

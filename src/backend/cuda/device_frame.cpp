@@ -9,6 +9,11 @@ DeviceFrame::DeviceFrame() {
     check(cudaMallocHost(reinterpret_cast<void**>(&hostCounts_), sizeof(*hostCounts_) * kCounters),
           "cudaMallocHost");
     current_ = own_.get();
+    {
+        const AllocationStream on(current_);
+        counters_.resize(kCounters);
+    }
+    check(cudaEventRecord(end_, current_), "cudaEventRecord"); // the first frame waits for it
 }
 
 DeviceFrame::~DeviceFrame() {
@@ -29,8 +34,11 @@ const InputPlanes& DeviceFrame::begin(const FrameInput& frame) {
     pending_ = false;
 
     onDevice_ = inDeviceMemory(frame);
+    const cudaStream_t next =
+        onDevice_ && frame.cudaStream ? static_cast<cudaStream_t>(frame.cudaStream) : own_.get();
+    if (next != current_) followCallersStream(); // the last output is overwritten from here
     deferred_ = onDevice_ && frame.cudaStream;
-    current_ = deferred_ ? static_cast<cudaStream_t>(frame.cudaStream) : own_.get();
+    current_ = next;
     // The history was written on whichever stream ran the previous frame.
     check(cudaStreamWaitEvent(current_, end_, 0), "cudaStreamWaitEvent");
     if (onDevice_ && !deferred_) {
@@ -39,33 +47,38 @@ const InputPlanes& DeviceFrame::begin(const FrameInput& frame) {
         check(cudaEventRecord(legacy_, cudaStreamLegacy), "cudaEventRecord");
         check(cudaStreamWaitEvent(current_, legacy_, 0), "cudaStreamWaitEvent");
     }
+    check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), current_), "counter reset");
     events_.begin(current_);
     const InputPlanes& in = input_.stage(frame, current_);
     events_.mark("upload", current_);
     return in;
 }
 
-void DeviceFrame::finish(const unsigned long long* deviceCounters, StageTimes& times,
-                         unsigned long long* counts) {
-    check(cudaMemcpyAsync(hostCounts_, deviceCounters, sizeof(*hostCounts_) * kCounters,
+PassCounters DeviceFrame::finish(StageTimes& times) {
+    check(cudaMemcpyAsync(hostCounts_, counters_.data(), sizeof(*hostCounts_) * kCounters,
                           cudaMemcpyDeviceToHost, current_),
           "counter download");
     events_.mark("download", current_);
     check(cudaEventRecord(end_, current_), "cudaEventRecord");
+    const unsigned long long* counts = previousCounts_;
     if (deferred_) {
         pending_ = true;
         for (int k = 0; k < previousTimes_.count; ++k)
             times.add(previousTimes_.name[k], previousTimes_.ms[k]);
-        for (int k = 0; k < kCounters; ++k) counts[k] = previousCounts_[k];
-        return;
+    } else {
+        synchronize();
+        events_.report(times);
+        counts = hostCounts_;
     }
-    synchronize();
-    events_.report(times);
-    for (int k = 0; k < kCounters; ++k) counts[k] = hostCounts_[k];
+    return {int64_t(counts[0]), int64_t(counts[1])};
 }
 
 void DeviceFrame::waitForLastFrame() const {
     check(cudaEventSynchronize(end_), "cudaEventSynchronize");
+}
+
+void DeviceFrame::followCallersStream() {
+    if (deferred_) check(cudaEventRecord(end_, current_), "cudaEventRecord");
 }
 
 void DeviceFrame::extendLastFrame(cudaStream_t stream) {

@@ -6,6 +6,8 @@
 #pragma once
 #include "backend/cuda/device_input.h"
 #include "backend/cuda/stage_events.h"
+#include "core/executor.h"
+#include "filters/filter_passes.h"
 
 namespace bmfr::cuda {
 
@@ -21,9 +23,7 @@ class DeviceFrame {
     /// Runs `allocate(stream)`, whose device allocations (AllocationStream) and uploads go on
     /// `stream`, ordered after the previous frame and before the next, with no waiting.
     template <class F> void allocate(F&& allocate) {
-        // After a frame on the caller's stream, the caller may still be reading its output
-        // there, past end_: a reallocation (a new size, rare) waits for the device instead.
-        if (deferred_) check(cudaDeviceSynchronize(), "cudaDeviceSynchronize");
+        followCallersStream();
         check(cudaStreamWaitEvent(own_.get(), end_, 0), "cudaStreamWaitEvent");
         {
             const AllocationStream on(own_.get());
@@ -31,20 +31,23 @@ class DeviceFrame {
         }
         check(cudaEventRecord(end_, own_.get()), "cudaEventRecord");
     }
-    /// Starts a frame: stages its input (the "upload" stage) and returns the device planes.
+    /// Starts a frame: zeroes its counters, stages its input (the "upload" stage) and returns
+    /// the device planes.
     const InputPlanes& begin(const FrameInput& frame);
+    /// The frame's counts of non-finite inputs and of pixels that lost their history.
+    FrameCounter nonFinite() { return {counters_.data()}; }
+    FrameCounter discarded() { return {counters_.data() + 1}; }
     /// The stream this frame runs on.
     cudaStream_t get() const { return current_; }
     /// True when this frame's buffers, and so its output, are in device memory.
     bool onDevice() const { return onDevice_; }
     /// Ends the stage `name` (a string literal).
     void mark(const char* name) { events_.mark(name, current_); }
-    /// Ends the frame after the downloads queued on its stream (the "download" stage), with
-    /// the frame's kCounters device counters. Adds stage times to `times` and writes counts to
-    /// `counts`: this frame's after waiting for it, or, on the caller's stream, those of the
-    /// previous frame if it had finished when this one began (else none, and zeros).
-    void finish(const unsigned long long* deviceCounters, StageTimes& times,
-                unsigned long long* counts);
+    /// Ends the frame after the downloads queued on its stream (the "download" stage). Adds
+    /// stage times to `times` and returns the counts: this frame's after waiting for it, or, on
+    /// the caller's stream, those of the previous frame if it had finished when this one began
+    /// (else none, and zeros).
+    PassCounters finish(StageTimes& times);
     /// Waits for the frame's stream (debug downloads).
     void synchronize() const;
     /// The last frame's work goes on to `stream`'s work queued so far (the output written into
@@ -55,7 +58,13 @@ class DeviceFrame {
     void waitForLastFrame() const;
 
   private:
+    /// After a frame on the caller's stream: end_ moves to that stream's tail, past the work the
+    /// caller queued there that reads the frame's output, before the output is overwritten or
+    /// freed (the stream must still exist: FrameInput::cudaStream).
+    void followCallersStream();
+
     Stream own_;
+    DeviceArray<unsigned long long> counters_; ///< kCounters, on the device
     cudaStream_t current_ = nullptr;
     bool onDevice_ = false, deferred_ = false;
     StageEvents events_;

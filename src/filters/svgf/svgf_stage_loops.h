@@ -5,6 +5,7 @@
 #pragma once
 #include "core/executor.h"
 #include "filters/svgf/svgf_kernels.h"
+#include "filters/svgf/svgf_passes.h"
 #include "temporal/modulation.h"
 
 namespace bmfr {
@@ -50,6 +51,22 @@ template <class Exec>
 void svgfKeepLevelStage(const Exec& e, const float* level, float* color, long n) {
     e.forEachIndex(
         n, BMFR_LAMBDA(long i) { store3(color, i, load3Stride4(level, i)); });
+}
+
+/// The a-trous levels from filtered[0] (an image pair, 4 floats per pixel), with `level`'s
+/// guides: the step-1 level fed back as the colour history `color`. Returns the last level's
+/// index in `filtered`.
+template <class Exec, class F>
+int svgfAtrousLevelsStage(const Exec& e, const SvgfSettings& s, AtrousLevel level, F (&filtered)[2],
+                          float* color) {
+    return runAtrousLevels(
+        s,
+        [&](int from, int to, int step) {
+            level.in = filtered[from].data(), level.out = filtered[to].data();
+            level.step = step;
+            svgfAtrousStage(e, level, s);
+        },
+        [&](int k) { svgfKeepLevelStage(e, filtered[k].data(), color, filtered[k].pixelCount()); });
 }
 
 /// The last level re-modulated into `out`.

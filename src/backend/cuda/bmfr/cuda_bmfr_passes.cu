@@ -27,7 +27,6 @@ template <class H> struct Buffers : BmfrImages<DeviceImage, H> {
     DeviceArray<float> noise, fitScratch;
     DeviceArray<float> changeTiles; ///< adaptiveHistory: storeTileChange's record of each tile
     DeviceArray<Feature> features;
-    DeviceArray<unsigned long long> counters; ///< non-finite inputs, discarded pixels
 };
 
 /// What comes back to the host each frame (and, on request, the debug views).
@@ -89,7 +88,6 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
         check(cudaMemcpyAsync(b.features.data(), s.features.data(), size_t(M) * sizeof(Feature),
                               cudaMemcpyHostToDevice, st),
               "feature upload");
-        b.counters.resize(DeviceFrame::kCounters);
         plan_ = planFit(M, s.blockSize);
         const BlockGrid most = makeBlockGrid(w, h, s.blockSize, 0);
         b.fitScratch.resize(plan_.matrixInShared ? 0
@@ -103,11 +101,10 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
         const int cur = t.cur, prev = 1 - cur;
         const InputPlanes& in = frame_.begin(ctx.frame);
         const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
-        check(cudaMemsetAsync(b.counters.data(), 0, b.counters.bytes(), st), "counter reset");
 
         const CudaExecutor e{st};
-        bmfrAccumulateNoisyStage(e, noisyAccumulation(ctx, in, b), FrameCounter{b.counters.data()},
-                                 FrameCounter{b.counters.data() + 1});
+        bmfrAccumulateNoisyStage(e, noisyAccumulation(ctx, in, b), frame_.nonFinite(),
+                                 frame_.discarded());
         frame_.mark("accumulate");
 
         if (s.stages.fitting) {
@@ -153,9 +150,7 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
         frame_.mark("taa");
 
         if (!frame_.onDevice()) b.output[cur].download(host_.output[cur], st);
-        unsigned long long counts[DeviceFrame::kCounters];
-        frame_.finish(b.counters.data(), times, counts);
-        return {int64_t(counts[0]), int64_t(counts[1])};
+        return frame_.finish(times);
     }
 
     template <class H> void captureDebugOf(Buffers<H>& b, const TemporalHistory& t) {

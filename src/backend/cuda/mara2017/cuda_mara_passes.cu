@@ -37,7 +37,6 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
             b_.allocate(w, h);
             preSpiral_.device.resize(2 * pre), finalSpiral_.device.resize(2 * fin);
             preOffsets_.device.resize(2 * pre), preGauss_.device.resize(pre);
-            counters_.resize(DeviceFrame::kCounters);
         });
         tables_.reserve(s);
         for (ImageF& o : output_) o.resize(w, h, 3);
@@ -48,7 +47,6 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
         const TemporalHistory& h = ctx.history;
         const InputPlanes& in = frame_.begin(ctx.frame);
         const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
-        check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), st), "counter reset");
         const MaraPassContext on{s, in, ctx.frame, h, ctx.pool};
         MaraFrame f = b_.frame(on);
         tables_.build(s, f);
@@ -58,13 +56,8 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
         f.preGauss = preGauss_.copy(tables_.preGauss, st);
         const CudaExecutor e{st};
 
-        maraMatteTemporalStage(e, f, FrameCounter{counters_.data()});
-        if (h.hasHistory()) {
-            const uint8_t* accept = f.accept;
-            const FrameCounter lost{counters_.data() + 1};
-            e.forEachIndex(
-                long(f.width) * f.height, BMFR_LAMBDA(long i) { lost.add(!accept[i]); });
-        }
+        maraMatteTemporalStage(e, f, frame_.nonFinite());
+        countDiscarded(e, f.accept, long(f.width) * f.height, h.hasHistory(), frame_.discarded());
         frame_.mark("matte temporal");
         if (s.preBilateral)
             maraPreBilateralStage(e, f);
@@ -94,9 +87,7 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
         frame_.mark("compose");
 
         if (!frame_.onDevice()) b_.output[h.cur].download(output_[h.cur], st);
-        unsigned long long counts[DeviceFrame::kCounters];
-        frame_.finish(counters_.data(), times, counts);
-        return {int64_t(counts[0]), int64_t(counts[1])};
+        return frame_.finish(times);
     }
 
     /// In the memory the frame's buffers were in.
@@ -124,7 +115,6 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
     MaraTables tables_;
     DeviceTable<float> preSpiral_, finalSpiral_, preGauss_;
     DeviceTable<int> preOffsets_;
-    DeviceArray<unsigned long long> counters_; ///< non-finite inputs, discarded pixels
     ImageF output_[2];
     ImageU8 count_, accept_;
     /// The debug views, in the host backends' layout.

@@ -21,7 +21,6 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
         frame_.allocate([&](cudaStream_t) {
             b_.allocate(w, h);
             ycocg_.resize(w, h, 3);
-            counters_.resize(DeviceFrame::kCounters);
         });
         for (ImageF& o : output_) o.resize(w, h, 3);
     }
@@ -31,29 +30,17 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
         const TemporalHistory& h = ctx.history;
         const InputPlanes& in = frame_.begin(ctx.frame);
         const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
-        check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), st), "counter reset");
 
         const SvgfFrame f = b_.frame(ctx, in);
         const CudaExecutor e{st};
-        svgfAccumulateStage(e, f, FrameCounter{counters_.data()},
-                            FrameCounter{counters_.data() + 1});
+        svgfAccumulateStage(e, f, frame_.nonFinite(), frame_.discarded());
         svgfDepthGradientStage(e, f);
         frame_.mark("accumulate");
         svgfVarianceStage(e, f, s, b_.filtered[0].data(), b_.variance.data());
         frame_.mark("variance");
-        AtrousLevel level{nullptr,         nullptr,  f.normal, f.depth,
-                          f.depthGradient, f.length, h.width,  h.height};
-        const int src = runAtrousLevels(
-            s,
-            [&](int from, int to, int step) {
-                level.in = b_.filtered[from].data(), level.out = b_.filtered[to].data();
-                level.step = step;
-                svgfAtrousStage(e, level, s);
-            },
-            [&](int k) {
-                svgfKeepLevelStage(e, b_.filtered[k].data(), b_.color[h.cur].data(),
-                                   b_.integrated.pixelCount());
-            });
+        const AtrousLevel guides{nullptr,         nullptr,  f.normal, f.depth,
+                                 f.depthGradient, f.length, h.width,  h.height};
+        const int src = svgfAtrousLevelsStage(e, s, guides, b_.filtered, b_.color[h.cur].data());
         outputLevel_ = src;
         svgfRemodulateStage(e, b_.filtered[src].data(), in, s.albedoEpsilon, b_.remodulated.data());
         frame_.mark("atrous");
@@ -65,9 +52,7 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
         frame_.mark("taa");
 
         if (!frame_.onDevice()) b_.output[h.cur].download(output_[h.cur], st);
-        unsigned long long counts[DeviceFrame::kCounters];
-        frame_.finish(counters_.data(), times, counts);
-        return {int64_t(counts[0]), int64_t(counts[1])};
+        return frame_.finish(times);
     }
 
     /// In the memory the frame's buffers were in.
@@ -105,7 +90,6 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
   private:
     SvgfImages<DeviceImageF, DeviceImageU8> b_;
     DeviceImageF ycocg_;
-    DeviceArray<unsigned long long> counters_;
     int outputLevel_ = 0;
     ImageF output_[2], level_;
     mutable ImageF variance_;

@@ -19,7 +19,6 @@ class CudaWalrPasses final : public CudaPasses<WalrSettings> {
         frame_.allocate([&](cudaStream_t) {
             b_.allocate(w, h);
             trace_.resize(walrSteppedTrace(s) ? long(w) * h : 0);
-            counters_.resize(DeviceFrame::kCounters);
         });
         output_.resize(w, h, 3);
     }
@@ -27,17 +26,12 @@ class CudaWalrPasses final : public CudaPasses<WalrSettings> {
     PassCounters runOnDevice(const WalrPassContext& ctx, StageTimes& times) override {
         const InputPlanes& in = frame_.begin(ctx.frame);
         const cudaStream_t st = frame_.get(); // the caller's or ours: begin() chose
-        check(cudaMemsetAsync(counters_.data(), 0, counters_.bytes(), st), "counter reset");
         const WalrPassContext on{ctx.settings, in, ctx.frame, ctx.history, ctx.pool};
         const CudaExecutor e{st};
 
-        walrPreprocessStage(e, on, b_, FrameCounter{counters_.data()});
-        if (ctx.history.hasHistory()) {
-            const uint8_t* accept = b_.accept.data();
-            const FrameCounter lost{counters_.data() + 1};
-            e.forEachIndex(
-                b_.accept.pixelCount(), BMFR_LAMBDA(long i) { lost.add(!accept[i]); });
-        }
+        walrPreprocessStage(e, on, b_, frame_.nonFinite());
+        countDiscarded(e, b_.accept.data(), b_.accept.pixelCount(), ctx.history.hasHistory(),
+                       frame_.discarded());
         frame_.mark("preprocess");
         if (ctx.settings.solver == WalrSolver::Refwlr) {
             walrRefwlrStage(e, on, b_);
@@ -50,9 +44,7 @@ class CudaWalrPasses final : public CudaPasses<WalrSettings> {
         frame_.mark("postprocess");
 
         if (!frame_.onDevice()) b_.output.download(output_, st);
-        unsigned long long counts[DeviceFrame::kCounters];
-        frame_.finish(counters_.data(), times, counts);
-        return {int64_t(counts[0]), int64_t(counts[1])};
+        return frame_.finish(times);
     }
 
     /// In the memory the frame's buffers were in.
@@ -77,7 +69,6 @@ class CudaWalrPasses final : public CudaPasses<WalrSettings> {
   private:
     WalrImages<DeviceImageF, DeviceImageU8> b_;
     SteppedTraceStore<DeviceArray> trace_;
-    DeviceArray<unsigned long long> counters_; ///< non-finite inputs, discarded pixels
     ImageF output_;
     ImageU8 count_, accept_;
     /// The debug views, in the host backends' layout.

@@ -61,21 +61,9 @@ AtrousLevel atrousGuides(const SvgfPassContext& ctx, SvgfBuffers& b) {
 }
 
 void svgfAtrousLevels(const SvgfPassContext& ctx, SvgfBuffers& b) {
-    const SvgfSettings& s = ctx.settings;
-    const int cur = ctx.history.cur;
-    const HostExecutor e{ctx.pool};
-    AtrousLevel level = atrousGuides(ctx, b);
-    b.outputLevel = runAtrousLevels(
-        s,
-        [&](int from, int to, int step) {
-            level.in = b.filtered[from].data(), level.out = b.filtered[to].data();
-            level.step = step;
-            svgfAtrousStage(e, level, s);
-        },
-        [&](int k) {
-            svgfKeepLevelStage(e, b.filtered[k].data(), b.color[cur].data(),
-                               b.integrated.pixelCount());
-        });
+    b.outputLevel =
+        svgfAtrousLevelsStage(HostExecutor{ctx.pool}, ctx.settings, atrousGuides(ctx, b),
+                              b.filtered, b.color[ctx.history.cur].data());
 }
 
 void svgfRemodulate(const SvgfPassContext& ctx, SvgfBuffers& b) {
