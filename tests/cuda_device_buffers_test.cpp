@@ -2,6 +2,7 @@
 // from host buffers, on the filter's own stream and on the caller's, and RGBA with padded rows
 // giving the packed result. Reported skipped, with the reason, where there is no GPU.
 #include "backend/cuda/cuda_device.h"
+#include "needs_gpu.h"
 #include "synth/procedural_scene.h"
 #include <bmfr/bmfr.hpp>
 #include <cstring>
@@ -11,16 +12,6 @@
 
 namespace bmfr {
 namespace {
-
-struct NeedsGpu : ::testing::Test {
-    void SetUp() override {
-        try {
-            cuda::requireDevice();
-        } catch (const Error& e) {
-            GTEST_SKIP() << e.what();
-        }
-    }
-};
 
 std::vector<FrameData> frames(int w, int h, int n) {
     ProceduralSceneOptions o;
@@ -69,7 +60,7 @@ std::vector<float> toHost(const ImageView& result, void* stream) {
     return std::vector<float>(host.data, host.data + size_t(host.width) * host.height * 3);
 }
 
-using CudaDeviceBuffers = NeedsGpu;
+using CudaDeviceBuffers = test::NeedsGpu;
 
 TEST_F(CudaDeviceBuffers, SameBitsAsHostBuffersOnEitherStream) {
     const std::vector<FrameData> seq = frames(61, 37, 6);

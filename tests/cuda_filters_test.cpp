@@ -3,6 +3,7 @@
 // solo bits, and the library leaves the caller's device current. Reported skipped, with the
 // reason, where there is no GPU; the device checks that need none run everywhere.
 #include "backend/cuda/cuda_device.h"
+#include "needs_gpu.h"
 #include "path_traced_box.h"
 #include "synth/procedural_scene.h"
 #include <bmfr/bmfr.hpp>
@@ -13,15 +14,7 @@
 namespace bmfr {
 namespace {
 
-struct CudaFilters : ::testing::Test {
-    void SetUp() override {
-        try {
-            cuda::requireDevice();
-        } catch (const Error& e) {
-            GTEST_SKIP() << e.what();
-        }
-    }
-};
+using CudaFilters = test::NeedsGpu;
 
 std::vector<FrameData> movingObjects(int w, int h, int n) {
     ProceduralSceneOptions o;

@@ -9,11 +9,11 @@
 #include "backend/cuda/bmfr/cuda_bmfr_kernels.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
+#include "backend/cuda/debug_copies.h"
 #include "filters/bmfr/bmfr_images.h"
 #include "filters/bmfr/bmfr_pass_setup.h"
 #include "filters/bmfr/bmfr_stage_loops.h"
 #include "temporal/taa_stage.h"
-#include <algorithm>
 #include <type_traits>
 #include <variant>
 
@@ -29,14 +29,6 @@ template <class H> struct Buffers : BmfrImages<DeviceImage, H> {
     DeviceArray<Feature> features;
 };
 
-/// What comes back to the host each frame (and, on request, the debug views).
-struct HostCopies {
-    ImageF output[2];
-    ImageF noisy, fitted, historyLengthF, acceptF;
-    Image<Half> noisyHalf;
-    ImageU8 historyLength, accept;
-};
-
 class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
   public:
     using CudaPasses::CudaPasses;
@@ -50,7 +42,7 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
             else
                 b_.emplace<Buffers<float>>();
         }
-        for (int k = 0; k < 2; ++k) host_.output[k].resize(w, h, 3);
+        for (int k = 0; k < 2; ++k) output_[k].resize(w, h, 3);
         frame_.allocate([&](cudaStream_t st) {
             std::visit([&](auto& b) { allocateBuffers(b, w, h, s, st); }, b_);
         });
@@ -64,17 +56,14 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
     ImageView output(int slot) const override {
         const DeviceImageF& out =
             std::visit([&](const auto& b) -> const DeviceImageF& { return b.output[slot]; }, b_);
-        return frame_.onDevice() ? deviceView(out) : view(host_.output[slot]);
+        return frame_.onDevice() ? deviceView(out) : view(output_[slot]);
     }
 
     void captureDebugOnDevice(const TemporalHistory& t) override {
         std::visit([&](auto& b) { captureDebugOf(b, t); }, b_);
     }
 
-    DebugBuffers debug(const TemporalHistory&) const override {
-        return {view(host_.noisy), view(host_.fitted), view(host_.historyLengthF),
-                view(host_.acceptF)};
-    }
+    DebugBuffers debug(const TemporalHistory&) const override { return debug_.views(); }
 
   private:
     template <class H>
@@ -149,31 +138,18 @@ class CudaBmfrPasses final : public CudaPasses<BmfrSettings> {
         taaStage(e, taa, b.ycocg.data(), b.output[cur].data(), s.taa && t.hasHistory());
         frame_.mark("taa");
 
-        if (!frame_.onDevice()) b.output[cur].download(host_.output[cur], st);
+        if (!frame_.onDevice()) b.output[cur].download(output_[cur], st);
         return frame_.finish(times);
     }
 
     template <class H> void captureDebugOf(Buffers<H>& b, const TemporalHistory& t) {
-        const cudaStream_t st = frame_.get();
-        if constexpr (std::is_same_v<H, float>)
-            b.accumulatedNoisy[t.cur].download(host_.noisy, st);
-        else
-            b.accumulatedNoisy[t.cur].download(host_.noisyHalf, st);
-        b.fitted.download(host_.fitted, st);
-        b.historyLength[t.cur].download(host_.historyLength, st);
-        b.acceptMask.download(host_.accept, st);
-        frame_.synchronize();
-        if constexpr (!std::is_same_v<H, float>) {
-            const Image<Half>& half = host_.noisyHalf;
-            host_.noisy.resize(half.width, half.height, half.channels);
-            std::copy(half.pixels.begin(), half.pixels.end(), host_.noisy.data());
-        }
-        widenToFloat(host_.historyLength, host_.historyLengthF);
-        widenToFloat(host_.accept, host_.acceptF);
+        debug_.capture(frame_, b.accumulatedNoisy[t.cur], b.fitted, b.historyLength[t.cur],
+                       b.acceptMask);
     }
 
     std::variant<Buffers<Half>, Buffers<float>> b_;
-    HostCopies host_;
+    ImageF output_[2]; ///< for host frames
+    DebugCopies debug_;
     FitPlan plan_;
 };
 

@@ -6,6 +6,7 @@
 #include "backend/backend_registry.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
+#include "backend/cuda/debug_copies.h"
 #include "backend/cuda/staged_upload.h"
 #include "filters/mara2017/mara_stage_loops.h"
 #include "temporal/taa_stage.h"
@@ -96,19 +97,9 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
     }
 
     void captureDebugOnDevice(const TemporalHistory& h) override {
-        const cudaStream_t st = frame_.get();
-        b_.temporal.download(debug_.temporal, st);
-        b_.matteOut.download(debug_.matteOut, st);
-        b_.count[h.cur].download(count_, st);
-        b_.accept.download(accept_, st);
-        frame_.synchronize();
-        widenToFloat(count_, debug_.countF);
-        widenToFloat(accept_, debug_.acceptF);
+        debug_.capture(frame_, b_.temporal, b_.matteOut, b_.count[h.cur], b_.accept);
     }
-    DebugBuffers debug(const TemporalHistory&) const override {
-        return {view(debug_.temporal), view(debug_.matteOut), view(debug_.countF),
-                view(debug_.acceptF)};
-    }
+    DebugBuffers debug(const TemporalHistory&) const override { return debug_.views(); }
 
   private:
     MaraImages<DeviceImageF, DeviceImageU8> b_;
@@ -116,11 +107,7 @@ class CudaMaraPasses final : public CudaPasses<Mara2017Settings> {
     DeviceTable<float> preSpiral_, finalSpiral_, preGauss_;
     DeviceTable<int> preOffsets_;
     ImageF output_[2];
-    ImageU8 count_, accept_;
-    /// The debug views, in the host backends' layout.
-    struct {
-        ImageF temporal, matteOut, countF, acceptF;
-    } debug_;
+    DebugCopies debug_;
 };
 
 } // namespace

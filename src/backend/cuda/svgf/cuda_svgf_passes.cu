@@ -4,6 +4,7 @@
 #include "backend/backend_registry.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
+#include "backend/cuda/debug_copies.h"
 #include "filters/svgf/svgf_passes.h"
 #include "filters/svgf/svgf_stage_loops.h"
 #include "temporal/taa_stage.h"
@@ -69,35 +70,26 @@ class CudaSvgfPasses final : public CudaPasses<SvgfSettings> {
     }
 
     void captureDebugOnDevice(const TemporalHistory& h) override {
-        const int cur = h.cur;
-        const cudaStream_t st = frame_.get();
-        b_.integrated.download(debug_.integrated, st);
-        b_.filtered[outputLevel_].download(level_, st);
-        b_.historyLength[cur].download(length_, st);
-        b_.accept.download(accept_, st);
-        frame_.synchronize();
-        widenToFloat(length_, debug_.historyLengthF);
-        widenToFloat(accept_, debug_.acceptF);
-        debug_.finalLevel.resize(level_.width, level_.height, 3);
-        for (long i = 0; i < level_.pixelCount(); ++i)
-            store3(debug_.finalLevel.data(), i, load3Stride4(level_.data(), i));
+        debug_.capture(frame_, b_.integrated, b_.filtered[outputLevel_], b_.historyLength[h.cur],
+                       b_.accept);
+        // The level holds colour and variance: its colour, as the host backends' view.
+        finalLevel_.resize(debug_.second.width, debug_.second.height, 3);
+        for (long i = 0; i < finalLevel_.pixelCount(); ++i)
+            store3(finalLevel_.data(), i, load3Stride4(debug_.second.data(), i));
     }
     DebugBuffers debug(const TemporalHistory&) const override {
-        return {view(debug_.integrated), view(debug_.finalLevel), view(debug_.historyLengthF),
-                view(debug_.acceptF)};
+        DebugBuffers d = debug_.views();
+        d.fitted = view(finalLevel_);
+        return d;
     }
 
   private:
     SvgfImages<DeviceImageF, DeviceImageU8> b_;
     DeviceImageF ycocg_;
     int outputLevel_ = 0;
-    ImageF output_[2], level_;
+    ImageF output_[2], finalLevel_;
     mutable ImageF variance_;
-    ImageU8 length_, accept_;
-    /// The debug views, in the host backends' layout.
-    struct {
-        ImageF integrated, finalLevel, historyLengthF, acceptF;
-    } debug_;
+    DebugCopies debug_;
 };
 
 } // namespace

@@ -4,6 +4,7 @@
 #include "backend/backend_registry.h"
 #include "backend/cuda/cuda_executor.h"
 #include "backend/cuda/cuda_passes.h"
+#include "backend/cuda/debug_copies.h"
 #include "filters/walr/walr_stages.h"
 
 namespace bmfr::cuda {
@@ -53,28 +54,15 @@ class CudaWalrPasses final : public CudaPasses<WalrSettings> {
     }
 
     void captureDebugOnDevice(const TemporalHistory& h) override {
-        const cudaStream_t st = frame_.get();
-        b_.pre[h.cur].download(debug_.pre, st);
-        b_.spatial.download(debug_.spatial, st);
-        b_.count[h.cur].download(count_, st);
-        b_.accept.download(accept_, st);
-        frame_.synchronize();
-        widenToFloat(count_, debug_.countF);
-        widenToFloat(accept_, debug_.acceptF);
+        debug_.capture(frame_, b_.pre[h.cur], b_.spatial, b_.count[h.cur], b_.accept);
     }
-    DebugBuffers debug(const TemporalHistory&) const override {
-        return {view(debug_.pre), view(debug_.spatial), view(debug_.countF), view(debug_.acceptF)};
-    }
+    DebugBuffers debug(const TemporalHistory&) const override { return debug_.views(); }
 
   private:
     WalrImages<DeviceImageF, DeviceImageU8> b_;
     SteppedTraceStore<DeviceArray> trace_;
     ImageF output_;
-    ImageU8 count_, accept_;
-    /// The debug views, in the host backends' layout.
-    struct {
-        ImageF pre, spatial, countF, acceptF;
-    } debug_;
+    DebugCopies debug_;
 };
 
 } // namespace
