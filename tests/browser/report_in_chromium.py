@@ -51,7 +51,13 @@ class Driver:
                 "goog:chromeOptions": {"binary": chromium,
                                        "args": HEADLESS + ["--user-data-dir=" + profile]},
                 "goog:loggingPrefs": {"browser": "ALL"}}
-        self.session = self.call("POST", "/session", {"capabilities": {"alwaysMatch": caps}})["sessionId"]
+        try:
+            self.session = self.call("POST", "/session",
+                                     {"capabilities": {"alwaysMatch": caps}})["sessionId"]
+        except BaseException:  # no session, no quit(): chromedriver would outlive the test
+            self.proc.terminate()
+            self.proc.wait(10)
+            raise
 
     def call(self, method, path, body=None):
         data = json.dumps(body).encode() if body is not None else None
