@@ -11,9 +11,12 @@ for program in "$@"; do "$program"; done
 exports=$(nm -D --defined-only -C "$so" | awk '{ $1 = ""; $2 = ""; print }' | sed 's/^ *//')
 echo "exported symbols: $(echo "$exports" | grep -c .)"
 public='^(bmfr[A-Z][A-Za-z]*$|bmfr::|typeinfo (name )?for bmfr::|vtable for bmfr::)'
-if echo "$exports" | grep -v -E "$public" | grep -q .; then
+# Here-strings, not pipes, feed the grep -q checks: grep -q exits at its first match, and under
+# pipefail the writer's SIGPIPE would then fail the check (it did, on a loaded CI machine).
+outside=$(grep -v -E "$public" <<<"$exports" || true)
+if [ -n "$outside" ]; then
     echo "symbols outside namespace bmfr are exported:" >&2
-    echo "$exports" | grep -v -E "$public" | head -20 >&2
+    head -20 <<<"$outside" >&2
     exit 1
 fi
 # The internals live in namespace bmfr too, so name them.
@@ -24,7 +27,7 @@ fi
 for api in 'bmfr::makeFilter' 'bmfr::TemporalFilter::denoise' 'bmfr::BmfrDenoiser::BmfrDenoiser' \
            'bmfr::SvgfDenoiser::variance' 'bmfr::libraryVersion' 'bmfr::compiledBackends' \
            'typeinfo for bmfr::TemporalFilter'; do
-    echo "$exports" | grep -q -F "$api" || { echo "$api is not exported" >&2; exit 1; }
+    grep -q -F "$api" <<<"$exports" || { echo "$api is not exported" >&2; exit 1; }
 done
 # The C API: every function bmfr.h declares, and nothing else named bmfr[A-Z]*.
 declared=$(grep -o 'bmfr[A-Z][A-Za-z]*(' "$(dirname "$0")/../../include/bmfr/bmfr.h" | tr -d '(' | sort -u)
