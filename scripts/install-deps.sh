@@ -21,7 +21,8 @@ pkgs=(cmake g++ make pkg-config libopenexr-dev libimath-dev libtbb-dev libcli11-
       python3-venv)
 if [ "${1:-}" != --demo ]; then
     pkgs+=(libeigen3-dev libgtest-dev libbenchmark-dev python3 python3-skimage clang
-           libclang-rt-14-dev python3-dev python3-numpy python3-pytest pybind11-dev python3-pil)
+           libclang-rt-14-dev python3-dev python3-numpy python3-pytest pybind11-dev python3-pil
+           ccache)
 fi
 if [ "${1:-}" = --tests ]; then
     pkgs+=(blender chromium chromium-driver ffmpeg)

@@ -13,10 +13,28 @@ mkdir -p "$work"
 "$python" -m venv "$work/venv"
 pip=("$work/venv/bin/pip" --disable-pip-version-check -q)
 "${pip[@]}" install numpy==2.2.6 pytest==8.3.5
+# With ccache, the wheel's CMake tree sits beside build/ (scripts/build.sh's) and CXX names that
+# build's compiler (scikit-build-core would take Python's), so that, paths under the source tree
+# taken relative, its library compiles are that build's and come from the cache. The tree is
+# made afresh and removed afterwards.
+config=()
+if command -v ccache > /dev/null; then
+    tree="$src/build-wheel"
+    rm -rf "$tree"
+    trap 'rm -rf "$tree"' EXIT
+    launcher="env;CCACHE_BASEDIR=$src;CCACHE_STATSLOG=$work/ccache.log;ccache"
+    config=(--config-settings=build-dir="$tree"
+            --config-settings=cmake.define.CMAKE_CXX_COMPILER_LAUNCHER="$launcher")
+fi
 start=$(date +%s)
-CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) "${pip[@]}" wheel --no-deps -w "$work/wheels" "$src"
+CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) "${pip[@]}" wheel --no-deps "${config[@]}" -w "$work/wheels" \
+    "$src"
 "${pip[@]}" install "$work"/wheels/bmfr-*.whl
 echo "wheel built and installed in $(($(date +%s) - start)) s: $(basename "$work"/wheels/bmfr-*.whl)"
+if [ -f "$work/ccache.log" ]; then
+    echo "compiles from the cache: $(grep -c '_cache_hit$' "$work/ccache.log" || true)" \
+         "of $(grep -c '^# ' "$work/ccache.log" || true)"
+fi
 cd "$work"
 "$work/venv/bin/python" -c "import bmfr, os; print('bmfr', bmfr.__version__, 'from', os.path.dirname(bmfr.__file__))"
 BMFR_CLI=$cli "$work/venv/bin/python" -m pytest -q -p no:cacheprovider "$src/tests/python"
