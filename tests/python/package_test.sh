@@ -22,7 +22,7 @@ if command -v ccache > /dev/null; then
     tree="$src/build-wheel"
     rm -rf "$tree"
     trap 'rm -rf "$tree"' EXIT
-    launcher="env;CCACHE_BASEDIR=$src;CCACHE_STATSLOG=$work/ccache.log;ccache"
+    launcher="env;CCACHE_BASEDIR=$src;CCACHE_DEPEND=1;CCACHE_STATSLOG=$work/ccache.log;ccache"
     config=(--config-settings=build-dir="$tree"
             --config-settings=cmake.define.CMAKE_CXX_COMPILER_LAUNCHER="$launcher")
 fi
