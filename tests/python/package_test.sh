@@ -19,8 +19,7 @@ pip=("$work/venv/bin/pip" --disable-pip-version-check -q)
 # made afresh and removed afterwards.
 config=()
 if command -v ccache > /dev/null; then
-    tree="$src/build-wheel"
-    rm -rf "$tree"
+    tree="$src/build-wheel-$$" # one per run: two build trees may test from one source tree
     trap 'rm -rf "$tree"' EXIT
     launcher="env;CCACHE_BASEDIR=$src;CCACHE_DEPEND=1;CCACHE_STATSLOG=$work/ccache.log;ccache"
     config=(--config-settings=build-dir="$tree"
