@@ -146,7 +146,7 @@ TEST(CliTeaches, AFolderOfPicturesSaysWhatTheInputMustBe) {
 }
 
 TEST(CliTeaches, DenoiseRefusesAnEarlierRunsOutputsUnlessOverwrite) {
-    const fs::path in = sequence("rerun"), out = in.string() + "_out";
+    const fs::path in = sequence("rerun"), out = bmfr::testing::scratchPath("teaches", "rerun_out");
     const std::string io = "denoise " + in.string() + " -o " + out.string() + " -q --no-flip";
     ASSERT_EQ(runCli(io).code, 0);
     ASSERT_TRUE(fs::exists(out / "denoised_0002.exr"));
@@ -165,7 +165,8 @@ TEST(CliTeaches, DenoiseRefusesAnEarlierRunsOutputsUnlessOverwrite) {
     // frame name without its number.
     std::ofstream(out / "denoised_final.png") << "the user's picture";
     const auto ours = nlohmann::json::parse(before);
-    std::ofstream(in.string() + "_other_report.json") << R"({"tool": "another"})";
+    std::ofstream(bmfr::testing::scratchPath("teaches", "other_report.json"))
+        << R"({"tool": "another"})";
 
     const auto replaced = runCli(io + " --frames 0:2 --overwrite");
     EXPECT_EQ(replaced.code, 0) << replaced.output;
@@ -178,7 +179,7 @@ TEST(CliTeaches, DenoiseRefusesAnEarlierRunsOutputsUnlessOverwrite) {
 
     // A folder whose report.json is not a denoise run's and that holds no frames is not refused,
     // and the file is left alone.
-    const fs::path mixed = in.string() + "_mixed";
+    const fs::path mixed = bmfr::testing::scratchPath("teaches", "rerun_mixed");
     fs::create_directories(mixed);
     std::ofstream(mixed / "report.json") << R"({"tool": "another"})";
     std::ofstream(mixed / "scores.csv") << "a,b\n1,2\n";

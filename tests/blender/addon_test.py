@@ -6,6 +6,7 @@ field, a transparent film and a camera that is not perspective too (checks_drive
 Blender."""
 import json
 import os
+import shutil
 import sys
 import tempfile
 import zipfile
@@ -59,6 +60,7 @@ def main():
     log = blender_run.run_script(os.path.join(HERE, "checks_driver.py"),
                                  os.path.dirname(addon), blend)
     assert "scene checks passed" in log, log[-3000:]
+    shutil.rmtree(work)  # kept for a look when an assertion failed
     print("blender add-on test passed")
     return 0
 

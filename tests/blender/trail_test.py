@@ -4,6 +4,7 @@ SVGF each with Cycles' Vector pass and previous positions and with --no-motion. 
 trail (the pixels it covers in this frame or the last) the camera path's error must be at least
 MIN_RATIO times the vectors'. Exit 77 (skipped) without Blender."""
 import os
+import shutil
 import sys
 import tempfile
 
@@ -22,6 +23,7 @@ def main():
                            "--filters", "bmfr:faithful,svgf:faithful", "--no-flip"])
     for name, r in ratios.items():
         assert r >= MIN_RATIO, f"{name}: the camera path's trail error is only {r:.2f}x the vectors'"
+    shutil.rmtree(work)  # kept for a look when an assertion failed
     print("cycles vectors trail test passed")
     return 0
 
