@@ -2,28 +2,30 @@
 # The package as a user installs it: a fresh virtual environment, the wheel built by `pip wheel`
 # from the source tree (scikit-build-core, pybind11 from PyPI), installed with pinned numpy and
 # pytest, and the pytest suite run against that install from outside the source tree.
-# Usage: package_test.sh SOURCE_DIR WORK_DIR BMFR_CLI [PYTHON]
+# Usage: package_test.sh SOURCE_DIR WORK_DIR BMFR_CLI [PYTHON [LAUNCHER...]]
 set -euo pipefail
 src=$1
 work=$2
 cli=$3
 python=${4:-python3}
+launcher=("${@:5}") # the build's CMAKE_CXX_COMPILER_LAUNCHER, a word each
 rm -rf "$work"
 mkdir -p "$work"
 "$python" -m venv "$work/venv"
 pip=("$work/venv/bin/pip" --disable-pip-version-check -q)
 "${pip[@]}" install numpy==2.2.6 pytest==8.3.5
-# With ccache, the wheel's CMake tree sits beside build/ (scripts/build.sh's) and CXX names that
-# build's compiler (scikit-build-core would take Python's), so that, paths under the source tree
-# taken relative, its library compiles are that build's and come from the cache. The tree is
-# made afresh and removed afterwards.
+# With the build's launcher (scripts/build.sh's ccache), the wheel's CMake tree sits beside
+# build/ and CXX names the build's compiler (scikit-build-core would take Python's), so that,
+# paths under the source tree taken relative, its library compiles are the build's and come from
+# the cache. The tree is made afresh and removed afterwards.
 config=()
-if command -v ccache > /dev/null; then
+if [ ${#launcher[@]} -gt 0 ]; then
     tree="$src/build-wheel-$$" # one per run: two build trees may test from one source tree
     trap 'rm -rf "$tree"' EXIT
-    launcher="env;CCACHE_BASEDIR=$src;CCACHE_DEPEND=1;CCACHE_STATSLOG=$work/ccache.log;ccache"
+    export CCACHE_STATSLOG=$work/ccache.log
+    list=$(IFS=';'; echo "${launcher[*]}") # a CMake list again
     config=(--config-settings=build-dir="$tree"
-            --config-settings=cmake.define.CMAKE_CXX_COMPILER_LAUNCHER="$launcher")
+            --config-settings=cmake.define.CMAKE_CXX_COMPILER_LAUNCHER="$list")
 fi
 start=$(date +%s)
 CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) "${pip[@]}" wheel --no-deps "${config[@]}" -w "$work/wheels" \
