@@ -209,12 +209,12 @@ TEST(Svgf, CpuVarianceEstimateMatchesTheReference) {
             s.phiNormal = phiNormal;
             ASSERT_TRUE(cpu::cpuNormalPowerSupports(s));
             std::vector<float> refOut(size_t(4 * n)), refVar(static_cast<size_t>(n)),
-                scratch(refOut.size()), var(refVar.size());
+                var(refVar.size());
             reference::svgfVariancePixels(f, s, 0, h, refOut.data(), refVar.data());
             cpu::CpuAtrous atrous;
             const cpu::SvgfFirstLevel level = atrous.firstLevel(w, h, s);
             cpu::svgfFirstLevelRows(f, level, 0, h);
-            cpu::svgfVarianceRows(f, s, level, 0, h, scratch.data(), var.data());
+            cpu::svgfVarianceRows(f, s, level, 0, h, var.data());
             int estimated = 0;
             for (long i = 0; i < n; ++i) {
                 const long p = i / w * atrous.pitch() + i % w;

@@ -47,8 +47,7 @@ class CpuSvgfPasses final : public HostSvgfPasses {
         ctx.pool.parallelFor(h.height, 4,
                              [&](long y0, long y1) { svgfFirstLevelRows(f, first, y0, y1); });
         ctx.pool.parallelFor(h.height, 4, [&](long y0, long y1) {
-            svgfVarianceRows(f, ctx.settings, first, y0, y1, buffers.filtered[0].data(),
-                             buffers.variance.data());
+            svgfVarianceRows(f, ctx.settings, first, y0, y1, buffers.variance.data());
         });
         times.add("variance", clock.lap());
         buffers.outputLevel = atrous_.run(ctx.pool, ctx.settings, buffers.color[h.cur].data());

@@ -26,13 +26,14 @@ BMFR_SIMD_INLINE void depthGradient8(const SvgfFrame& f, long y, int x, int n, f
     }
 }
 
-/// The 7x7 estimate's moments of eight pixels from column x of row y (pixel i), every tap
-/// inside the row, from the first level's planes (their normal is 0 and mask 0 without a
-/// sample); gx and gy are their depth gradient.
+/// The 7x7 estimate's moments of eight pixels from column x of row y (pixel i), from the first
+/// level's planes (their normal is 0 and mask 0 without a sample, and in the aprons either
+/// side of a row, so that a tap past a side weighs 0); gx and gy are their depth gradient.
+/// `inside`: every tap inside the row, whose moments are then read as vectors.
 template <int kExponent>
 BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s,
                                        const SvgfFirstLevel& level, long y, int x, long i, f8 gx,
-                                       f8 gy, f8& m1, f8& m2) {
+                                       f8 gy, bool inside, f8& m1, f8& m2) {
     const int w = f.width;
     const long p = y * level.pitch + x;
     const f8 n0[3] = {load8(level.nx + p), load8(level.ny + p), load8(level.nz + p)};
@@ -48,7 +49,15 @@ BMFR_SIMD_INLINE void bilateralMoments(const SvgfFrame& f, const SvgfSettings& s
             const int t = dx + 3;
             const long q = p + dy * level.pitch + dx;
             const f8 nq[3] = {load8(level.nx + q), load8(level.ny + q), load8(level.nz + q)};
-            loadXy8(f.moments + 2 * (i + long(dy) * w + dx), 8, mq1[t], mq2[t]);
+            const long j = i + long(dy) * w + dx;
+            if (inside) {
+                loadXy8(f.moments + 2 * j, 8, mq1[t], mq2[t]);
+            } else { // lane by lane, the taps past a side (weight 0) as 0
+                mq1[t] = mq2[t] = f8{};
+                for (int l = 0; l < 8; ++l)
+                    if (x + l + dx >= 0 && x + l + dx < w)
+                        mq1[t][l] = f.moments[2 * (j + l)], mq2[t][l] = f.moments[2 * (j + l) + 1];
+            }
             const f8 slope = abs8(gx * float(dx) + gy * float(dy));
             const f8 depthArg = abs8(z0 - load8(level.depth + q)) / (s.phiDepth * slope + 1e-6f);
             const f8 lq = load8(level.colour[4] + q);
@@ -89,8 +98,7 @@ inline bool tapsInside(int x, int w) {
 }
 
 /// The first level but its variance, over rows [y0, y1): the guides, the colour and its
-/// luminance. The depth gradient also goes to f.depthGradient where the reference's pixels
-/// read it (the groups at a row's sides).
+/// luminance.
 BMFR_SIMD_DISPATCH(void, firstLevelRows,
                    (const SvgfFrame& f, const SvgfFirstLevel& level, long y0, long y1),
                    (f, level, y0, y1)) {
@@ -101,7 +109,6 @@ BMFR_SIMD_DISPATCH(void, firstLevelRows,
             const long i = y * w + x, p = y * level.pitch + x;
             f8 gx, gy;
             depthGradient8(f, y, x, n, gx, gy);
-            if (!tapsInside(x, w)) storeXy8(f.depthGradient + 2 * i, n, gx, gy);
             const i8 sampled = loadBytes(f.length + i, n) != 0;
             f8 normal[3], c[3];
             loadXyz8(f.normal + 3 * i, n, normal);
@@ -120,7 +127,7 @@ BMFR_SIMD_DISPATCH(void, firstLevelRows,
 
 template <int kExponent>
 BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s,
-                                     const SvgfFirstLevel& level, long y0, long y1, float* scratch,
+                                     const SvgfFirstLevel& level, long y0, long y1,
                                      float* varianceOut) {
     const int w = f.width;
     const f8 limit = splat8(float(s.spatialVarianceFrames));
@@ -131,21 +138,13 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s,
             const f8 length = __builtin_convertvector(loadBytes(f.length + i, n), f8);
             const i8 estimate = (length > 0.0f) & (length < limit);
             f8 variance{};
-            if (anyLane(estimate) && !tapsInside(x, w)) { // taps past a side: the reference's
-                for (int l = 0; l < n; ++l) {
-                    svgfVariancePixel(f, s, x + l, int(y), scratch, varianceOut);
-                    variance[l] = varianceOut[i + l];
-                }
-                storeFirst(level.colour[3] + p, variance, n);
-                continue;
-            }
             f8 m1, m2;
             loadXy8(f.moments + 2 * i, n, m1, m2);
             variance = m2 - m1 * m1;
             if (anyLane(estimate)) {
                 f8 e1 = m1, e2 = m2;
                 bilateralMoments<kExponent>(f, s, level, y, x, i, load8(level.gradX + p),
-                                            load8(level.gradY + p), e1, e2);
+                                            load8(level.gradY + p), tapsInside(x, w), e1, e2);
                 // Boost the uncertain estimate of short histories (as the authors' code).
                 const f8 boosted = (e2 - e1 * e1) * 4.0f / (estimate ? length : splat8(1.0f));
                 variance = estimate ? boosted : variance;
@@ -158,12 +157,12 @@ BMFR_SIMD_INLINE void varianceRowsOf(const SvgfFrame& f, const SvgfSettings& s,
 
 BMFR_SIMD_DISPATCH(void, varianceRows,
                    (const SvgfFrame& f, const SvgfSettings& s, const SvgfFirstLevel& level, long y0,
-                    long y1, float* scratch, float* variance),
-                   (f, s, level, y0, y1, scratch, variance)) {
+                    long y1, float* variance),
+                   (f, s, level, y0, y1, variance)) {
     if (s.phiNormal == 128.0f)
-        varianceRowsOf<128>(f, s, level, y0, y1, scratch, variance);
+        varianceRowsOf<128>(f, s, level, y0, y1, variance);
     else
-        varianceRowsOf<0>(f, s, level, y0, y1, scratch, variance);
+        varianceRowsOf<0>(f, s, level, y0, y1, variance);
 }
 
 } // namespace
@@ -173,8 +172,8 @@ void svgfFirstLevelRows(const SvgfFrame& f, const SvgfFirstLevel& level, long y0
 }
 
 void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, const SvgfFirstLevel& level,
-                      long y0, long y1, float* scratch, float* variance) {
-    varianceRows(f, s, level, y0, y1, scratch, variance);
+                      long y0, long y1, float* variance) {
+    varianceRows(f, s, level, y0, y1, variance);
 }
 
 } // namespace bmfr::cpu

@@ -3,7 +3,7 @@
 // history take their moments' variance, bit for bit; the 7x7 bilateral estimate of short
 // histories runs eight wide over the first level's planes with one polynomial exponential per
 // tap for the depth and luminance weights (rounded differently from the reference, within the
-// conformance tolerance), and pixel by pixel within 3 of the sides.
+// conformance tolerance), the taps past a side read as weight 0 from the planes' aprons.
 #pragma once
 #include "filters/svgf/svgf_kernels.h"
 
@@ -20,15 +20,14 @@ struct SvgfFirstLevel {
 
 /// The first level's planes but the variance over rows [y0, y1): the guides, with the depth
 /// gradient made from f.depth (svgfDepthGradient; svgfAccumulate without it), and the colour
-/// and its luminance. f.depthGradient gets the gradient only where svgfVarianceRows' pixels by
-/// the reference read it.
+/// and its luminance.
 void svgfFirstLevelRows(const SvgfFrame& f, const SvgfFirstLevel& level, long y0, long y1);
 
 /// svgfVariancePixel's variance over rows [y0, y1) into the first level's variance plane and
 /// `variance` (one float per pixel), for settings that cpuNormalPowerSupports
 /// (cpu_svgf_weights.h), once svgfFirstLevelRows has made every row of the first level (the
-/// 7x7 estimate reads its planes). `scratch` holds 4 floats per pixel.
+/// 7x7 estimate reads its planes).
 void svgfVarianceRows(const SvgfFrame& f, const SvgfSettings& s, const SvgfFirstLevel& level,
-                      long y0, long y1, float* scratch, float* variance);
+                      long y0, long y1, float* variance);
 
 } // namespace bmfr::cpu
