@@ -279,6 +279,13 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
     for (size_t k = 0; k < a.radius.size(); k += 3) a.radius[k] = tables.radius[k % 4];
     for (size_t k = 16; k + 8 < a.radius.size(); k += 40)
         for (size_t l = 0; l < 8; ++l) a.radius[k + l] = k % 80 == 16 ? tables.radius[1] : 2.5f;
+    // Runs of eight with two radii, which take each radius's taps in turn: a table's and one of
+    // their own, and two of their own.
+    for (int y = 1; y < h; y += 4)
+        for (size_t l = 0; l < 8; ++l) {
+            a.radius[size_t(y * w + 24) + l] = l < 3 ? tables.radius[0] : 7.5f;
+            a.radius[size_t(y * w + 64) + l] = l % 2 ? 3.5f : 9.0f;
+        }
     // Each pixel its own rotation: the reference's bits. Runs of eight: the taps that land on
     // one pixel are merged, so the sums round differently.
     for (const int across : {1, 8}) {

@@ -119,6 +119,25 @@ struct RadiusTaps {
     }
 };
 
+/// RadiusTaps for the last few radii: a run whose lanes have two radii takes each in turn, and a
+/// single radius would build each one's taps again, run after run.
+struct RadiusCache {
+    static constexpr int kSlots = 4;
+    RadiusTaps slot[kSlots];
+    int next = 0;
+    /// The slot that holds, or will build, the taps of `radius`.
+    RadiusTaps& of(float radius) {
+        for (RadiusTaps& t : slot)
+            if (t.radius == radius) return t;
+        RadiusTaps& t = slot[next];
+        next = (next + 1) % kSlots;
+        return t;
+    }
+    void clear() {
+        for (RadiusTaps& t : slot) t.radius = -1.0f;
+    }
+};
+
 /// How many taps ahead sharedTaps prefetches a tap's three runs for stage 7, whose taps reach
 /// hundreds of rows away (stage 4's disk stays in cache, and ran slower with it).
 constexpr int kPrefetchTaps = 4;
@@ -223,7 +242,7 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
 
 BMFR_SIMD_DISPATCH(void, sparseRow,
                    (const MaraFrame& f, const float* src, bool final, int y, int x0, int x1,
-                    const MaraTapTables& tables, RadiusTaps& built),
+                    const MaraTapTables& tables, RadiusCache& built),
                    (f, src, final, y, x0, x1, tables, built)) {
     const long row = long(y) * f.width;
     float* dst = final ? f.matteOut : f.matteHistory;
@@ -243,23 +262,33 @@ BMFR_SIMD_DISPATCH(void, sparseRow,
             storeXyz8(dst + 3 * i, n, acc.sum);
             continue;
         }
-        // One rotation for the eight when runs of rotationWidth cover them; one radius when
-        // every live lane has the same.
-        float shared = -1.0f;
-        bool one = f.rotationWidth % 8 == 0;
-        for (int l = 0; one && l < 8; ++l)
-            if (live[l]) one = shared < 0.0f || radius[l] == shared, shared = radius[l];
-        if (one) {
+        // One rotation for the eight when runs of rotationWidth cover them: the lanes that
+        // share a radius take its taps as runs together, when there are at most two radii
+        // (the other lanes add 0 meanwhile). More radii: each lane its own taps, gathered.
+        float radii[2] = {-1.0f, -1.0f};
+        int distinct = 0;
+        for (int l = 0; l < 8 && distinct <= 2; ++l)
+            if (live[l] && radius[l] != radii[0] && radius[l] != radii[1])
+                distinct < 2 ? radii[distinct++] = radius[l] : ++distinct;
+        if (f.rotationWidth % 8 != 0 || distinct > 2) {
+            laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
+        } else {
             const int rotation =
                 maraPixelRotation(x, y, f.rotationWidth, f.frame, f.seed, final ? 7 : 4);
-            const MaraTapRuns* runs = final ? nullptr : &tables.pre;
-            for (int k = 0; final && k < MaraTapTables::kRadii; ++k)
-                if (shared == tables.radius[k]) runs = &tables.runs[k];
-            sharedTaps(f, src, x, y, live, runs, rotation,
-                       f.finalSpiral + 2 * f.finalTaps * rotation, f.finalTaps, shared,
-                       f.finalSigma * shared, built, final, acc);
-        } else {
-            laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
+            auto taps = [&] [[gnu::always_inline]] (float shared, i8 lanes) {
+                const MaraTapRuns* runs = final ? nullptr : &tables.pre;
+                for (int t = 0; final && t < MaraTapTables::kRadii; ++t)
+                    if (shared == tables.radius[t]) runs = &tables.runs[t];
+                sharedTaps(f, src, x, y, lanes, runs, rotation,
+                           f.finalSpiral + 2 * f.finalTaps * rotation, f.finalTaps, shared,
+                           f.finalSigma * shared, built.of(shared), final, acc);
+            };
+            if (distinct == 1) {
+                taps(radii[0], live);
+            } else {
+                taps(radii[0], live & (radius == radii[0]));
+                taps(radii[1], live & (radius == radii[1]));
+            }
         }
         const f8 out[3] = {acc.sum[0] / acc.total, acc.sum[1] / acc.total, acc.sum[2] / acc.total};
         storeXyz8(dst + 3 * i, n, out);
@@ -293,8 +322,8 @@ BMFR_SIMD_DISPATCH(void, medianRow, (const MaraFrame& f, int y), (f, y)) {
 
 void maraSparseTile(const MaraFrame& f, const float* src, bool final, int x0, int x1, long y0,
                     long y1, const MaraTapTables& tables) {
-    static thread_local RadiusTaps built;
-    built.radius = -1.0f; // the spiral turns every frame
+    static thread_local RadiusCache built;
+    built.clear(); // the spiral turns every frame
     for (long y = y0; y < y1; ++y) sparseRow(f, src, final, int(y), x0, x1, tables, built);
 }
 
