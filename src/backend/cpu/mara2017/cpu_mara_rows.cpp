@@ -265,11 +265,13 @@ BMFR_SIMD_DISPATCH(void, sparseRow,
         // One rotation for the eight when runs of rotationWidth cover them: the lanes that
         // share a radius take its taps as runs together, when there are at most two radii
         // (the other lanes add 0 meanwhile). More radii: each lane its own taps, gathered.
-        float radii[2] = {-1.0f, -1.0f};
-        int distinct = 0;
-        for (int l = 0; l < 8 && distinct <= 2; ++l)
-            if (live[l] && radius[l] != radii[0] && radius[l] != radii[1])
-                distinct < 2 ? radii[distinct++] = radius[l] : ++distinct;
+        float radii[2] = {-1.0f, -1.0f}; // the first two radii of the live lanes
+        int distinct = 0;                // how many there are, counted up to 3
+        for (int l = 0; l < 8 && distinct <= 2; ++l) {
+            if (!live[l] || radius[l] == radii[0] || radius[l] == radii[1]) continue;
+            if (distinct < 2) radii[distinct] = radius[l];
+            ++distinct;
+        }
         if (f.rotationWidth % 8 != 0 || distinct > 2) {
             laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
         } else {
