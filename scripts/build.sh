@@ -7,9 +7,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # With ccache (scripts/install-deps.sh installs it for the tests), compiles go through it, paths
 # under the source tree taken relative: the Python package test's wheel build
-# (tests/python/package_test.sh, given this launcher) then reuses this build's library objects. Depend mode takes the
-# headers from the compiler's -MD output instead of running the preprocessor once more per file
-# (0.3 s to 0.4 s of a fresh build's every file).
+# (tests/python/package_test.sh, given this launcher) then reuses this build's library objects.
+# Depend mode takes the headers from the compiler's -MD output instead of running the
+# preprocessor once more per file (0.3 s to 0.4 s of a fresh build's every file).
 launcher=-DCMAKE_CXX_COMPILER_LAUNCHER=
 if command -v ccache > /dev/null; then
     launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=env;CCACHE_BASEDIR=$PWD;CCACHE_DEPEND=1;ccache"
