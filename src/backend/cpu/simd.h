@@ -263,6 +263,20 @@ BMFR_SIMD_INLINE void deinterleave3(const float* p, f8& x, f8& y, f8& z) {
     y = __builtin_shuffle(y, i8{1, 0, 3, 2, 5, 4, 7, 6});
     z = __builtin_shuffle(z, i8{2, 1, 0, 3, 6, 5, 4, 7});
 }
+/// deinterleave3 on the path kIsa: on AVX-512, two loads and three two-register permutes (the
+/// eight-lane shuffles above take twelve).
+template <cpu::Isa kIsa> BMFR_SIMD_INLINE void deinterleave3(const float* p, f8& x, f8& y, f8& z) {
+    if constexpr (kIsa == cpu::Isa::Avx512) {
+        f32x16 a, b; // floats 0 to 15 and 8 to 23
+        std::memcpy(&a, p, sizeof a);
+        std::memcpy(&b, p + 8, sizeof b);
+        x = __builtin_shufflevector(a, b, 0, 3, 6, 9, 12, 15, 26, 29);
+        y = __builtin_shufflevector(a, b, 1, 4, 7, 10, 13, 24, 27, 30);
+        z = __builtin_shufflevector(a, b, 2, 5, 8, 11, 14, 25, 28, 31);
+    } else {
+        deinterleave3(p, x, y, z);
+    }
+}
 BMFR_SIMD_INLINE void interleave3(f8 x, f8 y, f8 z, float* p) {
     x = __builtin_shuffle(x, i8{0, 3, 2, 1, 4, 7, 6, 5});
     y = __builtin_shuffle(y, i8{1, 0, 3, 2, 5, 4, 7, 6});

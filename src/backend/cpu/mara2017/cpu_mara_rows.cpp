@@ -55,14 +55,15 @@ struct SparseSum {
     f8 pc[3], nc[3], sum[3];
     f8 total = f8{} + 1.0f;
 
+    template <Isa kIsa>
     BMFR_SIMD_INLINE void add(const MaraFrame& f, const float* src, i8 index, bool run, f8 g,
                               i8 inside) {
         f8 pq[3], nq[3], s[3];
         if (run) {
             const long j = index[0];
-            deinterleave3(f.position + 3 * j, pq[0], pq[1], pq[2]);
-            deinterleave3(f.normal + 3 * j, nq[0], nq[1], nq[2]);
-            deinterleave3(src + 3 * j, s[0], s[1], s[2]);
+            deinterleave3<kIsa>(f.position + 3 * j, pq[0], pq[1], pq[2]);
+            deinterleave3<kIsa>(f.normal + 3 * j, nq[0], nq[1], nq[2]);
+            deinterleave3<kIsa>(src + 3 * j, s[0], s[1], s[2]);
         } else {
             gatherXyz8(f.position, index, pq);
             gatherXyz8(f.normal, index, nq);
@@ -145,6 +146,7 @@ constexpr int kPrefetchTaps = 4;
 /// Eight centres sharing one rotation and one radius: tap by tap, the eight neighbours at one
 /// offset are one run of the packed buffers. `runs` holds the merged taps, or, where null, the
 /// `taps` unit offsets of `spiral` are scaled by `radius` in `built`.
+template <Isa kIsa>
 BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, int y, i8 live,
                                  const MaraTapRuns* runs, int rotation, const float* spiral,
                                  int taps, float radius, float sigma, RadiusTaps& built,
@@ -176,13 +178,13 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
         if (qy < 0 || qy >= f.height) continue;
         const long j = long(qy) * w + qx;
         if (qx >= 0 && qx + 8 <= w) {
-            acc.add(f, src, i8{} + int(j), true, f8{} + g[t], live);
+            acc.add<kIsa>(f, src, i8{} + int(j), true, f8{} + g[t], live);
             continue;
         }
         const i8 lx = qx + lane, inside = live & (lx >= 0) & (lx < w);
         if (!anyLane(inside)) continue;
-        acc.add(f, src, inside ? int(j) + lane : i8{} + int(long(y) * w + x), false, f8{} + g[t],
-                inside);
+        acc.add<kIsa>(f, src, inside ? int(j) + lane : i8{} + int(long(y) * w + x), false,
+                      f8{} + g[t], inside);
     }
 }
 
@@ -236,7 +238,8 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
         const i8 qx = x + lane + dx, qy = y + dy;
         const i8 inside = live & (qx >= 0) & (qy >= 0) & (qx < w) & (qy < f.height);
         if (!anyLane(inside)) continue;
-        acc.add(f, src, inside ? qy * w + qx : i8{} + int(i), false, load8(og + 8 * k), inside);
+        acc.add<Isa::Baseline>(f, src, inside ? qy * w + qx : i8{} + int(i), false,
+                               load8(og + 8 * k), inside);
     }
 }
 
@@ -281,9 +284,9 @@ BMFR_SIMD_DISPATCH(void, sparseRow,
                 const MaraTapRuns* runs = final ? nullptr : &tables.pre;
                 for (int t = 0; final && t < MaraTapTables::kRadii; ++t)
                     if (shared == tables.radius[t]) runs = &tables.runs[t];
-                sharedTaps(f, src, x, y, lanes, runs, rotation,
-                           f.finalSpiral + 2 * f.finalTaps * rotation, f.finalTaps, shared,
-                           f.finalSigma * shared, built.of(shared), final, acc);
+                sharedTaps<kIsa>(f, src, x, y, lanes, runs, rotation,
+                                 f.finalSpiral + 2 * f.finalTaps * rotation, f.finalTaps, shared,
+                                 f.finalSigma * shared, built.of(shared), final, acc);
             };
             if (distinct == 1) {
                 taps(radii[0], live);
@@ -310,7 +313,8 @@ BMFR_SIMD_DISPATCH(void, medianRow, (const MaraFrame& f, int y), (f, y)) {
             for (int r = 0; r < 3; ++r)
                 for (int dx = -1; dx <= 1; ++dx) {
                     f8 c[3];
-                    deinterleave3(f.temporal + 3 * (long(rows[r]) * w + x + dx), c[0], c[1], c[2]);
+                    deinterleave3<kIsa>(f.temporal + 3 * (long(rows[r]) * w + x + dx), c[0], c[1],
+                                        c[2]);
                     for (int ch = 0; ch < 3; ++ch) v[ch][3 * r + dx + 1] = c[ch];
                 }
             const f8 m[3] = {median9(v[0]), median9(v[1]), median9(v[2])};
