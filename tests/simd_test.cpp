@@ -195,17 +195,20 @@ TEST(Simd, ExpWithinTwoUlpOfTheLibraryAndItsNonPositiveFormAlike) {
 }
 
 // deinterleave3's AVX-512 form (two loads, three permutes) reads the same eight records as the
-// eight-lane shuffles (the vector extensions run it on any processor).
+// eight-lane shuffles of the other paths (the vector extensions run each form on any processor).
 TEST(Simd, DeinterleaveOnEveryPathReadsEightRecords) {
-    std::vector<float> packed(24); // exactly eight records: a read past them shows under ASan
+    using bmfr::cpu::Isa;
+    std::vector<float> packed(24); // exactly eight records: a read past them would show under ASan
     for (size_t k = 0; k < packed.size(); ++k) packed[k] = float(k) * 1.5f - 7.0f;
-    f8 v[2][3];
-    deinterleave3<bmfr::cpu::Isa::Avx512>(packed.data(), v[0][0], v[0][1], v[0][2]);
-    deinterleave3(packed.data(), v[1][0], v[1][1], v[1][2]);
-    for (int path = 0; path < 2; ++path)
+    f8 v[3][3];
+    deinterleave3<Isa::Avx512>(packed.data(), v[0][0], v[0][1], v[0][2]);
+    deinterleave3<Isa::Avx2>(packed.data(), v[1][0], v[1][1], v[1][2]);
+    deinterleave3<Isa::Baseline>(packed.data(), v[2][0], v[2][1], v[2][2]);
+    for (int path = 0; path < 3; ++path)
         for (int l = 0; l < 8; ++l)
             for (int c = 0; c < 3; ++c)
-                EXPECT_EQ(v[path][c][l], packed[size_t(3 * l + c)]) << path << l << c;
+                EXPECT_EQ(v[path][c][l], packed[size_t(3 * l + c)])
+                    << "path " << path << ", lane " << l << ", channel " << c;
 }
 
 // The helpers written once for eight and sixteen lanes give each lane the same bits at both

@@ -263,8 +263,9 @@ BMFR_SIMD_INLINE void deinterleave3(const float* p, f8& x, f8& y, f8& z) {
     y = __builtin_shuffle(y, i8{1, 0, 3, 2, 5, 4, 7, 6});
     z = __builtin_shuffle(z, i8{2, 1, 0, 3, 6, 5, 4, 7});
 }
-/// deinterleave3 on the path kIsa: on AVX-512, two loads and three two-register permutes (the
-/// eight-lane shuffles above take twelve).
+/// deinterleave3 on the path kIsa: on AVX-512, two overlapping 64-byte loads and three
+/// two-register permutes (the eight-lane form takes six half loads, three inserts, six blends and
+/// three permutes). For taps, not for streaming rows: there the overlapping loads cost more.
 template <cpu::Isa kIsa> BMFR_SIMD_INLINE void deinterleave3(const float* p, f8& x, f8& y, f8& z) {
     if constexpr (kIsa == cpu::Isa::Avx512) {
         f32x16 a, b; // floats 0 to 15 and 8 to 23

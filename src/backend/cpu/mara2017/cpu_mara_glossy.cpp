@@ -30,7 +30,7 @@ BMFR_SIMD_DISPATCH(void, planarRow, (const float* packed, int width, long stride
     int x = 0;
     for (; x + 8 <= width; x += 8) {
         f8 v[3];
-        deinterleave3<kIsa>(packed + 3 * x, v[0], v[1], v[2]);
+        deinterleave3(packed + 3 * x, v[0], v[1], v[2]);
         for (int c = 0; c < 3; ++c) store8(planes + c * stride + x, v[c]);
     }
     for (; x < width; ++x)

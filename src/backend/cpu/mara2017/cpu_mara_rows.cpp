@@ -49,26 +49,35 @@ BMFR_SIMD_INLINE void gatherXyz8(const float* p, i8 index, f8 out[3]) {
     out[2] = __builtin_shuffle(t2, t3, i8{0, 1, 8, 9, 4, 5, 12, 13});
 }
 
-/// One sparse tap for eight centres: position, normal and colour read at `index` (or, with
-/// `run`, eight neighbours from index[0]), weighted by g and the edges, added where `inside`.
+/// One sparse tap for eight centres: position, normal and colour weighted by g and the edges,
+/// added where `inside`.
 struct SparseSum {
     f8 pc[3], nc[3], sum[3];
     f8 total = f8{} + 1.0f;
 
+    /// The tap at the eight neighbours from pixel j, one run of the packed buffers.
     template <Isa kIsa>
-    BMFR_SIMD_INLINE void add(const MaraFrame& f, const float* src, i8 index, bool run, f8 g,
-                              i8 inside) {
+    BMFR_SIMD_INLINE void addRun(const MaraFrame& f, const float* src, long j, f8 g, i8 inside) {
         f8 pq[3], nq[3], s[3];
-        if (run) {
-            const long j = index[0];
-            deinterleave3<kIsa>(f.position + 3 * j, pq[0], pq[1], pq[2]);
-            deinterleave3<kIsa>(f.normal + 3 * j, nq[0], nq[1], nq[2]);
-            deinterleave3<kIsa>(src + 3 * j, s[0], s[1], s[2]);
-        } else {
-            gatherXyz8(f.position, index, pq);
-            gatherXyz8(f.normal, index, nq);
-            gatherXyz8(src, index, s);
-        }
+        deinterleave3<kIsa>(f.position + 3 * j, pq[0], pq[1], pq[2]);
+        deinterleave3<kIsa>(f.normal + 3 * j, nq[0], nq[1], nq[2]);
+        deinterleave3<kIsa>(src + 3 * j, s[0], s[1], s[2]);
+        weigh(f, pq, nq, s, g, inside);
+    }
+
+    /// The tap at each lane's own pixel index[l].
+    BMFR_SIMD_INLINE void addGathered(const MaraFrame& f, const float* src, i8 index, f8 g,
+                                      i8 inside) {
+        f8 pq[3], nq[3], s[3];
+        gatherXyz8(f.position, index, pq);
+        gatherXyz8(f.normal, index, nq);
+        gatherXyz8(src, index, s);
+        weigh(f, pq, nq, s, g, inside);
+    }
+
+  private:
+    BMFR_SIMD_INLINE void weigh(const MaraFrame& f, const f8 pq[3], const f8 nq[3], const f8 s[3],
+                                f8 g, i8 inside) {
         f8 wt = g * edgeWeightOf(nc, pc, nq, pq, f.edges);
         wt = inside & (wt > 0.0f) ? wt : 0.0f;
         for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
@@ -178,13 +187,13 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
         if (qy < 0 || qy >= f.height) continue;
         const long j = long(qy) * w + qx;
         if (qx >= 0 && qx + 8 <= w) {
-            acc.add<kIsa>(f, src, i8{} + int(j), true, f8{} + g[t], live);
+            acc.addRun<kIsa>(f, src, j, f8{} + g[t], live);
             continue;
         }
         const i8 lx = qx + lane, inside = live & (lx >= 0) & (lx < w);
         if (!anyLane(inside)) continue;
-        acc.add<kIsa>(f, src, inside ? int(j) + lane : i8{} + int(long(y) * w + x), false,
-                      f8{} + g[t], inside);
+        acc.addGathered(f, src, inside ? int(j) + lane : i8{} + int(long(y) * w + x), f8{} + g[t],
+                        inside);
     }
 }
 
@@ -238,8 +247,7 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
         const i8 qx = x + lane + dx, qy = y + dy;
         const i8 inside = live & (qx >= 0) & (qy >= 0) & (qx < w) & (qy < f.height);
         if (!anyLane(inside)) continue;
-        acc.add<Isa::Baseline>(f, src, inside ? qy * w + qx : i8{} + int(i), false,
-                               load8(og + 8 * k), inside);
+        acc.addGathered(f, src, inside ? qy * w + qx : i8{} + int(i), load8(og + 8 * k), inside);
     }
 }
 
