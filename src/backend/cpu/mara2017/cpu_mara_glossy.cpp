@@ -135,12 +135,18 @@ BMFR_SIMD_DISPATCH(void, passRow,
     float g[kMaraGlossyMaxReach + 1], lastRough = NAN;
     int lastReach = 0, taps = 0;
     int x = 0;
+    // Whether pixels x + from .. x + to - 1 lie in the row and have x's roughness, bit for bit.
+    auto sameRoughness = [&](int from, int to) {
+        if (x + to > w) return false;
+        for (int l = from; f.in.roughness && l < to; ++l)
+            if (std::memcmp(&f.in.roughness[row + x + l], &f.in.roughness[row + x], 4) != 0)
+                return false;
+        return true;
+    };
     while (x < w) {
         const long i = row + x;
         const float rough = f.in.roughness ? f.in.roughness[i] : 1.0f;
-        bool shared = x + 8 <= w;
-        for (int l = 1; shared && l < 8; ++l)
-            shared = !f.in.roughness || std::memcmp(&f.in.roughness[i + l], &rough, 4) == 0;
+        const bool shared = sameRoughness(1, 8);
         if (shared && std::memcmp(&rough, &lastRough, 4) != 0) {
             float sigma = 0;
             lastRough = rough, lastReach = reachOf(f, rough, sigma), taps = 0;
@@ -158,9 +164,7 @@ BMFR_SIMD_DISPATCH(void, passRow,
         }
         // Sixteen when the next eight share the roughness too: two groups' sums are independent
         // chains, and one group's (an add per tap) is what bounds the loop.
-        bool two = x + 16 <= w;
-        for (int l = 8; two && f.in.roughness && l < 16; ++l)
-            two = std::memcmp(&f.in.roughness[i + l], &rough, 4) == 0;
+        const bool two = sameRoughness(8, 16);
         if (two)
             passGroups<2>(f, x, y, dx, dy, taps, g, below, above, planar, stride, dst + 3 * i);
         else
