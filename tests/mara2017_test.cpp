@@ -1,6 +1,7 @@
 // Mara et al. 2017: tests M1 to M12 of the implementation notes on the stage kernels and the
 // whole filter, the CPU backend's running minimum against a brute-force one, and the filter end
 // to end on a Cornell box path traced with the paper's factored paths.
+#include "backend/cpu/isa.h"
 #include "backend/cpu/mara2017/cpu_mara_glossy.h"
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
 #include "backend/cpu/mara2017/cpu_running_min.h"
@@ -21,6 +22,8 @@
 #include <gtest/gtest.h>
 #include <random>
 #include <set>
+#include <tuple>
+#include <utility>
 
 namespace bmfr {
 namespace {
@@ -286,20 +289,42 @@ TEST(Mara2017, CpuEightWideStagesGiveTheReferenceBits) {
             a.radius[size_t(y * w + 24) + l] = l < 3 ? tables.radius[0] : 7.5f;
             a.radius[size_t(y * w + 64) + l] = l % 2 ? 3.5f : 9.0f;
         }
-    // Each pixel its own rotation: the reference's bits. Runs of eight: the taps that land on
-    // one pixel are merged, so the sums round differently.
-    for (const int across : {1, 8}) {
+    // Runs of sixteen, which the AVX-512 path takes as one vector at rotationWidth 16: one radius
+    // of the tables, one of their own, and two radii.
+    for (int y = 2; y < h; y += 4)
+        for (size_t l = 0; l < 16; ++l) {
+            a.radius[size_t(y * w) + l] = 5.5f;
+            a.radius[size_t(y * w + 32) + l] = tables.radius[1];
+            a.radius[size_t(y * w + 80) + l] = l < 5 ? tables.radius[0] : 6.5f;
+        }
+    // Stages 4 and 7 on the CPU backend's active path, in tiles.
+    auto cpuStages = [&](const MaraPlane& from) {
+        MaraPlane p = from;
+        p.wire();
+        tables.buildPre(p.f);
+        tables.buildFinal(p.f);
+        cpu::maraSparseTile(p.f, p.temporal.data(), false, 0, 48, 0, h, tables);
+        cpu::maraSparseTile(p.f, p.temporal.data(), false, 48, w, 0, h, tables);
+        cpu::maraSparseTile(p.f, p.glossy.data(), true, 0, w, 0, 9, tables);
+        cpu::maraSparseTile(p.f, p.glossy.data(), true, 0, w, 9, h, tables);
+        return std::make_pair(p.history, p.matteOut);
+    };
+    // Each pixel its own rotation: the reference's bits. Runs of eight or sixteen: the taps that
+    // land on one pixel are merged, so the sums round differently.
+    for (const int across : {1, 8, 16}) {
         a.f.rotationWidth = across;
         MaraPlane b = a;
+        std::tie(b.history, b.matteOut) = cpuStages(a);
+        // Every path the same bits: eight lanes, and sixteen on AVX-512 (at width 16).
+        for (int k = 0; k < int(cpu::bestIsa()); ++k) {
+            cpu::setActiveIsa(cpu::Isa(k));
+            const auto path = cpuStages(a);
+            cpu::setActiveIsa(cpu::bestIsa());
+            EXPECT_EQ(path.first, b.history) << across << ", " << cpu::isaName(cpu::Isa(k));
+            EXPECT_EQ(path.second, b.matteOut) << across << ", " << cpu::isaName(cpu::Isa(k));
+        }
         a.each([&](int x, int y) { maraPreBilateralPixel(a.f, x, y); });
         a.each([&](int x, int y) { maraFinalBilateralPixel(a.f, a.glossy.data(), x, y); });
-        b.wire();
-        tables.buildPre(b.f);
-        tables.buildFinal(b.f);
-        cpu::maraSparseTile(b.f, b.temporal.data(), false, 0, 48, 0, h, tables);
-        cpu::maraSparseTile(b.f, b.temporal.data(), false, 48, w, 0, h, tables);
-        cpu::maraSparseTile(b.f, b.glossy.data(), true, 0, w, 0, 9, tables);
-        cpu::maraSparseTile(b.f, b.glossy.data(), true, 0, w, 9, h, tables);
         if (across == 1) {
             EXPECT_EQ(a.history, b.history);
             EXPECT_EQ(a.matteOut, b.matteOut);
@@ -427,10 +452,10 @@ TEST(Mara2017, M7SparseTapsStayInTheDiskAndTurnEveryFrame) {
         ASSERT_LE(std::hypot(float(dx), float(dy)), f.preRadius + 0.7072f);
     }
     EXPECT_NE(maraFrameRotation(0, 0, 4), maraFrameRotation(1, 0, 4));
-    // Each pixel its own rotation (rotationWidth 1), or runs of eight sharing one (the default):
-    // neighbouring runs differ, the 16 rotations are used alike, and a pixel's changes with the
-    // frame.
-    for (const int across : {1, 8}) {
+    // Each pixel its own rotation (rotationWidth 1), or runs of eight or sixteen (the default)
+    // sharing one: neighbouring runs differ, the 16 rotations are used alike, and a pixel's
+    // changes with the frame.
+    for (const int across : {1, 8, 16}) {
         int differ = 0, sameInRun = 0, changes = 0;
         for (int x = 0; x < 64 * across; x += across)
             differ += maraPixelRotation(x, 0, across, 0, 0, 4) !=

@@ -211,6 +211,26 @@ TEST(Simd, DeinterleaveOnEveryPathReadsEightRecords) {
                     << "path " << path << ", lane " << l << ", channel " << c;
 }
 
+// Sixteen packed records (Mara 2017's runs of sixteen on the AVX-512 path) as three vectors, and
+// the sixteen-lane mask helpers.
+TEST(Simd, DeinterleaveSixteenRecordsAndSixteenLaneMasks) {
+    std::vector<float> packed(
+        48); // exactly sixteen records: a read past them would show under ASan
+    for (size_t k = 0; k < packed.size(); ++k) packed[k] = float(k) * 1.5f - 7.0f;
+    f32x16 v[3];
+    deinterleave3x16(packed.data(), v[0], v[1], v[2]);
+    for (int l = 0; l < 16; ++l)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(v[c][l], packed[size_t(3 * l + c)]) << "lane " << l << ", channel " << c;
+    const i32x16 lanes = laneIndices<i32x16>();
+    for (int l = 0; l < 16; ++l) EXPECT_EQ(lanes[l], l);
+    for (int only = 0; only < 16; ++only) EXPECT_TRUE(anyLaneOf(lanes == only)) << only;
+    EXPECT_FALSE(anyLaneOf(lanes == 16));
+    EXPECT_FALSE(anyLaneOf(laneIndices<i8>() == 8));
+    const f32x16 joined = joinLanes(f8{} + 1.0f, f8{} + 2.0f);
+    for (int l = 0; l < 16; ++l) EXPECT_EQ(joined[l], l < 8 ? 1.0f : 2.0f);
+}
+
 // The helpers written once for eight and sixteen lanes give each lane the same bits at both
 // widths (the sixteen-wide SVGF levels rely on it).
 TEST(Simd, SixteenLanesAreTwoTimesEightLaneForLane) {

@@ -299,6 +299,45 @@ BMFR_SIMD_INLINE void loadXyz8(const float* p, int n, f8 out[3]) {
     std::memcpy(staged, p, sizeof(float) * 3 * size_t(n));
     deinterleave3(staged, out[0], out[1], out[2]);
 }
+/// Sixteen packed xyz records (48 floats) as x, y and z lanes: three 64-byte loads and two
+/// two-register permutes a channel (the AVX-512 path; elsewhere the permutes go through memory).
+BMFR_SIMD_INLINE void deinterleave3x16(const float* p, f32x16& x, f32x16& y, f32x16& z) {
+    f32x16 a, b, c; // floats 0 to 15, 16 to 31 and 32 to 47
+    std::memcpy(&a, p, sizeof a);
+    std::memcpy(&b, p + 16, sizeof b);
+    std::memcpy(&c, p + 32, sizeof c);
+    // Each channel's lanes from a and b first (the rest of the lanes are not used), then c's.
+    const f32x16 xab = __builtin_shufflevector(a, b, 0, 3, 6, 9, 12, 15, 18, 21, 24, 27, 30, 0, 0,
+                                               0, 0, 0),
+                 yab = __builtin_shufflevector(a, b, 1, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 0, 0,
+                                               0, 0, 0),
+                 zab = __builtin_shufflevector(a, b, 2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 0, 0, 0,
+                                               0, 0, 0);
+    x = __builtin_shufflevector(xab, c, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 17, 20, 23, 26, 29);
+    y = __builtin_shufflevector(yab, c, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30);
+    z = __builtin_shufflevector(zab, c, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31);
+}
+/// The sixteen lanes of lo then hi.
+BMFR_SIMD_INLINE f32x16 joinLanes(f8 lo, f8 hi) {
+    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+BMFR_SIMD_INLINE i32x16 joinLanes(i8 lo, i8 hi) {
+    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+/// Whether any lane of a mask of eight or sixteen lanes is true.
+template <class M> BMFR_SIMD_INLINE bool anyLaneOf(M m) {
+    if constexpr (sizeof(M) == sizeof(i8))
+        return anyLane(m);
+    else
+        return anyLane(__builtin_shufflevector(m, m, 0, 1, 2, 3, 4, 5, 6, 7) |
+                       __builtin_shufflevector(m, m, 8, 9, 10, 11, 12, 13, 14, 15));
+}
+/// The lane indices 0, 1, ... of a mask type.
+template <class M> BMFR_SIMD_INLINE M laneIndices() {
+    M m;
+    for (int l = 0; l < int(sizeof(M) / sizeof(int32_t)); ++l) m[l] = l;
+    return m;
+}
 /// Lanes [h, h + 8) of v, for h = 0 or (with sixteen lanes) 8.
 template <class V> BMFR_SIMD_INLINE f8 eightLanes(V v, int h) {
     if constexpr (kLanesOf<V> == 8)

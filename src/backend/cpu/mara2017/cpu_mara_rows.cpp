@@ -49,37 +49,58 @@ BMFR_SIMD_INLINE void gatherXyz8(const float* p, i8 index, f8 out[3]) {
     out[2] = __builtin_shuffle(t2, t3, i8{0, 1, 8, 9, 4, 5, 12, 13});
 }
 
-/// One sparse tap for eight centres: position, normal and colour weighted by g and the edges,
-/// added where `inside`.
-struct SparseSum {
-    f8 pc[3], nc[3], sum[3];
-    f8 total = f8{} + 1.0f;
+/// Lane l's record index[l] of a packed xyz buffer, eight or sixteen lanes.
+template <class V> BMFR_SIMD_INLINE void gatherXyz(const float* p, IntOf<V> index, V out[3]) {
+    if constexpr (kLanesOf<V> == 8) {
+        gatherXyz8(p, index, out);
+    } else {
+        f8 lo[3], hi[3];
+        gatherXyz8(p, __builtin_shufflevector(index, index, 0, 1, 2, 3, 4, 5, 6, 7), lo);
+        gatherXyz8(p, __builtin_shufflevector(index, index, 8, 9, 10, 11, 12, 13, 14, 15), hi);
+        for (int c = 0; c < 3; ++c) out[c] = joinLanes(lo[c], hi[c]);
+    }
+}
 
-    /// The tap at the eight neighbours from pixel j, one run of the packed buffers.
+/// A run of eight or sixteen packed xyz records (a tap's neighbours) as x, y and z lanes.
+template <Isa kIsa, class V> BMFR_SIMD_INLINE void runXyz(const float* p, V out[3]) {
+    if constexpr (kLanesOf<V> == 8)
+        deinterleave3<kIsa>(p, out[0], out[1], out[2]);
+    else
+        deinterleave3x16(p, out[0], out[1], out[2]);
+}
+
+/// One sparse tap for eight or sixteen centres (V): position, normal and colour weighted by g
+/// and the edges. A lane whose g is 0 adds nothing (its weight is 0 even where its edge weight
+/// is not finite), so g is how a caller leaves lanes out: a select by a mask in every tap ran lane
+/// by lane at sixteen lanes (GCC 12).
+template <class V> struct SparseSum {
+    V pc[3], nc[3], sum[3];
+    V total = V{} + 1.0f;
+
+    /// The tap at the neighbours from pixel j, one run of the packed buffers.
     template <Isa kIsa>
-    BMFR_SIMD_INLINE void addRun(const MaraFrame& f, const float* src, long j, f8 g, i8 inside) {
-        f8 pq[3], nq[3], s[3];
-        deinterleave3<kIsa>(f.position + 3 * j, pq[0], pq[1], pq[2]);
-        deinterleave3<kIsa>(f.normal + 3 * j, nq[0], nq[1], nq[2]);
-        deinterleave3<kIsa>(src + 3 * j, s[0], s[1], s[2]);
-        weigh(f, pq, nq, s, g, inside);
+    BMFR_SIMD_INLINE void addRun(const MaraFrame& f, const float* src, long j, V g) {
+        V pq[3], nq[3], s[3];
+        runXyz<kIsa>(f.position + 3 * j, pq);
+        runXyz<kIsa>(f.normal + 3 * j, nq);
+        runXyz<kIsa>(src + 3 * j, s);
+        weigh(f, pq, nq, s, g);
     }
 
     /// The tap at each lane's own pixel index[l].
-    BMFR_SIMD_INLINE void addGathered(const MaraFrame& f, const float* src, i8 index, f8 g,
-                                      i8 inside) {
-        f8 pq[3], nq[3], s[3];
-        gatherXyz8(f.position, index, pq);
-        gatherXyz8(f.normal, index, nq);
-        gatherXyz8(src, index, s);
-        weigh(f, pq, nq, s, g, inside);
+    BMFR_SIMD_INLINE void addGathered(const MaraFrame& f, const float* src, IntOf<V> index, V g) {
+        V pq[3], nq[3], s[3];
+        gatherXyz(f.position, index, pq);
+        gatherXyz(f.normal, index, nq);
+        gatherXyz(src, index, s);
+        weigh(f, pq, nq, s, g);
     }
 
   private:
-    BMFR_SIMD_INLINE void weigh(const MaraFrame& f, const f8 pq[3], const f8 nq[3], const f8 s[3],
-                                f8 g, i8 inside) {
-        f8 wt = g * edgeWeightOf(nc, pc, nq, pq, f.edges);
-        wt = inside & (wt > 0.0f) ? wt : 0.0f;
+    BMFR_SIMD_INLINE void weigh(const MaraFrame& f, const V pq[3], const V nq[3], const V s[3],
+                                V g) {
+        V wt = g * edgeWeightOf(nc, pc, nq, pq, f.edges);
+        wt = wt > 0.0f ? wt : V{}; // NaN (0 times a non-finite edge weight) too
         for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
         total = total + wt;
     }
@@ -152,14 +173,16 @@ struct RadiusCache {
 /// hundreds of rows away (stage 4's disk stays in cache, and ran slower with it).
 constexpr int kPrefetchTaps = 4;
 
-/// Eight centres sharing one rotation and one radius: tap by tap, the eight neighbours at one
-/// offset are one run of the packed buffers. `runs` holds the merged taps, or, where null, the
-/// `taps` unit offsets of `spiral` are scaled by `radius` in `built`.
-template <Isa kIsa>
-BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, int y, i8 live,
+/// Eight or sixteen centres (V) sharing one rotation and one radius: tap by tap, the
+/// neighbours at one offset are one run of the packed buffers. `runs` holds the merged taps, or,
+/// where null, the `taps` unit offsets of `spiral` are scaled by `radius` in `built`.
+template <Isa kIsa, class V>
+BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, int y, IntOf<V> live,
                                  const MaraTapRuns* runs, int rotation, const float* spiral,
                                  int taps, float radius, float sigma, RadiusTaps& built,
-                                 bool prefetch, SparseSum& acc) {
+                                 bool prefetch, SparseSum<V>& acc) {
+    using M = IntOf<V>;
+    constexpr int kLanes = kLanesOf<V>;
     const int *dx, *dy;
     const float* g;
     int count;
@@ -171,7 +194,8 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
         count = built.build(rotation, spiral, taps, radius, sigma);
         dx = built.dx[rotation], dy = built.dy[rotation], g = built.g[rotation];
     }
-    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    const M lane = laneIndices<M>();
+    const V on = live ? V{} + 1.0f : V{}; // g times 1 is g, exactly
     const int w = f.width;
     for (int t = 0; t < count; ++t) {
         if (prefetch && t + kPrefetchTaps < count) {
@@ -179,28 +203,33 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
             const long pj = long(py) * w + x + dx[t + kPrefetchTaps];
             const float* buffers[3] = {f.position, f.normal, src};
             for (const float* b : buffers) {
+                // The run's first and last floats, and every cache line between for sixteen.
                 __builtin_prefetch(b + 3 * pj);
-                __builtin_prefetch(b + 3 * pj + 23);
+                if constexpr (kLanes == 16) {
+                    __builtin_prefetch(b + 3 * pj + 16);
+                    __builtin_prefetch(b + 3 * pj + 32);
+                }
+                __builtin_prefetch(b + 3 * pj + 3 * kLanes - 1);
             }
         }
         const int qy = y + dy[t], qx = x + dx[t];
         if (qy < 0 || qy >= f.height) continue;
         const long j = long(qy) * w + qx;
-        if (qx >= 0 && qx + 8 <= w) {
-            acc.addRun<kIsa>(f, src, j, f8{} + g[t], live);
+        if (qx >= 0 && qx + kLanes <= w) {
+            acc.template addRun<kIsa>(f, src, j, on * g[t]);
             continue;
         }
-        const i8 lx = qx + lane, inside = live & (lx >= 0) & (lx < w);
-        if (!anyLane(inside)) continue;
-        acc.addGathered(f, src, inside ? int(j) + lane : i8{} + int(long(y) * w + x), f8{} + g[t],
-                        inside);
+        const M lx = qx + lane, inside = live & (lx >= 0) & (lx < w);
+        if (!anyLaneOf(inside)) continue;
+        acc.addGathered(f, src, inside ? int(j) + lane : M{} + int(long(y) * w + x),
+                        inside ? V{} + g[t] : V{});
     }
 }
 
 /// Eight centres with their own rotations or radii: each lane's taps, gathered.
 BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final, int x, int y,
                                int n, i8 live, f8 radius, const MaraTapTables& tables,
-                               SparseSum& acc) {
+                               SparseSum<f8>& acc) {
     const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
     const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
     // Every lane's taps, tap-major, so that the tap loop reads them as vectors.
@@ -247,64 +276,97 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
         const i8 qx = x + lane + dx, qy = y + dy;
         const i8 inside = live & (qx >= 0) & (qy >= 0) & (qx < w) & (qy < f.height);
         if (!anyLane(inside)) continue;
-        acc.addGathered(f, src, inside ? qy * w + qx : i8{} + int(i), load8(og + 8 * k), inside);
+        acc.addGathered(f, src, inside ? qy * w + qx : i8{} + int(i),
+                        inside ? load8(og + 8 * k) : f8{});
     }
+}
+
+/// Stage 4 or 7 of the n centres from x in row y (n below the lane count only at a tile's end),
+/// eight or sixteen lanes (V). Sixteen lanes with more than two radii, or without one rotation
+/// for all, take two groups of eight.
+template <Isa kIsa, class V>
+BMFR_SIMD_INLINE void sparseGroup(const MaraFrame& f, const float* src, bool final, int y, int x,
+                                  int n, const MaraTapTables& tables, RadiusCache& built) {
+    using M = IntOf<V>;
+    constexpr int kLanes = kLanesOf<V>;
+    const long i = long(y) * f.width + x;
+    float* dst = final ? f.matteOut : f.matteHistory;
+    SparseSum<V> acc;
+    if constexpr (kLanes == 8) {
+        loadXyz8(f.position + 3 * i, n, acc.pc);
+        loadXyz8(f.normal + 3 * i, n, acc.nc);
+        loadXyz8(src + 3 * i, n, acc.sum);
+    } else {
+        runXyz<kIsa>(f.position + 3 * i, acc.pc);
+        runXyz<kIsa>(f.normal + 3 * i, acc.nc);
+        runXyz<kIsa>(src + 3 * i, acc.sum);
+    }
+    V radius = V{} + f.preRadius;
+    if (final)
+        for (int l = 0; l < kLanes; ++l) radius[l] = l < n ? f.radius[i + l] : 0.0f;
+    const M live = (radius >= 0.5f) & (laneIndices<M>() < n);
+    auto store = [&] [[gnu::always_inline]] (const V v[3]) {
+        for (int h = 0; h < kLanes; h += 8) {
+            const f8 half[3] = {eightLanes(v[0], h), eightLanes(v[1], h), eightLanes(v[2], h)};
+            storeXyz8(dst + 3 * (i + h), std::min(8, n - h), half);
+        }
+    };
+    if (!anyLaneOf(live)) return store(acc.sum);
+    // One rotation for the lanes when runs of rotationWidth cover them: the lanes that share a
+    // radius take its taps as runs together, when there are at most two radii (the other lanes
+    // adding 0 meanwhile). More radii: each lane its own taps, gathered.
+    float radii[2] = {-1.0f, -1.0f}; // the first two radii of the live lanes
+    int distinct = 0;                // how many there are, counted up to 3
+    for (int l = 0; l < kLanes && distinct <= 2; ++l) {
+        if (!live[l] || radius[l] == radii[0] || radius[l] == radii[1]) continue;
+        if (distinct < 2) radii[distinct] = radius[l];
+        ++distinct;
+    }
+    if (f.rotationWidth % kLanes != 0 || distinct > 2) {
+        if constexpr (kLanes == 8) {
+            laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
+        } else {
+            sparseGroup<kIsa, f8>(f, src, final, y, x, 8, tables, built);
+            sparseGroup<kIsa, f8>(f, src, final, y, x + 8, n - 8, tables, built);
+            return;
+        }
+    } else {
+        const int rotation =
+            maraPixelRotation(x, y, f.rotationWidth, f.frame, f.seed, final ? 7 : 4);
+        auto taps = [&] [[gnu::always_inline]] (float shared, M lanes) {
+            const MaraTapRuns* runs = final ? nullptr : &tables.pre;
+            for (int t = 0; final && t < MaraTapTables::kRadii; ++t)
+                if (shared == tables.radius[t]) runs = &tables.runs[t];
+            sharedTaps<kIsa>(f, src, x, y, lanes, runs, rotation,
+                             f.finalSpiral + 2 * f.finalTaps * rotation, f.finalTaps, shared,
+                             f.finalSigma * shared, built.of(shared), final, acc);
+        };
+        if (distinct == 1) {
+            taps(radii[0], live);
+        } else {
+            taps(radii[0], live & (radius == radii[0]));
+            taps(radii[1], live & (radius == radii[1]));
+        }
+    }
+    const V out[3] = {acc.sum[0] / acc.total, acc.sum[1] / acc.total, acc.sum[2] / acc.total};
+    store(out);
 }
 
 BMFR_SIMD_DISPATCH(void, sparseRow,
                    (const MaraFrame& f, const float* src, bool final, int y, int x0, int x1,
                     const MaraTapTables& tables, RadiusCache& built),
                    (f, src, final, y, x0, x1, tables, built)) {
-    const long row = long(y) * f.width;
-    float* dst = final ? f.matteOut : f.matteHistory;
-    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
-    for (int x = x0; x < x1; x += 8) {
-        const int n = x1 - x < 8 ? x1 - x : 8;
-        const long i = row + x;
-        SparseSum acc;
-        loadXyz8(f.position + 3 * i, n, acc.pc);
-        loadXyz8(f.normal + 3 * i, n, acc.nc);
-        loadXyz8(src + 3 * i, n, acc.sum);
-        f8 radius = f8{} + f.preRadius;
-        if (final)
-            for (int l = 0; l < 8; ++l) radius[l] = l < n ? f.radius[i + l] : 0.0f;
-        const i8 live = (radius >= 0.5f) & (lane < n);
-        if (!anyLane(live)) {
-            storeXyz8(dst + 3 * i, n, acc.sum);
-            continue;
-        }
-        // One rotation for the eight when runs of rotationWidth cover them: the lanes that
-        // share a radius take its taps as runs together, when there are at most two radii
-        // (the other lanes add 0 meanwhile). More radii: each lane its own taps, gathered.
-        float radii[2] = {-1.0f, -1.0f}; // the first two radii of the live lanes
-        int distinct = 0;                // how many there are, counted up to 3
-        for (int l = 0; l < 8 && distinct <= 2; ++l) {
-            if (!live[l] || radius[l] == radii[0] || radius[l] == radii[1]) continue;
-            if (distinct < 2) radii[distinct] = radius[l];
-            ++distinct;
-        }
-        if (f.rotationWidth % 8 != 0 || distinct > 2) {
-            laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
-        } else {
-            const int rotation =
-                maraPixelRotation(x, y, f.rotationWidth, f.frame, f.seed, final ? 7 : 4);
-            auto taps = [&] [[gnu::always_inline]] (float shared, i8 lanes) {
-                const MaraTapRuns* runs = final ? nullptr : &tables.pre;
-                for (int t = 0; final && t < MaraTapTables::kRadii; ++t)
-                    if (shared == tables.radius[t]) runs = &tables.runs[t];
-                sharedTaps<kIsa>(f, src, x, y, lanes, runs, rotation,
-                                 f.finalSpiral + 2 * f.finalTaps * rotation, f.finalTaps, shared,
-                                 f.finalSigma * shared, built.of(shared), final, acc);
-            };
-            if (distinct == 1) {
-                taps(radii[0], live);
-            } else {
-                taps(radii[0], live & (radius == radii[0]));
-                taps(radii[1], live & (radius == radii[1]));
+    for (int x = x0; x < x1;) {
+        // Sixteen lanes on AVX-512 where a rotation's run covers them, as one register each.
+        if constexpr (kIsa == Isa::Avx512) {
+            if (f.rotationWidth % 16 == 0 && x % 16 == 0 && x + 16 <= x1) {
+                sparseGroup<kIsa, f32x16>(f, src, final, y, x, 16, tables, built);
+                x += 16;
+                continue;
             }
         }
-        const f8 out[3] = {acc.sum[0] / acc.total, acc.sum[1] / acc.total, acc.sum[2] / acc.total};
-        storeXyz8(dst + 3 * i, n, out);
+        sparseGroup<kIsa, f8>(f, src, final, y, x, std::min(8, x1 - x), tables, built);
+        x += 8;
     }
 }
 
