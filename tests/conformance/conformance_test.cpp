@@ -57,6 +57,7 @@ const FilterCase kFilters[] = {
        {{"normaliseConfidence", "true"}, {"preTaps", "8"}, {"finalTaps", "12"}}},
       {"each pixel its own spiral rotation", {{"rotationWidth", "1"}}},
       {"runs of three sharing a rotation", {{"rotationWidth", "3"}}},
+      {"runs of eight sharing a rotation", {{"rotationWidth", "8"}}},
       {"TAA on", {{"taa", "true"}}},
       {"TAA on, from the same surface", {{"taa", "true"}, {"taaSameSurface", "true"}}}}},
 };

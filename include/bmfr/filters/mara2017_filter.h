@@ -36,7 +36,7 @@ struct Mara2017Settings : TemporalSettings {
     bool normaliseConfidence = false; ///< stage 5 reads c / h instead of c
     bool median = true;               ///< stage 6, the 3x3 firefly median
     int finalTaps = 50;               ///< stage 7 taps
-    int rotationWidth = 8;            ///< stages 4 and 7: pixels along a row sharing a rotation
+    int rotationWidth = 16;           ///< stages 4 and 7: pixels along a row sharing a rotation
     float finalSigma = 0.5f;          ///< stage 7 Gaussian sigma, x radius r
     bool virtualReprojection = true;  ///< stage 8 reprojects the reflection's virtual position
     float glossySigmaScale = 7.0f;    ///< stages 9-10: sigma = scale * roughness^exponent + eps

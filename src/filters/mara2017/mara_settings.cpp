@@ -62,9 +62,9 @@ SettingsTable<S> ownSettings() {
          BMFR_FIELD(S, finalTaps)},
         {"rotationWidth", "mara-rotation-width", "pixels", {1, 64},
          "stages 4 and 7: runs of this many pixels along a row share one of the spiral's 16 "
-         "rotations, hashed per run, row and frame; 1 = each pixel its own. 8 lets the CPU read "
-         "eight neighbours' taps as one vector, with RMSE and temporal error within 0.3% of 1's "
-         "(the quality rule's tests)",
+         "rotations, hashed per run, row and frame; 1 = each pixel its own. 16 lets the CPU read "
+         "sixteen neighbours' taps as one vector on AVX-512 (eight elsewhere), with RMSE and "
+         "temporal error within 0.4% of 1's (the quality rule's tests)",
          BMFR_FIELD(S, rotationWidth)},
         {"finalSigma", "mara-final-sigma", "x radius", {0, 10, true},
          "stage 7 Gaussian sigma (the paper does not say)", BMFR_FIELD(S, finalSigma)},

@@ -24,7 +24,7 @@ struct MaraFrame {
     int clampRadius = 1; ///< the clamp's box is (2 clampRadius + 1)^2
     MaraEdgeWeights edges;
     int preTaps = 50, finalTaps = 50;
-    int rotationWidth = 8;                ///< pixels along a row that share a spiral rotation
+    int rotationWidth = 16;               ///< pixels along a row that share a spiral rotation
     float preRadius = 1, preSigma = 0.5f; ///< pixels
     int maxRadius = 16;                   ///< R, pixels
     float lowConfidence = 0.5f, radiusBoost = 6, finalSigma = 0.5f;

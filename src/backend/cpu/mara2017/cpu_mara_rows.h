@@ -39,10 +39,12 @@ struct MaraTapTables {
 };
 
 /// Stage 4 (`final` false: into f.matteHistory) or stage 7 (`final` true: into f.matteOut) of
-/// src on the pixels [x0, x1) x [y0, y1) (x0 a multiple of 8), eight at a time. Eight pixels
-/// that share a rotation (rotationWidth a multiple of 8) read each tap's eight neighbours as one
-/// run, for each of their radii in turn when they have one or two (the lanes of the other
-/// adding 0); others gather each pixel's own taps.
+/// src on the pixels [x0, x1) x [y0, y1) (x0 a multiple of 8), eight at a time, or sixteen on
+/// the AVX-512 path where a run of rotationWidth (a multiple of 16) covers them. Pixels that
+/// share a rotation (rotationWidth a multiple of 8) read each tap's eight or sixteen neighbours
+/// as one run, for each of their radii in turn when they have one or two (the lanes of the other
+/// adding 0); sixteen with more radii go as two eights, and eight with more gather each pixel's
+/// own taps. Every path gives the same bits.
 void maraSparseTile(const MaraFrame& f, const float* src, bool final, int x0, int x1, long y0,
                     long y1, const MaraTapTables& tables);
 
