@@ -99,10 +99,12 @@ template <class V> struct SparseSum {
   private:
     BMFR_SIMD_INLINE void weigh(const MaraFrame& f, const V pq[3], const V nq[3], const V s[3],
                                 V g) {
-        V wt = g * edgeWeightOf(nc, pc, nq, pq, f.edges);
-        wt = wt > 0.0f ? wt : V{}; // NaN (0 times a non-finite edge weight) too
-        for (int c = 0; c < 3; ++c) sum[c] = sum[c] + wt * s[c];
-        total = total + wt;
+        const V wt = g * edgeWeightOf(nc, pc, nq, pq, f.edges);
+        // Only where the weight is above 0 (not NaN, 0 times a non-finite edge weight): a lane
+        // left out then keeps its sums whatever the tap's colour, so a run of sixteen gives each
+        // lane the bits of a run of eight, which takes other lanes' taps.
+        for (int c = 0; c < 3; ++c) sum[c] = wt > 0.0f ? sum[c] + wt * s[c] : sum[c];
+        total = wt > 0.0f ? total + wt : total;
     }
 };
 
