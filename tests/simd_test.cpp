@@ -214,8 +214,8 @@ TEST(Simd, DeinterleaveOnEveryPathReadsEightRecords) {
 // Sixteen packed records (Mara 2017's runs of sixteen on the AVX-512 path) as three vectors, and
 // the sixteen-lane mask helpers.
 TEST(Simd, DeinterleaveSixteenRecordsAndSixteenLaneMasks) {
-    std::vector<float> packed(
-        48); // exactly sixteen records: a read past them would show under ASan
+    // Exactly sixteen records: a read past them would show under ASan.
+    std::vector<float> packed(48);
     for (size_t k = 0; k < packed.size(); ++k) packed[k] = float(k) * 1.5f - 7.0f;
     f32x16 v[3];
     deinterleave3x16(packed.data(), v[0], v[1], v[2]);

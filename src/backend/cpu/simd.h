@@ -317,20 +317,9 @@ BMFR_SIMD_INLINE void deinterleave3x16(const float* p, f32x16& x, f32x16& y, f32
     y = __builtin_shufflevector(yab, c, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 18, 21, 24, 27, 30);
     z = __builtin_shufflevector(zab, c, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 16, 19, 22, 25, 28, 31);
 }
-/// The sixteen lanes of lo then hi.
-BMFR_SIMD_INLINE f32x16 joinLanes(f8 lo, f8 hi) {
+/// The sixteen lanes of lo then hi (float or integer).
+template <class H> BMFR_SIMD_INLINE auto joinLanes(H lo, H hi) {
     return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-}
-BMFR_SIMD_INLINE i32x16 joinLanes(i8 lo, i8 hi) {
-    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-}
-/// Whether any lane of a mask of eight or sixteen lanes is true.
-template <class M> BMFR_SIMD_INLINE bool anyLaneOf(M m) {
-    if constexpr (sizeof(M) == sizeof(i8))
-        return anyLane(m);
-    else
-        return anyLane(__builtin_shufflevector(m, m, 0, 1, 2, 3, 4, 5, 6, 7) |
-                       __builtin_shufflevector(m, m, 8, 9, 10, 11, 12, 13, 14, 15));
 }
 /// The lane indices 0, 1, ... of a mask type.
 template <class M> BMFR_SIMD_INLINE M laneIndices() {
@@ -338,13 +327,20 @@ template <class M> BMFR_SIMD_INLINE M laneIndices() {
     for (int l = 0; l < int(sizeof(M) / sizeof(int32_t)); ++l) m[l] = l;
     return m;
 }
-/// Lanes [h, h + 8) of v, for h = 0 or (with sixteen lanes) 8.
-template <class V> BMFR_SIMD_INLINE f8 eightLanes(V v, int h) {
-    if constexpr (kLanesOf<V> == 8)
+/// Lanes [h, h + 8) of v (float or integer), for h = 0 or (with sixteen lanes) 8.
+template <class V> BMFR_SIMD_INLINE auto eightLanes(V v, int h) {
+    if constexpr (sizeof(V) == 32)
         return v;
     else
         return h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7)
                       : __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+/// Whether any lane of a mask of eight or sixteen lanes is true.
+template <class M> BMFR_SIMD_INLINE bool anyLaneOf(M m) {
+    if constexpr (sizeof(M) == sizeof(i8))
+        return anyLane(m);
+    else
+        return anyLane(eightLanes(m, 0) | eightLanes(m, 8));
 }
 /// out[k] lane l = in[l] lane k: an 8x8 transpose in three rounds of two-vector shuffles.
 BMFR_SIMD_INLINE void transpose8(const f8 in[8], f8 out[8]) {

@@ -55,8 +55,8 @@ template <class V> BMFR_SIMD_INLINE void gatherXyz(const float* p, IntOf<V> inde
         gatherXyz8(p, index, out);
     } else {
         f8 lo[3], hi[3];
-        gatherXyz8(p, __builtin_shufflevector(index, index, 0, 1, 2, 3, 4, 5, 6, 7), lo);
-        gatherXyz8(p, __builtin_shufflevector(index, index, 8, 9, 10, 11, 12, 13, 14, 15), hi);
+        gatherXyz8(p, eightLanes(index, 0), lo);
+        gatherXyz8(p, eightLanes(index, 8), hi);
         for (int c = 0; c < 3; ++c) out[c] = joinLanes(lo[c], hi[c]);
     }
 }
@@ -233,7 +233,7 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
                                int n, i8 live, f8 radius, const MaraTapTables& tables,
                                SparseSum<f8>& acc) {
     const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
-    const i8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
+    const i8 lane = laneIndices<i8>();
     // Every lane's taps, tap-major, so that the tap loop reads them as vectors.
     alignas(32) int ox[kMaxTaps * 8], oy[kMaxTaps * 8];
     alignas(32) float og[kMaxTaps * 8];
@@ -283,9 +283,9 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
     }
 }
 
-/// Stage 4 or 7 of the n centres from x in row y (n below the lane count only at a tile's end),
-/// eight or sixteen lanes (V). Sixteen lanes with more than two radii, or without one rotation
-/// for all, take two groups of eight.
+/// Stage 4 or 7 of the n centres from x in row y, eight lanes (n below 8 only at a tile's end) or
+/// sixteen (V; n is 16, within one run of rotationWidth). Sixteen with more than two radii take
+/// two groups of eight.
 template <Isa kIsa, class V>
 BMFR_SIMD_INLINE void sparseGroup(const MaraFrame& f, const float* src, bool final, int y, int x,
                                   int n, const MaraTapTables& tables, RadiusCache& built) {

@@ -1,6 +1,6 @@
-// The CPU backend's eight-wide Mara 2017 stages over rows: the sparse bilaterals and the
-// firefly median (the glossy passes: cpu_mara_glossy.h). They give the reference stages' bits (the
-// same operations in the same order, no fused multiply-adds), except where eight pixels share a
+// The CPU backend's vector Mara 2017 stages over rows: the sparse bilaterals and the firefly
+// median (the glossy passes: cpu_mara_glossy.h). They give the reference stages' bits (the same
+// operations in the same order, no fused multiply-adds), except where a run of pixels shares a
 // sparse stage's rotation and radius: there the taps that land on one pixel are merged into one, so
 // the sums round differently (held to the reference by the conformance suite's tolerance).
 #pragma once
@@ -12,7 +12,7 @@ namespace bmfr::cpu {
 /// Stage 6 on rows [y0, y1) into f.median.
 void maraMedianRows(const MaraFrame& f, long y0, long y1);
 
-/// The taps a run of eight pixels shares when they share a rotation and a radius: per rotation,
+/// The taps a run of pixels shares when they share a rotation and a radius: per rotation,
 /// each distinct whole-pixel offset once, first come first, with the Gaussian weights of the
 /// taps that land on it summed (a radius of 1.28 pixels puts 50 taps on 9 pixels).
 struct MaraTapRuns {
