@@ -293,6 +293,29 @@ BMFR_SIMD_INLINE void sparseGroup(const MaraFrame& f, const float* src, bool fin
     constexpr int kLanes = kLanesOf<V>;
     const long i = long(y) * f.width + x;
     float* dst = final ? f.matteOut : f.matteHistory;
+    V radius = V{} + f.preRadius;
+    if (final)
+        for (int l = 0; l < kLanes; ++l) radius[l] = l < n ? f.radius[i + l] : 0.0f;
+    const M live = (radius >= 0.5f) & (laneIndices<M>() < n);
+    // One rotation for the lanes when runs of rotationWidth cover them: the lanes that share a
+    // radius take its taps as runs together, when there are at most two radii (the other lanes
+    // adding 0 meanwhile). More radii: sixteen lanes go as two groups of eight (decided before
+    // the centres are read, which those read again), eight gather each lane's own taps.
+    float radii[2] = {-1.0f, -1.0f}; // the first two radii of the live lanes
+    int distinct = 0;                // how many there are, counted up to 3
+    for (int l = 0; l < kLanes && distinct <= 2; ++l) {
+        if (!live[l] || radius[l] == radii[0] || radius[l] == radii[1]) continue;
+        if (distinct < 2) radii[distinct] = radius[l];
+        ++distinct;
+    }
+    const bool ownTaps = f.rotationWidth % kLanes != 0 || distinct > 2;
+    if constexpr (kLanes == 16) {
+        if (ownTaps) {
+            sparseGroup<kIsa, f8>(f, src, final, y, x, 8, tables, built);
+            sparseGroup<kIsa, f8>(f, src, final, y, x + 8, n - 8, tables, built);
+            return;
+        }
+    }
     SparseSum<V> acc;
     if constexpr (kLanes == 8) {
         loadXyz8(f.position + 3 * i, n, acc.pc);
@@ -303,10 +326,6 @@ BMFR_SIMD_INLINE void sparseGroup(const MaraFrame& f, const float* src, bool fin
         runXyz<kIsa>(f.normal + 3 * i, acc.nc);
         runXyz<kIsa>(src + 3 * i, acc.sum);
     }
-    V radius = V{} + f.preRadius;
-    if (final)
-        for (int l = 0; l < kLanes; ++l) radius[l] = l < n ? f.radius[i + l] : 0.0f;
-    const M live = (radius >= 0.5f) & (laneIndices<M>() < n);
     auto store = [&] [[gnu::always_inline]] (const V v[3]) {
         for (int h = 0; h < kLanes; h += 8) {
             const f8 half[3] = {eightLanes(v[0], h), eightLanes(v[1], h), eightLanes(v[2], h)};
@@ -314,24 +333,8 @@ BMFR_SIMD_INLINE void sparseGroup(const MaraFrame& f, const float* src, bool fin
         }
     };
     if (!anyLaneOf(live)) return store(acc.sum);
-    // One rotation for the lanes when runs of rotationWidth cover them: the lanes that share a
-    // radius take its taps as runs together, when there are at most two radii (the other lanes
-    // adding 0 meanwhile). More radii: each lane its own taps, gathered.
-    float radii[2] = {-1.0f, -1.0f}; // the first two radii of the live lanes
-    int distinct = 0;                // how many there are, counted up to 3
-    for (int l = 0; l < kLanes && distinct <= 2; ++l) {
-        if (!live[l] || radius[l] == radii[0] || radius[l] == radii[1]) continue;
-        if (distinct < 2) radii[distinct] = radius[l];
-        ++distinct;
-    }
-    if (f.rotationWidth % kLanes != 0 || distinct > 2) {
-        if constexpr (kLanes == 8) {
-            laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
-        } else {
-            sparseGroup<kIsa, f8>(f, src, final, y, x, 8, tables, built);
-            sparseGroup<kIsa, f8>(f, src, final, y, x + 8, n - 8, tables, built);
-            return;
-        }
+    if (ownTaps) {
+        if constexpr (kLanes == 8) laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
     } else {
         const int rotation =
             maraPixelRotation(x, y, f.rotationWidth, f.frame, f.seed, final ? 7 : 4);
