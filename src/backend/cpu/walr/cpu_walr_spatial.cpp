@@ -54,19 +54,21 @@ constexpr int kMaxStep = 81; // 3^(T - 1) for the largest T
 constexpr float kChordSlack = 0x1p-20f;
 
 /// max(|v[0]|, |v[1]|, |v[2]|)
-BMFR_SIMD_INLINE f8 largest3(const f8 v[3]) {
-    return max8(abs8(v[0]), max8(abs8(v[1]), abs8(v[2])));
+template <class V> BMFR_SIMD_INLINE V largest3(const V v[3]) {
+    return maxOf(absOf(v[0]), maxOf(absOf(v[1]), absOf(v[2])));
 }
 
-/// Eight non-negative floats as halves no smaller (F16C's rounding up; on the baseline path
-/// the nearest half, one step up where it fell below), and back.
-template <cpu::Isa kIsa> BMFR_SIMD_INLINE void storeBounds(uint16_t* p, f8 v) {
+/// Eight (or, on the AVX-512 path, sixteen) non-negative floats as halves no smaller (F16C's
+/// rounding up; on the baseline path the nearest half, one step up where it fell below), and
+/// back.
+template <cpu::Isa kIsa, class V> BMFR_SIMD_INLINE void storeBounds(uint16_t* p, V v) {
     using H = HalfOf<kIsa>;
     if constexpr (std::is_same_v<H, F16cHalf>) {
-        s16x8 h;
+        HalvesOf<V> h;
         asm("vcvtps2ph $2, %1, %0" : "=vm"(h) : "v"(v));
         std::memcpy(p, &h, sizeof h);
     } else {
+        static_assert(std::is_same_v<V, f8>);
         v = v > 65504.0f ? splat8(__builtin_inff()) : v;
         _Float16 h[8];
         store8(h, v);
@@ -77,55 +79,70 @@ template <cpu::Isa kIsa> BMFR_SIMD_INLINE void storeBounds(uint16_t* p, f8 v) {
         std::memcpy(p, &bits, sizeof bits);
     }
 }
-template <cpu::Isa kIsa> BMFR_SIMD_INLINE f8 loadBounds(const uint16_t* p) {
-    return load8(reinterpret_cast<const HalfOf<kIsa>*>(p));
+template <cpu::Isa kIsa, class V = f8> BMFR_SIMD_INLINE V loadBounds(const uint16_t* p) {
+    using H = HalfOf<kIsa>;
+    if constexpr (std::is_same_v<H, F16cHalf>)
+        return loadHalves<V>(reinterpret_cast<const F16cHalf*>(p));
+    else
+        return load8(reinterpret_cast<const H*>(p));
 }
 
+/// Sixteen lanes on the AVX-512 path (at eight, a seventh of the spatial filter's time at
+/// 720p): each lane's operations are the same at either width.
 BMFR_SIMD_DISPATCH(void, chordBoundRows,
                    (const EdgeGuide& g, const EdgePlanes& e, int length, const uint16_t* below,
                     uint16_t* out, long y0, long y1),
                    (g, e, length, below, out, y0, y1)) {
+    using V = std::conditional_t<kIsa == Isa::Avx512, f32x16, f8>;
+    using I = IntOf<V>;
+    constexpr int kLanes = kLanesOf<V>;
     const long chordRow = 4 * e.planeSize;
     const float* p[3] = {e.plane(0), e.plane(1), e.plane(2)};
     const float third = 1.0f / 3.0f, twoThirds = 2.0f / 3.0f;
+    const V infinity = splat<V>(__builtin_inff());
+    I lane{};
+    for (int l = 0; l < kLanes; ++l) lane[l] = l;
     for (long y = y0; y < y1; ++y)
-        for (int x = 0; x < g.width; x += 8) {
-            const i8 laneX = i8{0, 1, 2, 3, 4, 5, 6, 7} + x;
+        for (int x = 0; x < g.width; x += kLanes) {
             for (int d = 0; d < 4; ++d) {
                 const int ux = walrTapX(4 + d), uy = walrTapY(4 + d), span = 3 * length;
                 uint16_t* dst = out + d * e.planeSize + EdgePlanes::kPad + y * chordRow + x;
-                const i8 endX = laneX + span * ux;
-                const i8 valid = (laneX < g.width) & (endX >= 0) & (endX < g.width);
-                if (y + span * uy >= g.height || !anyLane(valid)) {
-                    storeBounds<kIsa>(dst, splat8(__builtin_inff()));
+                // The columns whose segment stays in the image: [lo, hi).
+                const int lo = ux < 0 ? span : 0, hi = ux > 0 ? g.width - span : g.width;
+                const int from = x > lo ? x : lo, to = x + kLanes < hi ? x + kLanes : hi;
+                if (y + span * uy >= g.height || from >= to) {
+                    storeBounds<kIsa>(dst, infinity);
                     continue;
                 }
+                // One comparison: GCC 12 builds a sixteen-lane mask of several lane by lane.
+                typedef uint32_t U __attribute__((vector_size(sizeof(I))));
+                const I valid = U(lane + (x - from)) < U(I{} + (to - from));
                 // The positions at 0, L, 2 L and 3 L along the segment.
-                f8 r[4][3];
+                V r[4][3];
                 for (int j = 0; j < 4; ++j) {
                     const long q = y * e.rowStride + x + long(j * length) * (uy * e.rowStride + ux);
-                    for (int c = 0; c < 3; ++c) r[j][c] = load8(p[c] + q);
+                    for (int c = 0; c < 3; ++c) r[j][c] = loadVector<V>(p[c] + q);
                 }
                 // How far the inner two stray from the whole chord, at their parameters.
-                f8 d1[3], d2[3];
+                V d1[3], d2[3];
                 for (int c = 0; c < 3; ++c) {
-                    const f8 chord = r[3][c] - r[0][c];
+                    const V chord = r[3][c] - r[0][c];
                     d1[c] = r[1][c] - (r[0][c] + third * chord);
                     d2[c] = r[2][c] - (r[0][c] + twoThirds * chord);
                 }
-                const f8 a1 = largest3(d1), a2 = largest3(d2);
-                f8 bound = max8(a1, a2);
+                const V a1 = largest3(d1), a2 = largest3(d2);
+                V bound = maxOf(a1, a2);
                 if (below) { // each third's own bound plus its chord's distance from the whole's
                     const long b = d * e.planeSize + EdgePlanes::kPad + y * chordRow + x;
                     const long along = long(length) * (uy * chordRow + ux);
-                    bound = max8(loadBounds<kIsa>(below + b) + a1,
-                                 max8(loadBounds<kIsa>(below + b + along) + bound,
-                                      loadBounds<kIsa>(below + b + 2 * along) + a2));
+                    bound = maxOf(loadBounds<kIsa, V>(below + b) + a1,
+                                  maxOf(loadBounds<kIsa, V>(below + b + along) + bound,
+                                        loadBounds<kIsa, V>(below + b + 2 * along) + a2));
                 }
-                const f8 magnitude =
+                const V magnitude =
                     largest3(r[0]) + largest3(r[1]) + largest3(r[2]) + largest3(r[3]) + bound;
                 bound = bound + kChordSlack * magnitude;
-                storeBounds<kIsa>(dst, valid ? bound : splat8(__builtin_inff()));
+                storeBounds<kIsa>(dst, valid ? bound : infinity);
             }
         }
 }
@@ -203,9 +220,9 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
         const long along8 = uy * runRow + ux;   // the same in the run planes
         const i8 endX = laneX + step * ux;
         const i8 inside = (laneX < width) & (endX >= 0) & (endX < width);
-        store8(out.weight[tap], f8{});
-        std::memset(out.steps[tap], 0, sizeof out.steps[tap]);
         if (ey < 0 || ey >= height || !anyLane(inside)) {
+            store8(out.weight[tap], f8{});
+            std::memset(out.steps[tap], 0, sizeof out.steps[tap]);
             if constexpr (stepping)
                 storeBytes(runs + tap * planeSize, exists ? i8{} : i8{} + 255, 8);
             continue;
@@ -315,37 +332,40 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
             storeTrace();
         }
         const i8 kept = inside & (m > 0.0f);
-        store8(out.weight[tap], kept ? m : f8{});
-        const i8 steps = kept ? i8{} + step : i8{};
-        std::memcpy(out.steps[tap], &steps, sizeof steps);
-        if (!tracing || !replacement) continue;
+        f8 weight = kept ? m : f8{};
+        i8 steps = kept ? i8{} + step : i8{};
         const i8 replaced = inside & ~kept & (edge > 1);
-        if (!anyLane(replaced)) continue;
-        int replacedStep[8] = {};
-        int deepest = 0; // the largest step before `first` that a replacement reads
-        for (int lane = 0; lane < 8; ++lane) {
-            if (replaced[lane]) {
-                const int kr = replacementStep(
-                    replacementHash(i + lane, l.frame, l.iteration, tap, l.seed), edge[lane]);
-                replacedStep[lane] = kr;
-                if ((stepping || kr < first) && kr > deepest) deepest = kr;
+        if (tracing && replacement && anyLane(replaced)) {
+            // replacementStep(replacementHash(...)) (edge_tracing.h) of the eight lanes at once,
+            // in its operations: most lanes of a block cut by an edge are replaced.
+            const u32x8 hash =
+                hashKeysOf(u32x8(laneX - x) + uint32_t(i), u32x8{} + l.frame,
+                           u32x8{} + uint32_t(l.iteration * 8 + tap), u32x8{} + l.seed);
+            const f8 unit = __builtin_convertvector(i8(hash >> 8), f8) * (1.0f / 16777216.0f);
+            const i8 replacedStep =
+                1 + __builtin_convertvector(unit * __builtin_convertvector(edge - 1, f8), i8);
+            // The largest step before `first` that a replacement reads.
+            const i8 early = replaced & (stepping ? replaced : replacedStep < first);
+            const int deepest = -hminLanes(early ? -replacedStep : i8{});
+            // Steps traced by an earlier iteration, traced again for the lanes that read them
+            // (their running minima go where this iteration's trace, which starts at `first`,
+            // left none); with stepped tracing every step a replacement reads, since a stepped
+            // trace skips some.
+            f8 before = splat8(1.0f);
+            for (int k = 1; k <= deepest; ++k) {
+                const f8 w = weightAt(k);
+                before = w < before ? w : before;
+                running[k] = before;
             }
+            // Each replaced lane's running minimum at its step; the others read one that a
+            // replaced lane reads, and keep their own.
+            const int any = hminLanes(replaced ? replacedStep : i8{} + kMaxStep);
+            const i8 at = (replaced ? replacedStep : i8{} + any) * 8 + i8{0, 1, 2, 3, 4, 5, 6, 7};
+            weight = replaced ? gather8(reinterpret_cast<const float*>(running), at) : weight;
+            steps = replaced ? replacedStep : steps;
         }
-        // Steps traced by an earlier iteration, traced again for the lanes that read them (their
-        // running minima go where this iteration's trace, which starts at `first`, left none);
-        // with stepped tracing every step a replacement reads, since a stepped trace skips some.
-        f8 early = splat8(1.0f);
-        for (int k = 1; k <= deepest; ++k) {
-            const f8 w = weightAt(k);
-            early = w < early ? w : early;
-            running[k] = early;
-        }
-        for (int lane = 0; lane < 8; ++lane) {
-            if (replaced[lane]) {
-                out.weight[tap][lane] = running[replacedStep[lane]][lane];
-                out.steps[tap][lane] = replacedStep[lane];
-            }
-        }
+        store8(out.weight[tap], weight);
+        std::memcpy(out.steps[tap], &steps, sizeof steps);
     }
 }
 

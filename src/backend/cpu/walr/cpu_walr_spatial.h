@@ -7,10 +7,10 @@
 // The trace skips taps whose steps provably all weigh 1: the segment from each pixel along each
 // forward tap direction (4 to 7; taps 0 to 3 run along them backwards) has a bound on how far its
 // positions stray from its chord (the straight line between its two end positions), built for the
-// lengths 3, 9, 27 and 81, each from the one below (a one-step segment's bound is 0), and used
-// from step 9 on. Along the chord the plane distance is linear, so the end's distance plus the
-// bound (with a margin for rounding) below the ramp's start mean no pixel of the segment can
-// lower the traced minimum.
+// lengths 3, 9, 27 and 81, each from the one below (a one-step segment's bound is 0; sixteen
+// lanes at a time on the AVX-512 path), and used from step 9 on. Along the chord the plane distance
+// is linear, so the end's distance plus the bound (with a margin for rounding) below the ramp's
+// start mean no pixel of the segment can lower the traced minimum.
 //
 // The stepped trace (EdgeGuide::stepFraction) builds no chord bounds: each block's eight lanes
 // skip what the shortest of their flat runs allows (steppedTrace), read from planes of runs
@@ -30,7 +30,7 @@ namespace bmfr::cpu {
 /// only the steps beyond the last one's. And the chord bounds of the segments of length
 /// `chordLength` that start at each pixel, along the four forward directions.
 struct EdgePlanes {
-    static constexpr int kPad = 96; ///< >= the largest step (81) + 8 lanes - 1
+    static constexpr int kPad = 96; ///< >= the largest step (81) + 16 lanes - 1
     std::vector<float> planes;
     std::vector<float> tracedMin; ///< [row][block of 8 pixels][direction][lane]
     std::vector<int32_t> tracedEdge;
