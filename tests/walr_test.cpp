@@ -86,7 +86,7 @@ WalrRun runWalr(const WalrGBuffer& f, const EdgeGuide& g, int iterations, bool k
         l.halfIn = half && t > 0, l.halfOut = half && t < iterations - 1;
         l.trace = trace.at(t);
         if (eightWide)
-            cpu::walrAtrousIteration(pool, g, planes, l);
+            cpu::walrAtrousIteration(pool, g, planes, l, t + 1 == iterations);
         else
             for (int y = 0; y < f.h; ++y)
                 for (int x = 0; x < f.w; ++x) walrAtrousPixel(g, l, x, y);

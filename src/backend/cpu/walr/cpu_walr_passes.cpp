@@ -41,7 +41,8 @@ class CpuWalrPasses final : public reference::HostWalrPipeline {
         planes_.fill(ctx.pool, g);
         const int iterations = walrIterations(s, g.width, g.height);
         for (int t = 0; t < iterations; ++t)
-            walrAtrousIteration(ctx.pool, g, planes_, buffers.level(ctx, t, s.sampleWeights));
+            walrAtrousIteration(ctx.pool, g, planes_, buffers.level(ctx, t, s.sampleWeights),
+                                t + 1 == iterations);
         buffers.lastAverages = iterations % 2;
         walrSolveImage(ctx.pool, g.width, g.height, buffers.averages[buffers.lastAverages].data(),
                        buffers.features.data(), s.pivotEpsilon, buffers.spatial.data());

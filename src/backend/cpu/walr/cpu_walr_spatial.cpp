@@ -184,8 +184,8 @@ struct BlockTaps {
 /// kStepped: stepped tracing (its own instantiation, since its code in the exact trace's loop
 /// measured 8% off the whole spatial filter).
 template <cpu::Isa kIsa, bool kStepped>
-BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int x,
-                                 int y, BlockTaps& out, long& skipped) {
+BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, bool last,
+                                 int x, int y, BlockTaps& out, long& skipped) {
     // Read once: the stores below (memcpy and memset among them) might otherwise alias them.
     const long rowStride = e.rowStride, planeSize = e.planeSize;
     const int width = g.width, height = g.height, step = l.step;
@@ -269,6 +269,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
             }
         };
         auto storeTrace = [&]() __attribute__((always_inline)) {
+            if (last) return;
             store8(stateMin, m);
             std::memcpy(stateEdge, &edge, sizeof edge);
         };
@@ -428,16 +429,16 @@ BMFR_SIMD_INLINE void gatherPixel(const WalrLevel& l, const BlockTaps& t, const 
 
 /// Trace and gather rows y0 .. y1 - 1 of one iteration, eight pixels at a time.
 BMFR_SIMD_DISPATCH(void, atrousRows,
-                   (const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, int y0, int y1,
-                    long& skipped),
-                   (g, e, l, y0, y1, skipped)) {
+                   (const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l, bool last, int y0,
+                    int y1, long& skipped),
+                   (g, e, l, last, y0, y1, skipped)) {
     long along[8]; // pixels from one step along each tap direction to the next
     for (int tap = 0; tap < 8; ++tap) along[tap] = long(walrTapY(tap)) * g.width + walrTapX(tap);
     BlockTaps taps;
     auto rows = [&](auto stepped) __attribute__((always_inline)) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < g.width; x += 8) {
-                traceBlock<kIsa, decltype(stepped)::value>(g, e, l, x, y, taps, skipped);
+                traceBlock<kIsa, decltype(stepped)::value>(g, e, l, last, x, y, taps, skipped);
                 const int count = g.width - x < 8 ? g.width - x : 8;
                 for (int lane = 0; lane < count; ++lane)
                     gatherPixel<kIsa>(l, taps, along, lane, long(y) * g.width + x + lane);
@@ -514,7 +515,8 @@ void EdgePlanes::buildShortestRuns(ThreadPool& pool, int height) {
     pool.parallelFor(height, 8, [&](long y0, long y1) { shortestRunRows(*this, y0, y1); });
 }
 
-void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l) {
+void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e, const WalrLevel& l,
+                         bool last) {
     if (g.stepped() && l.iteration > 0) e.buildShortestRuns(pool, g.height);
     if (g.tracing && !g.stepped() && l.iteration >= 2)
         while (e.chordLength < l.step) e.buildChordBounds(pool, g);
@@ -522,7 +524,7 @@ void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& e, co
     // measured 1.5x slower, and bands cut into strips no faster.
     pool.parallelFor(g.height, 2, [&](long y0, long y1) {
         long skipped = 0;
-        atrousRows(g, e, l, int(y0), int(y1), skipped);
+        atrousRows(g, e, l, last, int(y0), int(y1), skipped);
         e.skippedTaps += skipped;
     });
 }

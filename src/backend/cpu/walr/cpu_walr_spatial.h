@@ -72,7 +72,7 @@ struct EdgePlanes {
 /// One a-trous iteration (walrAtrousPixel) over the whole image; level.layout must be
 /// interleaved ({1, 16}). Iterations run in order from 0 after planes.fill.
 void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& planes,
-                         const WalrLevel& level);
+                         const WalrLevel& level, bool last);
 
 /// walrSolvePixel over the whole image from interleaved averages into `out` (3 floats per
 /// pixel); features has 2 floats per pixel.
