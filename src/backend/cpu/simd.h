@@ -336,6 +336,19 @@ template <class V> BMFR_SIMD_INLINE auto eightLanes(V v, int h) {
                       : __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
 }
 /// Whether any lane of a mask of eight or sixteen lanes is true.
+/// The square root of each lane in a body compiled for `isa`: one vsqrtps on the AVX2 and
+/// AVX-512 paths, where GCC 12 takes a lane loop of sqrtf lane by lane; correctly rounded,
+/// as sqrtf, on every path.
+template <cpu::Isa isa, class V> BMFR_SIMD_INLINE V sqrtLanes(V v) {
+#if BMFR_SIMD_F16C
+    if constexpr (isa != cpu::Isa::Baseline) {
+        asm("vsqrtps %1, %0" : "=v"(v) : "v"(v));
+        return v;
+    }
+#endif
+    for (int l = 0; l < kLanesOf<V>; ++l) v[l] = __builtin_sqrtf(v[l]);
+    return v;
+}
 template <class M> BMFR_SIMD_INLINE bool anyLaneOf(M m) {
     if constexpr (sizeof(M) == sizeof(i8))
         return anyLane(m);
