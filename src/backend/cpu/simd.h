@@ -155,9 +155,9 @@ struct F16cHalf {
     uint16_t bits;
 };
 typedef int16_t s16x8 __attribute__((vector_size(16)));
-#if BMFR_SIMD_F16C
 typedef int16_t s16x16 __attribute__((vector_size(32)));
 template <class V> using HalvesOf = std::conditional_t<sizeof(V) == sizeof(f8), s16x8, s16x16>;
+#if BMFR_SIMD_F16C
 /// The lanes of V as halves, to floats: eight (the AVX2 and AVX-512 paths) or sixteen (the
 /// AVX-512 path only).
 template <class V> BMFR_SIMD_INLINE V loadHalves(const F16cHalf* p) {
@@ -336,19 +336,6 @@ template <class V> BMFR_SIMD_INLINE auto eightLanes(V v, int h) {
                       : __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
 }
 /// Whether any lane of a mask of eight or sixteen lanes is true.
-/// The square root of each lane in a body compiled for `isa`: one vsqrtps on the AVX2 and
-/// AVX-512 paths, where GCC 12 takes a lane loop of sqrtf lane by lane; correctly rounded,
-/// as sqrtf, on every path.
-template <cpu::Isa isa, class V> BMFR_SIMD_INLINE V sqrtLanes(V v) {
-#if BMFR_SIMD_F16C
-    if constexpr (isa != cpu::Isa::Baseline) {
-        asm("vsqrtps %1, %0" : "=v"(v) : "v"(v));
-        return v;
-    }
-#endif
-    for (int l = 0; l < kLanesOf<V>; ++l) v[l] = __builtin_sqrtf(v[l]);
-    return v;
-}
 template <class M> BMFR_SIMD_INLINE bool anyLaneOf(M m) {
     if constexpr (sizeof(M) == sizeof(i8))
         return anyLane(m);

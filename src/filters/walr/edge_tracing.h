@@ -211,10 +211,15 @@ BMFR_HD TracedTap traceTapStepped(const EdgeGuide& g, const EdgeCentre& c, const
     return keptOrReplaced(g, c, x, y, ux, uy, step, m, edge, hash);
 }
 
-/// The hash of a replacement choice: pixel, frame, iteration, tap and the user's seed.
+/// The hash of a replacement choice: pixel, frame, iteration, tap and the user's seed; of a
+/// vector of pixels too (the CPU backend's), as hashKeysOf.
+template <class U>
+BMFR_HD U replacementHashOf(U pixel, uint32_t frame, int iteration, int tap, uint32_t seed) {
+    return hashKeysOf(pixel, U{} + frame, U{} + uint32_t(iteration * 8 + tap), U{} + seed);
+}
 BMFR_HD uint32_t replacementHash(long pixel, uint32_t frame, int iteration, int tap,
                                  uint32_t seed) {
-    return hashKeys(uint32_t(pixel), frame, uint32_t(iteration * 8 + tap), seed);
+    return replacementHashOf(uint32_t(pixel), frame, iteration, tap, seed);
 }
 
 } // namespace bmfr

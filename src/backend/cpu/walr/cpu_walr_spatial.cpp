@@ -121,8 +121,7 @@ BMFR_SIMD_DISPATCH(void, chordBoundRows,
     const float* p[3] = {e.plane(0), e.plane(1), e.plane(2)};
     const float third = 1.0f / 3.0f, twoThirds = 2.0f / 3.0f;
     const V infinity = splat<V>(__builtin_inff());
-    I lane{};
-    for (int l = 0; l < kLanes; ++l) lane[l] = l;
+    const I lane = laneIndices<I>();
     for (long y = y0; y < y1; ++y)
         for (int x = 0; x < g.width; x += kLanes) {
             for (int d = 0; d < 4; ++d) {
@@ -360,14 +359,13 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
         if (tracing && replacement && anyLane(replaced)) {
             // replacementStep(replacementHash(...)) (edge_tracing.h) of the eight lanes at once,
             // in its operations: most lanes of a block cut by an edge are replaced.
-            const u32x8 hash =
-                hashKeysOf(u32x8(laneX - x) + uint32_t(i), u32x8{} + l.frame,
-                           u32x8{} + uint32_t(l.iteration * 8 + tap), u32x8{} + l.seed);
+            const u32x8 hash = replacementHashOf(u32x8(laneX - x) + uint32_t(i), l.frame,
+                                                 l.iteration, tap, l.seed);
             const f8 unit = __builtin_convertvector(i8(hash >> 8), f8) * (1.0f / 16777216.0f);
             const i8 replacedStep =
                 1 + __builtin_convertvector(unit * __builtin_convertvector(edge - 1, f8), i8);
-            // The largest step before `first` that a replacement reads.
-            const i8 early = replaced & (stepping ? replaced : replacedStep < first);
+            // The largest step that a replacement reads before `first` (stepped: any step).
+            const i8 early = stepping ? replaced : replaced & (replacedStep < first);
             const int deepest = -hminLanes(early ? -replacedStep : i8{});
             // Steps traced by an earlier iteration, traced again for the lanes that read them
             // (their running minima go where this iteration's trace, which starts at `first`,
@@ -382,7 +380,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
             // Each replaced lane's running minimum at its step; the others read one that a
             // replaced lane reads, and keep their own.
             const int any = hminLanes(replaced ? replacedStep : i8{} + kMaxStep);
-            const i8 at = (replaced ? replacedStep : i8{} + any) * 8 + i8{0, 1, 2, 3, 4, 5, 6, 7};
+            const i8 at = (replaced ? replacedStep : i8{} + any) * 8 + (laneX - x);
             weight = replaced ? gather8(reinterpret_cast<const float*>(running), at) : weight;
             steps = replaced ? replacedStep : steps;
         }
@@ -493,8 +491,10 @@ BMFR_SIMD_DISPATCH(void, solveBlock,
         for (int lane = count; lane < 8; ++lane)
             for (int k = 0; k < kWalrAverages; ++k) a[k][lane] = k == 2 || k == 4 ? 1.0f : 0.0f;
     }
-    auto root = [](f8 v) __attribute__((always_inline)) {
-        return sqrtLanes<kIsa>(v);
+    // A loop GCC makes one vsqrtps (the file is compiled without math-errno).
+    auto root = [](f8 v) {
+        for (int lane = 0; lane < 8; ++lane) v[lane] = __builtin_sqrtf(v[lane]);
+        return v;
     };
     const f8 c00 = splat8(1.0f), c10 = a[0], c20 = a[1];
     const f8 p1 = a[2] - c10 * c10;

@@ -7,10 +7,10 @@
 // The trace skips taps whose steps provably all weigh 1: the segment from each pixel along each
 // forward tap direction (4 to 7; taps 0 to 3 run along them backwards) has a bound on how far its
 // positions stray from its chord (the straight line between its two end positions), built for the
-// lengths 3, 9, 27 and 81, each from the one below (a one-step segment's bound is 0; sixteen
-// lanes at a time on the AVX-512 path), and used from step 9 on. Along the chord the plane distance
-// is linear, so the end's distance plus the bound (with a margin for rounding) below the ramp's
-// start mean no pixel of the segment can lower the traced minimum.
+// lengths 3, 9, 27 and 81, each from the one below (a one-step segment's bound is 0), and used
+// from step 9 on. They are built sixteen lanes at a time on the AVX-512 path. Along the chord the
+// plane distance is linear, so the end's distance plus the bound (with a margin for rounding) below
+// the ramp's start mean no pixel of the segment can lower the traced minimum.
 //
 // The stepped trace (EdgeGuide::stepFraction) builds no chord bounds: each block's eight lanes
 // skip what the shortest of their flat runs allows (steppedTrace), read from planes of runs
@@ -70,7 +70,8 @@ struct EdgePlanes {
 };
 
 /// One a-trous iteration (walrAtrousPixel) over the whole image; level.layout must be
-/// interleaved ({1, 16}). Iterations run in order from 0 after planes.fill.
+/// interleaved ({1, 16}). Iterations run in order from 0 after planes.fill; the `last` one
+/// leaves no trace for a next (the next call must be iteration 0, after a fill).
 void walrAtrousIteration(ThreadPool& pool, const EdgeGuide& g, EdgePlanes& planes,
                          const WalrLevel& level, bool last);
 
