@@ -1,7 +1,8 @@
 // The CPU backend's Mara 2017: the reference stages, except the input pass, stages 3 and 8 and
 // the composition, eight pixels at a time (cpu_mara_temporal.h), and stage 5, whose two 1D min
 // passes over 2R + 1 pixels (129 at 1280 wide) become van Herk / Gil-Werman running minima: three
-// comparisons per pixel whatever R, with the same minima bit for bit; and stages 4, 6 and 7
+// comparisons per pixel whatever R, with the same minima bit for bit, the column pass eight
+// columns at a time; and stages 4, 6 and 7
 // (cpu_mara_rows.h) and 9 and 10 (cpu_mara_glossy.h), eight pixels at a time.
 #include "backend/backend_registry.h"
 #include "backend/cpu/mara2017/cpu_mara_glossy.h"
@@ -12,10 +13,28 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 
 namespace bmfr::cpu {
 
 namespace {
+
+/// The running minimum's longest line with its padding, for radius r.
+int longestRun(int w, int h, int r) {
+    return std::max(w, h) + 4 * r + 2;
+}
+
+/// Stage 5's column minima for columns [x0, x1) of an image w x h, eight columns at a time
+/// (their rows are eight consecutive floats), the rest one by one.
+BMFR_SIMD_DISPATCH(void, columnMinima,
+                   (const float* in, int w, int h, int r, float* out, long x0, long x1,
+                    simd::f8* g8, float* g),
+                   (in, w, h, r, out, x0, x1, g8, g)) {
+    const int longest = longestRun(w, h, r);
+    long x = x0;
+    for (; x + 8 <= x1; x += 8) runningMin(in + x, w, h, r, out + x, w, g8, g8 + longest);
+    for (; x < x1; ++x) runningMin(in + x, w, h, r, out + x, w, g, g + longest);
+}
 
 class CpuMaraPasses final : public reference::HostMaraPipeline {
   public:
@@ -23,8 +42,9 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         HostMaraPipeline::allocate(w, h, s, threads);
         const size_t n = size_t(w) * size_t(h);
         stage5_.reserve(n);
-        scratch_.reserve(2 * size_t(longestRun(w, h, maraFrameSettings(s, w).maxRadius)) *
-                         size_t(threads));
+        const size_t longest = size_t(longestRun(w, h, maraFrameSettings(s, w).maxRadius));
+        scratch_.reserve(2 * longest * size_t(threads));
+        scratch8_.reserve(2 * longest * size_t(threads) * 8 + 8);
         tables_.reserve(std::max(s.preTaps, s.finalTaps));
         glossy_.reserve(
             maraGlossyScratch(w, maraGlossyReachBound(s.glossySigmaScale, s.glossySigmaExponent,
@@ -61,15 +81,18 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
         const int longest = longestRun(w, hgt, r);
         const size_t perThread = 2 * size_t(longest);
         scratch_.resize(perThread * size_t(ctx.pool.threadCount()));
+        scratch8_.resize(perThread * size_t(ctx.pool.threadCount()) * 8 + 8);
+        // Eight-float vectors on 32 bytes: the vector's own allocation aligns floats only.
+        simd::f8* const lines = reinterpret_cast<simd::f8*>(
+            (reinterpret_cast<uintptr_t>(scratch8_.data()) + 31) & ~uintptr_t(31));
         ctx.pool.parallelFor(hgt, 8, [&](long y0, long y1) {
             float* g = scratch_.data() + perThread * size_t(ThreadPool::currentThreadIndex());
             for (long y = y0; y < y1; ++y)
                 runningMin(stage5_.data() + y * w, 1, w, r, f.rowMin + y * w, 1, g, g + longest);
         });
         ctx.pool.parallelFor(w, 16, [&](long x0, long x1) {
-            float* g = scratch_.data() + perThread * size_t(ThreadPool::currentThreadIndex());
-            for (long x = x0; x < x1; ++x)
-                runningMin(f.rowMin + x, w, hgt, r, f.radius + x, w, g, g + longest);
+            const size_t at = perThread * size_t(ThreadPool::currentThreadIndex());
+            columnMinima(f.rowMin, w, hgt, r, f.radius, x0, x1, lines + at, scratch_.data() + at);
         });
         ctx.pool.parallelFor(hgt, 8, [&](long y0, long y1) {
             for (long i = y0 * w; i < y1 * w; ++i)
@@ -110,9 +133,6 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     }
 
   private:
-    /// The running minimum's longest line with its padding, for radius r.
-    static int longestRun(int w, int h, int r) { return std::max(w, h) + 4 * r + 2; }
-
     /// Stage 4 or 7 in tiles, not rows: a 64-pixel radius reaches 129 rows, and a tile's taps
     /// stay in cache.
     void sparse(const MaraPassContext& ctx, const MaraFrame& f, const float* src, bool final) {
@@ -132,7 +152,8 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
     }
 
     std::vector<float> stage5_, scratch_;
-    std::vector<float> glossy_; ///< the glossy passes' pair weights, per worker
+    std::vector<float> scratch8_; ///< columnMinima's eight-column lines, per worker
+    std::vector<float> glossy_;   ///< the glossy passes' pair weights, per worker
     MaraTapTables tables_;
 };
 
