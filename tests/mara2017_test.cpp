@@ -17,6 +17,7 @@
 #include "test_support.h"
 #include <bmfr/bmfr.hpp>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <gtest/gtest.h>
@@ -249,6 +250,25 @@ TEST(Mara2017, CpuRunningMinEqualsTheBruteForceMin) {
                     m = std::fmin(m, in[size_t(j)]);
                 ASSERT_EQ(out[size_t(k)], m) << "n " << n << " r " << r << " k " << k;
             }
+            // Eight columns at once (stage 5's column pass): each lane as the scalar min, with
+            // NaNs at other places in each column.
+            std::vector<float> in8 = randomValues(size_t(8 * n), 0, 1, unsigned(n * 7 + r));
+            for (int c = 0; c < 8; ++c)
+                for (int k = c % 5; r > 0 && k < n; k += 5 + c) in8[size_t(8 * k + c)] = NAN;
+            std::vector<float> out8(in8.size());
+            // Its lines on 32 bytes, as the stage keeps them.
+            std::vector<float> lines(16 * g.size() + 8);
+            auto* g8 = reinterpret_cast<simd::f8*>(
+                (reinterpret_cast<uintptr_t>(lines.data()) + 31) & ~uintptr_t(31));
+            cpu::runningMin(in8.data(), 8, n, r, out8.data(), 8, g8, g8 + g.size());
+            for (int c = 0; c < 8; ++c)
+                for (int k = 0; k < n; ++k) {
+                    float m = INFINITY;
+                    for (int j = std::max(0, k - r); j <= std::min(n - 1, k + r); ++j)
+                        m = std::fmin(m, in8[size_t(8 * j + c)]);
+                    ASSERT_EQ(out8[size_t(8 * k + c)], m)
+                        << "n " << n << " r " << r << " k " << k << " column " << c;
+                }
         }
 }
 

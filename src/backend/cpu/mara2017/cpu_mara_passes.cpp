@@ -90,7 +90,9 @@ class CpuMaraPasses final : public reference::HostMaraPipeline {
             for (long y = y0; y < y1; ++y)
                 runningMin(stage5_.data() + y * w, 1, w, r, f.rowMin + y * w, 1, g, g + longest);
         });
-        ctx.pool.parallelFor(w, 16, [&](long x0, long x1) {
+        // Over groups of eight columns, so that a task's columns split into whole groups.
+        ctx.pool.parallelFor((w + 7) / 8, 2, [&](long g0, long g1) {
+            const long x0 = 8 * g0, x1 = std::min<long>(w, 8 * g1);
             const size_t at = perThread * size_t(ThreadPool::currentThreadIndex());
             columnMinima(f.rowMin, w, hgt, r, f.radius, x0, x1, lines + at, scratch_.data() + at);
         });
