@@ -35,23 +35,17 @@ BMFR_SIMD_DISPATCH(void, fillRows, (const EdgeGuide& g, EdgePlanes& e, long y0, 
     for (long y = y0; y < y1; ++y) {
         float* const row = planes + y * e.rowStride;
         const long i0 = y * g.width;
-        long x = 0;
-        for (; x + 8 <= g.width; x += 8) {
-            f8 p[3], n[3];
-            deinterleave3(g.position + 3 * (i0 + x), p[0], p[1], p[2]);
-            deinterleave3(g.normal + 3 * (i0 + x), n[0], n[1], n[2]);
+        // The last group's lanes past the row read as 0 and land in its padding, which holds 0.
+        for (int x = 0; x < g.width; x += 8) {
+            const int n = g.width - x < 8 ? g.width - x : 8;
+            f8 p[3], q[3];
+            loadXyz8(g.position + 3 * (i0 + x), n, p);
+            loadXyz8(g.normal + 3 * (i0 + x), n, q);
             for (int c = 0; c < 3; ++c) {
                 store8(row + c * e.planeSize + x, p[c]);
-                store8(row + (3 + c) * e.planeSize + x, n[c]);
+                store8(row + (3 + c) * e.planeSize + x, q[c]);
             }
-            store8(row + 6 * e.planeSize + x, load8(g.depth + i0 + x));
-        }
-        for (; x < g.width; ++x) {
-            for (int c = 0; c < 3; ++c) {
-                row[c * e.planeSize + x] = g.position[3 * (i0 + x) + c];
-                row[(3 + c) * e.planeSize + x] = g.normal[3 * (i0 + x) + c];
-            }
-            row[6 * e.planeSize + x] = g.depth[i0 + x];
+            store8(row + 6 * e.planeSize + x, loadFirst(g.depth + i0 + x, n));
         }
     }
 }
