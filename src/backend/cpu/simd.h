@@ -533,20 +533,17 @@ template <class V> BMFR_SIMD_INLINE V expNonPositive(V x) {
 BMFR_SIMD_INLINE f8 expNonPositive8(f8 x) {
     return expNonPositive(x);
 }
-#if BMFR_SIMD_F16C
-/// maxOf for sixteen lanes on the AVX-512 path: one vmaxps (b where a < b, else a, NaN and
-/// signed zeros alike), where GCC 12 makes maxOf with a constant operand a compare and a
-/// masked move.
-BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
-    f32x16 r;
-    asm("vmaxps %2, %1, %0" : "=v"(r) : "v"(b), "vm"(a));
-    return r;
+/// maxOf as one vmaxps on the paths with AVX (b where a < b, else a: NaN and signed zeros
+/// alike), where GCC 12 makes it a compare and a blend; max(0, x) is maxOn<kIsa>(V{}, x).
+template <cpu::Isa kIsa, class V> BMFR_SIMD_INLINE V maxOn(V a, V b) {
+    if constexpr (BMFR_SIMD_F16C && kIsa >= cpu::Isa::Avx2) {
+        V r;
+        asm("vmaxps %2, %1, %0" : "=v"(r) : "v"(b), "vm"(a));
+        return r;
+    } else {
+        return maxOf(a, b);
+    }
 }
-#else
-BMFR_SIMD_INLINE f32x16 maxOf16(f32x16 a, f32x16 b) {
-    return maxOf(a, b);
-}
-#endif
 /// 2^u per lane of u[0 .. n) (n <= 8), in place, u[skip] left alone; u <= 0 (not NaN; -inf
 /// included), clamped at -126, so that the result is at least 2^-126. 2^round(u) times a
 /// polynomial of u - round(u) of degree kDegree: 5 (relative error below 2.4e-7 there) or 3
@@ -565,7 +562,7 @@ BMFR_SIMD_INLINE void exp2NonPositiveRows(V* u, int n, int skip) {
     for (int t = 0; t < n; ++t) {
         if (t == skip) continue;
         if constexpr (kScalef) {
-            u[t] = maxOf16(u[t], splat<V>(-126.0f));
+            u[t] = maxOn<cpu::Isa::Avx512>(u[t], splat<V>(-126.0f));
             asm("vrndscaleps $8, %1, %0" : "=v"(rounded[t]) : "v"(u[t])); // nearest even
             u[t] -= rounded[t];
         } else {

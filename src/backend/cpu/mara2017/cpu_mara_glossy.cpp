@@ -71,7 +71,7 @@ BMFR_SIMD_DISPATCH(void, pairRow,
                 V pq[3], nq[3];
                 loadPlanes(guide[k], w, x + k * dx, pq);
                 loadPlanes(guide[k] + normals, w, x + k * dx, nq);
-                storeVector(ek + x, edgeWeightOf(nc, pc, nq, pq, f.edges));
+                storeVector(ek + x, edgeWeightOf<kIsa>(nc, pc, nq, pq, f.edges));
                 continue;
             }
             for (int l = 0; x + l < end; ++l) {

@@ -73,12 +73,11 @@ template <Isa kIsa, class V> BMFR_SIMD_INLINE void runXyz(const float* p, V out[
 /// and the edges. A lane whose g is 0 adds nothing (its weight is 0 even where its edge weight
 /// is not finite), so g is how a caller leaves lanes out: a select by a mask in every tap ran lane
 /// by lane at sixteen lanes (GCC 12).
-template <class V> struct SparseSum {
+template <Isa kIsa, class V> struct SparseSum {
     V pc[3], nc[3], sum[3];
     V total = V{} + 1.0f;
 
     /// The tap at the neighbours from pixel j, one run of the packed buffers.
-    template <Isa kIsa>
     BMFR_SIMD_INLINE void addRun(const MaraFrame& f, const float* src, long j, V g) {
         V pq[3], nq[3], s[3];
         runXyz<kIsa>(f.position + 3 * j, pq);
@@ -99,7 +98,7 @@ template <class V> struct SparseSum {
   private:
     BMFR_SIMD_INLINE void weigh(const MaraFrame& f, const V pq[3], const V nq[3], const V s[3],
                                 V g) {
-        const V wt = g * edgeWeightOf(nc, pc, nq, pq, f.edges);
+        const V wt = g * edgeWeightOf<kIsa>(nc, pc, nq, pq, f.edges);
         // Only where the weight is above 0 (not NaN, 0 times a non-finite edge weight): a lane
         // left out then keeps its sums whatever the tap's colour, so a run of sixteen gives each
         // lane the bits of a run of eight, which takes other lanes' taps.
@@ -182,7 +181,7 @@ template <Isa kIsa, class V>
 BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, int y, IntOf<V> live,
                                  const MaraTapRuns* runs, int rotation, const float* spiral,
                                  int taps, float radius, float sigma, RadiusTaps& built,
-                                 bool prefetch, SparseSum<V>& acc) {
+                                 bool prefetch, SparseSum<kIsa, V>& acc) {
     using M = IntOf<V>;
     constexpr int kLanes = kLanesOf<V>;
     const int *dx, *dy;
@@ -218,7 +217,7 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
         if (qy < 0 || qy >= f.height) continue;
         const long j = long(qy) * w + qx;
         if (qx >= 0 && qx + kLanes <= w) {
-            acc.template addRun<kIsa>(f, src, j, on * g[t]);
+            acc.addRun(f, src, j, on * g[t]);
             continue;
         }
         const M lx = qx + lane, inside = live & (lx >= 0) & (lx < w);
@@ -229,9 +228,10 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
 }
 
 /// Eight centres with their own rotations or radii: each lane's taps, gathered.
+template <Isa kIsa>
 BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final, int x, int y,
                                int n, i8 live, f8 radius, const MaraTapTables& tables,
-                               SparseSum<f8>& acc) {
+                               SparseSum<kIsa, f8>& acc) {
     const int w = f.width, taps = final ? f.finalTaps : f.preTaps;
     const i8 lane = laneIndices<i8>();
     // Every lane's taps, tap-major, so that the tap loop reads them as vectors.
@@ -316,7 +316,7 @@ BMFR_SIMD_INLINE void sparseGroup(const MaraFrame& f, const float* src, bool fin
             return;
         }
     }
-    SparseSum<V> acc;
+    SparseSum<kIsa, V> acc;
     if constexpr (kLanes == 8) {
         loadXyz8(f.position + 3 * i, n, acc.pc);
         loadXyz8(f.normal + 3 * i, n, acc.nc);
@@ -334,7 +334,8 @@ BMFR_SIMD_INLINE void sparseGroup(const MaraFrame& f, const float* src, bool fin
     };
     if (!anyLaneOf(live)) return store(acc.sum);
     if (ownTaps) {
-        if constexpr (kLanes == 8) laneTaps(f, src, final, x, y, n, live, radius, tables, acc);
+        if constexpr (kLanes == 8)
+            laneTaps<kIsa>(f, src, final, x, y, n, live, radius, tables, acc);
     } else {
         const int rotation =
             maraPixelRotation(x, y, f.rotationWidth, f.frame, f.seed, final ? 7 : 4);
