@@ -1,8 +1,11 @@
 // The eight-wide helpers of the fast passes against plain index arithmetic.
 #include "backend/cpu/bmfr/cpu_block_masks.h"
+#include "backend/cpu/libm_expf.h"
 #include "backend/cpu/simd.h"
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <gtest/gtest.h>
 #include <vector>
 
@@ -259,4 +262,40 @@ TEST(Simd, SixteenLanesAreTwoTimesEightLaneForLane) {
     float out[16] = {};
     storeFirstLanes(out, splat<f32x16>(2.0f), 11);
     for (int l = 0; l < 16; ++l) EXPECT_EQ(out[l], l < 11 ? 2.0f : 0.0f) << l;
+}
+
+// expfOnActivePath gives std::exp's bits on every path: on every 61st float from -0 to -104
+// (every one was checked once), at one whose result glibc's FMA build rounds the other way from
+// its plain build (and from the correctly rounded value), and where expf is 0, 1 or NaN.
+TEST(Simd, LibmExpfGivesTheCLibrarysBits) {
+    using namespace bmfr::cpu;
+    std::vector<float> x;
+    for (uint32_t u = 0x80000000u; u <= 0xc2d00000u; u += 61) {
+        float v;
+        std::memcpy(&v, &u, sizeof v);
+        x.push_back(v);
+    }
+    for (const float v : {-0x1.f8cbb2p+5f, -103.9f, -103.98f, -104.5f, -1e30f, -INFINITY, 0.0f})
+        x.push_back(v);
+    x.push_back(NAN);
+    const int n = int(x.size());
+    x.resize(size_t(n + 7) / 8 * 8, 0.0f);
+    std::vector<float> out(x.size());
+    const Isa best = bestIsa();
+    for (int k = 0; k <= int(best); ++k) {
+        setActiveIsa(Isa(k));
+        expfOnActivePath(x.data(), n, out.data());
+        setActiveIsa(best);
+        long differ = 0;
+        for (int i = 0; i < n; ++i) {
+            const float want = std::exp(x[size_t(i)]);
+            if (std::isnan(want) ? !std::isnan(out[size_t(i)])
+                                 : std::memcmp(&want, &out[size_t(i)], sizeof want) != 0) {
+                if (differ++ < 3)
+                    ADD_FAILURE() << isaName(Isa(k)) << ": expf(" << std::hexfloat << x[size_t(i)]
+                                  << ") = " << want << ", not " << out[size_t(i)];
+            }
+        }
+        EXPECT_EQ(differ, 0) << isaName(Isa(k)) << ", of " << n;
+    }
 }

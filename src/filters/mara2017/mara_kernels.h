@@ -82,8 +82,13 @@ BMFR_HD int maraTapOffset(float unit, float radius) {
     return int(std::nearbyint(unit * radius));
 }
 
+/// The exponent of maraGaussian: the CPU backend takes its exponentials eight at a time.
+BMFR_HD float maraGaussianExponent(float d2, float sigma) {
+    return -d2 / (2.0f * sigma * sigma);
+}
+
 BMFR_HD float maraGaussian(float d2, float sigma) {
-    return std::exp(-d2 / (2.0f * sigma * sigma));
+    return std::exp(maraGaussianExponent(d2, sigma));
 }
 
 /// Stages 9-10: sigma = scale * roughness^exponent + epsilon pixels, independent of resolution.

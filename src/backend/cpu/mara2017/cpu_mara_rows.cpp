@@ -1,4 +1,5 @@
 #include "backend/cpu/mara2017/cpu_mara_rows.h"
+#include "backend/cpu/libm_expf.h"
 #include "backend/cpu/mara2017/cpu_mara_edge_weight.h"
 #include "backend/cpu/simd.h"
 #include "filters/mara2017/mara_passes.h"
@@ -110,10 +111,25 @@ template <Isa kIsa, class V> struct SparseSum {
 /// The most taps of a sparse stage (the settings' range).
 constexpr int kMaxTaps = 256;
 
+/// The `taps` unit offsets of `spiral` scaled by `radius`, and their Gaussian weights of `sigma`,
+/// as maraSparseBilateral computes them, the exponentials eight at a time (expfRun: a scalar
+/// expf per tap was a tenth of stage 7).
+template <Isa kIsa>
+BMFR_SIMD_INLINE void scaledTaps(const float* spiral, int taps, float radius, float sigma, int* dx,
+                                 int* dy, float* g) {
+    alignas(32) float exponent[kMaxTaps];
+    for (int k = 0; k < taps; ++k) {
+        dx[k] = maraTapOffset(spiral[2 * k], radius),
+        dy[k] = maraTapOffset(spiral[2 * k + 1], radius);
+        exponent[k] = maraGaussianExponent(float(dx[k] * dx[k] + dy[k] * dy[k]), sigma);
+    }
+    std::fill(exponent + taps, exponent + (taps + 7) / 8 * 8, 0.0f);
+    expfRun<kIsa>(exponent, taps, g);
+}
+
 /// Stage 7's taps at a radius outside the tables (MaraTapTables), per rotation as the runs need
 /// them, kept while the radius stays: stage 5's box minimum holds one radius over long stretches
-/// of a row, and building the taps (a scalar exponential each) cost as much as filtering with
-/// them.
+/// of a row, and building the taps (an exponential each) costs more than a run's filtering.
 struct RadiusTaps {
     float radius = -1.0f;
     int count[kMaraSpiralRotations];
@@ -122,6 +138,7 @@ struct RadiusTaps {
 
     /// Rotation r's taps at radius `at`: the `taps` unit offsets of `spiral` scaled, with Gaussian
     /// weights of `sigma`.
+    template <Isa kIsa>
     BMFR_SIMD_INLINE int build(int r, const float* spiral, int taps, float at, float sigma) {
         if (!(at == radius)) {
             radius = at;
@@ -133,18 +150,18 @@ struct RadiusTaps {
         int slot[81];
         const bool merge = at < 4.0f;
         if (merge) std::fill(slot, slot + 81, -1);
+        int ox[kMaxTaps], oy[kMaxTaps];
+        alignas(32) float gk[kMaxTaps];
+        scaledTaps<kIsa>(spiral, taps, at, sigma, ox, oy, gk);
         int n = 0;
         for (int k = 0; k < taps; ++k) {
-            const int ox = maraTapOffset(spiral[2 * k], at),
-                      oy = maraTapOffset(spiral[2 * k + 1], at);
-            const float gk = maraGaussian(float(ox * ox + oy * oy), sigma);
-            int* t = merge ? &slot[9 * (oy + 4) + ox + 4] : nullptr;
+            int* t = merge ? &slot[9 * (oy[k] + 4) + ox[k] + 4] : nullptr;
             if (t && *t >= 0) {
-                g[r][*t] += gk;
+                g[r][*t] += gk[k];
                 continue;
             }
             if (t) *t = n;
-            dx[r][n] = ox, dy[r][n] = oy, g[r][n] = gk;
+            dx[r][n] = ox[k], dy[r][n] = oy[k], g[r][n] = gk[k];
             ++n;
         }
         return count[r] = n;
@@ -192,7 +209,7 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
         dx = runs->dx.data() + b, dy = runs->dy.data() + b, g = runs->g.data() + b;
         count = runs->begin[size_t(rotation) + 1] - b;
     } else {
-        count = built.build(rotation, spiral, taps, radius, sigma);
+        count = built.template build<kIsa>(rotation, spiral, taps, radius, sigma);
         dx = built.dx[rotation], dy = built.dy[rotation], g = built.g[rotation];
     }
     const M lane = laneIndices<M>();
@@ -254,14 +271,12 @@ BMFR_SIMD_INLINE void laneTaps(const MaraFrame& f, const float* src, bool final,
                                og[8 * k + l] = og[8 * k + same];
                 continue;
             }
-            const float* spiral = f.finalSpiral + 2 * taps * r;
-            const float sigma = f.finalSigma * radius[l];
-            for (int k = 0; k < taps; ++k) {
-                const int dx = maraTapOffset(spiral[2 * k], radius[l]),
-                          dy = maraTapOffset(spiral[2 * k + 1], radius[l]);
-                ox[8 * k + l] = dx, oy[8 * k + l] = dy;
-                og[8 * k + l] = maraGaussian(float(dx * dx + dy * dy), sigma);
-            }
+            int dx[kMaxTaps], dy[kMaxTaps];
+            alignas(32) float g[kMaxTaps];
+            scaledTaps<kIsa>(f.finalSpiral + 2 * taps * r, taps, radius[l],
+                             f.finalSigma * radius[l], dx, dy, g);
+            for (int k = 0; k < taps; ++k)
+                ox[8 * k + l] = dx[k], oy[8 * k + l] = dy[k], og[8 * k + l] = g[k];
             continue;
         }
         const int* offsets = final ? tables.offsets[t].data() : f.preOffsets;
