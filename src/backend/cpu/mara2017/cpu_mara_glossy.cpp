@@ -88,7 +88,7 @@ BMFR_SIMD_DISPATCH(void, pairRow,
 /// `taps` Gaussian weights g[1 ..]): passRow's arguments. Each group's lanes add their taps in
 /// the reference's order; a tap past either end of the row reads the pads, weight 0 and colour
 /// 0, and adds nothing.
-template <int G>
+template <Isa kIsa, int G>
 BMFR_SIMD_INLINE void passGroups(const MaraFrame& f, int x, int y, int dx, int dy, int taps,
                                  const float* g, const float* const* below,
                                  const float* const* above, const float* const* planar, long stride,
@@ -108,8 +108,7 @@ BMFR_SIMD_INLINE void passGroups(const MaraFrame& f, int x, int y, int dx, int d
                 const int at = x + 8 * q;
                 f8 s[3];
                 loadPlanes(from, stride, at + side * k * dx, s);
-                f8 wt = g[k] * load8(e + at);
-                wt = wt > 0.0f ? wt : 0.0f;
+                const f8 wt = maxOn<kIsa>(f8{}, g[k] * load8(e + at));
                 for (int c = 0; c < 3; ++c) sum[q][c] = sum[q][c] + wt * s[c];
                 total[q] = total[q] + wt;
             }
@@ -166,9 +165,11 @@ BMFR_SIMD_DISPATCH(void, passRow,
         // chains, and one group's (an add per tap) is what bounds the loop.
         const bool two = sameRoughness(8, 16);
         if (two)
-            passGroups<2>(f, x, y, dx, dy, taps, g, below, above, planar, stride, dst + 3 * i);
+            passGroups<kIsa, 2>(f, x, y, dx, dy, taps, g, below, above, planar, stride,
+                                dst + 3 * i);
         else
-            passGroups<1>(f, x, y, dx, dy, taps, g, below, above, planar, stride, dst + 3 * i);
+            passGroups<kIsa, 1>(f, x, y, dx, dy, taps, g, below, above, planar, stride,
+                                dst + 3 * i);
         x += 8 * (two ? 2 : 1);
     }
 }
