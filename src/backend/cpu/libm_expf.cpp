@@ -1,5 +1,4 @@
 #include "backend/cpu/libm_expf.h"
-#include <cmath>
 
 namespace bmfr::cpu {
 

@@ -533,8 +533,9 @@ template <class V> BMFR_SIMD_INLINE V expNonPositive(V x) {
 BMFR_SIMD_INLINE f8 expNonPositive8(f8 x) {
     return expNonPositive(x);
 }
-/// maxOf as one vmaxps on the paths with AVX (b where a < b, else a: NaN and signed zeros
-/// alike), where GCC 12 makes it a compare and a blend; max(0, x) is maxOn<kIsa>(V{}, x).
+/// maxOf as one vmaxps on the AVX2 and AVX-512 paths of GCC builds (b where a < b, else a: NaN
+/// and signed zeros alike), where GCC 12 makes maxOf a compare and a blend; max(0, x) is
+/// maxOn<kIsa>(V{}, x).
 template <cpu::Isa kIsa, class V> BMFR_SIMD_INLINE V maxOn(V a, V b) {
     if constexpr (BMFR_SIMD_F16C && kIsa >= cpu::Isa::Avx2) {
         V r;

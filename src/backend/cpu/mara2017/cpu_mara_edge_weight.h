@@ -7,7 +7,7 @@
 namespace bmfr::cpu {
 
 /// maraEdgeWeight for eight or sixteen taps (V), operation for operation. The clamps at 0 are
-/// vmaxps and the absolute values a mask: the same values (an along of -0 or +0 gives a wp of
+/// maxOn and the absolute values a mask: the same values (an along of -0 or +0 gives a wp of
 /// exactly 1 either way, and a NaN wp is clamped to 0 either way).
 template <Isa kIsa, class V>
 BMFR_SIMD_INLINE V edgeWeightOf(const V nc[3], const V pc[3], const V nq[3], const V pq[3],

@@ -113,13 +113,13 @@ constexpr int kMaxTaps = 256;
 
 /// The `taps` unit offsets of `spiral` scaled by `radius`, and their Gaussian weights of `sigma`,
 /// as maraSparseBilateral computes them, the exponentials eight at a time (expfRun: a scalar
-/// expf per tap was a tenth of stage 7).
+/// expf per tap was a seventh of stage 7).
 template <Isa kIsa>
 BMFR_SIMD_INLINE void scaledTaps(const float* spiral, int taps, float radius, float sigma, int* dx,
                                  int* dy, float* g) {
     alignas(32) float exponent[kMaxTaps];
     for (int k = 0; k < taps; ++k) {
-        dx[k] = maraTapOffset(spiral[2 * k], radius),
+        dx[k] = maraTapOffset(spiral[2 * k], radius);
         dy[k] = maraTapOffset(spiral[2 * k + 1], radius);
         exponent[k] = maraGaussianExponent(float(dx[k] * dx[k] + dy[k] * dy[k]), sigma);
     }
@@ -129,7 +129,7 @@ BMFR_SIMD_INLINE void scaledTaps(const float* spiral, int taps, float radius, fl
 
 /// Stage 7's taps at a radius outside the tables (MaraTapTables), per rotation as the runs need
 /// them, kept while the radius stays: stage 5's box minimum holds one radius over long stretches
-/// of a row, and building the taps (an exponential each) costs more than a run's filtering.
+/// of a row, and building a radius's taps takes an exponential each.
 struct RadiusTaps {
     float radius = -1.0f;
     int count[kMaraSpiralRotations];
@@ -209,7 +209,7 @@ BMFR_SIMD_INLINE void sharedTaps(const MaraFrame& f, const float* src, int x, in
         dx = runs->dx.data() + b, dy = runs->dy.data() + b, g = runs->g.data() + b;
         count = runs->begin[size_t(rotation) + 1] - b;
     } else {
-        count = built.template build<kIsa>(rotation, spiral, taps, radius, sigma);
+        count = built.build<kIsa>(rotation, spiral, taps, radius, sigma);
         dx = built.dx[rotation], dy = built.dy[rotation], g = built.g[rotation];
     }
     const M lane = laneIndices<M>();
