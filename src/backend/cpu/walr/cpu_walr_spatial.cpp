@@ -249,7 +249,7 @@ BMFR_SIMD_INLINE void traceBlock(const EdgeGuide& g, EdgePlanes& e, const WalrLe
                      d2 = load8(pz + q) - p[2];
             const f8 dd = n[0] * d0 + n[1] * d1 + n[2] * d2;
             if (offset) *offset = max8(abs8(d0), max8(abs8(d1), abs8(d2)));
-            return dd < 0.0f ? -dd : dd;
+            return abs8(dd);
         };
         // Each lane's edgeWeight at step k along the tap.
         auto weightAt = [&](int k) __attribute__((always_inline)) {
