@@ -99,6 +99,20 @@ TEST(CliConventions, BenchTimesEveryFilterInOneTable) {
     EXPECT_NE(r.output.find("\n  walr "), std::string::npos) << r.output;
     EXPECT_EQ(runCli("bench --filters all --filter bmfr").code, 2);
     EXPECT_EQ(runCli("bench --filters bmfr,oidn").code, 2);
+    // --set reaches every timed filter that has the key (walr's iterations are at most 5), and
+    // a key none of them has, or a baseline option, is an error rather than silently ignored.
+    r = runCli("bench --filters bmfr,walr --set iterations=9 --sizes 48x32 --frames 1 -q");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("iterations"), std::string::npos) << r.output;
+    r = runCli("bench --filters bmfr,svgf --set finalTaps=25 --sizes 48x32 --frames 1 -q");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("'finalTaps' is not a setting of bmfr, svgf"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(runCli("bench --filters all --baseline-set blockSize=16").code, 2);
+    EXPECT_EQ(runCli("bench --filters all --baseline-filter walr").code, 2);
+    r = runCli("bench --filters bmfr,mara2017 --set finalTaps=25 --sizes 48x32 --frames 1 "
+               "--warmup 0 -q");
+    EXPECT_EQ(r.code, 0) << r.output;
 }
 
 TEST(CliConventions, EveryCommandTakesQuietAndWritesWithDashO) {

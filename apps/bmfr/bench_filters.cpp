@@ -4,6 +4,7 @@
 #include "backend/cpu/isa.h"
 #include "backend/cuda/cuda_device.h"
 #include "bench_inputs.h"
+#include "filter_options.h"
 #include "stage_log.h"
 #include "stream_floor.h"
 #include "synth/procedural_scene.h"
@@ -31,6 +32,8 @@ nlohmann::json benchFilters(const BenchJob& job, int w, int h,
     for (const std::string& name : job.filters) {
         SettingValues values = {{"threads", std::to_string(job.threads)}, {"backend", job.backend}};
         for (const auto& kv : presetSettings(name, job.preset)) values.push_back(kv);
+        for (const auto& kv : parseSharedSettings(name, job.filters, job.sets, "--set"))
+            values.push_back(kv);
         timed.push_back({name, makeFromCommandLine(name, values), {}});
     }
     const bool cpu = job.backend == "cpu";

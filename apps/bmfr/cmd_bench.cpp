@@ -167,16 +167,18 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                            ->default_val("bmfr");
     std::vector<std::string> choices = filterNames();
     choices.push_back("all");
-    cmd->add_option("--filters", job->filters,
-                    "several filters on --backend, interleaved frame by frame, as one table "
-                    "beside BMFR and the single-pass floor: a comma list, or all")
-        ->delimiter(',')
-        ->check(oneOf(choices))
-        ->excludes(one);
-    cmd->add_option("--baseline-filter", job->baselineFilter,
-                    "another filter as the baseline, on --baseline-backend (walr beside bmfr: "
-                    "--filter walr --baseline-filter bmfr --baseline-backend cpu)")
-        ->check(oneOf(filterNames()));
+    CLI::Option* several =
+        cmd->add_option("--filters", job->filters,
+                        "several filters on --backend, interleaved frame by frame, as one table "
+                        "beside BMFR and the single-pass floor: a comma list, or all")
+            ->delimiter(',')
+            ->check(oneOf(choices))
+            ->excludes(one);
+    several->excludes(cmd->add_option("--baseline-filter", job->baselineFilter,
+                                      "another filter as the baseline, on --baseline-backend "
+                                      "(walr beside bmfr: --filter walr --baseline-filter bmfr "
+                                      "--baseline-backend cpu)")
+                          ->check(oneOf(filterNames())));
     cmd->add_option("--preset", job->preset,
                     "the measured filter's preset: quality (the default) or faithful (bmfr "
                     "settings --preset)")
@@ -187,12 +189,13 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     "--baseline-preset faithful --baseline-backend cpu)")
         ->check(oneOf(presetNames()))
         ->default_val("quality");
-    cmd->add_option("--baseline-set", job->baselineSets,
-                    "key=value: a setting of the baseline, repeatable (half against float "
-                    "history: --set halfHistory=true --baseline-backend cpu --baseline-set "
-                    "halfHistory=false)");
+    several->excludes(cmd->add_option("--baseline-set", job->baselineSets,
+                                      "key=value: a setting of the baseline, repeatable (half "
+                                      "against float history: --set halfHistory=true "
+                                      "--baseline-backend cpu --baseline-set halfHistory=false)"));
     cmd->add_option("--set", job->sets,
-                    "key=value: a setting of the measured filter (bmfr settings NAME), repeatable");
+                    "key=value: a setting of the measured filter (bmfr settings NAME), "
+                    "repeatable; with --filters, of every filter that has the key");
     cmd->add_flag("--device-buffers", job->deviceBuffers,
                   "with --backend cuda: the input in device memory (copied there once, as an "
                   "engine's G-buffer) and the output left there: no upload or download");
@@ -213,6 +216,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                              "time one --filter");
         if (job->deviceBuffers && job->backend != "cuda")
             throw UsageError("--device-buffers needs --backend cuda");
+        for (const std::string& f : job->filters) // a bad --set before any size runs
+            parseSharedSettings(f, job->filters, job->sets, "--set");
         for (const std::string& size : job->sizes) {
             int w = 0, h = 0;
             char x = 0;

@@ -1,6 +1,7 @@
 #include "filter_options.h"
 #include "core/closest_name.h"
 #include "usage.h"
+#include <algorithm>
 #include <bmfr/error.h>
 #include <cctype>
 #include <fmt/format.h>
@@ -129,6 +130,28 @@ std::pair<std::string, std::string> parseSetting(const std::string& filter, cons
                          (hint.empty() ? " (`bmfr settings " + filter + "` lists them)" : hint));
     }
     return {d->key, text.substr(eq + 1)};
+}
+
+SettingValues parseSharedSettings(const std::string& filter,
+                                  const std::vector<std::string>& filters,
+                                  const std::vector<std::string>& texts, const std::string& flag) {
+    SettingValues v;
+    for (const std::string& text : texts) {
+        const size_t eq = text.find('=');
+        if (eq == std::string::npos || eq == 0) parseSetting(filter, text, flag); // throws
+        const std::string key = text.substr(0, eq);
+        std::vector<std::string> owners;
+        for (const std::string& f : filters)
+            if (findDoc(filterSettings(f), key)) owners.push_back(f);
+        if (owners.empty() && filters.size() == 1) parseSetting(filter, text, flag); // throws
+        if (owners.empty())
+            throw UsageError(fmt::format("{} {}: '{}' is not a setting of {} (`bmfr settings "
+                                         "NAME` lists them)",
+                                         flag, text, key, fmt::join(filters, ", ")));
+        if (std::find(owners.begin(), owners.end(), filter) != owners.end())
+            v.push_back(parseSetting(filter, text, flag));
+    }
+    return v;
 }
 
 std::unique_ptr<Filter> FilterOptions::makeFilter(const std::string& name,

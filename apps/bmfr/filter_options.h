@@ -44,6 +44,13 @@ struct FilterOptions {
 std::pair<std::string, std::string> parseSetting(const std::string& filter, const std::string& text,
                                                  const std::string& flag);
 
+/// parseSetting for texts given to several filters at once (`bench --filters`): `filter`'s
+/// pairs, from the texts whose key it has. Throws UsageError for a text whose key none of
+/// `filters` has, so that no text is silently dropped.
+SettingValues parseSharedSettings(const std::string& filter,
+                                  const std::vector<std::string>& filters,
+                                  const std::vector<std::string>& texts, const std::string& flag);
+
 /// The value of `key` in `values` (the last one given), or `fallback`.
 std::string settingValue(const SettingValues& values, const std::string& key,
                          const std::string& fallback);
