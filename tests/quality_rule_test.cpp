@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <gtest/gtest.h>
+#include <ostream>
 
 namespace bmfr {
 namespace {
@@ -96,6 +97,11 @@ struct Approximation {
     SettingValues common;      ///< settings of both runs
     SettingValues approximate; ///< the approximation's own setting, where it is not a default
 };
+
+/// gtest's name for a case in its listing and its failures, not the struct's bytes.
+void PrintTo(const Approximation& a, std::ostream* os) {
+    *os << a.filter << " against " << a.exact[0].first << "=" << a.exact[0].second;
+}
 
 void expectApproximationRule(const Approximation& a, const std::vector<FrameData>& frames,
                              const char* what) {
