@@ -97,22 +97,32 @@ TEST(CliConventions, BenchTimesEveryFilterInOneTable) {
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("x bmfr"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\n  walr "), std::string::npos) << r.output;
-    EXPECT_EQ(runCli("bench --filters all --filter bmfr").code, 2);
+    EXPECT_EQ(runCli("bench --filters all --filter bmfr --sizes 48x32 --frames 1").code, 2);
     EXPECT_EQ(runCli("bench --filters bmfr,oidn").code, 2);
     // --set reaches every timed filter that has the key (walr's iterations are at most 5), and
     // a key none of them has, or a baseline option, is an error rather than silently ignored.
-    r = runCli("bench --filters bmfr,walr --set iterations=9 --sizes 48x32 --frames 1 -q");
+    const std::string tiny = " --sizes 48x32 --frames 1 --warmup 0 -q";
+    r = runCli("bench --filters bmfr,walr --set iterations=9" + tiny);
     EXPECT_EQ(r.code, 2) << r.output;
-    EXPECT_NE(r.output.find("iterations"), std::string::npos) << r.output;
-    r = runCli("bench --filters bmfr,svgf --set finalTaps=25 --sizes 48x32 --frames 1 -q");
+    EXPECT_NE(r.output.find("--walr-iterations 9 is outside"), std::string::npos) << r.output;
+    r = runCli("bench --filters bmfr,svgf --set finalTap=25" + tiny);
     EXPECT_EQ(r.code, 2) << r.output;
-    EXPECT_NE(r.output.find("'finalTaps' is not a setting of bmfr, svgf"), std::string::npos)
+    EXPECT_NE(r.output.find("'finalTap' is not a setting of bmfr, svgf"), std::string::npos)
         << r.output;
-    EXPECT_EQ(runCli("bench --filters all --baseline-set blockSize=16").code, 2);
-    EXPECT_EQ(runCli("bench --filters all --baseline-filter walr").code, 2);
-    r = runCli("bench --filters bmfr,mara2017 --set finalTaps=25 --sizes 48x32 --frames 1 "
-               "--warmup 0 -q");
-    EXPECT_EQ(r.code, 0) << r.output;
+    r = runCli("bench --filters walr,mara2017 --set finalTap=25" + tiny);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("did you mean 'finalTaps'"), std::string::npos) << r.output;
+    EXPECT_EQ(runCli("bench --filters bmfr,walr --set iterations" + tiny).code, 2);
+    for (const char* baseline :
+         {"--baseline-set blockSize=16", "--baseline-filter walr", "--no-baseline",
+          "--baseline-backend cpu", "--baseline-preset faithful"})
+        EXPECT_EQ(runCli("bench --filters all " + std::string(baseline) + tiny).code, 2)
+            << baseline;
+    // A key reaches every filter that has it, a flag name only its own: SVGF's iterations are
+    // [1, 8], WALR's [0, 5] (0 = by size).
+    EXPECT_EQ(runCli("bench --filters svgf,walr --set iterations=0" + tiny).code, 2);
+    EXPECT_EQ(runCli("bench --filters svgf,walr --set walr-iterations=0" + tiny).code, 0);
+    EXPECT_EQ(runCli("bench --filters svgf,mara2017 --set finalTaps=25" + tiny).code, 0);
 }
 
 TEST(CliConventions, EveryCommandTakesQuietAndWritesWithDashO) {

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <gtest/gtest.h>
 #include <map>
+#include <ostream>
 
 namespace bmfr {
 namespace {
@@ -56,6 +57,11 @@ struct TaaCase {
     const char* filter;
     bool jitter;
 };
+
+/// gtest's name for a case in its listing and its failures, not the struct's bytes.
+void PrintTo(const TaaCase& c, std::ostream* os) {
+    *os << c.filter << (c.jitter ? ", jittered" : ", unjittered");
+}
 
 class TaaRule : public ::testing::TestWithParam<TaaCase> {};
 

@@ -153,12 +153,13 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--threads", job->threads, "worker threads, 0 = all cores")->default_val(0);
     cmd->add_flag("--json", job->json, "print one JSON object");
     cmd->add_flag("-q,--quiet", job->quiet, "no progress (the results are still printed)");
-    cmd->add_flag("!--no-baseline", job->baseline,
-                  "skip the baseline backend run interleaved with the measured one");
-    cmd->add_option("--baseline-backend", job->baselineBackend,
-                    "the backend the speed-up is measured against")
-        ->check(oneOf(backendNames()))
-        ->default_val("reference");
+    CLI::Option* noBaseline =
+        cmd->add_flag("!--no-baseline", job->baseline,
+                      "skip the baseline backend run interleaved with the measured one");
+    CLI::Option* baselineBackend = cmd->add_option("--baseline-backend", job->baselineBackend,
+                                                   "the backend the speed-up is measured against")
+                                       ->check(oneOf(backendNames()))
+                                       ->default_val("reference");
     cmd->add_option("--backend", job->backend, "the backend measured: reference, cpu or cuda")
         ->check(oneOf(backendNames()))
         ->default_val("cpu");
@@ -174,28 +175,35 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
             ->delimiter(',')
             ->check(oneOf(choices))
             ->excludes(one);
-    several->excludes(cmd->add_option("--baseline-filter", job->baselineFilter,
-                                      "another filter as the baseline, on --baseline-backend "
-                                      "(walr beside bmfr: --filter walr --baseline-filter bmfr "
-                                      "--baseline-backend cpu)")
-                          ->check(oneOf(filterNames())));
+    CLI::Option* baselineFilter =
+        cmd->add_option("--baseline-filter", job->baselineFilter,
+                        "another filter as the baseline, on --baseline-backend (walr beside bmfr: "
+                        "--filter walr --baseline-filter bmfr --baseline-backend cpu)")
+            ->check(oneOf(filterNames()));
     cmd->add_option("--preset", job->preset,
                     "the measured filter's preset: quality (the default) or faithful (bmfr "
                     "settings --preset)")
         ->check(oneOf(presetNames()))
         ->default_val("quality");
-    cmd->add_option("--baseline-preset", job->baselinePreset,
-                    "the baseline's preset (the quality preset against the faithful one: "
-                    "--baseline-preset faithful --baseline-backend cpu)")
-        ->check(oneOf(presetNames()))
-        ->default_val("quality");
-    several->excludes(cmd->add_option("--baseline-set", job->baselineSets,
-                                      "key=value: a setting of the baseline, repeatable (half "
-                                      "against float history: --set halfHistory=true "
-                                      "--baseline-backend cpu --baseline-set halfHistory=false)"));
+    CLI::Option* baselinePreset =
+        cmd->add_option("--baseline-preset", job->baselinePreset,
+                        "the baseline's preset (the quality preset against the faithful one: "
+                        "--baseline-preset faithful --baseline-backend cpu)")
+            ->check(oneOf(presetNames()))
+            ->default_val("quality");
+    CLI::Option* baselineSet =
+        cmd->add_option("--baseline-set", job->baselineSets,
+                        "key=value: a setting of the baseline, repeatable (half against float "
+                        "history: --set halfHistory=true --baseline-backend cpu --baseline-set "
+                        "halfHistory=false)");
+    // --filters has no baseline: its options would be dropped without a word.
+    for (CLI::Option* o :
+         {noBaseline, baselineBackend, baselineFilter, baselinePreset, baselineSet})
+        several->excludes(o);
     cmd->add_option("--set", job->sets,
                     "key=value: a setting of the measured filter (bmfr settings NAME), "
-                    "repeatable; with --filters, of every filter that has the key");
+                    "repeatable; with --filters, of every filter that has the key (a flag "
+                    "name, walr-iterations=3, reaches only its own)");
     cmd->add_flag("--device-buffers", job->deviceBuffers,
                   "with --backend cuda: the input in device memory (copied there once, as an "
                   "engine's G-buffer) and the output left there: no upload or download");
@@ -216,8 +224,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                              "time one --filter");
         if (job->deviceBuffers && job->backend != "cuda")
             throw UsageError("--device-buffers needs --backend cuda");
-        for (const std::string& f : job->filters) // a bad --set before any size runs
-            parseSharedSettings(f, job->filters, job->sets, "--set");
+        if (table) // an unknown --set key before any size runs (a bad value: at the first)
+            parseSharedSettings(job->filters.front(), job->filters, job->sets, "--set");
         for (const std::string& size : job->sizes) {
             int w = 0, h = 0;
             char x = 0;

@@ -136,18 +136,29 @@ SettingValues parseSharedSettings(const std::string& filter,
                                   const std::vector<std::string>& filters,
                                   const std::vector<std::string>& texts, const std::string& flag) {
     SettingValues v;
+    if (filters.size() == 1) {
+        for (const std::string& text : texts) v.push_back(parseSetting(filter, text, flag));
+        return v;
+    }
     for (const std::string& text : texts) {
         const size_t eq = text.find('=');
-        if (eq == std::string::npos || eq == 0) parseSetting(filter, text, flag); // throws
+        if (eq == std::string::npos || eq == 0)
+            throw UsageError(fmt::format("{} '{}': expected KEY=VALUE (keys: bmfr settings NAME, "
+                                         "for {})",
+                                         flag, text, fmt::join(filters, ", ")));
         const std::string key = text.substr(0, eq);
-        std::vector<std::string> owners;
-        for (const std::string& f : filters)
-            if (findDoc(filterSettings(f), key)) owners.push_back(f);
-        if (owners.empty() && filters.size() == 1) parseSetting(filter, text, flag); // throws
-        if (owners.empty())
-            throw UsageError(fmt::format("{} {}: '{}' is not a setting of {} (`bmfr settings "
-                                         "NAME` lists them)",
-                                         flag, text, key, fmt::join(filters, ", ")));
+        std::vector<std::string> owners, keys;
+        for (const std::string& f : filters) {
+            const std::vector<SettingDoc> docs = filterSettings(f);
+            if (findDoc(docs, key)) owners.push_back(f);
+            for (const std::string& k : keysOf(docs)) keys.push_back(k);
+        }
+        if (owners.empty()) {
+            const std::string hint = didYouMean(key, keys);
+            throw UsageError(fmt::format(
+                "{} {}: '{}' is not a setting of {}{}", flag, text, key, fmt::join(filters, ", "),
+                hint.empty() ? " (`bmfr settings NAME` lists them)" : hint));
+        }
         if (std::find(owners.begin(), owners.end(), filter) != owners.end())
             v.push_back(parseSetting(filter, text, flag));
     }

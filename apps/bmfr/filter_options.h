@@ -45,8 +45,9 @@ std::pair<std::string, std::string> parseSetting(const std::string& filter, cons
                                                  const std::string& flag);
 
 /// parseSetting for texts given to several filters at once (`bench --filters`): `filter`'s
-/// pairs, from the texts whose key it has. Throws UsageError for a text whose key none of
-/// `filters` has, so that no text is silently dropped.
+/// pairs, from the texts whose key (or flag) it has, so a key two filters share reaches both and
+/// a flag (`walr-iterations`) one. Throws UsageError for a text whose key none of `filters`
+/// has, so that no text is silently dropped.
 SettingValues parseSharedSettings(const std::string& filter,
                                   const std::vector<std::string>& filters,
                                   const std::vector<std::string>& texts, const std::string& flag);
