@@ -1,7 +1,6 @@
 #include "filter_options.h"
 #include "core/closest_name.h"
 #include "usage.h"
-#include <algorithm>
 #include <bmfr/error.h>
 #include <cctype>
 #include <fmt/format.h>
@@ -147,20 +146,22 @@ SettingValues parseSharedSettings(const std::string& filter,
                                          "for {})",
                                          flag, text, fmt::join(filters, ", ")));
         const std::string key = text.substr(0, eq);
-        std::vector<std::string> owners, keys;
+        bool anyHas = false, filterHas = false;
+        std::vector<std::string> keys;
         for (const std::string& f : filters) {
             const std::vector<SettingDoc> docs = filterSettings(f);
-            if (findDoc(docs, key)) owners.push_back(f);
+            const bool has = findDoc(docs, key) != nullptr;
+            anyHas = anyHas || has;
+            filterHas = filterHas || (has && f == filter);
             for (const std::string& k : keysOf(docs)) keys.push_back(k);
         }
-        if (owners.empty()) {
+        if (!anyHas) {
             const std::string hint = didYouMean(key, keys);
             throw UsageError(fmt::format(
                 "{} {}: '{}' is not a setting of {}{}", flag, text, key, fmt::join(filters, ", "),
                 hint.empty() ? " (`bmfr settings NAME` lists them)" : hint));
         }
-        if (std::find(owners.begin(), owners.end(), filter) != owners.end())
-            v.push_back(parseSetting(filter, text, flag));
+        if (filterHas) v.push_back(parseSetting(filter, text, flag));
     }
     return v;
 }
